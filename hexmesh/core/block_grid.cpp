@@ -1,0 +1,32 @@
+#include "hexmesh/core/block_grid.h"
+
+namespace hexmesh {
+
+Id BlockGrid::num_cells() const {
+    Id n = 0;
+    for (const Block& b : blocks) n += b.cells().count();
+    return n;
+}
+
+std::array<Id, 8> cell_nodes(const Block& block, int i, int j, int k) {
+    return {block.node(i, j, k),         block.node(i + 1, j, k),
+            block.node(i + 1, j + 1, k), block.node(i, j + 1, k),
+            block.node(i, j, k + 1),     block.node(i + 1, j, k + 1),
+            block.node(i + 1, j + 1, k + 1), block.node(i, j + 1, k + 1)};
+}
+
+HexMesh to_hex_mesh(const BlockGrid& grid) {
+    HexMesh mesh;
+    mesh.points = grid.points;
+    mesh.hexes.reserve(8 * grid.num_cells());
+    for (const Block& b : grid.blocks) {
+        const Dims c = b.cells();
+        for (int k = 0; k < c.nk; ++k)
+            for (int j = 0; j < c.nj; ++j)
+                for (int i = 0; i < c.ni; ++i)
+                    for (Id id : cell_nodes(b, i, j, k)) mesh.hexes.push_back(id);
+    }
+    return mesh;
+}
+
+}  // namespace hexmesh

@@ -1,0 +1,54 @@
+// Multi-block structured grid: one shared node array, each block a (i,j,k) view on it.
+#pragma once
+
+#include <cassert>
+#include <string>
+#include <vector>
+
+#include "hexmesh/core/hex_mesh.h"
+#include "hexmesh/core/types.h"
+#include "hexmesh/core/vertex_kind.h"
+
+namespace hexmesh {
+
+// Extents of a structured index box. Node dims and cell dims are both Dims; a block
+// keeps its node dims, cell dims are node dims minus one in each direction.
+struct Dims {
+    int ni = 0, nj = 0, nk = 0;
+
+    Id count() const { return Id(ni) * nj * nk; }
+    // Flat index, i fastest, computed in 64 bits.
+    Id flat(int i, int j, int k) const {
+        assert(i >= 0 && i < ni && j >= 0 && j < nj && k >= 0 && k < nk);
+        return i + Id(ni) * (j + Id(nj) * k);
+    }
+    int operator[](int axis) const { return axis == 0 ? ni : axis == 1 ? nj : nk; }
+};
+
+// A structured block: node dims plus the global id of each of its nodes (flat, i fastest).
+// Neighbouring blocks list the same global ids on their common interface.
+struct Block {
+    std::string name;
+    Dims nodes;
+    std::vector<Id> node_ids;  // nodes.count() global node ids
+
+    Dims cells() const { return {nodes.ni - 1, nodes.nj - 1, nodes.nk - 1}; }
+    Id node(int i, int j, int k) const { return node_ids[nodes.flat(i, j, k)]; }
+};
+
+struct BlockGrid {
+    std::vector<Vec3> points;       // the shared node array
+    std::vector<VertexKind> kinds;  // constraint per node, sized like points
+    std::vector<Block> blocks;
+
+    Id num_cells() const;
+};
+
+// Global node ids of the 8 corners of cell (i,j,k) of a block, in VTK_HEXAHEDRON order.
+std::array<Id, 8> cell_nodes(const Block& block, int i, int j, int k);
+
+// All cells of all blocks as one unstructured mesh sharing the grid's points (block by block,
+// i fastest within a block).
+HexMesh to_hex_mesh(const BlockGrid& grid);
+
+}  // namespace hexmesh

@@ -1,0 +1,60 @@
+// Quality metrics of hexahedral meshes: validity, scaled Jacobian, OpenFOAM-style face metrics.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "hexmesh/core/hex_mesh.h"
+
+namespace hexmesh {
+
+// Verdict's hex scaled Jacobian, exactly as VTK 9.1 ships it (v_hex_scaled_jacobian): the
+// minimum over the centre frame (principal axes) and the 8 corner frames (hex_corner_tets
+// order) of det[e1,e2,e3] / (|e1||e2||e3|), in [-1, 1]; 1 for a box. Verdict's quirk is kept:
+// if any of the 27 frame vectors has squared length <= 1e-30, the result is +1e30.
+double hex_scaled_jacobian(const std::array<Vec3, 8>& p);
+
+// det[a-c, b-c, d-c] of each corner tet (c, a, b, d) of hex_corner_tets, floating point.
+std::array<double, 8> corner_determinants(const std::array<Vec3, 8>& p);
+
+// Per-cell scaled Jacobian, #cells (parallel, deterministic).
+std::vector<double> scaled_jacobians(const HexMesh& mesh);
+
+// Exact sign (+1, 0, -1) of det[a-c, b-c, d-c], by CGAL's exact orientation predicate.
+int exact_orientation(const Vec3& c, const Vec3& a, const Vec3& b, const Vec3& d);
+
+// Number of corner tets of one hex whose exact determinant is <= 0 (0..8).
+int count_inverted_corner_tets(const std::array<Vec3, 8>& p);
+
+struct InversionCount {
+    Id corner_tets = 0;  // corner tets with exact det <= 0
+    Id cells = 0;        // cells with at least one such corner tet
+};
+
+// Exact inversion counts over the whole mesh (parallel).
+InversionCount count_inversions(const HexMesh& mesh);
+
+// Ids of the cells with at least one corner tet of exact det <= 0, ascending.
+std::vector<Id> find_inverted_cells(const HexMesh& mesh);
+
+struct QualityReport {
+    Id cells = 0;
+    Id inverted_corner_tets = 0;  // corner tets with det <= 0, by exact orientation predicate
+    Id inverted_cells = 0;        // cells with at least one such corner tet
+    // Verdict values as they are: a cell with a zero-length edge scores +1e30 (and is also
+    // counted inverted, since it has a flat corner tet), which inflates the mean.
+    double min_scaled_jacobian = 0;
+    double mean_scaled_jacobian = 0;
+    double max_skewness = 0;               // OpenFOAM checkMesh definition, all faces
+    double max_non_orthogonality_deg = 0;  // OpenFOAM checkMesh definition, internal faces
+    double max_aspect_ratio = 0;           // OpenFOAM checkMesh definition (cellClosedness)
+    double max_volume_ratio = 0;           // max over internal faces of V_big / V_small
+    double min_volume = 0;                 // OpenFOAM's cell volume (pyramid decomposition)
+};
+
+// Every metric above over all cells. Faces are matched between cells by their node ids; the
+// owner of an internal face is the lower cell id. A face shared by more than two cells
+// throws std::invalid_argument naming the cells.
+QualityReport measure_quality(const HexMesh& mesh);
+
+}  // namespace hexmesh

@@ -1,0 +1,40 @@
+#include "hexmesh/pipeline/make_body.h"
+
+#include <memory>
+
+#include "surface/analytic.h"
+#include "surface/csg.h"
+#include "surface/transform.h"
+
+namespace hexmesh {
+namespace {
+
+Body make_shape(const GeometrySpec& s) {
+    if (s.kind == "sphere") return std::make_shared<Sphere>(s.center, s.radius);
+    if (s.kind == "ellipsoid") return std::make_shared<Ellipsoid>(s.center, s.semi_axes);
+    if (s.kind == "box") return std::make_shared<Box>(s.center, 0.5 * s.size);
+    if (s.kind == "cylinder") return std::make_shared<Cylinder>(s.center, s.radius, 0.5 * s.height);
+    if (s.kind == "torus")
+        return std::make_shared<Torus>(s.center, s.major_radius, s.minor_radius);
+    if (s.kind == "cone")
+        return std::make_shared<Cone>(s.center, s.bottom_radius, s.top_radius, 0.5 * s.height);
+    std::vector<Body> children;
+    for (const GeometrySpec& c : s.children) children.push_back(make_body(c));
+    const CsgOp op = s.kind == "union"          ? CsgOp::Union
+                     : s.kind == "intersection" ? CsgOp::Intersection
+                                                : CsgOp::Difference;
+    return std::make_shared<Csg>(op, std::move(children));
+}
+
+}  // namespace
+
+Body make_body(const GeometrySpec& spec) {
+    Body body = make_shape(spec);
+    const bool moved = spec.translate.norm() > 0 || spec.rotate_degrees != 0 || spec.scale != 1;
+    if (!moved) return body;
+    return std::make_shared<Transformed>(body, spec.translate,
+                                         rotation_from_axis_angle(spec.rotate_axis, spec.rotate_degrees),
+                                         spec.scale);
+}
+
+}  // namespace hexmesh

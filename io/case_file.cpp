@@ -1,0 +1,207 @@
+#include "io/case_file.h"
+
+#include <cerrno>
+#include <cstring>
+#include <fmt/format.h>
+#include <fstream>
+#include <sstream>
+
+#include "io/json_fields.h"
+
+namespace hexmesh {
+namespace {
+
+using nlohmann::json;
+
+constexpr long long max_cells = 200'000'000;  // beyond this a run would not fit in memory
+
+GeometrySpec parse_geometry(const json& value, const std::string& file, const std::string& path);
+
+std::vector<GeometrySpec> parse_operands(const JsonFields& g, const char* op,
+                                         const std::string& file) {
+    const json& list = g.at(op);
+    if (!list.is_array() || list.size() < 2) g.fail(op, "an array of at least 2 shapes");
+    std::vector<GeometrySpec> children;
+    for (size_t m = 0; m < list.size(); ++m)
+        children.push_back(
+            parse_geometry(list[m], file, fmt::format("{}[{}]", g.path_of(op), m)));
+    return children;
+}
+
+void parse_primitive(const JsonFields& p, GeometrySpec& s) {
+    const Vec3 zero = Vec3::Zero();
+    if (s.kind == "sphere") {
+        p.allow_only({"center", "radius"});
+        s.radius = p.required_positive_number("radius");
+    } else if (s.kind == "ellipsoid") {
+        p.allow_only({"center", "semi_axes"});
+        if (!p.has("semi_axes")) p.fail("semi_axes", "an array of 3 positive numbers");
+        s.semi_axes = p.positive_vec3("semi_axes", zero);
+    } else if (s.kind == "box") {
+        p.allow_only({"center", "size"});
+        if (!p.has("size")) p.fail("size", "an array of 3 positive numbers");
+        s.size = p.positive_vec3("size", zero);
+    } else if (s.kind == "cylinder") {
+        p.allow_only({"center", "radius", "height"});
+        s.radius = p.required_positive_number("radius");
+        s.height = p.required_positive_number("height");
+    } else if (s.kind == "torus") {
+        p.allow_only({"center", "major_radius", "minor_radius"});
+        s.major_radius = p.required_positive_number("major_radius");
+        s.minor_radius = p.required_positive_number("minor_radius");
+        if (s.minor_radius >= s.major_radius)
+            p.fail("minor_radius", fmt::format("a number below major_radius ({})", s.major_radius));
+    } else {  // cone
+        p.allow_only({"center", "bottom_radius", "top_radius", "height"});
+        s.bottom_radius = p.required_positive_number("bottom_radius");
+        s.top_radius = p.number("top_radius", 0);
+        if (s.top_radius < 0) p.fail("top_radius", "a number >= 0");
+        s.height = p.required_positive_number("height");
+    }
+    s.center = p.vec3("center", zero);
+}
+
+GeometrySpec parse_geometry(const json& value, const std::string& file, const std::string& path) {
+    const JsonFields g(value, file, path);
+    static const char* primitives[] = {"sphere", "ellipsoid", "box", "cylinder", "torus", "cone"};
+    static const char* operations[] = {"union", "intersection", "difference"};
+    g.allow_only({"sphere", "ellipsoid", "box", "cylinder", "torus", "cone", "union",
+                  "intersection", "difference", "translate", "rotate", "scale"});
+    GeometrySpec s;
+    int shapes = 0;
+    for (const char* k : primitives)
+        if (g.has(k)) s.kind = k, ++shapes;
+    for (const char* k : operations)
+        if (g.has(k)) s.kind = k, ++shapes;
+    if (shapes != 1) {
+        throw InputError(fmt::format(
+            "{}: {}: expected exactly one shape (sphere, ellipsoid, box, cylinder, torus, cone, "
+            "union, intersection, difference), got {}",
+            file, path, shapes));
+    }
+    if (s.kind == "union" || s.kind == "intersection" || s.kind == "difference")
+        s.children = parse_operands(g, s.kind.c_str(), file);
+    else
+        parse_primitive(g.object(s.kind.c_str()), s);
+
+    s.translate = g.vec3("translate", Vec3::Zero());
+    s.scale = g.positive_number("scale", 1.0);
+    if (g.has("rotate")) {
+        const JsonFields r = g.object("rotate");
+        r.allow_only({"axis", "degrees"});
+        if (!r.has("axis")) r.fail("axis", "an array of 3 numbers, not all zero");
+        s.rotate_axis = r.vec3("axis", Vec3::UnitZ());
+        if (!(s.rotate_axis.norm() > 0)) r.fail("axis", "an array of 3 numbers, not all zero");
+        if (!r.has("degrees")) r.fail("degrees", "a finite number");
+        s.rotate_degrees = r.number("degrees", 0);
+    }
+    return s;
+}
+
+GridSpec parse_grid(const JsonFields& g) {
+    g.allow_only({"topology", "cells_per_edge", "wall_cells", "core_size", "cells", "center"});
+    GridSpec grid;
+    grid.topology = g.choice("topology", grid.topology, {"o-h", "single-block"});
+    grid.cells_per_edge = g.integer("cells_per_edge", grid.cells_per_edge, 2, 4096);
+    grid.wall_cells = g.integer("wall_cells", grid.wall_cells, 1, 4096);
+    grid.core_size = g.number("core_size", grid.core_size);
+    if (!(grid.core_size > 0 && grid.core_size < 1)) g.fail("core_size", "a number in (0, 1)");
+    if (g.has("cells")) {
+        const json& c = g.at("cells");
+        if (!c.is_array() || c.size() != 3) g.fail("cells", "an array of 3 integers in [2, 4096]");
+        for (int d = 0; d < 3; ++d) {
+            if (!c[d].is_number_integer() || c[d].get<long long>() < 2 ||
+                c[d].get<long long>() > 4096)
+                g.fail("cells", "an array of 3 integers in [2, 4096]");
+            grid.cells[d] = c[d].get<int>();
+        }
+    }
+    if (g.has("center")) grid.center = g.vec3("center", Vec3::Zero());
+    const long long n = grid.cells_per_edge;
+    const long long total = grid.topology == "o-h"
+                                ? n * n * n + 6 * n * n * grid.wall_cells
+                                : (long long)grid.cells[0] * grid.cells[1] * grid.cells[2];
+    if (total > max_cells) {
+        g.fail(grid.topology == "o-h" ? "cells_per_edge" : "cells",
+               fmt::format("a grid of at most {} cells (this one has {})", max_cells, total));
+    }
+    return grid;
+}
+
+BoundaryLayerSpec parse_boundary_layer(const JsonFields& b, const GridSpec& grid) {
+    b.allow_only({"first_height", "growth_ratio", "layers"});
+    BoundaryLayerSpec bl;
+    bl.first_height = b.required_positive_number("first_height");
+    bl.growth_ratio = b.number("growth_ratio", 1.2);
+    if (!(bl.growth_ratio >= 1 && bl.growth_ratio <= 3)) b.fail("growth_ratio", "a number in [1, 3]");
+    const int available = grid.topology == "o-h"
+                              ? grid.wall_cells - 1
+                              : std::min({grid.cells[0], grid.cells[1], grid.cells[2]}) / 2 - 1;
+    if (!b.has("layers")) b.fail("layers", "an integer number of layers");
+    if (available < 1)
+        b.fail("layers", "no layers: the grid leaves no room for a boundary layer");
+    bl.layers = b.integer("layers", 0, 1, available);
+    return bl;
+}
+
+SolverSpec parse_solver(const JsonFields& s) {
+    s.allow_only({"method", "theta", "max_iterations"});
+    SolverSpec solver;
+    solver.method = s.choice("method", solver.method,
+                             {"explicit", "block-diagonal", "coordinate-split", "newton-cg", "lbfgs"});
+    solver.theta = s.number("theta", solver.theta);
+    if (!(solver.theta > 0 && solver.theta < 1)) s.fail("theta", "a number in (0, 1)");
+    solver.max_iterations = s.integer("max_iterations", solver.max_iterations, 1, 1000000);
+    return solver;
+}
+
+std::vector<std::string> parse_outputs(const JsonFields& top, const std::string& file) {
+    const json& list = top.at("outputs");
+    if (!list.is_array()) top.fail("outputs", "an array of format names (vtk)");
+    std::vector<std::string> outputs;
+    for (size_t m = 0; m < list.size(); ++m) {
+        if (!list[m].is_string() || list[m].get<std::string>() != "vtk") {
+            throw InputError(fmt::format("{}: outputs[{}]: expected a format name (vtk), got {}",
+                                         file, m, describe(list[m])));
+        }
+        outputs.push_back(list[m].get<std::string>());
+    }
+    return outputs;
+}
+
+}  // namespace
+
+Case parse_case(const std::string& text, const std::string& path) {
+    json root;
+    try {
+        root = json::parse(text);
+    } catch (const json::parse_error& e) {
+        std::string what = e.what();
+        const auto at = what.find("parse error");
+        if (at != std::string::npos) what = what.substr(at);
+        throw InputError(fmt::format("{}: malformed JSON: {}", path, what));
+    }
+    const JsonFields top(root, path, "");
+    top.allow_only({"geometry", "grid", "boundary_layer", "solver", "outputs"});
+    Case c;
+    c.path = path;
+    if (!top.has("geometry")) top.fail("geometry", "an object describing the body");
+    c.geometry = parse_geometry(top.at("geometry"), path, "geometry");
+    if (top.has("grid")) c.grid = parse_grid(top.object("grid"));
+    if (top.has("boundary_layer"))
+        c.boundary_layer = parse_boundary_layer(top.object("boundary_layer"), c.grid);
+    if (top.has("solver")) c.solver = parse_solver(top.object("solver"));
+    if (top.has("outputs")) c.outputs = parse_outputs(top, path);
+    return c;
+}
+
+Case read_case(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw InputError(fmt::format("{}: cannot open case file ({})", path, std::strerror(errno)));
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad()) throw InputError(fmt::format("{}: cannot read case file", path));
+    return parse_case(text.str(), path);
+}
+
+}  // namespace hexmesh

@@ -1,0 +1,46 @@
+// Typed, validated access to the fields of a JSON object, with key paths in every message.
+#pragma once
+
+#include <initializer_list>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "hexmesh/core/types.h"
+#include "io/case_file.h"
+
+namespace hexmesh {
+
+// A JSON object at a key path ("grid", "geometry.union[1]") of a file. Accessors throw
+// InputError "FILE: PATH.KEY: expected ..., got ..." on a wrong type or range.
+class JsonFields {
+public:
+    JsonFields(const nlohmann::json& object, std::string file, std::string path);
+
+    // Rejects keys outside `allowed`, listing the allowed ones.
+    void allow_only(std::initializer_list<const char*> allowed) const;
+    bool has(const char* key) const { return object_.contains(key); }
+
+    double number(const char* key, double fallback) const;
+    double positive_number(const char* key, double fallback) const;
+    double required_positive_number(const char* key) const;
+    int integer(const char* key, int fallback, int min, int max) const;
+    Vec3 vec3(const char* key, const Vec3& fallback) const;
+    Vec3 positive_vec3(const char* key, const Vec3& fallback) const;
+    std::string choice(const char* key, const std::string& fallback,
+                       std::initializer_list<const char*> allowed) const;
+    JsonFields object(const char* key) const;
+
+    const nlohmann::json& at(const char* key) const { return object_.at(key); }
+    std::string path_of(const std::string& key) const;
+    [[noreturn]] void fail(const std::string& key, const std::string& expected) const;
+
+private:
+    const nlohmann::json& object_;
+    std::string file_, path_;
+};
+
+// Short description of a JSON value for messages: its type and a clipped dump.
+std::string describe(const nlohmann::json& value);
+
+}  // namespace hexmesh

@@ -1,0 +1,235 @@
+#include "io/vtk_mesh.h"
+
+#include <filesystem>
+#include <fmt/format.h>
+#include <unordered_map>
+
+#include <vtkCellArray.h>
+#include <vtkCellType.h>
+#include <vtkCompositeDataIterator.h>
+#include <vtkDataSetReader.h>
+#include <vtkDoubleArray.h>
+#include <vtkIdList.h>
+#include <vtkInformation.h>
+#include <vtkMultiBlockDataSet.h>
+#include <vtkLogger.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkOutputWindow.h>
+#include <vtkPointData.h>
+#include <vtkCellData.h>
+#include <vtkPoints.h>
+#include <vtkSmartPointer.h>
+#include <vtkStructuredGrid.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkXMLMultiBlockDataReader.h>
+#include <vtkXMLMultiBlockDataWriter.h>
+#include <vtkXMLStructuredGridReader.h>
+#include <vtkXMLStructuredGridWriter.h>
+#include <vtkXMLUnstructuredGridReader.h>
+
+#include "hexmesh/core/quality.h"
+#include "io/case_file.h"
+
+namespace hexmesh {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Routes VTK's error and warning text here instead of the terminal, so a reader or writer
+// failure reaches the user as one message of ours. Installed once, on first use.
+class CapturedVtkMessages : public vtkOutputWindow {
+public:
+    static CapturedVtkMessages* New();
+    vtkTypeMacro(CapturedVtkMessages, vtkOutputWindow)
+    void DisplayText(const char* text) override { keep(text); }
+    void DisplayErrorText(const char* text) override { keep(text); }
+    void DisplayWarningText(const char* text) override { keep(text); }
+    void DisplayGenericWarningText(const char* text) override { keep(text); }
+    void DisplayDebugText(const char*) override {}
+
+    // The first message since the last call, trimmed to its last line ("" if none).
+    std::string take() {
+        std::string m;
+        std::swap(m, first_);
+        while (!m.empty() && (m.back() == '\n' || m.back() == ' ')) m.pop_back();
+        const auto nl = m.rfind('\n');
+        if (nl != std::string::npos) m = m.substr(nl + 1);
+        const auto object = m.find("): ");  // drop VTK's "vtkClassName (0x...): " prefix
+        if (object != std::string::npos && m.find(" (0x") < object) m = m.substr(object + 3);
+        return m;
+    }
+
+private:
+    void keep(const char* text) {
+        if (first_.empty() && text) first_ = text;
+    }
+    std::string first_;
+};
+vtkStandardNewMacro(CapturedVtkMessages)
+
+CapturedVtkMessages& vtk_messages() {
+    static CapturedVtkMessages* window = [] {
+        auto* w = CapturedVtkMessages::New();
+        vtkOutputWindow::SetInstance(w);
+        vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+        return w;
+    }();
+    return *window;
+}
+
+vtkSmartPointer<vtkStructuredGrid> to_vtk_block(const BlockGrid& grid, const Block& block) {
+    auto out = vtkSmartPointer<vtkStructuredGrid>::New();
+    out->SetDimensions(block.nodes.ni, block.nodes.nj, block.nodes.nk);
+    vtkNew<vtkPoints> points;
+    points->SetDataTypeToDouble();
+    points->SetNumberOfPoints(block.nodes.count());
+    vtkNew<vtkUnsignedCharArray> kinds;
+    kinds->SetName("vertex_kind");
+    kinds->SetNumberOfValues(block.nodes.count());
+    for (Id m = 0; m < block.nodes.count(); ++m) {
+        const Vec3& p = grid.points[block.node_ids[m]];
+        points->SetPoint(m, p.x(), p.y(), p.z());
+        kinds->SetValue(m, grid.kinds.empty() ? 0 : uint8_t(grid.kinds[block.node_ids[m]]));
+    }
+    out->SetPoints(points);
+    out->GetPointData()->AddArray(kinds);
+
+    const Dims c = block.cells();
+    vtkNew<vtkDoubleArray> sj;
+    sj->SetName("scaled_jacobian");
+    sj->SetNumberOfValues(c.count());
+    for (int k = 0; k < c.nk; ++k)
+        for (int j = 0; j < c.nj; ++j)
+            for (int i = 0; i < c.ni; ++i) {
+                std::array<Vec3, 8> p;
+                const auto ids = cell_nodes(block, i, j, k);
+                for (int v = 0; v < 8; ++v) p[v] = grid.points[ids[v]];
+                sj->SetValue(c.flat(i, j, k), hex_scaled_jacobian(p));
+            }
+    out->GetCellData()->AddArray(sj);
+    return out;
+}
+
+std::string extension(const std::string& path) {
+    std::string ext = fs::path(path).extension().string();
+    for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+    return ext;
+}
+
+// Points keyed by their exact coordinates, so copies of one node in several pieces merge.
+struct ExactPointHash {
+    size_t operator()(const std::array<double, 3>& x) const {
+        size_t h = 0;
+        for (double v : x) h = h * 1000003u ^ std::hash<double>()(v);
+        return h;
+    }
+};
+using PointIds = std::unordered_map<std::array<double, 3>, Id, ExactPointHash>;
+
+// Appends the hexahedra of one data set to `mesh`, merging points equal to earlier ones.
+void append_hexes(vtkDataSet* data, const std::string& path, HexMesh& mesh, PointIds& point_ids) {
+    std::vector<Id> local(data->GetNumberOfPoints());
+    for (vtkIdType m = 0; m < data->GetNumberOfPoints(); ++m) {
+        std::array<double, 3> x;
+        data->GetPoint(m, x.data());
+        auto [it, inserted] = point_ids.emplace(x, mesh.num_points());
+        if (inserted) mesh.points.emplace_back(x[0], x[1], x[2]);
+        local[m] = it->second;
+    }
+    vtkNew<vtkIdList> ids;
+    for (vtkIdType c = 0; c < data->GetNumberOfCells(); ++c) {
+        const int type = data->GetCellType(c);
+        if (type != VTK_HEXAHEDRON && type != VTK_VOXEL) {
+            throw InputError(fmt::format("{}: cell {} has VTK type {}; only hexahedra (12) and "
+                                         "voxels (11) are supported",
+                                         path, c, type));
+        }
+        data->GetCellPoints(c, ids);
+        static constexpr int voxel_to_hex[8] = {0, 1, 3, 2, 4, 5, 7, 6};
+        for (int v = 0; v < 8; ++v)
+            mesh.hexes.push_back(local[ids->GetId(type == VTK_VOXEL ? voxel_to_hex[v] : v)]);
+    }
+}
+
+void check_written(int status, const std::string& path) {
+    const std::string why = vtk_messages().take();
+    if (status != 1 || !why.empty())
+        throw std::runtime_error(fmt::format("{}: VTK cannot write it: {}", path, why));
+}
+
+template <class Reader>
+vtkSmartPointer<vtkDataObject> run_reader(const std::string& path) {
+    vtk_messages().take();
+    vtkNew<Reader> reader;
+    reader->SetFileName(path.c_str());
+    reader->Update();
+    vtkSmartPointer<vtkDataObject> out = reader->GetOutputDataObject(0);
+    const std::string why = vtk_messages().take();
+    if (!why.empty() || !out)
+        throw InputError(fmt::format("{}: VTK cannot read it: {}", path, why.empty() ? "no data" : why));
+    return out;
+}
+
+}  // namespace
+
+void write_vtk_grid(const BlockGrid& grid, const std::string& path) {
+    const std::string ext = extension(path);
+    if (grid.blocks.size() == 1 && ext == ".vts") {
+        vtk_messages().take();
+        vtkNew<vtkXMLStructuredGridWriter> writer;
+        writer->SetFileName(path.c_str());
+        writer->SetInputData(to_vtk_block(grid, grid.blocks[0]));
+        writer->SetDataModeToAppended();
+        check_written(writer->Write(), path);
+        return;
+    }
+    if (ext != ".vtm") {
+        throw std::runtime_error(
+            fmt::format("{}: a grid of {} blocks is written as .vtm", path, grid.blocks.size()));
+    }
+    vtkNew<vtkMultiBlockDataSet> blocks;
+    blocks->SetNumberOfBlocks(unsigned(grid.blocks.size()));
+    for (unsigned b = 0; b < grid.blocks.size(); ++b) {
+        blocks->SetBlock(b, to_vtk_block(grid, grid.blocks[b]));
+        blocks->GetMetaData(b)->Set(vtkCompositeDataSet::NAME(), grid.blocks[b].name.c_str());
+    }
+    vtk_messages().take();
+    vtkNew<vtkXMLMultiBlockDataWriter> writer;
+    writer->SetFileName(path.c_str());
+    writer->SetInputData(blocks);
+    writer->SetDataModeToAppended();
+    check_written(writer->Write(), path);
+}
+
+HexMesh read_vtk_mesh(const std::string& path) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec))
+        throw InputError(fmt::format("{}: no such mesh file", path));
+    const std::string ext = extension(path);
+    vtkSmartPointer<vtkDataObject> data;
+    if (ext == ".vts") data = run_reader<vtkXMLStructuredGridReader>(path);
+    else if (ext == ".vtu") data = run_reader<vtkXMLUnstructuredGridReader>(path);
+    else if (ext == ".vtk") data = run_reader<vtkDataSetReader>(path);
+    else if (ext == ".vtm") data = run_reader<vtkXMLMultiBlockDataReader>(path);
+    else
+        throw InputError(fmt::format("{}: unknown mesh format '{}' (expected .vts, .vtu, .vtk "
+                                     "or .vtm)", path, ext));
+
+    HexMesh mesh;
+    PointIds point_ids;
+    if (auto* composite = vtkCompositeDataSet::SafeDownCast(data)) {
+        vtkSmartPointer<vtkCompositeDataIterator> it;
+        it.TakeReference(composite->NewIterator());
+        for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+            if (auto* piece = vtkDataSet::SafeDownCast(it->GetCurrentDataObject()))
+                append_hexes(piece, path, mesh, point_ids);
+    } else if (auto* single = vtkDataSet::SafeDownCast(data)) {
+        append_hexes(single, path, mesh, point_ids);
+    }
+    if (mesh.num_cells() == 0)
+        throw InputError(fmt::format("{}: the file holds no hexahedra", path));
+    return mesh;
+}
+
+}  // namespace hexmesh

@@ -1,0 +1,24 @@
+// VTK file formats, written and read with VTK's own classes.
+#pragma once
+
+#include <string>
+
+#include "hexmesh/core/block_grid.h"
+#include "hexmesh/core/hex_mesh.h"
+
+namespace hexmesh {
+
+// Writes `grid` with VTK's XML writers: a .vtm multiblock file (one vtkStructuredGrid piece
+// per block, named after the block, pieces in a folder beside it) or, for a single block, a
+// .vts file; `path` must end in the matching extension. Each piece carries the cell array
+// "scaled_jacobian" and the point array "vertex_kind" (0 interior, 1 slip, 2 feature edge,
+// 3 corner, 4 fixed). Throws std::runtime_error naming the file if VTK cannot write it.
+void write_vtk_grid(const BlockGrid& grid, const std::string& path);
+
+// Reads the hexahedra of a .vts, .vtu, .vtk (legacy) or .vtm file into one mesh. Points that
+// coincide exactly across the pieces of a .vtm are merged, so block interfaces become
+// internal faces. Voxels are reordered to VTK_HEXAHEDRON order. Throws InputError when the
+// file is missing, unreadable, or holds cells that are not hexahedra.
+HexMesh read_vtk_mesh(const std::string& path);
+
+}  // namespace hexmesh

@@ -1,0 +1,55 @@
+// Runs the hexmesh executable (or any command) and captures its exit code and output.
+#pragma once
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace hexmesh::test_support {
+
+struct CommandResult {
+    int exit_code = -1;
+    std::string out, err;
+};
+
+inline std::string read_text(const std::filesystem::path& file) {
+    std::ifstream in(file);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// Runs `command` through the shell in the source tree, stdout and stderr captured apart.
+// A scratch path private to this test process (ctest runs tests in parallel processes).
+inline std::filesystem::path scratch(const std::string& name) {
+    return std::filesystem::temp_directory_path() /
+           ("hexmesh_e2e_" + std::to_string(::getpid()) + "_" + name);
+}
+
+inline CommandResult run_command(const std::string& command) {
+    const auto out = scratch("stdout.txt"), err = scratch("stderr.txt");
+    const std::string full = "cd '" HEXMESH_SOURCE_DIR "' && " + command + " > '" + out.string() +
+                             "' 2> '" + err.string() + "' < /dev/null";
+    const int status = std::system(full.c_str());
+    CommandResult r;
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = read_text(out);
+    r.err = read_text(err);
+    return r;
+}
+
+inline CommandResult run_hexmesh(const std::string& arguments) {
+    return run_command(std::string("'") + HEXMESH_EXE + "' " + arguments);
+}
+
+inline int count_lines(const std::string& text) {
+    int n = 0;
+    for (char c : text) n += c == '\n';
+    return n;
+}
+
+}  // namespace hexmesh::test_support

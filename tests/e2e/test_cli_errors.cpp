@@ -1,0 +1,67 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "cli.h"
+
+using namespace hexmesh::test_support;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Writes `text` as a case file, runs `hexmesh run` on it and checks the failure contract:
+// exit code 1, one line on stderr containing `message`, and no output folder.
+void expect_refused(const std::string& name, const std::string& text, const std::string& message) {
+    const fs::path dir = scratch("bad_" + name);
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const fs::path file = dir / "case.json";
+    if (!text.empty()) std::ofstream(file) << text;
+    const fs::path out = dir / "out";
+    const CommandResult r = run_hexmesh("run '" + file.string() + "' -o '" + out.string() + "'");
+    EXPECT_EQ(r.exit_code, 1) << name;
+    EXPECT_EQ(count_lines(r.err), 1) << name << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("hexmesh: error: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << name << ": " << r.err;
+    EXPECT_FALSE(fs::exists(out)) << name;
+    fs::remove_all(dir);
+}
+
+}  // namespace
+
+TEST(CliErrors, MissingCaseFile) {
+    expect_refused("missing", "", "case.json: cannot open case file");
+}
+
+TEST(CliErrors, MalformedJson) {
+    expect_refused("malformed", "{\"geometry\": {\"sphere\": {\"radius\": 1}},,}",
+                   "malformed JSON: parse error at line 1");
+}
+
+TEST(CliErrors, WrongKey) {
+    expect_refused("wrong_key", R"({"geometry": {"sphere": {"radius": 1}}, "gird": {}})",
+                   "gird: unknown key");
+}
+
+TEST(CliErrors, NegativeSize) {
+    expect_refused("negative", R"({"geometry": {"sphere": {"radius": -2}}})",
+                   "geometry.sphere.radius: expected a positive number, got number -2");
+}
+
+TEST(CliErrors, BodyThatCannotBeGridded) {
+    expect_refused("torus", R"({"geometry": {"torus": {"major_radius": 1, "minor_radius": 0.3}}})",
+                   "is not inside the body");
+}
+
+TEST(CliErrors, QualityOfAMissingMesh) {
+    const CommandResult r = run_hexmesh("quality /nonexistent/grid.vtm");
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("/nonexistent/grid.vtm: no such mesh file"), std::string::npos) << r.err;
+}
+
+TEST(CliErrors, UnknownSubcommandIsAUsageError) {
+    const CommandResult r = run_hexmesh("mesh-it-please");
+    EXPECT_NE(r.exit_code, 0);
+}

@@ -1,0 +1,49 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include "io/staged_output.h"
+
+using namespace hexmesh;
+namespace fs = std::filesystem;
+
+TEST(StagedOutput, NothingIsLeftWhenTheRunFails) {
+    const fs::path dir = fs::temp_directory_path() / "hexmesh_test_staged_fail";
+    fs::remove_all(dir);
+    try {
+        StagedOutput out(dir.string());
+        out.write_text("quality.json", "{}");
+        throw std::runtime_error("writer failed");
+    } catch (const std::runtime_error&) {
+    }
+    EXPECT_FALSE(fs::exists(dir));
+}
+
+TEST(StagedOutput, CommitMovesFilesAndReplacesOldOutputs) {
+    const fs::path dir = fs::temp_directory_path() / "hexmesh_test_staged_ok";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    std::ofstream(dir / "quality.json") << "old";
+    std::ofstream(dir / "notes.txt") << "user file";
+    {
+        StagedOutput out(dir.string());
+        out.write_text("quality.json", "new");
+        const auto files = out.commit();
+        ASSERT_EQ(files.size(), 1u);
+        EXPECT_EQ(files[0], (dir / "quality.json").string());
+    }
+    std::ifstream in(dir / "quality.json");
+    std::string text;
+    in >> text;
+    EXPECT_EQ(text, "new");
+    EXPECT_TRUE(fs::exists(dir / "notes.txt"));
+    int entries = 0;
+    for (const auto& e : fs::directory_iterator(dir)) entries += e.is_regular_file();
+    EXPECT_EQ(entries, 2);  // no staging leftovers
+}
+
+TEST(StagedOutput, UnwritableDirectoryIsAClearError) {
+    EXPECT_THROW(StagedOutput("/proc/hexmesh_cannot_write_here"), std::runtime_error);
+}

@@ -1,0 +1,49 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+#include "hexmesh/pipeline/make_body.h"
+#include "hexmesh/pipeline/run_case.h"
+#include "io/vtk_mesh.h"
+
+using namespace hexmesh;
+namespace fs = std::filesystem;
+
+TEST(RunCase, BundledSphereCaseMeetsItsTargets) {
+    const Case c = read_case(std::string(HEXMESH_SOURCE_DIR) + "/cases/sphere/case.json");
+    const Body body = make_body(c.geometry);
+    const BlockGrid grid = build_grid(c, *body);
+    const GridReport r = measure_grid(grid, *body);
+    EXPECT_GT(r.quality.cells, 25000);
+    EXPECT_LT(r.quality.cells, 40000);
+    EXPECT_EQ(r.quality.inverted_corner_tets, 0);
+    EXPECT_GE(r.quality.min_scaled_jacobian, 0.3);
+    ASSERT_TRUE(r.max_surface_distance);
+    EXPECT_LT(*r.max_surface_distance, 1e-6);
+}
+
+TEST(RunCase, WritesGridAndReportThatReadBack) {
+    const Case c = parse_case(R"({"geometry": {"ellipsoid": {"semi_axes": [3, 2, 1]}},
+        "grid": {"cells_per_edge": 8, "wall_cells": 4}})", "e.json");
+    const fs::path dir = fs::temp_directory_path() / "hexmesh_test_run_case";
+    fs::remove_all(dir);
+    std::ostringstream log;
+    const RunResult result = run_case(c, dir.string(), RunOptions{}, log);
+    ASSERT_EQ(result.files.size(), 2u);
+    EXPECT_TRUE(fs::exists(dir / "grid.vtm"));
+    EXPECT_TRUE(fs::exists(dir / "quality.json"));
+    EXPECT_EQ(read_vtk_mesh((dir / "grid.vtm").string()).num_cells(), 8 * 8 * 8 + 6 * 8 * 8 * 4);
+    EXPECT_NE(log.str().find("grid (o-h, 7 blocks, 2048 cells)"), std::string::npos) << log.str();
+}
+
+TEST(RunCase, FailedRunLeavesNoOutput) {
+    const Case c = parse_case(R"({"geometry": {"torus": {"major_radius": 1, "minor_radius": 0.2}}})",
+                              "t.json");
+    const fs::path dir = fs::temp_directory_path() / "hexmesh_test_run_case_fail";
+    fs::remove_all(dir);
+    std::ostringstream log;
+    EXPECT_THROW(run_case(c, dir.string(), RunOptions{}, log), std::invalid_argument);
+    EXPECT_FALSE(fs::exists(dir));
+}

@@ -1,0 +1,32 @@
+// The O-H ("butterfly") interior grid: a core box block plus six wall blocks.
+#pragma once
+
+#include <optional>
+
+#include "hexmesh/core/block_grid.h"
+#include "hexmesh/core/implicit_function.h"
+#include "volume/stretching.h"
+
+namespace hexmesh {
+
+struct OHGridOptions {
+    int cells_per_edge = 20;   // cells along each edge of the core box and of each wall patch
+    int wall_cells = 10;       // cells across each wall block, from the core to the wall
+    double core_size = 0.45;   // core half-size as a fraction of the body's half extents
+    WallLayers wall_layers;    // law of the cells next to the wall (layers = 0: uniform)
+    std::optional<Vec3> centre;  // default: centre of the body's bounds
+};
+
+// Grid of the body's interior. Blocks: "core" (n^3 cells) and "wall_xmin", "wall_xmax", ...,
+// "wall_zmax" (n x n x wall_cells cells, k = 0 on the core, k = wall_cells on the wall).
+// Every block is right-handed in (i,j,k). Wall nodes are the cube-sphere (equiangular)
+// directions from the centre, scaled by the body's half extents, projected radially onto
+// u = 0 (kind slip); the wall-normal lines are straight segments from the core box to the
+// wall carrying the WallLayers distribution; the core interior is filled by TFI.
+// Throws std::invalid_argument on bad options or a body that is not star-shaped.
+BlockGrid make_o_h_grid(const ImplicitFunction& body, const OHGridOptions& options);
+
+// Length scale of a grid of the body with n cells per edge: bounds diagonal / (sqrt(3) n).
+double grid_length_scale(const ImplicitFunction& body, int cells_per_edge);
+
+}  // namespace hexmesh

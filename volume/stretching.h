@@ -1,0 +1,32 @@
+// One-dimensional node distributions along grid lines: wall layers with a growth ratio.
+#pragma once
+
+#include <vector>
+
+namespace hexmesh {
+
+// Boundary-layer law along a wall-normal line: `layers` cells of thickness
+// first_height * growth_ratio^m (m = 0 at the wall), in geometry units.
+struct WallLayers {
+    double first_height = 0;
+    double growth_ratio = 1;
+    int layers = 0;
+};
+
+// Distances from the wall of the cells+1 nodes of a line of the given length:
+// d[0] = 0, d[cells] = length, increasing. The first `law.layers` cells follow the law
+// exactly; the remaining cells continue geometrically from the last layer thickness with
+// the ratio that fills the line. Throws std::invalid_argument when the layers do not fit
+// (thicker than the line, or no cell left to fill the rest).
+std::vector<double> wall_distances(double length, int cells, const WallLayers& law);
+
+// Uniform distances 0, length/cells, ..., length.
+std::vector<double> uniform_distances(double length, int cells);
+
+// Total thickness of the law's layers.
+double layers_thickness(const WallLayers& law);
+
+// Ratio q > 0 such that first * (q + q^2 + ... + q^cells) = total, by bisection.
+double geometric_ratio(double first, int cells, double total);
+
+}  // namespace hexmesh
