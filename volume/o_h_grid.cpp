@@ -102,14 +102,15 @@ BlockGrid make_o_h_grid(const ImplicitFunction& body, const OHGridOptions& optio
         grid.kinds[node_id(abc, nk)] = VertexKind::slip;
     });
 
-    Block core{"core", lattice, {}};
+    Block core{"core", lattice, {}, {}};
     core.node_ids.resize(lattice.count());
     for (Id id = 0; id < lattice.count(); ++id) core.node_ids[id] = id;
     fill_interior_tfi(core, grid.points);
     grid.blocks.push_back(std::move(core));
 
     for (const WallFace& f : wall_faces) {
-        Block b{f.name, {n + 1, n + 1, nk + 1}, {}};
+        Block b{f.name, {n + 1, n + 1, nk + 1}, {}, {}};
+        b.face_patch[kmax] = "wall";
         b.node_ids.resize(b.nodes.count());
         for (int k = 0; k <= nk; ++k)
             for (int j = 0; j <= n; ++j)

@@ -19,7 +19,7 @@ struct OHGridOptions {
 
 // Grid of the body's interior. Blocks: "core" (n^3 cells) and "wall_xmin", "wall_xmax", ...,
 // "wall_zmax" (n x n x wall_cells cells, k = 0 on the core, k = wall_cells on the wall).
-// Every block is right-handed in (i,j,k). Wall nodes are the cube-sphere (equiangular)
+// Every block is right-handed in (i,j,k); the wall blocks' kmax faces form patch "wall". Wall nodes are the cube-sphere (equiangular)
 // directions from the centre, scaled by the body's half extents, projected radially onto
 // u = 0 (kind slip); the wall-normal lines are straight segments from the core box to the
 // wall carrying the WallLayers distribution; the core interior is filled by TFI.

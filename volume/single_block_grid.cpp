@@ -33,7 +33,8 @@ BlockGrid make_single_block_grid(const ImplicitFunction& body, const SingleBlock
     for (int d = 0; d < 3; ++d)
         x[d] = two_sided_distances(box.size()[d], options.cells[d], options.wall_layers);
 
-    Block block{"body", {options.cells[0] + 1, options.cells[1] + 1, options.cells[2] + 1}, {}};
+    Block block{"body", {options.cells[0] + 1, options.cells[1] + 1, options.cells[2] + 1}, {}, {}};
+    block.face_patch.fill("wall");
     const Dims& dims = block.nodes;
     block.node_ids.resize(dims.count());
     BlockGrid grid;

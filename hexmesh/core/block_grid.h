@@ -1,6 +1,7 @@
 // Multi-block structured grid: one shared node array, each block a (i,j,k) view on it.
 #pragma once
 
+#include <array>
 #include <cassert>
 #include <string>
 #include <vector>
@@ -25,12 +26,18 @@ struct Dims {
     int operator[](int axis) const { return axis == 0 ? ni : axis == 1 ? nj : nk; }
 };
 
+// Block faces in the order imin, imax, jmin, jmax, kmin, kmax.
+enum BlockFace { imin, imax, jmin, jmax, kmin, kmax };
+
 // A structured block: node dims plus the global id of each of its nodes (flat, i fastest).
 // Neighbouring blocks list the same global ids on their common interface.
 struct Block {
     std::string name;
     Dims nodes;
     std::vector<Id> node_ids;  // nodes.count() global node ids
+    // Boundary patch of each face (BlockFace order): "wall", "farfield", ...; empty for a
+    // face that is an interface with another block.
+    std::array<std::string, 6> face_patch;
 
     Dims cells() const { return {nodes.ni - 1, nodes.nj - 1, nodes.nk - 1}; }
     Id node(int i, int j, int k) const { return node_ids[nodes.flat(i, j, k)]; }

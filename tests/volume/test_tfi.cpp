@@ -8,7 +8,7 @@ using namespace hexmesh;
 namespace {
 
 Block identity_block(Dims dims) {
-    Block b{"b", dims, {}};
+    Block b{"b", dims, {}, {}};
     for (Id id = 0; id < dims.count(); ++id) b.node_ids.push_back(id);
     return b;
 }

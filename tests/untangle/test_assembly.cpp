@@ -1,0 +1,64 @@
+#include <gtest/gtest.h>
+
+#include <tbb/global_control.h>
+
+#include "grid_problem.h"
+#include "untangle/assembly.h"
+
+using namespace hexmesh;
+using namespace hexmesh::untangle;
+
+TEST(Assembly, GradientMatchesFiniteDifferencesOfTheSum) {
+    const Problem p = test_support::displaced_grid_problem(3, 0.3, 1);
+    const Assembly a(p);
+    const EnergyParams params{0.8, 0.05};
+    std::vector<Vec3> g;
+    a.gradient(p.points, params, g);
+    std::vector<Vec3> x = p.points;
+    for (Id v : {Id(21), Id(22), Id(26), Id(41)}) {
+        for (int c = 0; c < 3; ++c) {
+            const double h = 1e-6, x0 = x[v][c];
+            x[v][c] = x0 + h;
+            const double fp = a.energy(x, params);
+            x[v][c] = x0 - h;
+            const double fm = a.energy(x, params);
+            x[v][c] = x0;
+            EXPECT_NEAR(g[v][c], (fp - fm) / (2 * h), 1e-5 * (1 + std::abs(g[v][c])));
+        }
+    }
+}
+
+TEST(Assembly, ColoursNeverShareAVertexAndHessianIsSymmetric) {
+    const Problem p = test_support::displaced_grid_problem(4, 0.4, 2);
+    const Assembly a(p);
+    EXPECT_GT(a.colours(), 8);
+    BlockMatrix h = a.empty_hessian();
+    std::vector<Vec3> g;
+    a.hessian(p.points, {0.8, 0.1}, g, h);
+    for (Id r = 0; r < h.rows(); ++r)
+        for (Id m = h.row_start[r]; m < h.row_start[r + 1]; ++m) {
+            const Id t = h.find(h.col[m], r);
+            ASSERT_GE(t, 0);
+            EXPECT_LT((h.block[m] - h.block[t].transpose()).norm(), 1e-12 * (1 + h.block[m].norm()));
+        }
+    // The Hessian product without a matrix equals the assembled one.
+    std::vector<Vec3> v(p.points.size()), hv, hv_free;
+    for (size_t i = 0; i < v.size(); ++i) v[i] = Vec3(std::sin(i), std::cos(3.0 * i), 0.5);
+    h.multiply(v, hv);
+    a.hessian_product(p.points, {0.8, 0.1}, v, hv_free);
+    for (size_t i = 0; i < v.size(); ++i) EXPECT_LT((hv[i] - hv_free[i]).norm(), 1e-10 * (1 + hv[i].norm()));
+}
+
+TEST(Assembly, ResultsAreBitwiseIdenticalForOneAndTwoThreads) {
+    const Problem p = test_support::displaced_grid_problem(6, 0.5, 3);
+    const Assembly a(p);
+    auto run = [&](int threads) {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+        std::vector<Vec3> g;
+        const double f = a.gradient(p.points, {0.8, 0.1}, g);
+        return std::make_pair(f, g);
+    };
+    const auto one = run(1), two = run(2);
+    EXPECT_EQ(one.first, two.first);
+    EXPECT_EQ(one.second, two.second);
+}

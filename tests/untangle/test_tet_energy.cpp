@@ -1,0 +1,167 @@
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <cmath>
+#include <random>
+
+#include "untangle/tet_energy.h"
+
+using namespace hexmesh;
+using namespace hexmesh::untangle;
+
+namespace {
+
+Mat34 regular_tet(double edge) {
+    const Mat3 h = regular_tet_target(edge).inverse.inverse();
+    Mat34 y;
+    y.col(0) = Vec3::Zero();
+    y.rightCols<3>() = h;
+    return y;
+}
+
+Mat34 random_tet(std::mt19937& rng, double spread) {
+    std::uniform_real_distribution<double> u(-spread, spread);
+    Mat34 y = regular_tet(1.0);
+    for (int a = 0; a < 4; ++a)
+        for (int c = 0; c < 3; ++c) y(c, a) += u(rng);
+    return y;
+}
+
+// Central-difference gradient of tet_energy.
+Mat34 fd_gradient(const Mat34& y, const TetTarget& t, const EnergyParams& p, double h) {
+    Mat34 g;
+    for (int a = 0; a < 4; ++a)
+        for (int c = 0; c < 3; ++c) {
+            Mat34 yp = y, ym = y;
+            yp(c, a) += h;
+            ym(c, a) -= h;
+            g(c, a) = (tet_energy(yp, t, p) - tet_energy(ym, t, p)) / (2 * h);
+        }
+    return g;
+}
+
+}  // namespace
+
+TEST(TetEnergy, MinimumIsExactlyAtTheTarget) {
+    for (const TetTarget& t : {regular_tet_target(2.0), box_corner_target(Vec3(1, 2, 0.5))}) {
+        const Mat3 h = t.inverse.inverse();
+        Mat34 y;
+        y.col(0) = Vec3(1, -2, 3);
+        for (int a = 1; a < 4; ++a) y.col(a) = y.col(0) + h.col(a - 1);
+        Mat34 g;
+        const double e = tet_energy_gradient(y, t, {0.8, 0}, g);
+        EXPECT_NEAR(e, t.weight, 1e-14);  // phi = 1 at the target
+        EXPECT_LT(g.norm(), 1e-12);
+        // Any perturbation raises the energy.
+        std::mt19937 rng(3);
+        for (int k = 0; k < 50; ++k) {
+            Mat34 z = y + 1e-3 * Mat34::Random();
+            EXPECT_GT(tet_energy(z, t, {0.8, 0}), e);
+        }
+    }
+}
+
+TEST(TetEnergy, InvariantUnderRotationAndTranslation) {
+    std::mt19937 rng(7);
+    const TetTarget t = regular_tet_target(1.0);
+    for (int k = 0; k < 20; ++k) {
+        const Mat34 y = random_tet(rng, 0.3);
+        const Mat3 r = Eigen::AngleAxisd(0.3 + k, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+        Mat34 z = r * y;
+        z.colwise() += Vec3(5, -1, 2);
+        for (double eps : {0.0, 0.1}) {
+            if (tet_det(y, t) > 0 || eps > 0) {
+                EXPECT_NEAR(tet_energy(z, t, {0.8, eps}), tet_energy(y, t, {0.8, eps}), 1e-12);
+            }
+        }
+    }
+}
+
+TEST(TetEnergy, GradientMatchesFiniteDifferences) {
+    std::mt19937 rng(11);
+    const TetTarget t = box_corner_target(Vec3(1.0, 0.5, 2.0));
+    for (int k = 0; k < 200; ++k) {
+        const Mat34 y = random_tet(rng, 0.6);  // some of them inverted
+        for (double eps : {0.0, 0.05, 1.0}) {
+            const EnergyParams p{0.8, eps};
+            Mat34 g;
+            const double e = tet_energy_gradient(y, t, p, g);
+            if (!std::isfinite(e)) {
+                EXPECT_LE(tet_det(y, t), 0.0);
+                continue;
+            }
+            const Mat34 fd = fd_gradient(y, t, p, 1e-6);
+            EXPECT_LT((g - fd).norm(), 1e-5 * (1 + g.norm())) << "case " << k << " eps " << eps;
+        }
+    }
+}
+
+TEST(TetEnergy, ExactHessianMatchesFiniteDifferences) {
+    std::mt19937 rng(5);
+    const TetTarget t = box_corner_target(Vec3(1.0, 0.7, 1.3));
+    int checked = 0;
+    for (int k = 0; k < 100; ++k) {
+        const Mat34 y = random_tet(rng, 0.5);  // some tangled: checked with eps > 0
+        for (double eps : {0.0, 0.01, 0.5}) {
+            const EnergyParams p{0.8, eps};
+            Mat34 g;
+            Mat12 h;
+            if (!std::isfinite(tet_energy_hessian(y, t, p, g, h, false))) continue;
+            Mat12 fd;
+            const double step = 1e-6;
+            for (int a = 0; a < 4; ++a)
+                for (int c = 0; c < 3; ++c) {
+                    Mat34 yp = y, ym = y, gp, gm;
+                    yp(c, a) += step;
+                    ym(c, a) -= step;
+                    tet_energy_gradient(yp, t, p, gp);
+                    tet_energy_gradient(ym, t, p, gm);
+                    const Mat34 col = (gp - gm) / (2 * step);
+                    for (int b = 0; b < 4; ++b) fd.block<3, 1>(3 * b, 3 * a + c) = col.col(b);
+                }
+            EXPECT_LT((h - fd).norm(), 1e-5 * (1 + h.norm())) << "case " << k << " eps " << eps;
+            ++checked;
+        }
+    }
+    EXPECT_GT(checked, 200);
+}
+
+TEST(TetEnergy, ProjectionKeepsAPositiveDefiniteHessian) {
+    // At a stretched but untangled element where the exact Hessian is PSD, clamping is a no-op.
+    const TetTarget t = regular_tet_target(1.0);
+    Mat34 y = regular_tet(1.0);
+    y.col(3) += Vec3(0, 0, 0.05);
+    Mat34 g;
+    Mat12 exact, projected;
+    tet_energy_hessian(y, t, {0.8, 0}, g, exact, false);
+    tet_energy_hessian(y, t, {0.8, 0}, g, projected, true);
+    Eigen::SelfAdjointEigenSolver<Mat12> eig(exact);
+    if (eig.eigenvalues().minCoeff() >= -1e-12 * exact.norm()) {
+        EXPECT_LT((exact - projected).norm(), 1e-9 * exact.norm());
+    }
+    EXPECT_GE(Eigen::SelfAdjointEigenSolver<Mat12>(projected).eigenvalues().minCoeff(), -1e-12 * exact.norm());
+}
+
+TEST(TetEnergy, ProjectedHessianIsPositiveSemiDefiniteEvenWhenTangled) {
+    std::mt19937 rng(13);
+    const TetTarget t = regular_tet_target(1.0);
+    for (int k = 0; k < 200; ++k) {
+        const Mat34 y = random_tet(rng, 0.8);
+        Mat34 g;
+        Mat12 h;
+        tet_energy_hessian(y, t, {0.8, 0.1}, g, h);
+        Eigen::SelfAdjointEigenSolver<Mat12> eig(h);
+        EXPECT_GT(eig.eigenvalues().minCoeff(), -1e-9 * (1 + h.norm()));
+        EXPECT_LT((h - h.transpose()).norm(), 1e-10 * (1 + h.norm()));
+    }
+}
+
+TEST(TetEnergy, BarrierIsInfiniteOnInvertedElementsAndFiniteWithEps) {
+    Mat34 y = regular_tet(1.0);
+    y.col(3) *= -1;  // through the opposite face
+    const TetTarget t = regular_tet_target(1.0);
+    EXPECT_LT(tet_det(y, t), 0);
+    EXPECT_TRUE(std::isinf(tet_energy(y, t, {0.8, 0})));
+    EXPECT_TRUE(std::isfinite(tet_energy(y, t, {0.8, 1e-3})));
+}

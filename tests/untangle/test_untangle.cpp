@@ -1,0 +1,72 @@
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "grid_problem.h"
+#include "untangle/assembly.h"
+#include "untangle/untangle.h"
+
+using namespace hexmesh;
+using namespace hexmesh::untangle;
+
+namespace {
+
+UntangleOptions options_for(Method method) {
+    UntangleOptions o;
+    o.untangle_solver.method = method;
+    o.optimize_solver.method = method == Method::explicit_gradient ? method : Method::block_diagonal;
+    return o;
+}
+
+}  // namespace
+
+class UntangleStress : public ::testing::TestWithParam<Method> {};
+
+// A valid grid whose interior nodes are displaced by up to 2 cell sizes: hundreds of
+// inverted corner tets, all repaired with the boundary fixed.
+TEST_P(UntangleStress, RandomlyDisplacedGridIsUntangled) {
+    Problem p = test_support::displaced_grid_problem(8, 2.0, 42);
+    const std::vector<Vec3> boundary_before = p.points;
+    UntangleOptions o = options_for(GetParam());
+    std::ostringstream log;
+    o.log = &log;
+    const UntangleResult r = untangle_and_optimize(p, o);
+    EXPECT_GT(r.inverted_before, 500);
+    EXPECT_EQ(r.inverted_after, 0) << log.str();
+    EXPECT_GT(r.min_det_after, 0.0);
+    EXPECT_EQ(Assembly(p).stats(p.points).inverted, 0);
+    for (size_t v = 0; v < p.points.size(); ++v) {
+        if (p.kinds[v] == VertexKind::fixed) {
+            EXPECT_EQ(p.points[v], boundary_before[v]);
+        }
+    }
+    EXPECT_NE(log.str().find("untangle"), std::string::npos);
+}
+
+INSTANTIATE_TEST_SUITE_P(GlobalSolvers, UntangleStress,
+                         ::testing::Values(Method::newton_cg, Method::coordinate_split, Method::lbfgs),
+                         [](const auto& info) {
+                             std::string name = to_string(info.param);
+                             for (char& c : name) if (c == '-') c = '_';
+                             return name;
+                         });
+
+TEST(Untangle, NeverReturnsWorseThanItsInput) {
+    Problem p = test_support::displaced_grid_problem(5, 1.5, 9);
+    UntangleOptions o = options_for(Method::explicit_gradient);
+    o.max_untangle_iterations = 2;  // far too few to finish
+    o.inner_steps = 2;
+    const UntangleResult r = untangle_and_optimize(p, o);
+    EXPECT_LE(r.inverted_after, r.inverted_before);
+}
+
+TEST(Untangle, ValidInputIsOptimizedTowardsTheTarget) {
+    Problem p = test_support::displaced_grid_problem(5, 0.15, 4);
+    const double before = Assembly(p).energy(p.points, {0.8, 0});
+    const UntangleResult r = untangle_and_optimize(p, options_for(Method::block_diagonal));
+    EXPECT_EQ(r.inverted_before, 0);
+    EXPECT_EQ(r.inverted_after, 0);
+    EXPECT_LT(r.energy_after, before);
+    // The perfect grid (unit cubes) has energy #tets / 6; the optimum is close to it.
+    EXPECT_LT(r.energy_after, 1.02 * p.tets.size() / 6.0);
+}

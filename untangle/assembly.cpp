@@ -1,0 +1,187 @@
+#include "untangle/assembly.h"
+
+#include <algorithm>
+#include <bitset>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+namespace hexmesh::untangle {
+namespace {
+
+constexpr int max_colours = 512;
+constexpr size_t grain = 2048;
+
+// Deterministic sum: the split depends on the size and grain only, never on the threads.
+double deterministic_sum(const std::vector<double>& v) {
+    return tbb::parallel_deterministic_reduce(
+        tbb::blocked_range<size_t>(0, v.size(), grain), 0.0,
+        [&](const tbb::blocked_range<size_t>& r, double s) {
+            for (size_t i = r.begin(); i != r.end(); ++i) s += v[i];
+            return s;
+        },
+        [](double a, double b) { return a + b; }, tbb::simple_partitioner());
+}
+
+}  // namespace
+
+Id BlockMatrix::find(Id row, Id column) const {
+    const auto first = col.begin() + row_start[row], last = col.begin() + row_start[row + 1];
+    const auto it = std::lower_bound(first, last, column);
+    return it != last && *it == column ? Id(it - col.begin()) : -1;
+}
+
+void BlockMatrix::multiply(const std::vector<Vec3>& x, std::vector<Vec3>& y) const {
+    y.resize(x.size());
+    tbb::parallel_for(tbb::blocked_range<Id>(0, rows(), 1024), [&](const tbb::blocked_range<Id>& r) {
+        for (Id a = r.begin(); a != r.end(); ++a) {
+            Vec3 s = Vec3::Zero();
+            for (Id m = row_start[a]; m < row_start[a + 1]; ++m) s += block[m] * x[col[m]];
+            y[a] = s;
+        }
+    });
+}
+
+Assembly::Assembly(const Problem& problem) : problem_(problem) {
+    const Id nv = Id(problem.points.size()), ne = Id(problem.tets.size());
+    for (const auto& t : problem.tets)
+        for (Id v : t)
+            if (v < 0 || v >= nv) throw std::invalid_argument("element refers to a missing vertex");
+
+    // Greedy colouring in element order.
+    std::vector<std::bitset<max_colours>> used(nv);
+    std::vector<int> colour(ne);
+    int n_colours = 0;
+    for (Id e = 0; e < ne; ++e) {
+        std::bitset<max_colours> taken;
+        for (Id v : problem.tets[e]) taken |= used[v];
+        int c = 0;
+        while (c < max_colours && taken[c]) ++c;
+        if (c == max_colours) throw std::runtime_error("element colouring needs too many colours");
+        colour[e] = c;
+        n_colours = std::max(n_colours, c + 1);
+        for (Id v : problem.tets[e]) used[v].set(c);
+    }
+    colour_start_.assign(n_colours + 1, 0);
+    for (Id e = 0; e < ne; ++e) ++colour_start_[colour[e] + 1];
+    for (int c = 0; c < n_colours; ++c) colour_start_[c + 1] += colour_start_[c];
+    order_.resize(ne);
+    std::vector<Id> next(colour_start_.begin(), colour_start_.end() - 1);
+    for (Id e = 0; e < ne; ++e) order_[next[colour[e]]++] = e;
+
+    // Block pattern: vertex pairs sharing an element, plus every diagonal.
+    std::vector<std::vector<Id>> adjacent(nv);
+    for (Id v = 0; v < nv; ++v) adjacent[v].push_back(v);
+    for (const auto& t : problem.tets)
+        for (Id a : t)
+            for (Id b : t) adjacent[a].push_back(b);
+    pattern_.row_start.assign(nv + 1, 0);
+    for (Id v = 0; v < nv; ++v) {
+        auto& row = adjacent[v];
+        std::sort(row.begin(), row.end());
+        row.erase(std::unique(row.begin(), row.end()), row.end());
+        pattern_.row_start[v + 1] = pattern_.row_start[v] + Id(row.size());
+    }
+    pattern_.col.reserve(pattern_.row_start[nv]);
+    for (Id v = 0; v < nv; ++v) pattern_.col.insert(pattern_.col.end(), adjacent[v].begin(), adjacent[v].end());
+    pattern_.block.assign(pattern_.col.size(), Mat3::Zero());
+}
+
+Mat34 Assembly::corners(const std::vector<Vec3>& x, Id e) const {
+    Mat34 y;
+    for (int a = 0; a < 4; ++a) y.col(a) = x[problem_.tets[e][a]];
+    return y;
+}
+
+ElementStats Assembly::stats(const std::vector<Vec3>& x) const {
+    const Id ne = Id(problem_.tets.size());
+    std::vector<double> det(ne);
+    tbb::parallel_for(Id(0), ne, [&](Id e) { det[e] = tet_det(corners(x, e), problem_.targets[e]); });
+    ElementStats s;
+    s.min_det = ne ? *std::min_element(det.begin(), det.end()) : 0;
+    s.inverted = Id(std::count_if(det.begin(), det.end(), [](double d) { return !(d > 0); }));
+    return s;
+}
+
+double Assembly::energy(const std::vector<Vec3>& x, const EnergyParams& p) const {
+    const Id ne = Id(problem_.tets.size());
+    std::vector<double> value(ne);
+    tbb::parallel_for(Id(0), ne, [&](Id e) { value[e] = tet_energy(corners(x, e), problem_.targets[e], p); });
+    return deterministic_sum(value);
+}
+
+template <class Kernel>
+void Assembly::for_each_by_colour(Kernel&& kernel) const {
+    for (int c = 0; c < colours(); ++c)
+        tbb::parallel_for(colour_start_[c], colour_start_[c + 1], [&](Id m) { kernel(order_[m]); });
+}
+
+double Assembly::diagonal_hessian(const std::vector<Vec3>& x, const EnergyParams& p,
+                                  std::vector<Vec3>& g, std::vector<Mat3>& diagonal) const {
+    g.assign(x.size(), Vec3::Zero());
+    diagonal.assign(x.size(), Mat3::Zero());
+    std::vector<double> value(problem_.tets.size());
+    for_each_by_colour([&](Id e) {
+        Mat34 ge;
+        Mat12 he;
+        value[e] = tet_energy_hessian(corners(x, e), problem_.targets[e], p, ge, he);
+        if (!std::isfinite(value[e])) return;
+        const auto& t = problem_.tets[e];
+        for (int a = 0; a < 4; ++a) {
+            g[t[a]] += ge.col(a);
+            diagonal[t[a]] += he.block<3, 3>(3 * a, 3 * a);
+        }
+    });
+    return deterministic_sum(value);
+}
+
+void Assembly::hessian_product(const std::vector<Vec3>& x, const EnergyParams& p,
+                               const std::vector<Vec3>& v, std::vector<Vec3>& out) const {
+    out.assign(x.size(), Vec3::Zero());
+    for_each_by_colour([&](Id e) {
+        Mat34 ge;
+        Mat12 he;
+        if (!std::isfinite(tet_energy_hessian(corners(x, e), problem_.targets[e], p, ge, he))) return;
+        const auto& t = problem_.tets[e];
+        Eigen::Matrix<double, 12, 1> ve;
+        for (int a = 0; a < 4; ++a) ve.segment<3>(3 * a) = v[t[a]];
+        const Eigen::Matrix<double, 12, 1> he_v = he * ve;
+        for (int a = 0; a < 4; ++a) out[t[a]] += he_v.segment<3>(3 * a);
+    });
+}
+
+double Assembly::gradient(const std::vector<Vec3>& x, const EnergyParams& p, std::vector<Vec3>& g) const {
+    g.assign(x.size(), Vec3::Zero());
+    std::vector<double> value(problem_.tets.size());
+    for_each_by_colour([&](Id e) {
+        Mat34 ge;
+        value[e] = tet_energy_gradient(corners(x, e), problem_.targets[e], p, ge);
+        if (!std::isfinite(value[e])) return;
+        for (int a = 0; a < 4; ++a) g[problem_.tets[e][a]] += ge.col(a);
+    });
+    return deterministic_sum(value);
+}
+
+double Assembly::hessian(const std::vector<Vec3>& x, const EnergyParams& p, std::vector<Vec3>& g,
+                         BlockMatrix& h) const {
+    g.assign(x.size(), Vec3::Zero());
+    std::fill(h.block.begin(), h.block.end(), Mat3::Zero());
+    std::vector<double> value(problem_.tets.size());
+    for_each_by_colour([&](Id e) {
+        Mat34 ge;
+        Mat12 he;
+        value[e] = tet_energy_hessian(corners(x, e), problem_.targets[e], p, ge, he);
+        if (!std::isfinite(value[e])) return;
+        const auto& t = problem_.tets[e];
+        for (int a = 0; a < 4; ++a) {
+            g[t[a]] += ge.col(a);
+            for (int b = 0; b < 4; ++b) h.block[h.find(t[a], t[b])] += he.block<3, 3>(3 * a, 3 * b);
+        }
+    });
+    return deterministic_sum(value);
+}
+
+}  // namespace hexmesh::untangle

@@ -1,0 +1,289 @@
+#include "untangle/minimizer.h"
+
+#include <Eigen/Dense>
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCore>
+#include <cmath>
+#include <tbb/parallel_for.h>
+
+#include "untangle/constraints.h"
+#include "untangle/pcg.h"
+
+namespace hexmesh::untangle {
+namespace {
+
+// 1 for the directions a vertex may not move in (zero columns of its basis), else 0: added
+// on the diagonal so the reduced system stays non-singular and leaves them at zero.
+Vec3 locked_mask(const Mat3& basis) {
+    Vec3 m;
+    for (int c = 0; c < 3; ++c) m[c] = basis.col(c).squaredNorm() > 0 ? 0.0 : 1.0;
+    return m;
+}
+
+double max_norm(const std::vector<Vec3>& v) {
+    double m = 0;
+    for (const Vec3& x : v) m = std::max(m, x.norm());
+    return m;
+}
+
+// Diagonal shift lambda * active + locked mask, with lambda tiny against the mean diagonal.
+struct DiagonalShift {
+    std::vector<Vec3> shift;
+    DiagonalShift(const std::vector<Mat3>& basis, const std::vector<Mat3>& reduced_diagonal) {
+        double trace = 0;
+        for (const Mat3& d : reduced_diagonal) trace += d.trace();
+        const double lambda = 1e-9 * (trace > 0 ? trace / (3.0 * reduced_diagonal.size()) : 1.0);
+        shift.resize(basis.size());
+        for (size_t a = 0; a < basis.size(); ++a) {
+            const Vec3 locked = locked_mask(basis[a]);
+            shift[a] = locked + lambda * (Vec3::Ones() - locked);
+        }
+    }
+};
+
+// Preconditioner M^-1 from the reduced diagonal blocks (already shifted).
+LinearOperator diagonal_preconditioner(Preconditioner kind, const std::vector<Mat3>& diagonal) {
+    if (kind == Preconditioner::none) return {};
+    if (kind == Preconditioner::jacobi) {
+        auto inv = std::make_shared<std::vector<Vec3>>(diagonal.size());
+        for (size_t a = 0; a < diagonal.size(); ++a) (*inv)[a] = diagonal[a].diagonal().cwiseInverse();
+        return [inv](const VertexVector& r, VertexVector& z) {
+            z.resize(r.size());
+            tbb::parallel_for(size_t(0), r.size(), [&](size_t a) { z[a] = (*inv)[a].cwiseProduct(r[a]); });
+        };
+    }
+    auto inv = std::make_shared<std::vector<Mat3>>(diagonal.size());
+    for (size_t a = 0; a < diagonal.size(); ++a) (*inv)[a] = diagonal[a].inverse();
+    return [inv](const VertexVector& r, VertexVector& z) {
+        z.resize(r.size());
+        tbb::parallel_for(size_t(0), r.size(), [&](size_t a) { z[a] = (*inv)[a] * r[a]; });
+    };
+}
+
+// Incomplete Cholesky of the whole reduced matrix, through Eigen.
+LinearOperator incomplete_cholesky(const BlockMatrix& r) {
+    const Id n = 3 * r.rows();
+    std::vector<Eigen::Triplet<double>> entries;
+    entries.reserve(9 * r.col.size());
+    for (Id a = 0; a < r.rows(); ++a)
+        for (Id m = r.row_start[a]; m < r.row_start[a + 1]; ++m)
+            for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j)
+                    if (r.block[m](i, j) != 0) entries.emplace_back(3 * a + i, 3 * r.col[m] + j, r.block[m](i, j));
+    Eigen::SparseMatrix<double> a(n, n);
+    a.setFromTriplets(entries.begin(), entries.end());
+    auto ic = std::make_shared<Eigen::IncompleteCholesky<double>>(a);
+    return [ic, n](const VertexVector& in, VertexVector& out) {
+        const Eigen::Map<const Eigen::VectorXd> b(in[0].data(), n);
+        const Eigen::VectorXd x = ic->solve(b);
+        out.resize(in.size());
+        Eigen::Map<Eigen::VectorXd>(out[0].data(), n) = x;
+    };
+}
+
+}  // namespace
+
+Minimizer::Minimizer(const Problem& problem, const Assembly& assembly, const SolverOptions& options)
+    : problem_(problem), assembly_(assembly), options_(options) {}
+
+double Minimizer::newton_direction(const std::vector<Vec3>& x, const EnergyParams& p,
+                                   const std::vector<Mat3>& basis, std::vector<Vec3>& d,
+                                   int& iterations) {
+    const size_t n = x.size();
+    std::vector<Vec3> g;
+    std::vector<Mat3> diagonal;
+    const bool matrix_free = options_.matrix_free && options_.method == Method::newton_cg;
+    double f;
+    if (matrix_free) {
+        f = assembly_.diagonal_hessian(x, p, g, diagonal);
+    } else {
+        if (hessian_.col.empty()) hessian_ = assembly_.empty_hessian();
+        f = assembly_.hessian(x, p, g, hessian_);
+        tbb::parallel_for(Id(0), hessian_.rows(), [&](Id a) {
+            for (Id m = hessian_.row_start[a]; m < hessian_.row_start[a + 1]; ++m)
+                hessian_.block[m] = basis[a].transpose() * hessian_.block[m] * basis[hessian_.col[m]];
+        });
+        diagonal.resize(n);
+        for (size_t a = 0; a < n; ++a) diagonal[a] = hessian_.block[hessian_.find(Id(a), Id(a))];
+    }
+    if (!std::isfinite(f)) return f;
+    if (matrix_free)
+        for (size_t a = 0; a < n; ++a) diagonal[a] = basis[a].transpose() * diagonal[a] * basis[a];
+    const DiagonalShift shift(basis, diagonal);
+    for (size_t a = 0; a < n; ++a) diagonal[a] += shift.shift[a].asDiagonal();
+    if (!matrix_free)
+        for (size_t a = 0; a < n; ++a) hessian_.block[hessian_.find(Id(a), Id(a))] = diagonal[a];
+
+    std::vector<Vec3> rhs(n), reduced(n);
+    for (size_t a = 0; a < n; ++a) rhs[a] = -(basis[a].transpose() * g[a]);
+
+    if (options_.method == Method::coordinate_split) {
+        std::fill(reduced.begin(), reduced.end(), Vec3::Zero());
+        for (int c = 0; c < 3; ++c) {
+            std::vector<Vec3> b(n, Vec3::Zero()), xc;
+            for (size_t a = 0; a < n; ++a) b[a][c] = rhs[a][c];
+            const LinearOperator apply = [&, c](const VertexVector& v, VertexVector& out) {
+                out.assign(v.size(), Vec3::Zero());
+                tbb::parallel_for(Id(0), hessian_.rows(), [&](Id a) {
+                    double s = 0;
+                    for (Id m = hessian_.row_start[a]; m < hessian_.row_start[a + 1]; ++m)
+                        s += hessian_.block[m](c, c) * v[hessian_.col[m]][c];
+                    out[a][c] = s;
+                });
+            };
+            const LinearOperator jacobi = [&, c](const VertexVector& r, VertexVector& z) {
+                z.assign(r.size(), Vec3::Zero());
+                for (size_t a = 0; a < r.size(); ++a) z[a][c] = r[a][c] / diagonal[a](c, c);
+            };
+            const PcgResult res = solve_pcg(apply, options_.preconditioner == Preconditioner::none ? LinearOperator{} : jacobi,
+                                            b, xc, options_.cg_tolerance, options_.cg_max_iterations);
+            iterations += res.iterations;
+            for (size_t a = 0; a < n; ++a) reduced[a][c] = xc[a][c];
+        }
+    } else {
+        LinearOperator apply;
+        if (matrix_free) {
+            apply = [&](const VertexVector& v, VertexVector& out) {
+                std::vector<Vec3> w(n), hw;
+                for (size_t a = 0; a < n; ++a) w[a] = basis[a] * v[a];
+                assembly_.hessian_product(x, p, w, hw);
+                out.resize(n);
+                for (size_t a = 0; a < n; ++a)
+                    out[a] = basis[a].transpose() * hw[a] + shift.shift[a].cwiseProduct(v[a]);
+            };
+        } else {
+            apply = [&](const VertexVector& v, VertexVector& out) { hessian_.multiply(v, out); };
+        }
+        const LinearOperator precondition =
+            options_.preconditioner == Preconditioner::incomplete_cholesky && !matrix_free
+                ? incomplete_cholesky(hessian_)
+                : diagonal_preconditioner(options_.preconditioner == Preconditioner::incomplete_cholesky
+                                              ? Preconditioner::block_jacobi
+                                              : options_.preconditioner,
+                                          diagonal);
+        iterations += solve_pcg(apply, precondition, rhs, reduced, options_.cg_tolerance,
+                                options_.cg_max_iterations).iterations;
+    }
+    d.resize(n);
+    for (size_t a = 0; a < n; ++a) d[a] = basis[a] * reduced[a];
+    return f;
+}
+
+double Minimizer::lbfgs_direction(const std::vector<Vec3>& x, const EnergyParams& p,
+                                  const std::vector<Mat3>& basis, std::vector<Vec3>& d) {
+    const size_t n = x.size();
+    std::vector<Vec3> g;
+    const double f = assembly_.gradient(x, p, g);
+    if (!std::isfinite(f)) return f;
+    std::vector<Vec3> q(n);
+    for (size_t a = 0; a < n; ++a) q[a] = basis[a] * (basis[a].transpose() * g[a]);
+    if (!last_x_.empty()) {
+        std::vector<Vec3> s(n), y(n);
+        for (size_t a = 0; a < n; ++a) s[a] = x[a] - last_x_[a], y[a] = q[a] - last_gradient_[a];
+        const double sy = dot(s, y);
+        if (sy > 1e-12 * std::sqrt(dot(s, s) * dot(y, y))) {
+            history_.emplace_back(std::move(s), std::move(y));
+            if (int(history_.size()) > options_.lbfgs_history) history_.pop_front();
+        }
+    }
+    last_x_ = x;
+    last_gradient_ = q;
+    d = q;
+    std::vector<double> alpha(history_.size());
+    for (int i = int(history_.size()) - 1; i >= 0; --i) {
+        const auto& [s, y] = history_[i];
+        alpha[i] = dot(s, d) / dot(y, s);
+        for (size_t a = 0; a < n; ++a) d[a] -= alpha[i] * y[a];
+    }
+    double gamma;
+    if (history_.empty()) {
+        const double m = max_norm(q);
+        gamma = m > 0 ? problem_.length_scale / m : 1.0;
+    } else {
+        const auto& [s, y] = history_.back();
+        gamma = dot(s, y) / dot(y, y);
+    }
+    for (Vec3& v : d) v *= gamma;
+    for (size_t i = 0; i < history_.size(); ++i) {
+        const auto& [s, y] = history_[i];
+        const double beta = dot(y, d) / dot(y, s);
+        for (size_t a = 0; a < n; ++a) d[a] += (alpha[i] - beta) * s[a];
+    }
+    for (size_t a = 0; a < n; ++a) d[a] = -(basis[a] * (basis[a].transpose() * d[a]));
+    if (!(dot(d, q) < 0)) {  // not a descent direction: restart from the scaled gradient
+        history_.clear();
+        const double m = max_norm(q);
+        for (size_t a = 0; a < n; ++a) d[a] = -(m > 0 ? problem_.length_scale / m : 1.0) * q[a];
+    }
+    return f;
+}
+
+double Minimizer::direction(const std::vector<Vec3>& x, const EnergyParams& p, std::vector<Vec3>& d,
+                            int& linear_iterations) {
+    const std::vector<Mat3> basis = movement_bases(problem_, x);
+    const size_t n = x.size();
+    switch (options_.method) {
+        case Method::explicit_gradient: {
+            std::vector<Vec3> g;
+            const double f = assembly_.gradient(x, p, g);
+            d.resize(n);
+            for (size_t a = 0; a < n; ++a) d[a] = -(basis[a] * (basis[a].transpose() * g[a]));
+            const double m = max_norm(d);
+            if (m > 0) for (Vec3& v : d) v *= problem_.length_scale / m;
+            return f;
+        }
+        case Method::block_diagonal: {
+            std::vector<Vec3> g;
+            std::vector<Mat3> diagonal;
+            const double f = assembly_.diagonal_hessian(x, p, g, diagonal);
+            for (size_t a = 0; a < n; ++a) diagonal[a] = basis[a].transpose() * diagonal[a] * basis[a];
+            const DiagonalShift shift(basis, diagonal);
+            d.resize(n);
+            for (size_t a = 0; a < n; ++a) {
+                const Mat3 r = diagonal[a] + Mat3(shift.shift[a].asDiagonal());
+                d[a] = -(basis[a] * r.ldlt().solve(basis[a].transpose() * g[a]));
+            }
+            return f;
+        }
+        case Method::coordinate_split:
+        case Method::newton_cg: return newton_direction(x, p, basis, d, linear_iterations);
+        case Method::lbfgs: return lbfgs_direction(x, p, basis, d);
+    }
+    return 0;
+}
+
+MinimizeOutcome Minimizer::minimize(std::vector<Vec3>& x, const EnergyParams& p, int max_steps,
+                                    double tolerance) {
+    history_.clear();
+    last_x_.clear();
+    MinimizeOutcome out;
+    out.energy = assembly_.energy(x, p);
+    std::vector<Vec3> d, trial(x.size());
+    for (int step = 0; step < max_steps; ++step) {
+        const double f0 = direction(x, p, d, out.linear_iterations);
+        if (!std::isfinite(f0)) break;
+        double tau = 1, f = f0;
+        bool accepted = false;
+        for (int h = 0; h <= options_.max_halvings && !accepted; ++h, tau *= 0.5) {
+            for (size_t a = 0; a < x.size(); ++a) trial[a] = x[a] + tau * d[a];
+            project_constrained(problem_, trial);
+            f = assembly_.energy(trial, p);
+            accepted = f < f0;
+        }
+        if (!accepted) {
+            if (options_.method == Method::lbfgs && !history_.empty()) {
+                history_.clear();
+                last_x_.clear();
+                continue;
+            }
+            break;
+        }
+        x.swap(trial);
+        out.energy = f;
+        ++out.steps;
+        if (f0 - f <= tolerance * std::abs(f0)) break;
+    }
+    return out;
+}
+
+}  // namespace hexmesh::untangle

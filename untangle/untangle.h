@@ -1,0 +1,50 @@
+// The continuation driver: untangle with a shrinking eps, then optimize with the pure barrier.
+#pragma once
+
+#include <ostream>
+#include <vector>
+
+#include "untangle/problem.h"
+#include "untangle/solver_options.h"
+
+namespace hexmesh::untangle {
+
+struct UntangleOptions {
+    SolverOptions untangle_solver;   // while some det <= 0 (global method recommended)
+    SolverOptions optimize_solver;   // once all det > 0, eps = 0 (barrier)
+    double theta = 0.8;
+    int max_untangle_iterations = 200;  // outer iterations (eps updates)
+    int max_optimize_iterations = 20;
+    int inner_steps = 30;               // descent steps per outer iteration
+    double inner_tolerance = 1e-4;      // relative decrease that ends an inner solve
+    double optimize_tolerance = 1e-5;   // relative energy change that ends optimization
+    std::ostream* log = nullptr;        // one progress line per outer iteration
+};
+
+// One line of the progress log.
+struct IterationRecord {
+    int iteration = 0;
+    bool barrier = false;  // false: untangling (eps > 0); true: optimizing (eps = 0)
+    double energy = 0, eps = 0, min_det = 0, seconds = 0;
+    Id inverted = 0;
+    int steps = 0, linear_iterations = 0;
+};
+
+struct UntangleResult {
+    Id inverted_before = 0, inverted_after = 0;  // elements with det S <= 0
+    double min_det_before = 0, min_det_after = 0;  // in target units (1 = perfect)
+    double energy_after = 0;                       // barrier energy, +inf if still tangled
+    double seconds = 0;
+    std::vector<IterationRecord> history;
+};
+
+// Minimizes the functional of DESIGN §4 over problem.points (updated in place): eps
+// continuation from the foldover-free rule until every element has det S > 0, then barrier
+// optimization. Never returns worse than its input: the best state seen (fewest inverted
+// elements, then lowest energy) is the one kept.
+UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& options);
+
+// The summary table printed at the end of a run.
+std::string format_untangle_summary(const UntangleResult& result);
+
+}  // namespace hexmesh::untangle
