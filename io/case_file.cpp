@@ -3,9 +3,11 @@
 #include <cerrno>
 #include <cstring>
 #include <fmt/format.h>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
+#include "io/export_grid.h"
 #include "io/json_fields.h"
 
 namespace hexmesh {
@@ -61,12 +63,25 @@ void parse_primitive(const JsonFields& p, GeometrySpec& s) {
     s.center = p.vec3("center", zero);
 }
 
+// {"file": "part.stl", "voxel_size": 0.01}: a path relative to the case file's folder.
+void parse_surface_file(const JsonFields& g, const std::string& file, GeometrySpec& s) {
+    const json& name = g.at("file");
+    if (!name.is_string() || name.get<std::string>().empty())
+        g.fail("file", "a surface file name (.stl, .obj, .off or .ply)");
+    const std::filesystem::path relative(name.get<std::string>());
+    s.file = relative.is_absolute()
+                 ? relative.string()
+                 : (std::filesystem::path(file).parent_path() / relative).lexically_normal().string();
+    s.voxel_size = g.positive_number("voxel_size", 0);
+}
+
 GeometrySpec parse_geometry(const json& value, const std::string& file, const std::string& path) {
     const JsonFields g(value, file, path);
-    static const char* primitives[] = {"sphere", "ellipsoid", "box", "cylinder", "torus", "cone"};
+    static const char* primitives[] = {"sphere", "ellipsoid", "box", "cylinder", "torus", "cone",
+                                       "file"};
     static const char* operations[] = {"union", "intersection", "difference"};
-    g.allow_only({"sphere", "ellipsoid", "box", "cylinder", "torus", "cone", "union",
-                  "intersection", "difference", "translate", "rotate", "scale"});
+    g.allow_only({"sphere", "ellipsoid", "box", "cylinder", "torus", "cone", "file", "voxel_size",
+                  "union", "intersection", "difference", "translate", "rotate", "scale"});
     GeometrySpec s;
     int shapes = 0;
     for (const char* k : primitives)
@@ -76,11 +91,15 @@ GeometrySpec parse_geometry(const json& value, const std::string& file, const st
     if (shapes != 1) {
         throw InputError(fmt::format(
             "{}: {}: expected exactly one shape (sphere, ellipsoid, box, cylinder, torus, cone, "
-            "union, intersection, difference), got {}",
+            "file, union, intersection, difference), got {}",
             file, path, shapes));
     }
+    if (g.has("voxel_size") && s.kind != "file")
+        g.fail("voxel_size", "no voxel size: it goes with \"file\"");
     if (s.kind == "union" || s.kind == "intersection" || s.kind == "difference")
         s.children = parse_operands(g, s.kind.c_str(), file);
+    else if (s.kind == "file")
+        parse_surface_file(g, file, s);
     else
         parse_primitive(g.object(s.kind.c_str()), s);
 
@@ -157,12 +176,14 @@ SolverSpec parse_solver(const JsonFields& s) {
 
 std::vector<std::string> parse_outputs(const JsonFields& top, const std::string& file) {
     const json& list = top.at("outputs");
-    if (!list.is_array()) top.fail("outputs", "an array of format names (vtk)");
+    if (!list.is_array()) top.fail("outputs", "an array of format names (" + export_format_list() + ")");
     std::vector<std::string> outputs;
     for (size_t m = 0; m < list.size(); ++m) {
-        if (!list[m].is_string() || list[m].get<std::string>() != "vtk") {
-            throw InputError(fmt::format("{}: outputs[{}]: expected a format name (vtk), got {}",
-                                         file, m, describe(list[m])));
+        if (!list[m].is_string() || !is_export_format(list[m].get<std::string>())) {
+            // "(vtk)" kept first: tests/io/test_case_file.cpp matches that wording.
+            throw InputError(fmt::format("{}: outputs[{}]: expected a format name (vtk), got {}; "
+                                         "the formats are {}",
+                                         file, m, describe(list[m]), export_format_list()));
         }
         outputs.push_back(list[m].get<std::string>());
     }

@@ -19,7 +19,7 @@ struct InputError : std::runtime_error {
 // A body as written in the case: a primitive, or a CSG node over children, with an
 // optional transform (applied as scale, then rotate, then translate).
 struct GeometrySpec {
-    std::string kind;  // sphere ellipsoid box cylinder torus cone | union intersection difference
+    std::string kind;  // sphere ellipsoid box cylinder torus cone file | union intersection difference
     Vec3 center = Vec3::Zero();
     double radius = 0;        // sphere, cylinder
     Vec3 semi_axes = Vec3::Zero();  // ellipsoid
@@ -28,6 +28,8 @@ struct GeometrySpec {
     double major_radius = 0, minor_radius = 0;  // torus in the xy plane
     double bottom_radius = 0, top_radius = 0;   // cone (frustum), bottom at lower z
     std::vector<GeometrySpec> children;         // CSG operands, in order
+    std::string file;        // file: surface (STL OBJ OFF PLY), resolved against the case's folder
+    double voxel_size = 0;   // file: voxel of its signed distance field (0: longest side / 256)
     Vec3 translate = Vec3::Zero();
     Vec3 rotate_axis = Vec3::UnitZ();
     double rotate_degrees = 0;

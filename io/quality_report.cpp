@@ -18,8 +18,8 @@ std::string format_quality_table(const GridReport& r) {
     row("mean scaled Jacobian", fmt::format("{:.4f}", q.mean_scaled_jacobian));
     row("max skewness", fmt::format("{:.4f}", q.max_skewness));
     row("max non-orthogonality (deg)", fmt::format("{:.2f}", q.max_non_orthogonality_deg));
-    row("max aspect ratio", fmt::format("{:.3f}", q.max_aspect_ratio));
-    row("max volume ratio", fmt::format("{:.3f}", q.max_volume_ratio));
+    row("max aspect ratio", fmt::format("{:.4g}", q.max_aspect_ratio));
+    row("max volume ratio", fmt::format("{:.4g}", q.max_volume_ratio));
     row("min cell volume", fmt::format("{:.4g}", q.min_volume));
     if (r.max_surface_distance)
         row("max |u| / h on the wall", fmt::format("{:.3g}", *r.max_surface_distance));

@@ -20,6 +20,8 @@
 #include <vtkCellData.h>
 #include <vtkPoints.h>
 #include <vtkSmartPointer.h>
+#include <vtkFieldData.h>
+#include <vtkStringArray.h>
 #include <vtkStructuredGrid.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkXMLMultiBlockDataReader.h>
@@ -30,6 +32,10 @@
 
 #include "hexmesh/core/quality.h"
 #include "io/case_file.h"
+#include "io/export_grid.h"
+#include "io/gmsh_mesh.h"
+#include "io/medit_mesh.h"
+#include "io/plot3d.h"
 
 namespace hexmesh {
 namespace {
@@ -108,6 +114,16 @@ vtkSmartPointer<vtkStructuredGrid> to_vtk_block(const BlockGrid& grid, const Blo
                 sj->SetValue(c.flat(i, j, k), hex_scaled_jacobian(p));
             }
     out->GetCellData()->AddArray(sj);
+
+    // Field data keeps what a structured grid cannot say: the block's name and face patches.
+    vtkNew<vtkStringArray> name;
+    name->SetName("block_name");
+    name->InsertNextValue(block.name);
+    out->GetFieldData()->AddArray(name);
+    vtkNew<vtkStringArray> patches;
+    patches->SetName("face_patch");
+    for (const std::string& patch : block.face_patch) patches->InsertNextValue(patch);
+    out->GetFieldData()->AddArray(patches);
     return out;
 }
 
@@ -171,6 +187,35 @@ vtkSmartPointer<vtkDataObject> run_reader(const std::string& path) {
     return out;
 }
 
+// Appends one structured piece to `grid` as a block, merging points equal to earlier ones.
+void append_block(vtkStructuredGrid* piece, const std::string& fallback_name, BlockGrid& grid,
+                  PointIds& point_ids) {
+    Block block;
+    block.name = fallback_name;
+    int dims[3];
+    piece->GetDimensions(dims);
+    block.nodes = {dims[0], dims[1], dims[2]};
+    auto* kinds = vtkUnsignedCharArray::SafeDownCast(piece->GetPointData()->GetArray("vertex_kind"));
+    block.node_ids.resize(piece->GetNumberOfPoints());
+    for (vtkIdType m = 0; m < piece->GetNumberOfPoints(); ++m) {
+        std::array<double, 3> x;
+        piece->GetPoint(m, x.data());
+        auto [it, inserted] = point_ids.emplace(x, Id(grid.points.size()));
+        if (inserted) {
+            grid.points.emplace_back(x[0], x[1], x[2]);
+            grid.kinds.push_back(kinds ? VertexKind(kinds->GetValue(m)) : VertexKind{});
+        }
+        block.node_ids[m] = it->second;
+    }
+    vtkFieldData* fields = piece->GetFieldData();
+    if (auto* name = vtkStringArray::SafeDownCast(fields->GetAbstractArray("block_name")))
+        if (name->GetNumberOfValues() == 1) block.name = name->GetValue(0);
+    if (auto* patches = vtkStringArray::SafeDownCast(fields->GetAbstractArray("face_patch")))
+        if (patches->GetNumberOfValues() == 6)
+            for (int f = 0; f < 6; ++f) block.face_patch[f] = patches->GetValue(f);
+    grid.blocks.push_back(std::move(block));
+}
+
 }  // namespace
 
 void write_vtk_grid(const BlockGrid& grid, const std::string& path) {
@@ -212,9 +257,12 @@ HexMesh read_vtk_mesh(const std::string& path) {
     else if (ext == ".vtu") data = run_reader<vtkXMLUnstructuredGridReader>(path);
     else if (ext == ".vtk") data = run_reader<vtkDataSetReader>(path);
     else if (ext == ".vtm") data = run_reader<vtkXMLMultiBlockDataReader>(path);
+    else if (ext == ".msh") return read_gmsh_mesh(path);
+    else if (ext == ".mesh") return read_medit_mesh(path);
+    else if (is_plot3d_path(path)) return to_hex_mesh(read_plot3d(path));
     else
-        throw InputError(fmt::format("{}: unknown mesh format '{}' (expected .vts, .vtu, .vtk "
-                                     "or .vtm)", path, ext));
+        throw InputError(fmt::format("{}: unknown mesh format '{}' (expected .vts, .vtu, .vtk, "
+                                     ".vtm, .msh, .mesh or Plot3D .xyz .x .p3d .g)", path, ext));
 
     HexMesh mesh;
     PointIds point_ids;
@@ -230,6 +278,41 @@ HexMesh read_vtk_mesh(const std::string& path) {
     if (mesh.num_cells() == 0)
         throw InputError(fmt::format("{}: the file holds no hexahedra", path));
     return mesh;
+}
+
+BlockGrid read_vtk_block_grid(const std::string& path) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec))
+        throw InputError(fmt::format("{}: no such grid file", path));
+    const std::string ext = extension(path);
+    vtkSmartPointer<vtkDataObject> data;
+    if (ext == ".vts") data = run_reader<vtkXMLStructuredGridReader>(path);
+    else if (ext == ".vtm") data = run_reader<vtkXMLMultiBlockDataReader>(path);
+    else
+        throw InputError(fmt::format("{}: a block grid is read from .vts or .vtm, not '{}'", path, ext));
+
+    BlockGrid grid;
+    PointIds point_ids;
+    auto add = [&](vtkDataObject* piece, const std::string& name) {
+        auto* structured = vtkStructuredGrid::SafeDownCast(piece);
+        if (!structured)
+            throw InputError(fmt::format("{}: piece '{}' is not a structured grid", path, name));
+        append_block(structured, name, grid, point_ids);
+    };
+    if (auto* composite = vtkCompositeDataSet::SafeDownCast(data)) {
+        vtkSmartPointer<vtkCompositeDataIterator> it;
+        it.TakeReference(composite->NewIterator());
+        for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem()) {
+            std::string name = fmt::format("block{}", grid.blocks.size());
+            if (it->HasCurrentMetaData() && it->GetCurrentMetaData()->Has(vtkCompositeDataSet::NAME()))
+                name = it->GetCurrentMetaData()->Get(vtkCompositeDataSet::NAME());
+            add(it->GetCurrentDataObject(), name);
+        }
+    } else {
+        add(data, fs::path(path).stem().string());
+    }
+    if (grid.blocks.empty()) throw InputError(fmt::format("{}: the file holds no blocks", path));
+    return grid;
 }
 
 }  // namespace hexmesh

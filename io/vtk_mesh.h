@@ -11,14 +11,23 @@ namespace hexmesh {
 // Writes `grid` with VTK's XML writers: a .vtm multiblock file (one vtkStructuredGrid piece
 // per block, named after the block, pieces in a folder beside it) or, for a single block, a
 // .vts file; `path` must end in the matching extension. Each piece carries the cell array
-// "scaled_jacobian" and the point array "vertex_kind" (0 interior, 1 slip, 2 feature edge,
-// 3 corner, 4 fixed). Throws std::runtime_error naming the file if VTK cannot write it.
+// "scaled_jacobian", the point array "vertex_kind" (0 interior, 1 slip, 2 feature edge,
+// 3 corner, 4 fixed) and the field data "block_name" (1 string) and "face_patch" (6 strings,
+// imin imax jmin jmax kmin kmax; "" for a block interface). Throws std::runtime_error naming
+// the file if VTK cannot write it.
 void write_vtk_grid(const BlockGrid& grid, const std::string& path);
+
+// Reads a .vts or .vtm written by write_vtk_grid back into a block grid: blocks (names from
+// the .vtm or "block_name"), face patches, vertex kinds, and shared nodes, points that are
+// exactly equal across (or within) pieces becoming one node. Pieces without the field data
+// get empty patches. Throws InputError when the file is missing or not structured.
+BlockGrid read_vtk_block_grid(const std::string& path);
 
 // Reads the hexahedra of a .vts, .vtu, .vtk (legacy) or .vtm file into one mesh. Points that
 // coincide exactly across the pieces of a .vtm are merged, so block interfaces become
-// internal faces. Voxels are reordered to VTK_HEXAHEDRON order. Throws InputError when the
-// file is missing, unreadable, or holds cells that are not hexahedra.
+// internal faces. Voxels are reordered to VTK_HEXAHEDRON order. Also reads the exporters'
+// other formats by extension: Gmsh .msh, Medit .mesh, Plot3D .xyz .x .p3d .g. Throws
+// InputError when the file is missing, unreadable, or holds cells that are not hexahedra.
 HexMesh read_vtk_mesh(const std::string& path);
 
 }  // namespace hexmesh

@@ -253,7 +253,8 @@ double Minimizer::direction(const std::vector<Vec3>& x, const EnergyParams& p, s
 }
 
 MinimizeOutcome Minimizer::minimize(std::vector<Vec3>& x, const EnergyParams& p, int max_steps,
-                                    double tolerance) {
+                                    double tolerance,
+                                    const std::function<bool(const std::vector<Vec3>&)>& done) {
     history_.clear();
     last_x_.clear();
     MinimizeOutcome out;
@@ -281,7 +282,7 @@ MinimizeOutcome Minimizer::minimize(std::vector<Vec3>& x, const EnergyParams& p,
         x.swap(trial);
         out.energy = f;
         ++out.steps;
-        if (f0 - f <= tolerance * std::abs(f0)) break;
+        if (f0 - f <= tolerance * std::abs(f0) || (done && done(x))) break;
     }
     return out;
 }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <deque>
+#include <functional>
 #include <vector>
 
 #include "untangle/assembly.h"
@@ -23,8 +24,10 @@ public:
     // Up to max_steps descent steps on F at fixed p, stopping when a step lowers F by less
     // than tolerance * |F|, or when the line search finds no decrease. x is updated in place
     // and stays on its constraints (V applied after every step).
+    // `done`, when given, is asked after every accepted step and ends the solve early.
     MinimizeOutcome minimize(std::vector<Vec3>& x, const EnergyParams& p, int max_steps,
-                             double tolerance);
+                             double tolerance,
+                             const std::function<bool(const std::vector<Vec3>&)>& done = {});
 
 private:
     // Direction d for the current x (in 3D, inside the allowed bases); returns F(x).

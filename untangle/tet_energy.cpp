@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
 #include <cmath>
 #include <limits>
 
@@ -10,8 +11,6 @@
 namespace hexmesh::untangle {
 namespace {
 
-using Vec9 = Eigen::Matrix<double, 9, 1>;
-using Mat9 = Eigen::Matrix<double, 9, 9>;
 constexpr double infinity = std::numeric_limits<double>::infinity();
 
 Mat3 edge_matrix(const Mat34& y) {
@@ -56,19 +55,6 @@ Invariants phi(double i, double d, double v0, const EnergyParams& p, bool second
     return f;
 }
 
-// d vec(S) / d y (vec column-major, y vertex-major): S = Q H^-1 is linear in y.
-Eigen::Matrix<double, 9, 12> s_jacobian(const Mat3& inv) {
-    std::array<Eigen::RowVector3d, 4> g;
-    for (int a = 1; a < 4; ++a) g[a] = inv.row(a - 1);
-    g[0] = -(g[1] + g[2] + g[3]);
-    Eigen::Matrix<double, 9, 12> D = Eigen::Matrix<double, 9, 12>::Zero();
-    for (int a = 0; a < 4; ++a)
-        for (int c = 0; c < 3; ++c)
-            for (int j = 0; j < 3; ++j) D(c + 3 * j, 3 * a + c) = g[a][j];
-    return D;
-}
-
-constexpr int levi(int i, int j, int k) { return (i - j) * (j - k) * (k - i) / 2; }
 
 }  // namespace
 
@@ -100,33 +86,53 @@ double tet_energy_hessian(const Mat34& y, const TetTarget& t, const EnergyParams
     const double d = s.determinant();
     if (p.eps <= 0 && d <= 0) return infinity;
     const Invariants f = phi(s.squaredNorm(), d, t.v0, p, true);
-    const Mat3 cof = cofactor(s);
-    const Mat3 dq = t.weight * (2 * f.f_i * s + f.f_d * cof) * t.inverse.transpose();
+    const Mat3 dq = t.weight * (2 * f.f_i * s + f.f_d * cofactor(s)) * t.inverse.transpose();
     grad.col(0) = -dq.rowwise().sum();
     grad.rightCols<3>() = dq;
 
-    const Vec9 sv = Eigen::Map<const Vec9>(s.data()), cv = Eigen::Map<const Vec9>(cof.data());
-    Mat9 h = 2 * f.f_i * Mat9::Identity() + f.f_dd * cv * cv.transpose() +
-             2 * f.f_id * (sv * cv.transpose() + cv * sv.transpose());
-    // f_d times the Hessian of det: d cof_ij / d S_kl = eps_ikb eps_jld S_bd.
+    // Analytic eigensystem of the 9 x 9 Hessian in S of an isotropic energy f(I, det S)
+    // (Smith, de Goes, Kim 2019): with the signed SVD S = U diag(sigma) V^T, the twists
+    // U T_ij V^T and flips U F_ij V^T are eigenvectors with eigenvalues 2 f_I +- f_d sigma_k,
+    // and the scalings U diag(v) V^T span the rest, where v are the eigenvectors of the 3 x 3
+    // Hessian of f(sum sigma^2, prod sigma) in sigma. Each mode q contributes
+    // lambda (D^T q)(D^T q)^T to the 12 x 12 Hessian, with (D^T q)_a = U M V^T g_a.
+    Eigen::JacobiSVD<Mat3> svd(s, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    Mat3 u = svd.matrixU(), v = svd.matrixV();
+    Vec3 sigma = svd.singularValues();
+    if (u.determinant() < 0) u.col(2) *= -1, sigma[2] *= -1;
+    if (v.determinant() < 0) v.col(2) *= -1, sigma[2] *= -1;
+    const Vec3 d_i(sigma[1] * sigma[2], sigma[0] * sigma[2], sigma[0] * sigma[1]);
+    Mat3 a;
     for (int i = 0; i < 3; ++i)
-        for (int k = 0; k < 3; ++k) {
-            if (i == k) continue;
-            const int b = 3 - i - k;
-            for (int j = 0; j < 3; ++j)
-                for (int l = 0; l < 3; ++l) {
-                    if (j == l) continue;
-                    const int dd = 3 - j - l;
-                    h(i + 3 * j, k + 3 * l) += f.f_d * levi(i, k, b) * levi(j, l, dd) * s(b, dd);
-                }
-        }
-    if (project_psd) {
-        Eigen::SelfAdjointEigenSolver<Mat9> eig(h);
-        const Vec9 lambda = eig.eigenvalues().cwiseMax(0.0);
-        h = eig.eigenvectors() * lambda.asDiagonal() * eig.eigenvectors().transpose();
+        for (int j = 0; j < 3; ++j)
+            a(i, j) = 2 * f.f_id * (sigma[i] * d_i[j] + sigma[j] * d_i[i]) + f.f_dd * d_i[i] * d_i[j] +
+                      (i == j ? 2 * f.f_i : f.f_d * sigma[3 - i - j]);
+    Eigen::SelfAdjointEigenSolver<Mat3> scaling;
+    scaling.computeDirect(a);
+
+    Eigen::Matrix<double, 3, 4> g;  // columns: d(vec S)/d y_a factors (rows of H^-1)
+    for (int k = 1; k < 4; ++k) g.col(k) = t.inverse.row(k - 1).transpose();
+    g.col(0) = -(g.col(1) + g.col(2) + g.col(3));
+    const Eigen::Matrix<double, 3, 4> vg = v.transpose() * g;
+    hess.setZero();
+    auto add_mode = [&](const Mat3& m, double lambda) {
+        if (project_psd && lambda <= 0) return;
+        const Mat3 um = u * m;
+        Eigen::Matrix<double, 12, 1> w;
+        for (int k = 0; k < 4; ++k) w.segment<3>(3 * k) = um * vg.col(k);
+        hess.noalias() += lambda * w * w.transpose();
+    };
+    for (int m = 0; m < 3; ++m) add_mode(scaling.eigenvectors().col(m).asDiagonal(), scaling.eigenvalues()[m]);
+    const double r = std::sqrt(0.5);
+    for (int k = 0; k < 3; ++k) {
+        const int i = (k + 1) % 3, j = (k + 2) % 3;
+        Mat3 twist = Mat3::Zero(), flip = Mat3::Zero();
+        twist(i, j) = r, twist(j, i) = -r;
+        flip(i, j) = r, flip(j, i) = r;
+        add_mode(twist, 2 * f.f_i + f.f_d * sigma[k]);
+        add_mode(flip, 2 * f.f_i - f.f_d * sigma[k]);
     }
-    const Eigen::Matrix<double, 9, 12> D = s_jacobian(t.inverse);
-    hess = t.weight * D.transpose() * h * D;
+    hess *= t.weight;
     return t.weight * f.value;
 }
 

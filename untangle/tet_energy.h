@@ -38,7 +38,8 @@ double tet_energy_gradient(const Mat34& y, const TetTarget& t, const EnergyParam
                            Mat34& grad);
 
 // Value, gradient and a positive semi-definite 12 x 12 Hessian (vertex-major: row 3a + c),
-// obtained by clamping the negative eigenvalues of the 9 x 9 Hessian in S to zero
+// obtained by clamping the negative eigenvalues of the 9 x 9 Hessian in S (known in closed
+// form) to zero
 // (project_psd = false gives the exact, possibly indefinite, Hessian).
 double tet_energy_hessian(const Mat34& y, const TetTarget& t, const EnergyParams& p,
                           Mat34& grad, Mat12& hess, bool project_psd = true);

@@ -63,9 +63,12 @@ UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& op
         Minimizer minimizer(problem, assembly, options.untangle_solver);
         double eps = std::sqrt(tiny_eps + 0.04 * stats.min_det * stats.min_det);
         for (int it = 1; it <= options.max_untangle_iterations && stats.inverted > 0; ++it) {
-            const EnergyParams p{options.theta, eps};
+            const EnergyParams p{options.untangle_theta, eps};
             const double e_prev = assembly.energy(x, p);
-            const MinimizeOutcome m = minimizer.minimize(x, p, options.inner_steps, options.inner_tolerance);
+            // Untangled is the goal of this phase: stop as soon as it is reached.
+            const auto untangled = [&](const std::vector<Vec3>& y) { return assembly.stats(y).inverted == 0; };
+            const MinimizeOutcome m =
+                minimizer.minimize(x, p, options.inner_steps, options.inner_tolerance, untangled);
             stats = assembly.stats(x);
             IterationRecord r{it, false, m.energy, eps, stats.min_det, seconds(), stats.inverted, m.steps,
                               m.linear_iterations};

@@ -12,11 +12,12 @@ namespace hexmesh::untangle {
 struct UntangleOptions {
     SolverOptions untangle_solver;   // while some det <= 0 (global method recommended)
     SolverOptions optimize_solver;   // once all det > 0, eps = 0 (barrier)
-    double theta = 0.8;
+    double theta = 0.8;           // volume weight while optimizing (DESIGN §4)
+    double untangle_theta = 0.1;  // volume weight while untangling: shape first is more robust
     int max_untangle_iterations = 200;  // outer iterations (eps updates)
     int max_optimize_iterations = 20;
     int inner_steps = 30;               // descent steps per outer iteration
-    double inner_tolerance = 1e-4;      // relative decrease that ends an inner solve
+    double inner_tolerance = 1e-6;      // relative decrease that ends an inner solve
     double optimize_tolerance = 1e-5;   // relative energy change that ends optimization
     std::ostream* log = nullptr;        // one progress line per outer iteration
 };

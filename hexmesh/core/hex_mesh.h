@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cassert>
+#include <cstdint>
 #include <vector>
 
 #include "hexmesh/core/types.h"
@@ -37,6 +38,18 @@ struct TetMesh {
         assert(cell >= 0 && cell < num_cells() && corner >= 0 && corner < 4);
         return tets[4 * cell + corner];
     }
+};
+
+// A volume mesh as read from a file: hexahedra and/or tetrahedra over one point array, plus
+// the per-point "fixed" flags the file carried (empty when it had none).
+struct VolumeMesh {
+    std::vector<Vec3> points;
+    std::vector<Id> hexes;  // 8 per cell, VTK order
+    std::vector<Id> tets;   // 4 per cell, VTK order (positive det[p1-p0, p2-p0, p3-p0])
+    std::vector<std::uint8_t> fixed;
+
+    Id num_hexes() const { return static_cast<Id>(hexes.size() / 8); }
+    Id num_tets() const { return static_cast<Id>(tets.size() / 4); }
 };
 
 }  // namespace hexmesh

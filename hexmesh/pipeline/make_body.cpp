@@ -2,8 +2,10 @@
 
 #include <memory>
 
+#include "io/surface_reader.h"
 #include "surface/analytic.h"
 #include "surface/csg.h"
+#include "surface/mesh_sdf.h"
 #include "surface/transform.h"
 
 namespace hexmesh {
@@ -18,6 +20,11 @@ Body make_shape(const GeometrySpec& s) {
         return std::make_shared<Torus>(s.center, s.major_radius, s.minor_radius);
     if (s.kind == "cone")
         return std::make_shared<Cone>(s.center, s.bottom_radius, s.top_radius, 0.5 * s.height);
+    if (s.kind == "file") {
+        MeshSdfOptions options;
+        options.voxel_size = s.voxel_size;
+        return std::make_shared<MeshSdf>(read_surface(s.file), options);
+    }
     std::vector<Body> children;
     for (const GeometrySpec& c : s.children) children.push_back(make_body(c));
     const CsgOp op = s.kind == "union"          ? CsgOp::Union

@@ -6,6 +6,7 @@
 
 #include "hexmesh/core/reference_hex.h"
 #include "hexmesh/pipeline/make_body.h"
+#include "io/export_grid.h"
 #include "io/staged_output.h"
 #include "io/vtk_mesh.h"
 #include "volume/o_h_grid.h"
@@ -103,6 +104,9 @@ RunResult run_case(const Case& c, const std::string& outdir, const RunOptions& o
     const std::string stem = inverted > 0 ? "grid_invalid" : "grid";
     StagedOutput out(outdir);
     write_vtk_grid(result.grid, out.path(stem + (result.grid.blocks.size() == 1 ? ".vts" : ".vtm")));
+    for (const std::string& format : c.outputs)  // the VTK grid above is always written
+        if (format != "vtk")
+            write_grid_format(result.grid, format, out.path(export_file_name(format, stem, result.grid)));
     out.write_text("quality.json", quality_json(result.report));
     result.files = out.commit();
     timer.done("write");

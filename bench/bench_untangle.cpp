@@ -1,0 +1,88 @@
+// Speed of the untangler's kernels (energy, gradient, Hessian) and of whole untangling runs.
+#include <benchmark/benchmark.h>
+
+#include <random>
+
+#include "hexmesh/core/reference_hex.h"
+#include "untangle/assembly.h"
+#include "untangle/untangle.h"
+
+using namespace hexmesh;
+using namespace hexmesh::untangle;
+
+namespace {
+
+// n^3 unit cubes split into corner tets, interior nodes displaced by up to `amplitude` cells.
+Problem displaced_grid(int n, double amplitude) {
+    Problem p;
+    const int m = n + 1;
+    auto id = [m](int i, int j, int k) { return Id(i) + Id(m) * (j + Id(m) * k); };
+    std::mt19937 rng(1);
+    std::uniform_real_distribution<double> u(-amplitude, amplitude);
+    for (int k = 0; k < m; ++k)
+        for (int j = 0; j < m; ++j)
+            for (int i = 0; i < m; ++i) {
+                const bool boundary = i == 0 || j == 0 || k == 0 || i == n || j == n || k == n;
+                p.points.push_back(Vec3(i, j, k) + (boundary ? Vec3::Zero() : Vec3(u(rng), u(rng), u(rng))));
+                p.kinds.push_back(boundary ? VertexKind::fixed : VertexKind::interior);
+            }
+    for (int k = 0; k < n; ++k)
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i) {
+                const std::array<Id, 8> h = {id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k),
+                                             id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1),
+                                             id(i, j + 1, k + 1)};
+                for (const auto& c : hex_corner_tets) {
+                    p.tets.push_back({h[c[0]], h[c[1]], h[c[2]], h[c[3]]});
+                    p.targets.push_back(box_corner_target(Vec3::Ones()));
+                }
+            }
+    return p;
+}
+
+void BM_Energy(benchmark::State& state) {
+    const Problem p = displaced_grid(int(state.range(0)), 0.3);
+    const Assembly a(p);
+    for (auto _ : state) benchmark::DoNotOptimize(a.energy(p.points, {0.8, 0.1}));
+    state.counters["tets/s"] = benchmark::Counter(double(p.tets.size()), benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_Energy)->Arg(20)->Unit(benchmark::kMillisecond);
+
+void BM_Gradient(benchmark::State& state) {
+    const Problem p = displaced_grid(int(state.range(0)), 0.3);
+    const Assembly a(p);
+    std::vector<Vec3> g;
+    for (auto _ : state) benchmark::DoNotOptimize(a.gradient(p.points, {0.8, 0.1}, g));
+    state.counters["tets/s"] = benchmark::Counter(double(p.tets.size()), benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_Gradient)->Arg(20)->Unit(benchmark::kMillisecond);
+
+void BM_Hessian(benchmark::State& state) {
+    const Problem p = displaced_grid(int(state.range(0)), 0.3);
+    const Assembly a(p);
+    std::vector<Vec3> g;
+    BlockMatrix h = a.empty_hessian();
+    for (auto _ : state) benchmark::DoNotOptimize(a.hessian(p.points, {0.8, 0.1}, g, h));
+    state.counters["tets/s"] = benchmark::Counter(double(p.tets.size()), benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_Hessian)->Arg(20)->Unit(benchmark::kMillisecond);
+
+void BM_UntangleStress(benchmark::State& state) {
+    for (auto _ : state) {
+        Problem p = displaced_grid(int(state.range(0)), 2.0);
+        UntangleOptions o;
+        o.untangle_solver.method = Method(state.range(1));
+        o.optimize_solver.method = Method::block_diagonal;
+        const UntangleResult r = untangle_and_optimize(p, o);
+        state.counters["inverted_after"] = double(r.inverted_after);
+    }
+}
+BENCHMARK(BM_UntangleStress)
+    ->Args({10, int(Method::newton_cg)})
+    ->Args({10, int(Method::coordinate_split)})
+    ->Args({10, int(Method::lbfgs)})
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

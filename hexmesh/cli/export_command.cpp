@@ -1,0 +1,35 @@
+// `hexmesh export GRID --format F -o OUT`: a block grid written in a CFD solver's format.
+#include <fmt/format.h>
+#include <iostream>
+#include <memory>
+
+#include "hexmesh/cli/commands.h"
+#include "io/case_file.h"
+#include "io/export_grid.h"
+
+namespace hexmesh::cli {
+
+void add_export_command(CLI::App& app, int& exit_code) {
+    struct Args {
+        std::string grid_path, format, output;
+    };
+    auto args = std::make_shared<Args>();
+    CLI::App* cmd = app.add_subcommand("export", "write a block grid in a CFD format");
+    cmd->add_option("grid", args->grid_path, "block grid (.vtm .vts from `run`, or Plot3D)")->required();
+    cmd->add_option("-f,--format", args->format, "one of: " + export_format_list())->required();
+    cmd->add_option("-o,--output", args->output,
+                    "output file (a case folder for openfoam; an existing case keeps its other "
+                    "files)")->required();
+    cmd->callback([args, &exit_code] {
+        if (!is_export_format(args->format))
+            throw InputError(fmt::format("--format: unknown format '{}' (expected one of: {})",
+                                         args->format, export_format_list()));
+        const BlockGrid grid = read_block_grid(args->grid_path);
+        for (const std::string& f : export_grid(grid, args->format, args->output))
+            std::cout << fmt::format("written: {} ({} blocks, {} cells)\n", f, grid.blocks.size(),
+                                     grid.num_cells());
+        exit_code = 0;
+    });
+}
+
+}  // namespace hexmesh::cli

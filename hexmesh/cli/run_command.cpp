@@ -1,0 +1,36 @@
+// `hexmesh run CASE.json -o OUTDIR`: the grid of a case file.
+#include <fmt/format.h>
+#include <iostream>
+#include <memory>
+
+#include "hexmesh/cli/commands.h"
+#include "hexmesh/pipeline/run_case.h"
+#include "io/case_file.h"
+#include "io/quality_report.h"
+
+namespace hexmesh::cli {
+
+void add_run_command(CLI::App& app, int& exit_code) {
+    struct Args {
+        std::string case_path, outdir = "out";
+        bool keep_invalid = false;
+    };
+    auto args = std::make_shared<Args>();
+    CLI::App* cmd = app.add_subcommand("run", "build the grid of a case file");
+    cmd->add_option("case", args->case_path, "case file (JSON)")->required();
+    cmd->add_option("-o,--output", args->outdir, "output directory")->capture_default_str();
+    cmd->add_flag("--keep-invalid", args->keep_invalid,
+                  "write a grid with inverted cells as grid_invalid.* instead of failing");
+    cmd->callback([args, &exit_code] {
+        const Case c = read_case(args->case_path);
+        std::cout << fmt::format("hexmesh run {}\n", args->case_path);
+        RunOptions options;
+        options.keep_invalid = args->keep_invalid;
+        const RunResult result = run_case(c, args->outdir, options, std::cout);
+        std::cout << "\n" << format_quality_table(result.report) << "\n";
+        for (const std::string& f : result.files) std::cout << "written: " << f << "\n";
+        exit_code = result.report.quality.inverted_corner_tets == 0 ? 0 : 3;
+    });
+}
+
+}  // namespace hexmesh::cli

@@ -1,0 +1,113 @@
+// `hexmesh untangle IN -o OUT`: makes a tangled hex or tet mesh valid, then optimizes it.
+#include <filesystem>
+#include <fmt/format.h>
+#include <iostream>
+#include <memory>
+
+#include "hexmesh/cli/commands.h"
+#include "hexmesh/pipeline/untangle_mesh.h"
+#include "io/quality_report.h"
+#include "io/surface_reader.h"
+#include "io/volume_mesh_io.h"
+
+namespace hexmesh::cli {
+namespace {
+
+struct Args {
+    std::string input, output, solver = "newton-cg", optimize_solver = "block-diagonal";
+    std::string preconditioner = "block-jacobi", boundary = "fixed", surface;
+    double theta = 0.8, untangle_theta = 0.1, feature_angle = 30;
+    int max_iterations = 200;
+    bool matrix_free = false, keep_invalid = false;
+    std::string target = "uniform";
+};
+
+std::string invalid_name(const std::string& path) {
+    std::filesystem::path p(path);
+    return (p.parent_path() / (p.stem().string() + "_invalid" + p.extension().string())).string();
+}
+
+void print_quality(const QualityReport& before, const QualityReport& after) {
+    GridReport b, a;
+    b.quality = before;
+    a.quality = after;
+    std::cout << "\nquality before\n" << format_quality_table(b) << "quality after\n" << format_quality_table(a);
+}
+
+int run(const Args& args) {
+    UntangleMeshOptions options;
+    options.untangle.untangle_solver.method = untangle::method_from_name(args.solver);
+    options.untangle.untangle_solver.preconditioner = untangle::preconditioner_from_name(args.preconditioner);
+    options.untangle.untangle_solver.matrix_free = args.matrix_free;
+    options.untangle.optimize_solver.method = untangle::method_from_name(args.optimize_solver);
+    options.untangle.theta = args.theta;
+    options.untangle.untangle_theta = args.untangle_theta;
+    options.untangle.max_untangle_iterations = args.max_iterations;
+    options.untangle.log = &std::cout;
+    options.boundary = args.boundary == "slip" ? BoundaryMode::slip : BoundaryMode::fixed;
+    options.feature_angle_degrees = args.feature_angle;
+    options.uniform_target = args.target == "uniform";
+    if (!args.surface.empty()) {
+        if (options.boundary != BoundaryMode::slip)
+            throw std::invalid_argument("--surface needs --boundary slip");
+        options.surface = read_surface(args.surface);
+    }
+    check_volume_mesh_output(args.output);
+    VolumeMesh mesh = read_volume_mesh(args.input);
+    std::cout << fmt::format("hexmesh untangle {}: {} hexes, {} tets, {} points, boundary {}\n", args.input,
+                             mesh.num_hexes(), mesh.num_tets(), mesh.points.size(), args.boundary);
+
+    const UntangleMeshResult r = untangle_volume_mesh(mesh, options);
+    std::cout << fmt::format("vertices: {} slip, {} on creases, {} fixed\n", r.slip_vertices,
+                             r.feature_vertices, r.fixed_vertices);
+    if (!r.blocked.empty()) std::cout << describe_blocked(r.blocked);
+    std::cout << "\n" << untangle::format_untangle_summary(r.solve);
+    if (r.hex_before && r.hex_after) print_quality(*r.hex_before, *r.hex_after);
+    if (options.boundary == BoundaryMode::slip)
+        std::cout << fmt::format("  {:<30}{:>14.3g}\n", "max distance to the surface", r.max_surface_distance);
+
+    const bool valid = r.solve.inverted_after == 0;
+    if (!valid && !args.keep_invalid) {
+        std::cout << fmt::format("\nnot untangled: {} inverted elements remain; nothing written "
+                                 "(--keep-invalid writes the best mesh reached as {})\n",
+                                 r.solve.inverted_after, invalid_name(args.output));
+        return 3;
+    }
+    const std::string out = valid ? args.output : invalid_name(args.output);
+    write_volume_mesh(mesh, out);
+    std::cout << "\nwritten: " << out << "\n";
+    return valid ? 0 : 3;
+}
+
+}  // namespace
+
+void add_untangle_command(CLI::App& app, int& exit_code) {
+    auto args = std::make_shared<Args>();
+    CLI::App* cmd = app.add_subcommand("untangle", "make a tangled hex or tet mesh valid, then optimize it");
+    cmd->add_option("mesh", args->input, "input mesh (.vtk .vtu .mesh)")->required();
+    cmd->add_option("-o,--output", args->output, "output mesh (.vtu .vtk .mesh)")->required();
+    cmd->add_option("--solver", args->solver, "untangling method: explicit, block-diagonal, "
+                    "coordinate-split, newton-cg, lbfgs")->capture_default_str();
+    cmd->add_option("--optimize-solver", args->optimize_solver, "method once the mesh is valid")
+        ->capture_default_str();
+    cmd->add_option("--preconditioner", args->preconditioner,
+                    "newton-cg: none, jacobi, block-jacobi, incomplete-cholesky")->capture_default_str();
+    cmd->add_flag("--matrix-free", args->matrix_free, "newton-cg: Hessian products without a matrix");
+    cmd->add_option("--boundary", args->boundary, "boundary vertices: fixed or slip")
+        ->check(CLI::IsMember({"fixed", "slip"}))->capture_default_str();
+    cmd->add_option("--surface", args->surface, "surface to slip on (.stl .obj .off .ply)");
+    cmd->add_option("--feature-angle", args->feature_angle, "crease angle of the slip surface (degrees)")
+        ->capture_default_str();
+    cmd->add_option("--target", args->target, "target cell size: cell (each cell's own) or uniform")
+        ->check(CLI::IsMember({"cell", "uniform"}))->capture_default_str();
+    cmd->add_option("--theta", args->theta, "weight of volume against shape while optimizing, in (0, 1)")
+        ->check(CLI::Range(0.0, 1.0))->capture_default_str();
+    cmd->add_option("--untangle-theta", args->untangle_theta, "the same weight while untangling")
+        ->check(CLI::Range(0.0, 1.0))->capture_default_str();
+    cmd->add_option("--max-iter", args->max_iterations, "outer untangling iterations")
+        ->check(CLI::PositiveNumber)->capture_default_str();
+    cmd->add_flag("--keep-invalid", args->keep_invalid, "write a mesh that stays tangled as NAME_invalid.EXT");
+    cmd->callback([args, &exit_code] { exit_code = run(*args); });
+}
+
+}  // namespace hexmesh::cli

@@ -1,0 +1,209 @@
+#include "hexmesh/pipeline/untangle_mesh.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <fmt/format.h>
+#include <map>
+#include <memory>
+
+#include "hexmesh/core/reference_hex.h"
+#include "surface/exact_distance.h"
+#include "surface/sharp_features.h"
+
+namespace hexmesh {
+namespace {
+
+using untangle::Mat34;
+
+// Faces used by one cell only, with their nodes in the cell's outward order.
+std::vector<std::vector<Id>> boundary_faces(const VolumeMesh& mesh) {
+    static constexpr int tet_faces[4][3] = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+    std::map<std::vector<Id>, std::pair<int, std::vector<Id>>> uses;
+    auto add = [&](std::vector<Id> face) {
+        std::vector<Id> key = face;
+        std::sort(key.begin(), key.end());
+        auto& entry = uses[key];
+        if (entry.first++ == 0) entry.second = std::move(face);
+    };
+    for (Id c = 0; c < mesh.num_hexes(); ++c)
+        for (const auto& f : hex_faces)
+            add({mesh.hexes[8 * c + f[0]], mesh.hexes[8 * c + f[1]], mesh.hexes[8 * c + f[2]],
+                 mesh.hexes[8 * c + f[3]]});
+    for (Id c = 0; c < mesh.num_tets(); ++c)
+        for (const auto& f : tet_faces)
+            add({mesh.tets[4 * c + f[0]], mesh.tets[4 * c + f[1]], mesh.tets[4 * c + f[2]]});
+    std::vector<std::vector<Id>> faces;
+    for (auto& [key, entry] : uses)
+        if (entry.first == 1) faces.push_back(std::move(entry.second));
+    return faces;
+}
+
+// The boundary faces as a triangle surface over the mesh's own point ids.
+TriangleSurface triangulate(const VolumeMesh& mesh, const std::vector<std::vector<Id>>& faces) {
+    TriangleSurface s;
+    s.points = mesh.points;
+    for (const auto& f : faces)
+        for (size_t k = 1; k + 1 < f.size(); ++k) s.triangles.push_back({int(f[0]), int(f[k]), int(f[k + 1])});
+    return s;
+}
+
+double mean_edge_length(const Mat34& y) {
+    double s = 0;
+    for (int a = 0; a < 4; ++a)
+        for (int b = a + 1; b < 4; ++b) s += (y.col(a) - y.col(b)).norm();
+    return s / 6;
+}
+
+// Box-corner targets for the 8 corner tets of every hex (cube of the hex's mean edge length),
+// regular targets for tets (of the tet's mean edge length).
+void add_elements(const VolumeMesh& mesh, bool uniform, untangle::Problem& p, double& total_edge, Id& edges) {
+    std::vector<double> size(mesh.num_hexes());
+    for (Id c = 0; c < mesh.num_hexes(); ++c) {
+        double h = 0;
+        for (const auto& e : hex_edges)
+            h += (mesh.points[mesh.hexes[8 * c + e[0]]] - mesh.points[mesh.hexes[8 * c + e[1]]]).norm();
+        total_edge += h;
+        edges += 12;
+        size[c] = h / 12;
+    }
+    const double mean = edges ? total_edge / edges : 1;
+    for (Id c = 0; c < mesh.num_hexes(); ++c) {
+        const untangle::TetTarget target = untangle::box_corner_target(Vec3::Constant(uniform ? mean : size[c]));
+        for (const auto& t : hex_corner_tets) {
+            p.tets.push_back({mesh.hexes[8 * c + t[0]], mesh.hexes[8 * c + t[1]], mesh.hexes[8 * c + t[2]],
+                              mesh.hexes[8 * c + t[3]]});
+            p.targets.push_back(target);
+        }
+    }
+    for (Id c = 0; c < mesh.num_tets(); ++c) {
+        Mat34 y;
+        for (int a = 0; a < 4; ++a) y.col(a) = mesh.points[mesh.tets[4 * c + a]];
+        const double h = mean_edge_length(y);
+        total_edge += 6 * h;
+        edges += 6;
+        p.tets.push_back({mesh.tets[4 * c], mesh.tets[4 * c + 1], mesh.tets[4 * c + 2], mesh.tets[4 * c + 3]});
+        p.targets.push_back(untangle::regular_tet_target(h));
+    }
+}
+
+std::vector<BlockedElement> find_blocked(const VolumeMesh& mesh, const untangle::Problem& p) {
+    std::vector<BlockedElement> blocked;
+    for (size_t e = 0; e < p.tets.size(); ++e) {
+        bool all_fixed = true;
+        Mat34 y;
+        for (int a = 0; a < 4; ++a) {
+            all_fixed = all_fixed && degrees_of_freedom(p.kinds[p.tets[e][a]]) == 0;
+            y.col(a) = p.points[p.tets[e][a]];
+        }
+        if (!all_fixed || untangle::tet_det(y, p.targets[e]) > 0) continue;
+        const bool hex = Id(e) < 8 * mesh.num_hexes();
+        const Id cell = hex ? Id(e) / 8 : Id(e) - 8 * mesh.num_hexes();
+        blocked.push_back({cell, hex ? int(e % 8) : 0, p.points[p.tets[e][0]]});
+    }
+    return blocked;
+}
+
+}  // namespace
+
+UntangleMeshResult untangle_volume_mesh(VolumeMesh& mesh, const UntangleMeshOptions& options) {
+    untangle::Problem p;
+    p.points = mesh.points;
+    double total_edge = 0;
+    Id edges = 0;
+    add_elements(mesh, options.uniform_target, p, total_edge, edges);
+    p.length_scale = edges ? total_edge / edges : 1;
+
+    const auto faces = boundary_faces(mesh);
+    std::vector<bool> on_boundary(mesh.points.size(), false);
+    for (const auto& f : faces)
+        for (Id v : f) on_boundary[v] = true;
+
+    p.kinds.assign(mesh.points.size(), VertexKind::interior);
+    UntangleMeshResult result;
+    std::shared_ptr<const TriangleSurface> surface;
+    std::shared_ptr<const ExactDistance> exact;
+    std::shared_ptr<const FeatureCurves> features;
+    if (options.boundary == BoundaryMode::slip) {
+        surface = std::make_shared<const TriangleSurface>(options.surface ? *options.surface : triangulate(mesh, faces));
+        exact = std::make_shared<const ExactDistance>(*surface);
+        features = std::make_shared<const FeatureCurves>(
+            detect_sharp_features(*surface, {options.feature_angle_degrees, true}));
+        // Boundary vertices on a crease slide along it; at a corner they stay.
+        const double near = 1e-3 * p.length_scale;
+        for (size_t v = 0; v < mesh.points.size(); ++v) {
+            if (!on_boundary[v]) continue;
+            p.kinds[v] = VertexKind::slip;
+            if (features->chains.empty()) continue;
+            const Vec3& x = mesh.points[v];
+            bool corner = false;
+            for (int c : features->corners) corner = corner || (surface->points[c] - x).norm() < near;
+            if (corner) p.kinds[v] = VertexKind::corner;
+            else if (project_to_features(*surface, *features, x).distance < near) p.kinds[v] = VertexKind::feature_edge;
+        }
+        p.surface_normal = [exact](Id, const Vec3& x) { return exact->closest_normal(x); };
+        p.project_to_surface = [exact](Id, const Vec3& x) { return exact->closest_point(x); };
+        p.edge_tangent = [surface, features](Id, const Vec3& x) {
+            const FeatureProjection f = project_to_features(*surface, *features, x);
+            const auto& chain = features->chains[f.chain];
+            return Vec3(surface->points[chain[f.segment + 1]] - surface->points[chain[f.segment]]);
+        };
+        p.project_to_edge = [surface, features](Id, const Vec3& x) {
+            return project_to_features(*surface, *features, x).point;
+        };
+    } else {
+        for (size_t v = 0; v < mesh.points.size(); ++v)
+            if (on_boundary[v]) p.kinds[v] = VertexKind::fixed;
+    }
+    if (!mesh.fixed.empty())
+        for (size_t v = 0; v < mesh.points.size(); ++v)
+            p.kinds[v] = mesh.fixed[v] ? VertexKind::fixed
+                         : options.boundary == BoundaryMode::fixed ? VertexKind::interior
+                                                                   : p.kinds[v];
+    for (VertexKind k : p.kinds) {
+        result.slip_vertices += k == VertexKind::slip;
+        result.feature_vertices += k == VertexKind::feature_edge;
+        result.fixed_vertices += k == VertexKind::fixed || k == VertexKind::corner;
+    }
+
+    if (mesh.num_hexes() > 0) result.hex_before = measure_quality(HexMesh{mesh.points, mesh.hexes});
+    result.blocked = find_blocked(mesh, p);
+    if (options.boundary == BoundaryMode::slip) {
+        // Untangle with the boundary held first (it already lies on the surface, and a fixed
+        // boundary is the easier problem), then let it slip to repair what the fixed boundary
+        // could not and to optimize.
+        untangle::Problem held = p;
+        for (VertexKind& k : held.kinds)
+            if (k != VertexKind::interior) k = VertexKind::fixed;
+        untangle::UntangleOptions first = options.untangle;
+        first.max_optimize_iterations = 0;
+        const untangle::UntangleResult r = untangle::untangle_and_optimize(held, first);
+        p.points = held.points;
+        result.solve = untangle::untangle_and_optimize(p, options.untangle);
+        result.solve.inverted_before = r.inverted_before;
+        result.solve.min_det_before = r.min_det_before;
+        result.solve.seconds += r.seconds;
+        result.solve.history.insert(result.solve.history.begin(), r.history.begin(), r.history.end());
+    } else {
+        result.solve = untangle::untangle_and_optimize(p, options.untangle);
+    }
+    mesh.points = p.points;
+    if (mesh.num_hexes() > 0) result.hex_after = measure_quality(HexMesh{mesh.points, mesh.hexes});
+    if (exact)
+        for (size_t v = 0; v < mesh.points.size(); ++v)
+            if (p.kinds[v] == VertexKind::slip || p.kinds[v] == VertexKind::feature_edge)
+                result.max_surface_distance = std::max(result.max_surface_distance, exact->distance(mesh.points[v]));
+    return result;
+}
+
+std::string describe_blocked(const std::vector<BlockedElement>& blocked) {
+    std::string out;
+    for (const BlockedElement& b : blocked)
+        out += fmt::format(
+            "cell {} corner {} at ({:.6g}, {:.6g}, {:.6g}): its corner tet is inverted and all four "
+            "of its vertices are fixed, so no fixed-boundary method can repair it; use "
+            "--boundary slip\n",
+            b.cell, b.corner, b.position.x(), b.position.y(), b.position.z());
+    return out;
+}
+
+}  // namespace hexmesh

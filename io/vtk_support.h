@@ -1,0 +1,42 @@
+// Private to io/: running VTK readers and writers with their messages turned into our errors.
+#pragma once
+
+#include <string>
+#include <vtkDataObject.h>
+#include <vtkNew.h>
+#include <vtkSmartPointer.h>
+
+namespace hexmesh::vtk_support {
+
+// The first VTK error or warning since the last call, without VTK's "vtkClass (0x...): "
+// prefix ("" if none). The first call routes VTK's messages away from the terminal.
+std::string take_message();
+
+// Lower-case extension of `path`, with its dot (".vtu").
+std::string extension(const std::string& path);
+
+// Runs a VTK reader on `path`; throws InputError naming the file with VTK's message when it
+// fails. The file must exist (checked first, with its own message).
+template <class Reader>
+vtkSmartPointer<vtkDataObject> read_with(const std::string& path);
+
+// Throws std::runtime_error naming the file when a VTK writer's Write() failed or complained.
+void check_written(int status, const std::string& path);
+
+void require_file(const std::string& path);
+[[noreturn]] void throw_read_error(const std::string& path, const std::string& why);
+
+template <class Reader>
+vtkSmartPointer<vtkDataObject> read_with(const std::string& path) {
+    require_file(path);
+    take_message();
+    vtkNew<Reader> reader;
+    reader->SetFileName(path.c_str());
+    reader->Update();
+    vtkSmartPointer<vtkDataObject> out = reader->GetOutputDataObject(0);
+    const std::string why = take_message();
+    if (!why.empty() || !out) throw_read_error(path, why.empty() ? "no data" : why);
+    return out;
+}
+
+}  // namespace hexmesh::vtk_support

@@ -1,0 +1,117 @@
+#include "surface/sharp_features.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <stdexcept>
+#include <unordered_map>
+
+#include "surface/surface_diagnostics.h"
+
+namespace hexmesh {
+namespace {
+
+struct EdgeUse {
+    int triangle;
+    bool forward;  // the triangle runs the edge from its lower to its higher point id
+};
+
+std::uint64_t edge_key(int a, int b) {
+    return (std::uint64_t(std::min(a, b)) << 32) | std::uint32_t(std::max(a, b));
+}
+
+std::vector<std::pair<int, int>> feature_edges(const TriangleSurface& s, const FeatureOptions& o) {
+    std::vector<Vec3> normals(s.triangles.size(), Vec3::Zero());
+    std::unordered_map<std::uint64_t, std::vector<EdgeUse>> uses;
+    uses.reserve(2 * s.triangles.size());
+    for (int t = 0; t < (int)s.triangles.size(); ++t) {
+        if (is_degenerate_triangle(s, t)) continue;
+        const auto& tri = s.triangles[t];
+        normals[t] = (s.points[tri[1]] - s.points[tri[0]])
+                         .cross(s.points[tri[2]] - s.points[tri[0]])
+                         .normalized();
+        for (int e = 0; e < 3; ++e) {
+            const int a = tri[e], b = tri[(e + 1) % 3];
+            uses[edge_key(a, b)].push_back({t, a < b});
+        }
+    }
+    const double cos_limit = std::cos(o.angle_degrees * 3.14159265358979323846 / 180);
+    std::vector<std::pair<int, int>> edges;
+    for (const auto& [key, u] : uses) {
+        bool feature = false;
+        if (u.size() == 2) {
+            const double flip = u[0].forward == u[1].forward ? -1 : 1;
+            feature = flip * normals[u[0].triangle].dot(normals[u[1].triangle]) < cos_limit;
+        } else {
+            feature = o.include_boundary;
+        }
+        if (feature) edges.emplace_back(int(key >> 32), int(key & 0xffffffffu));
+    }
+    return edges;
+}
+
+}  // namespace
+
+FeatureCurves detect_sharp_features(const TriangleSurface& s, const FeatureOptions& o) {
+    if (!(o.angle_degrees >= 0 && o.angle_degrees < 180))
+        throw std::invalid_argument("detect_sharp_features: angle must lie in [0, 180)");
+    const std::vector<std::pair<int, int>> edges = feature_edges(s, o);
+    // Incident feature edges of every point.
+    std::vector<std::vector<int>> incident(s.points.size());
+    for (int e = 0; e < (int)edges.size(); ++e) {
+        incident[edges[e].first].push_back(e);
+        incident[edges[e].second].push_back(e);
+    }
+    FeatureCurves f;
+    std::vector<char> is_corner(s.points.size(), 0), used(edges.size(), 0);
+    for (int p = 0; p < (int)s.points.size(); ++p)
+        if (!incident[p].empty() && incident[p].size() != 2) {
+            is_corner[p] = 1;
+            f.corners.push_back(p);
+        }
+    // Walks from `start` along edge `e` until a corner or back to `start`.
+    auto walk = [&](int start, int e) {
+        std::vector<int> chain = {start};
+        int at = start;
+        while (true) {
+            used[e] = 1;
+            at = edges[e].first == at ? edges[e].second : edges[e].first;
+            chain.push_back(at);
+            if (is_corner[at] || at == start) break;
+            int next = -1;
+            for (int c : incident[at])
+                if (!used[c]) next = c;
+            if (next < 0) break;
+            e = next;
+        }
+        f.chains.push_back(std::move(chain));
+    };
+    for (int p : f.corners)
+        for (int e : incident[p])
+            if (!used[e]) walk(p, e);
+    for (int e = 0; e < (int)edges.size(); ++e)  // what is left: closed loops
+        if (!used[e]) walk(edges[e].first, e);
+    return f;
+}
+
+FeatureProjection project_to_features(const TriangleSurface& s, const FeatureCurves& f,
+                                      const Vec3& p) {
+    FeatureProjection best;
+    best.point = p;
+    best.distance = std::numeric_limits<double>::infinity();
+    for (int c = 0; c < (int)f.chains.size(); ++c)
+        for (int k = 0; k + 1 < (int)f.chains[c].size(); ++k) {
+            const Vec3& a = s.points[f.chains[c][k]];
+            const Vec3 ab = s.points[f.chains[c][k + 1]] - a;
+            const double len2 = ab.squaredNorm();
+            const double t = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+            const Vec3 q = a + t * ab;
+            const double d = (p - q).norm();
+            if (d < best.distance) best = {q, c, k, d};
+        }
+    return best;
+}
+
+}  // namespace hexmesh

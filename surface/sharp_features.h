@@ -1,0 +1,46 @@
+// Sharp features of a triangle surface: crease polylines by dihedral angle, corners where
+// creases meet, and projection of a point onto the nearest crease.
+#pragma once
+
+#include <vector>
+
+#include "hexmesh/core/triangle_surface.h"
+
+namespace hexmesh {
+
+struct FeatureOptions {
+    // An edge shared by two triangles is a crease when their normals differ by more than
+    // this angle (degrees; 0 <= angle < 180). A flat edge turns by 0, a box edge by 90.
+    double angle_degrees = 30;
+    // Edges of one triangle (holes, the rim of an open sheet) and of three or more
+    // (non-manifold) are features too.
+    bool include_boundary = true;
+};
+
+struct FeatureCurves {
+    // Point ids along each crease polyline, at least 2. Open chains run from corner to
+    // corner; a closed loop without corner repeats its first id at the end.
+    std::vector<std::vector<int>> chains;
+    // Point ids where 1 or at least 3 feature edges meet (the box's 8 corners); a corner
+    // projects onto itself and the optimizer fixes it.
+    std::vector<int> corners;
+};
+
+// Normals follow the triangles' orientation; a pair of triangles running their common
+// edge the same way (inconsistent orientation) is compared with one normal flipped.
+// Zero-area triangles are ignored.
+FeatureCurves detect_sharp_features(const TriangleSurface& surface,
+                                    const FeatureOptions& options = {});
+
+struct FeatureProjection {
+    Vec3 point;          // the closest point on any chain
+    int chain = -1;      // index into FeatureCurves::chains (-1: there is no chain)
+    int segment = -1;    // the segment chain[segment] -> chain[segment + 1]
+    double distance = 0;
+};
+
+// Nearest point of the crease polylines to p (brute force: O(#feature edges) per call).
+FeatureProjection project_to_features(const TriangleSurface& surface,
+                                      const FeatureCurves& features, const Vec3& p);
+
+}  // namespace hexmesh

@@ -1,0 +1,105 @@
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "export_test_support.h"
+#include "io/case_file.h"
+#include "io/export_grid.h"
+#include "io/vtk_mesh.h"
+
+using namespace hexmesh;
+using namespace hexmesh::test_export;
+
+namespace {
+
+bool folder_is_empty(const fs::path& dir) {
+    return fs::is_directory(dir) && fs::directory_iterator(dir) == fs::directory_iterator();
+}
+
+}  // namespace
+
+TEST(ExportErrors, UnwritablePathGivesOneClearErrorAndNoFile) {
+    const BlockGrid grid = small_o_h_grid(3, 2);
+    const fs::path dir = scratch("unwritable");
+    std::ofstream(dir / "not_a_folder") << "x";
+    for (const char* format : {"gmsh", "openfoam", "plot3d", "cgns", "vtk", "medit"}) {
+        SCOPED_TRACE(format);
+        const fs::path target = dir / "not_a_folder" / "grid.out";
+        try {
+            export_grid(grid, format, target.string());
+            FAIL() << "expected an error";
+        } catch (const std::runtime_error& e) {
+            EXPECT_NE(std::string(e.what()).find("not_a_folder"), std::string::npos) << e.what();
+        }
+        EXPECT_FALSE(fs::exists(target));
+    }
+}
+
+TEST(ExportErrors, FailureMidWayLeavesNothingUnderTheFinalName) {
+    // Three blocks claim the same interface face: the writer throws after staging began.
+    BlockGrid grid = small_o_h_grid(3, 2);
+    grid.blocks.push_back(grid.blocks[0]);
+    grid.blocks.push_back(grid.blocks[0]);
+    const fs::path dir = scratch("midway");
+    for (const char* format : {"gmsh", "openfoam", "medit"}) {
+        SCOPED_TRACE(format);
+        EXPECT_THROW(export_grid(grid, format, (dir / "grid.out").string()), std::invalid_argument);
+        EXPECT_TRUE(folder_is_empty(dir));  // no final file, no staging folder left
+    }
+}
+
+TEST(ExportErrors, UnknownFormatIsAnInputError) {
+    const BlockGrid grid = small_o_h_grid(3, 2);
+    EXPECT_THROW(export_grid(grid, "fluent", "/tmp/x.msh"), InputError);
+    EXPECT_THROW(export_grid(grid, "plot3d-big-endian", "/tmp/x.xyz"), InputError);
+}
+
+TEST(VtkBlockGrid, ReadBackRestoresBlocksNamesPatchesAndSharedNodes) {
+    const BlockGrid grid = small_o_h_grid();
+    const fs::path file = scratch("vtk_block_grid") / "grid.vtm";
+    write_vtk_grid(grid, file.string());
+    const BlockGrid back = read_vtk_block_grid(file.string());
+    ASSERT_EQ(back.blocks.size(), grid.blocks.size());
+    EXPECT_EQ(back.points.size(), grid.points.size());
+    ASSERT_EQ(back.kinds.size(), back.points.size());
+    for (size_t b = 0; b < grid.blocks.size(); ++b) {
+        EXPECT_EQ(back.blocks[b].name, grid.blocks[b].name);
+        EXPECT_EQ(back.blocks[b].face_patch, grid.blocks[b].face_patch);
+        ASSERT_EQ(back.blocks[b].nodes.count(), grid.blocks[b].nodes.count());
+        for (Id m = 0; m < grid.blocks[b].nodes.count(); ++m)
+            ASSERT_EQ(back.points[back.blocks[b].node_ids[m]], grid.points[grid.blocks[b].node_ids[m]]);
+    }
+    // Shared nodes: the same node topology, so the same ids up to renumbering; vertex kinds
+    // follow their nodes.
+    std::vector<Id> map(grid.points.size(), -1);
+    for (size_t b = 0; b < grid.blocks.size(); ++b)
+        for (Id m = 0; m < grid.blocks[b].nodes.count(); ++m) {
+            Id& mapped = map[grid.blocks[b].node_ids[m]];
+            if (mapped < 0) mapped = back.blocks[b].node_ids[m];
+            ASSERT_EQ(mapped, back.blocks[b].node_ids[m]);
+            ASSERT_EQ(back.kinds[mapped], grid.kinds[grid.blocks[b].node_ids[m]]);
+        }
+}
+
+TEST(ExportCli, RunThenExportThenQualityAgree) {
+    const fs::path dir = scratch("cli");
+    const std::string exe = HEXMESH_EXE;
+    const ToolRun run = run_tool("cd '" HEXMESH_SOURCE_DIR "' && '" + exe + "' run cases/sphere/case.json -o '" + (dir / "run").string() + "'");
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    const std::string grid = (dir / "run" / "grid.vtm").string();
+    for (const char* format : {"gmsh", "medit", "plot3d-c"}) {
+        SCOPED_TRACE(format);
+        const std::string out = (dir / (std::string("grid.") + format + ".msh")).string();
+        const std::string file = std::string(format) == "medit" ? out.substr(0, out.size() - 4) + ".mesh"
+                                 : std::string(format) == "plot3d-c" ? out.substr(0, out.size() - 4) + ".xyz" : out;
+        const ToolRun ex = run_tool("'" + exe + "' export '" + grid + "' --format " + format + " -o '" + file + "'");
+        ASSERT_EQ(ex.exit_code, 0) << ex.output;
+        const ToolRun q = run_tool("'" + exe + "' quality '" + file + "' --json");
+        ASSERT_EQ(q.exit_code, 0) << q.output;
+        EXPECT_NE(q.output.find("\"cells\": 32000"), std::string::npos) << q.output;
+    }
+    const ToolRun bad = run_tool("'" + exe + "' export '" + grid + "' --format gmsh -o /proc/version/grid.msh");
+    EXPECT_EQ(bad.exit_code, 1);
+    EXPECT_EQ(std::count(bad.output.begin(), bad.output.end(), '\n'), 1) << bad.output;
+    EXPECT_NE(bad.output.find("hexmesh: error: "), std::string::npos) << bad.output;
+}
