@@ -1,6 +1,7 @@
 #include "untangle/untangle.h"
 
 #include <chrono>
+#include <functional>
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
@@ -39,11 +40,88 @@ void log_line(std::ostream* log, const IterationRecord& r) {
     log->flush();
 }
 
+
+// The eps continuation on `problem` (DESIGN §4), from x = problem.points, until at most
+// options.unrepairable elements are inverted, the iteration budget is spent or progress
+// stalls. Every outer iteration is logged and offered to `best` (judged on `judge`, the
+// whole problem, since `problem` may be a local part of it).
+void continuation(Problem& problem, const Assembly& judge, const UntangleOptions& options,
+                  const std::function<double()>& seconds, Best& best, UntangleResult& result) {
+    const Assembly assembly(problem);
+    std::vector<Vec3>& x = problem.points;
+    ElementStats stats = judge.stats(x);
+    Minimizer minimizer(problem, assembly, options.untangle_solver);
+    double eps = std::sqrt(tiny_eps + 0.04 * stats.min_det * stats.min_det);
+    int stalled = 0;
+    const int first = int(result.history.size()) + 1;
+    for (int it = first; it < first + options.max_untangle_iterations && stats.inverted > options.unrepairable; ++it) {
+        const EnergyParams p{options.untangle_theta, eps};
+        const double e_prev = assembly.energy(x, p);
+        // Untangled is the goal of this phase: stop as soon as it is reached.
+        const auto untangled = [&](const std::vector<Vec3>& y) {
+            return judge.stats(y).inverted <= options.unrepairable;
+        };
+        const MinimizeOutcome m = minimizer.minimize(x, p, options.inner_steps, options.inner_tolerance, untangled);
+        stats = judge.stats(x);
+        const ElementStats local = assembly.stats(x);
+        IterationRecord r{it, false, m.energy, eps, stats.min_det, seconds(), stats.inverted, m.steps,
+                          m.linear_iterations};
+        result.history.push_back(r);
+        log_line(options.log, r);
+        const Id before = best.inverted;
+        best.offer(x, stats.inverted, stats.inverted ? infinity : judge.energy(x, {options.theta, 0}));
+        stalled = best.inverted < before ? 0 : stalled + 1;
+        if (stalled >= options.stall_iterations) break;
+        const double sigma = std::max(1 - m.energy / e_prev, 0.1);
+        const double mu = (1 - sigma) * chi(local.min_det, eps);
+        eps = local.min_det < mu ? 2 * std::sqrt(mu * (mu - local.min_det)) : tiny_eps;
+    }
+}
+
+// The part of `problem` around its inverted elements: vertices within `rings` element rings
+// of them stay free (if they were), all others are fixed, and only elements touching a free
+// vertex are kept. Returns false when that part is already the whole problem.
+bool local_part(const Problem& problem, const std::vector<std::vector<Id>>& elements_of, int rings,
+                Problem& part) {
+    const size_t nv = problem.points.size();
+    std::vector<char> in(nv, 0);
+    for (size_t e = 0; e < problem.tets.size(); ++e) {
+        Mat34 y;
+        for (int a = 0; a < 4; ++a) y.col(a) = problem.points[problem.tets[e][a]];
+        if (!(tet_det(y, problem.targets[e]) > 0))
+            for (Id v : problem.tets[e]) in[v] = 1;
+    }
+    for (int r = 0; r < rings; ++r) {
+        std::vector<char> grown = in;
+        for (size_t v = 0; v < nv; ++v)
+            if (in[v])
+                for (Id e : elements_of[v])
+                    for (Id w : problem.tets[e]) grown[w] = 1;
+        in.swap(grown);
+    }
+    part = problem;
+    part.tets.clear();
+    part.targets.clear();
+    size_t free = 0;
+    for (size_t v = 0; v < nv; ++v) {
+        if (!in[v]) part.kinds[v] = VertexKind::fixed;
+        free += in[v] && degrees_of_freedom(part.kinds[v]) > 0;
+    }
+    for (size_t e = 0; e < problem.tets.size(); ++e) {
+        bool touches = false;
+        for (Id v : problem.tets[e]) touches = touches || (in[v] && degrees_of_freedom(part.kinds[v]) > 0);
+        if (!touches) continue;
+        part.tets.push_back(problem.tets[e]);
+        part.targets.push_back(problem.targets[e]);
+    }
+    return free > 0 && part.tets.size() < problem.tets.size() / 2;
+}
+
 }  // namespace
 
 UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& options) {
     const auto start = std::chrono::steady_clock::now();
-    auto seconds = [&] {
+    const std::function<double()> seconds = [&] {
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     };
     check_constraints(problem);
@@ -58,28 +136,23 @@ UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& op
     Best best;
     best.offer(x, stats.inverted, assembly.energy(x, {options.theta, 0}));
 
-    // Untangling: eps continuation (scale free: dets are in target units).
-    if (stats.inverted > 0) {
-        Minimizer minimizer(problem, assembly, options.untangle_solver);
-        double eps = std::sqrt(tiny_eps + 0.04 * stats.min_det * stats.min_det);
-        for (int it = 1; it <= options.max_untangle_iterations && stats.inverted > 0; ++it) {
-            const EnergyParams p{options.untangle_theta, eps};
-            const double e_prev = assembly.energy(x, p);
-            // Untangled is the goal of this phase: stop as soon as it is reached.
-            const auto untangled = [&](const std::vector<Vec3>& y) { return assembly.stats(y).inverted == 0; };
-            const MinimizeOutcome m =
-                minimizer.minimize(x, p, options.inner_steps, options.inner_tolerance, untangled);
-            stats = assembly.stats(x);
-            IterationRecord r{it, false, m.energy, eps, stats.min_det, seconds(), stats.inverted, m.steps,
-                              m.linear_iterations};
-            result.history.push_back(r);
-            log_line(options.log, r);
-            best.offer(x, stats.inverted, stats.inverted ? infinity : assembly.energy(x, {options.theta, 0}));
-            const double sigma = std::max(1 - m.energy / e_prev, 0.1);
-            const double mu = (1 - sigma) * chi(stats.min_det, eps);
-            eps = stats.min_det < mu ? 2 * std::sqrt(mu * (mu - stats.min_det)) : tiny_eps;
+    // Untangling. Few inverted elements are first repaired locally, in growing
+    // neighbourhoods; what is left (or a widespread tangle) is untangled globally.
+    if (stats.inverted > options.unrepairable && options.local_rings > 0) {
+        std::vector<std::vector<Id>> elements_of(x.size());
+        for (size_t e = 0; e < problem.tets.size(); ++e)
+            for (Id v : problem.tets[e]) elements_of[v].push_back(Id(e));
+        for (int rings = options.local_rings; best.inverted > options.unrepairable; rings *= 2) {
+            Problem part;
+            if (!local_part(problem, elements_of, rings, part)) break;
+            UntangleOptions local = options;
+            local.max_untangle_iterations = std::min(options.max_untangle_iterations, 50);
+            continuation(part, assembly, local, seconds, best, result);
+            x = best.points;
         }
     }
+    if (best.inverted > options.unrepairable) continuation(problem, assembly, options, seconds, best, result);
+    x = best.points;
 
     // Optimization with the pure barrier, from the best untangled state.
     if (best.inverted == 0) {

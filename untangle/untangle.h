@@ -15,11 +15,18 @@ struct UntangleOptions {
     double theta = 0.8;           // volume weight while optimizing (DESIGN §4)
     double untangle_theta = 0.1;  // volume weight while untangling: shape first is more robust
     int max_untangle_iterations = 200;  // outer iterations (eps updates)
+    int stall_iterations = 40;          // stop untangling after this many without progress
+    // Inverted elements are first repaired in their neighbourhood of this many element
+    // rings (doubled until it works or covers half the mesh); 0 untangles globally only.
+    int local_rings = 2;
     int max_optimize_iterations = 20;
     int inner_steps = 30;               // descent steps per outer iteration
     double inner_tolerance = 1e-6;      // relative decrease that ends an inner solve
     double optimize_tolerance = 1e-5;   // relative energy change that ends optimization
     std::ostream* log = nullptr;        // one progress line per outer iteration
+    // Elements known to stay inverted whatever is done (all their vertices fixed): untangling
+    // stops once only that many remain.
+    Id unrepairable = 0;
 };
 
 // One line of the progress log.

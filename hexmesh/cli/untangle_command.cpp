@@ -17,7 +17,7 @@ struct Args {
     std::string input, output, solver = "newton-cg", optimize_solver = "block-diagonal";
     std::string preconditioner = "block-jacobi", boundary = "fixed", surface;
     double theta = 0.8, untangle_theta = 0.1, feature_angle = 30;
-    int max_iterations = 200;
+    int max_iterations = 200, optimize_iterations = 2;
     bool matrix_free = false, keep_invalid = false;
     std::string target = "uniform";
 };
@@ -43,6 +43,7 @@ int run(const Args& args) {
     options.untangle.theta = args.theta;
     options.untangle.untangle_theta = args.untangle_theta;
     options.untangle.max_untangle_iterations = args.max_iterations;
+    options.untangle.max_optimize_iterations = args.optimize_iterations;
     options.untangle.log = &std::cout;
     options.boundary = args.boundary == "slip" ? BoundaryMode::slip : BoundaryMode::fixed;
     options.feature_angle_degrees = args.feature_angle;
@@ -106,6 +107,9 @@ void add_untangle_command(CLI::App& app, int& exit_code) {
         ->check(CLI::Range(0.0, 1.0))->capture_default_str();
     cmd->add_option("--max-iter", args->max_iterations, "outer untangling iterations")
         ->check(CLI::PositiveNumber)->capture_default_str();
+    cmd->add_option("--optimize-iterations", args->optimize_iterations,
+                    "outer optimization iterations once valid (0: untangle only)")
+        ->check(CLI::NonNegativeNumber)->capture_default_str();
     cmd->add_flag("--keep-invalid", args->keep_invalid, "write a mesh that stays tangled as NAME_invalid.EXT");
     cmd->callback([args, &exit_code] { exit_code = run(*args); });
 }

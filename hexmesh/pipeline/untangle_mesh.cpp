@@ -135,10 +135,13 @@ UntangleMeshResult untangle_volume_mesh(VolumeMesh& mesh, const UntangleMeshOpti
             p.kinds[v] = VertexKind::slip;
             if (features->chains.empty()) continue;
             const Vec3& x = mesh.points[v];
-            bool corner = false;
-            for (int c : features->corners) corner = corner || (surface->points[c] - x).norm() < near;
-            if (corner) p.kinds[v] = VertexKind::corner;
-            else if (project_to_features(*surface, *features, x).distance < near) p.kinds[v] = VertexKind::feature_edge;
+            int corner = -1;
+            for (int c : features->corners)
+                if ((surface->points[c] - x).norm() < near) corner = c;
+            if (corner >= 0) {
+                p.kinds[v] = VertexKind::corner;
+                p.points[v] = surface->points[corner];  // exactly on the body's corner
+            } else if (project_to_features(*surface, *features, x).distance < near) p.kinds[v] = VertexKind::feature_edge;
         }
         p.surface_normal = [exact](Id, const Vec3& x) { return exact->closest_normal(x); };
         p.project_to_surface = [exact](Id, const Vec3& x) { return exact->closest_point(x); };
@@ -184,13 +187,15 @@ UntangleMeshResult untangle_volume_mesh(VolumeMesh& mesh, const UntangleMeshOpti
         result.solve.seconds += r.seconds;
         result.solve.history.insert(result.solve.history.begin(), r.history.begin(), r.history.end());
     } else {
-        result.solve = untangle::untangle_and_optimize(p, options.untangle);
+        untangle::UntangleOptions o = options.untangle;
+        o.unrepairable = Id(result.blocked.size());
+        result.solve = untangle::untangle_and_optimize(p, o);
     }
     mesh.points = p.points;
     if (mesh.num_hexes() > 0) result.hex_after = measure_quality(HexMesh{mesh.points, mesh.hexes});
     if (exact)
         for (size_t v = 0; v < mesh.points.size(); ++v)
-            if (p.kinds[v] == VertexKind::slip || p.kinds[v] == VertexKind::feature_edge)
+            if (on_boundary[v] && (mesh.fixed.empty() || !mesh.fixed[v]))
                 result.max_surface_distance = std::max(result.max_surface_distance, exact->distance(mesh.points[v]));
     return result;
 }
