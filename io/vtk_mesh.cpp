@@ -12,10 +12,7 @@
 #include <vtkIdList.h>
 #include <vtkInformation.h>
 #include <vtkMultiBlockDataSet.h>
-#include <vtkLogger.h>
 #include <vtkNew.h>
-#include <vtkObjectFactory.h>
-#include <vtkOutputWindow.h>
 #include <vtkPointData.h>
 #include <vtkCellData.h>
 #include <vtkPoints.h>
@@ -32,6 +29,7 @@
 
 #include "hexmesh/core/quality.h"
 #include "io/case_file.h"
+#include "io/vtk_support.h"
 #include "io/export_grid.h"
 #include "io/gmsh_mesh.h"
 #include "io/medit_mesh.h"
@@ -41,48 +39,6 @@ namespace hexmesh {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Routes VTK's error and warning text here instead of the terminal, so a reader or writer
-// failure reaches the user as one message of ours. Installed once, on first use.
-class CapturedVtkMessages : public vtkOutputWindow {
-public:
-    static CapturedVtkMessages* New();
-    vtkTypeMacro(CapturedVtkMessages, vtkOutputWindow)
-    void DisplayText(const char* text) override { keep(text); }
-    void DisplayErrorText(const char* text) override { keep(text); }
-    void DisplayWarningText(const char* text) override { keep(text); }
-    void DisplayGenericWarningText(const char* text) override { keep(text); }
-    void DisplayDebugText(const char*) override {}
-
-    // The first message since the last call, trimmed to its last line ("" if none).
-    std::string take() {
-        std::string m;
-        std::swap(m, first_);
-        while (!m.empty() && (m.back() == '\n' || m.back() == ' ')) m.pop_back();
-        const auto nl = m.rfind('\n');
-        if (nl != std::string::npos) m = m.substr(nl + 1);
-        const auto object = m.find("): ");  // drop VTK's "vtkClassName (0x...): " prefix
-        if (object != std::string::npos && m.find(" (0x") < object) m = m.substr(object + 3);
-        return m;
-    }
-
-private:
-    void keep(const char* text) {
-        if (first_.empty() && text) first_ = text;
-    }
-    std::string first_;
-};
-vtkStandardNewMacro(CapturedVtkMessages)
-
-CapturedVtkMessages& vtk_messages() {
-    static CapturedVtkMessages* window = [] {
-        auto* w = CapturedVtkMessages::New();
-        vtkOutputWindow::SetInstance(w);
-        vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
-        return w;
-    }();
-    return *window;
-}
 
 vtkSmartPointer<vtkStructuredGrid> to_vtk_block(const BlockGrid& grid, const Block& block) {
     auto out = vtkSmartPointer<vtkStructuredGrid>::New();
@@ -127,11 +83,6 @@ vtkSmartPointer<vtkStructuredGrid> to_vtk_block(const BlockGrid& grid, const Blo
     return out;
 }
 
-std::string extension(const std::string& path) {
-    std::string ext = fs::path(path).extension().string();
-    for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-    return ext;
-}
 
 // Points keyed by their exact coordinates, so copies of one node in several pieces merge.
 struct ExactPointHash {
@@ -168,24 +119,7 @@ void append_hexes(vtkDataSet* data, const std::string& path, HexMesh& mesh, Poin
     }
 }
 
-void check_written(int status, const std::string& path) {
-    const std::string why = vtk_messages().take();
-    if (status != 1 || !why.empty())
-        throw std::runtime_error(fmt::format("{}: VTK cannot write it: {}", path, why));
-}
 
-template <class Reader>
-vtkSmartPointer<vtkDataObject> run_reader(const std::string& path) {
-    vtk_messages().take();
-    vtkNew<Reader> reader;
-    reader->SetFileName(path.c_str());
-    reader->Update();
-    vtkSmartPointer<vtkDataObject> out = reader->GetOutputDataObject(0);
-    const std::string why = vtk_messages().take();
-    if (!why.empty() || !out)
-        throw InputError(fmt::format("{}: VTK cannot read it: {}", path, why.empty() ? "no data" : why));
-    return out;
-}
 
 // Appends one structured piece to `grid` as a block, merging points equal to earlier ones.
 void append_block(vtkStructuredGrid* piece, const std::string& fallback_name, BlockGrid& grid,
@@ -219,14 +153,14 @@ void append_block(vtkStructuredGrid* piece, const std::string& fallback_name, Bl
 }  // namespace
 
 void write_vtk_grid(const BlockGrid& grid, const std::string& path) {
-    const std::string ext = extension(path);
+    const std::string ext = vtk_support::extension(path);
     if (grid.blocks.size() == 1 && ext == ".vts") {
-        vtk_messages().take();
+        vtk_support::take_message();
         vtkNew<vtkXMLStructuredGridWriter> writer;
         writer->SetFileName(path.c_str());
         writer->SetInputData(to_vtk_block(grid, grid.blocks[0]));
         writer->SetDataModeToAppended();
-        check_written(writer->Write(), path);
+        vtk_support::check_written(writer->Write(), path);
         return;
     }
     if (ext != ".vtm") {
@@ -239,24 +173,22 @@ void write_vtk_grid(const BlockGrid& grid, const std::string& path) {
         blocks->SetBlock(b, to_vtk_block(grid, grid.blocks[b]));
         blocks->GetMetaData(b)->Set(vtkCompositeDataSet::NAME(), grid.blocks[b].name.c_str());
     }
-    vtk_messages().take();
+    vtk_support::take_message();
     vtkNew<vtkXMLMultiBlockDataWriter> writer;
     writer->SetFileName(path.c_str());
     writer->SetInputData(blocks);
     writer->SetDataModeToAppended();
-    check_written(writer->Write(), path);
+    vtk_support::check_written(writer->Write(), path);
 }
 
 HexMesh read_vtk_mesh(const std::string& path) {
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec))
-        throw InputError(fmt::format("{}: no such mesh file", path));
-    const std::string ext = extension(path);
+    vtk_support::require_file(path);
+    const std::string ext = vtk_support::extension(path);
     vtkSmartPointer<vtkDataObject> data;
-    if (ext == ".vts") data = run_reader<vtkXMLStructuredGridReader>(path);
-    else if (ext == ".vtu") data = run_reader<vtkXMLUnstructuredGridReader>(path);
-    else if (ext == ".vtk") data = run_reader<vtkDataSetReader>(path);
-    else if (ext == ".vtm") data = run_reader<vtkXMLMultiBlockDataReader>(path);
+    if (ext == ".vts") data = vtk_support::read_with<vtkXMLStructuredGridReader>(path);
+    else if (ext == ".vtu") data = vtk_support::read_with<vtkXMLUnstructuredGridReader>(path);
+    else if (ext == ".vtk") data = vtk_support::read_with<vtkDataSetReader>(path);
+    else if (ext == ".vtm") data = vtk_support::read_with<vtkXMLMultiBlockDataReader>(path);
     else if (ext == ".msh") return read_gmsh_mesh(path);
     else if (ext == ".mesh") return read_medit_mesh(path);
     else if (is_plot3d_path(path)) return to_hex_mesh(read_plot3d(path));
@@ -284,10 +216,10 @@ BlockGrid read_vtk_block_grid(const std::string& path) {
     std::error_code ec;
     if (!fs::is_regular_file(path, ec))
         throw InputError(fmt::format("{}: no such grid file", path));
-    const std::string ext = extension(path);
+    const std::string ext = vtk_support::extension(path);
     vtkSmartPointer<vtkDataObject> data;
-    if (ext == ".vts") data = run_reader<vtkXMLStructuredGridReader>(path);
-    else if (ext == ".vtm") data = run_reader<vtkXMLMultiBlockDataReader>(path);
+    if (ext == ".vts") data = vtk_support::read_with<vtkXMLStructuredGridReader>(path);
+    else if (ext == ".vtm") data = vtk_support::read_with<vtkXMLMultiBlockDataReader>(path);
     else
         throw InputError(fmt::format("{}: a block grid is read from .vts or .vtm, not '{}'", path, ext));
 
