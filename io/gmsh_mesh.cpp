@@ -46,16 +46,11 @@ void write_gmsh_mesh(const BlockGrid& grid, const std::string& path) {
     out.print("$Elements\n{} {} 1 {}\n", npatches + 1, elements, elements);
     out.print("3 1 5 {}\n", cells);
     Id tag = 1;
-    for (const Block& b : grid.blocks) {
-        const Dims c = b.cells();
-        for (int k = 0; k < c.nk; ++k)
-            for (int j = 0; j < c.nj; ++j)
-                for (int i = 0; i < c.ni; ++i) {
-                    const auto n = cell_nodes(b, i, j, k);
-                    out.print("{} {} {} {} {} {} {} {} {}\n", tag++, n[0] + 1, n[1] + 1, n[2] + 1,
-                              n[3] + 1, n[4] + 1, n[5] + 1, n[6] + 1, n[7] + 1);
-                }
-    }
+    for (const Block& b : grid.blocks)
+        for_each_cell(b, [&](int, int, int, const std::array<Id, 8>& n) {
+            out.print("{} {} {} {} {} {} {} {} {}\n", tag++, n[0] + 1, n[1] + 1, n[2] + 1,
+                      n[3] + 1, n[4] + 1, n[5] + 1, n[6] + 1, n[7] + 1);
+        });
     for (int p = 0; p < npatches; ++p) {
         out.print("2 {} 3 {}\n", p + 1, patch_faces[p]);
         for_each_patch_face(grid, faces, p, [&](Id, const std::array<Id, 4>& n) {

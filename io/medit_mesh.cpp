@@ -20,16 +20,11 @@ void write_medit_mesh(const BlockGrid& grid, const std::string& path) {
             out.print("{} {} {} {} {}\n", n[0] + 1, n[1] + 1, n[2] + 1, n[3] + 1, p + 1);
         });
     out.print("\nHexahedra\n{}\n", grid.num_cells());
-    for (const Block& b : grid.blocks) {
-        const Dims c = b.cells();
-        for (int k = 0; k < c.nk; ++k)
-            for (int j = 0; j < c.nj; ++j)
-                for (int i = 0; i < c.ni; ++i) {
-                    const auto n = cell_nodes(b, i, j, k);
-                    out.print("{} {} {} {} {} {} {} {} 1\n", n[0] + 1, n[1] + 1, n[2] + 1,
-                              n[3] + 1, n[4] + 1, n[5] + 1, n[6] + 1, n[7] + 1);
-                }
-    }
+    for (const Block& b : grid.blocks)
+        for_each_cell(b, [&](int, int, int, const std::array<Id, 8>& n) {
+            out.print("{} {} {} {} {} {} {} {} 1\n", n[0] + 1, n[1] + 1, n[2] + 1,
+                      n[3] + 1, n[4] + 1, n[5] + 1, n[6] + 1, n[7] + 1);
+        });
     out.print("\nEnd\n");
     out.close();
 }

@@ -61,14 +61,11 @@ vtkSmartPointer<vtkStructuredGrid> to_vtk_block(const BlockGrid& grid, const Blo
     vtkNew<vtkDoubleArray> sj;
     sj->SetName("scaled_jacobian");
     sj->SetNumberOfValues(c.count());
-    for (int k = 0; k < c.nk; ++k)
-        for (int j = 0; j < c.nj; ++j)
-            for (int i = 0; i < c.ni; ++i) {
-                std::array<Vec3, 8> p;
-                const auto ids = cell_nodes(block, i, j, k);
-                for (int v = 0; v < 8; ++v) p[v] = grid.points[ids[v]];
-                sj->SetValue(c.flat(i, j, k), hex_scaled_jacobian(p));
-            }
+    for_each_cell(block, [&](int i, int j, int k, const std::array<Id, 8>& ids) {
+        std::array<Vec3, 8> p;
+        for (int v = 0; v < 8; ++v) p[v] = grid.points[ids[v]];
+        sj->SetValue(c.flat(i, j, k), hex_scaled_jacobian(p));
+    });
     out->GetCellData()->AddArray(sj);
 
     // Field data keeps what a structured grid cannot say: the block's name and face patches.

@@ -113,29 +113,35 @@ double Assembly::energy(const std::vector<Vec3>& x, const EnergyParams& p) const
     return deterministic_sum(value);
 }
 
+
 template <class Kernel>
 void Assembly::for_each_by_colour(Kernel&& kernel) const {
     for (int c = 0; c < colours(); ++c)
         tbb::parallel_for(colour_start_[c], colour_start_[c + 1], [&](Id m) { kernel(order_[m]); });
 }
 
-double Assembly::diagonal_hessian(const std::vector<Vec3>& x, const EnergyParams& p,
-                                  std::vector<Vec3>& g, std::vector<Mat3>& diagonal) const {
+template <class Scatter>
+double Assembly::assemble_hessian(const std::vector<Vec3>& x, const EnergyParams& p, std::vector<Vec3>& g,
+                                  Scatter&& scatter) const {
     g.assign(x.size(), Vec3::Zero());
-    diagonal.assign(x.size(), Mat3::Zero());
     std::vector<double> value(problem_.tets.size());
     for_each_by_colour([&](Id e) {
         Mat34 ge;
         Mat12 he;
         value[e] = tet_energy_hessian(corners(x, e), problem_.targets[e], p, ge, he);
         if (!std::isfinite(value[e])) return;
-        const auto& t = problem_.tets[e];
-        for (int a = 0; a < 4; ++a) {
-            g[t[a]] += ge.col(a);
-            diagonal[t[a]] += he.block<3, 3>(3 * a, 3 * a);
-        }
+        for (int a = 0; a < 4; ++a) g[problem_.tets[e][a]] += ge.col(a);
+        scatter(problem_.tets[e], he);
     });
     return deterministic_sum(value);
+}
+
+double Assembly::diagonal_hessian(const std::vector<Vec3>& x, const EnergyParams& p,
+                                  std::vector<Vec3>& g, std::vector<Mat3>& diagonal) const {
+    diagonal.assign(x.size(), Mat3::Zero());
+    return assemble_hessian(x, p, g, [&](const std::array<Id, 4>& t, const Mat12& he) {
+        for (int a = 0; a < 4; ++a) diagonal[t[a]] += he.block<3, 3>(3 * a, 3 * a);
+    });
 }
 
 void Assembly::hessian_product(const std::vector<Vec3>& x, const EnergyParams& p,
@@ -167,21 +173,11 @@ double Assembly::gradient(const std::vector<Vec3>& x, const EnergyParams& p, std
 
 double Assembly::hessian(const std::vector<Vec3>& x, const EnergyParams& p, std::vector<Vec3>& g,
                          BlockMatrix& h) const {
-    g.assign(x.size(), Vec3::Zero());
     std::fill(h.block.begin(), h.block.end(), Mat3::Zero());
-    std::vector<double> value(problem_.tets.size());
-    for_each_by_colour([&](Id e) {
-        Mat34 ge;
-        Mat12 he;
-        value[e] = tet_energy_hessian(corners(x, e), problem_.targets[e], p, ge, he);
-        if (!std::isfinite(value[e])) return;
-        const auto& t = problem_.tets[e];
-        for (int a = 0; a < 4; ++a) {
-            g[t[a]] += ge.col(a);
+    return assemble_hessian(x, p, g, [&](const std::array<Id, 4>& t, const Mat12& he) {
+        for (int a = 0; a < 4; ++a)
             for (int b = 0; b < 4; ++b) h.block[h.find(t[a], t[b])] += he.block<3, 3>(3 * a, 3 * b);
-        }
     });
-    return deterministic_sum(value);
 }
 
 }  // namespace hexmesh::untangle

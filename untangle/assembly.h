@@ -55,6 +55,10 @@ private:
     // Runs kernel(e) for every element, colour after colour, elements of a colour in parallel.
     template <class Kernel>
     void for_each_by_colour(Kernel&& kernel) const;
+    // F(x) and its gradient in g; each finite element's PSD Hessian goes to scatter(tet, he).
+    template <class Scatter>
+    double assemble_hessian(const std::vector<Vec3>& x, const EnergyParams& p,
+                            std::vector<Vec3>& g, Scatter&& scatter) const;
 
     const Problem& problem_;
     std::vector<Id> order_;         // elements sorted by colour

@@ -56,6 +56,20 @@ Invariants phi(double i, double d, double v0, const EnergyParams& p, bool second
 }
 
 
+// S = Q H^-1, the derivatives of phi at S and the vertex gradient; false (nothing set
+// beyond s) when eps = 0 and det S <= 0, where the barrier is infinite.
+bool evaluate(const Mat34& y, const TetTarget& t, const EnergyParams& p, bool second, Mat3& s,
+              Invariants& f, Mat34& grad) {
+    s = edge_matrix(y) * t.inverse;
+    const double d = s.determinant();
+    if (p.eps <= 0 && d <= 0) return false;
+    f = phi(s.squaredNorm(), d, t.v0, p, second);
+    const Mat3 dq = t.weight * (2 * f.f_i * s + f.f_d * cofactor(s)) * t.inverse.transpose();
+    grad.col(0) = -dq.rowwise().sum();
+    grad.rightCols<3>() = dq;
+    return true;
+}
+
 }  // namespace
 
 double tet_det(const Mat34& y, const TetTarget& t) {
@@ -70,25 +84,16 @@ double tet_energy(const Mat34& y, const TetTarget& t, const EnergyParams& p) {
 }
 
 double tet_energy_gradient(const Mat34& y, const TetTarget& t, const EnergyParams& p, Mat34& grad) {
-    const Mat3 s = edge_matrix(y) * t.inverse;
-    const double d = s.determinant();
-    if (p.eps <= 0 && d <= 0) return infinity;
-    const Invariants f = phi(s.squaredNorm(), d, t.v0, p, false);
-    const Mat3 dq = t.weight * (2 * f.f_i * s + f.f_d * cofactor(s)) * t.inverse.transpose();
-    grad.col(0) = -dq.rowwise().sum();
-    grad.rightCols<3>() = dq;
-    return t.weight * f.value;
+    Mat3 s;
+    Invariants f;
+    return evaluate(y, t, p, false, s, f, grad) ? t.weight * f.value : infinity;
 }
 
 double tet_energy_hessian(const Mat34& y, const TetTarget& t, const EnergyParams& p, Mat34& grad,
                           Mat12& hess, bool project_psd) {
-    const Mat3 s = edge_matrix(y) * t.inverse;
-    const double d = s.determinant();
-    if (p.eps <= 0 && d <= 0) return infinity;
-    const Invariants f = phi(s.squaredNorm(), d, t.v0, p, true);
-    const Mat3 dq = t.weight * (2 * f.f_i * s + f.f_d * cofactor(s)) * t.inverse.transpose();
-    grad.col(0) = -dq.rowwise().sum();
-    grad.rightCols<3>() = dq;
+    Mat3 s;
+    Invariants f;
+    if (!evaluate(y, t, p, true, s, f, grad)) return infinity;
 
     // Analytic eigensystem of the 9 x 9 Hessian in S of an isotropic energy f(I, det S)
     // (Smith, de Goes, Kim 2019): with the signed SVD S = U diag(sigma) V^T, the twists

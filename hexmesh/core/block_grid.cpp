@@ -19,13 +19,10 @@ HexMesh to_hex_mesh(const BlockGrid& grid) {
     HexMesh mesh;
     mesh.points = grid.points;
     mesh.hexes.reserve(8 * grid.num_cells());
-    for (const Block& b : grid.blocks) {
-        const Dims c = b.cells();
-        for (int k = 0; k < c.nk; ++k)
-            for (int j = 0; j < c.nj; ++j)
-                for (int i = 0; i < c.ni; ++i)
-                    for (Id id : cell_nodes(b, i, j, k)) mesh.hexes.push_back(id);
-    }
+    for (const Block& b : grid.blocks)
+        for_each_cell(b, [&](int, int, int, const std::array<Id, 8>& nodes) {
+            mesh.hexes.insert(mesh.hexes.end(), nodes.begin(), nodes.end());
+        });
     return mesh;
 }
 

@@ -54,6 +54,16 @@ struct BlockGrid {
 // Global node ids of the 8 corners of cell (i,j,k) of a block, in VTK_HEXAHEDRON order.
 std::array<Id, 8> cell_nodes(const Block& block, int i, int j, int k);
 
+// Calls f(i, j, k, nodes) for every cell of the block, i fastest, with the cell's 8 global
+// node ids in VTK_HEXAHEDRON order.
+template <class F>
+void for_each_cell(const Block& block, F&& f) {
+    const Dims c = block.cells();
+    for (int k = 0; k < c.nk; ++k)
+        for (int j = 0; j < c.nj; ++j)
+            for (int i = 0; i < c.ni; ++i) f(i, j, k, cell_nodes(block, i, j, k));
+}
+
 // All cells of all blocks as one unstructured mesh sharing the grid's points (block by block,
 // i fastest within a block).
 HexMesh to_hex_mesh(const BlockGrid& grid);
