@@ -58,8 +58,9 @@ Invariants phi(double i, double d, double v0, const EnergyParams& p, bool second
 
 // S = Q H^-1, the derivatives of phi at S and the vertex gradient; false (nothing set
 // beyond s) when eps = 0 and det S <= 0, where the barrier is infinite.
-bool evaluate(const Mat34& y, const TetTarget& t, const EnergyParams& p, bool second, Mat3& s,
-              Invariants& f, Mat34& grad) {
+template <bool second>
+bool evaluate(const Mat34& y, const TetTarget& t, const EnergyParams& p, Mat3& s, Invariants& f,
+              Mat34& grad) {
     s = edge_matrix(y) * t.inverse;
     const double d = s.determinant();
     if (p.eps <= 0 && d <= 0) return false;
@@ -86,14 +87,14 @@ double tet_energy(const Mat34& y, const TetTarget& t, const EnergyParams& p) {
 double tet_energy_gradient(const Mat34& y, const TetTarget& t, const EnergyParams& p, Mat34& grad) {
     Mat3 s;
     Invariants f;
-    return evaluate(y, t, p, false, s, f, grad) ? t.weight * f.value : infinity;
+    return evaluate<false>(y, t, p, s, f, grad) ? t.weight * f.value : infinity;
 }
 
 double tet_energy_hessian(const Mat34& y, const TetTarget& t, const EnergyParams& p, Mat34& grad,
                           Mat12& hess, bool project_psd) {
     Mat3 s;
     Invariants f;
-    if (!evaluate(y, t, p, true, s, f, grad)) return infinity;
+    if (!evaluate<true>(y, t, p, s, f, grad)) return infinity;
 
     // Analytic eigensystem of the 9 x 9 Hessian in S of an isotropic energy f(I, det S)
     // (Smith, de Goes, Kim 2019): with the signed SVD S = U diag(sigma) V^T, the twists
