@@ -1,6 +1,7 @@
 #include "io/case_file.h"
 
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <fmt/format.h>
 #include <filesystem>
@@ -118,10 +119,14 @@ GeometrySpec parse_geometry(const json& value, const std::string& file, const st
 }
 
 GridSpec parse_grid(const JsonFields& g) {
-    g.allow_only({"topology", "cells_per_edge", "wall_cells", "core_size", "cells", "center"});
+    g.allow_only({"topology", "cells_per_edge", "cell_size", "wall_cells", "core_size", "cells",
+                  "center"});
     GridSpec grid;
     grid.topology = g.choice("topology", grid.topology, {"o-h", "single-block"});
     grid.cells_per_edge = g.integer("cells_per_edge", grid.cells_per_edge, 2, 4096);
+    if (g.has("cell_size") && g.has("cells_per_edge"))
+        g.fail("cell_size", "either cells_per_edge or cell_size, not both");
+    grid.cell_size = g.positive_number("cell_size", 0);
     grid.wall_cells = g.integer("wall_cells", grid.wall_cells, 1, 4096);
     grid.core_size = g.number("core_size", grid.core_size);
     if (!(grid.core_size > 0 && grid.core_size < 1)) g.fail("core_size", "a number in (0, 1)");
@@ -147,10 +152,28 @@ GridSpec parse_grid(const JsonFields& g) {
     return grid;
 }
 
+// {"y_plus": 1, "velocity": U, "density": rho, "viscosity": mu, "length": L or "reynolds": Re}
+void parse_y_plus(const JsonFields& b, BoundaryLayerSpec& bl) {
+    if (b.has("first_height")) b.fail("y_plus", "either first_height or y_plus, not both");
+    bl.y_plus = b.required_positive_number("y_plus");
+    const double velocity = b.required_positive_number("velocity");
+    const double density = b.required_positive_number("density");
+    const double viscosity = b.required_positive_number("viscosity");
+    if (b.has("length") == b.has("reynolds"))
+        b.fail("length", "the reference length of the Reynolds number, or \"reynolds\" (one of them)");
+    bl.reynolds = b.has("reynolds") ? b.required_positive_number("reynolds")
+                                    : density * velocity * b.required_positive_number("length") / viscosity;
+    bl.first_height = first_height_from_y_plus(bl.y_plus, bl.reynolds, velocity, density, viscosity);
+}
+
 BoundaryLayerSpec parse_boundary_layer(const JsonFields& b, const GridSpec& grid) {
-    b.allow_only({"first_height", "growth_ratio", "layers"});
+    b.allow_only({"first_height", "growth_ratio", "layers", "y_plus", "velocity", "density",
+                  "viscosity", "length", "reynolds"});
     BoundaryLayerSpec bl;
-    bl.first_height = b.required_positive_number("first_height");
+    if (b.has("y_plus"))
+        parse_y_plus(b, bl);
+    else
+        bl.first_height = b.required_positive_number("first_height");
     bl.growth_ratio = b.number("growth_ratio", 1.2);
     if (!(bl.growth_ratio >= 1 && bl.growth_ratio <= 3)) b.fail("growth_ratio", "a number in [1, 3]");
     const int available = grid.topology == "o-h"
@@ -164,14 +187,25 @@ BoundaryLayerSpec parse_boundary_layer(const JsonFields& b, const GridSpec& grid
 }
 
 SolverSpec parse_solver(const JsonFields& s) {
-    s.allow_only({"method", "theta", "max_iterations"});
+    s.allow_only({"untangle", "optimize", "theta", "max_iterations", "optimize_iterations"});
     SolverSpec solver;
-    solver.method = s.choice("method", solver.method,
-                             {"explicit", "block-diagonal", "coordinate-split", "newton-cg", "lbfgs"});
+    const auto methods = {"explicit", "block-diagonal", "coordinate-split", "newton-cg", "lbfgs"};
+    solver.untangle = s.choice("untangle", solver.untangle, methods);
+    solver.optimize = s.choice("optimize", solver.optimize, methods);
     solver.theta = s.number("theta", solver.theta);
     if (!(solver.theta > 0 && solver.theta < 1)) s.fail("theta", "a number in (0, 1)");
     solver.max_iterations = s.integer("max_iterations", solver.max_iterations, 1, 1000000);
+    solver.optimize_iterations =
+        s.integer("optimize_iterations", solver.optimize_iterations, 0, 1000000);
     return solver;
+}
+
+FarFieldSpec parse_far_field(const JsonFields& f) {
+    f.allow_only({"shape", "size"});
+    FarFieldSpec far;
+    far.shape = f.choice("shape", far.shape, {"sphere", "box"});
+    far.size = f.positive_number("size", 0);
+    return far;
 }
 
 std::vector<std::string> parse_outputs(const JsonFields& top, const std::string& file) {
@@ -192,6 +226,13 @@ std::vector<std::string> parse_outputs(const JsonFields& top, const std::string&
 
 }  // namespace
 
+double first_height_from_y_plus(double y_plus, double reynolds, double velocity, double density,
+                                double viscosity) {
+    const double cf = 0.026 / std::pow(reynolds, 1.0 / 7.0);
+    const double u_tau = std::sqrt(0.5 * cf * velocity * velocity);
+    return y_plus * viscosity / (density * u_tau);
+}
+
 Case parse_case(const std::string& text, const std::string& path) {
     json root;
     try {
@@ -203,12 +244,21 @@ Case parse_case(const std::string& text, const std::string& path) {
         throw InputError(fmt::format("{}: malformed JSON: {}", path, what));
     }
     const JsonFields top(root, path, "");
-    top.allow_only({"geometry", "grid", "boundary_layer", "solver", "outputs"});
+    top.allow_only(
+        {"geometry", "domain", "grid", "far_field", "boundary_layer", "solver", "outputs"});
     Case c;
     c.path = path;
     if (!top.has("geometry")) top.fail("geometry", "an object describing the body");
     c.geometry = parse_geometry(top.at("geometry"), path, "geometry");
+    c.domain = top.choice("domain", c.domain, {"interior", "exterior"});
     if (top.has("grid")) c.grid = parse_grid(top.object("grid"));
+    if (c.domain == "exterior" && c.grid.topology != "o-h")
+        top.fail("grid.topology", "\"o-h\" (an exterior domain is gridded by the O-grid of its "
+                                  "six wall patches)");
+    if (top.has("far_field")) {
+        if (c.domain != "exterior") top.fail("far_field", "no far_field: it goes with \"domain\": \"exterior\"");
+        c.far_field = parse_far_field(top.object("far_field"));
+    }
     if (top.has("boundary_layer"))
         c.boundary_layer = parse_boundary_layer(top.object("boundary_layer"), c.grid);
     if (top.has("solver")) c.solver = parse_solver(top.object("solver"));

@@ -37,34 +37,58 @@ struct GeometrySpec {
 };
 
 struct GridSpec {
-    std::string topology = "o-h";  // "o-h" | "single-block"
-    int cells_per_edge = 20;        // o-h: cells along each core/patch edge
-    int wall_cells = 10;            // o-h: cells from the core to the wall
+    std::string topology = "o-h";  // "o-h" | "single-block" (interior domain only)
+    int cells_per_edge = 20;        // o-h, o-grid: cells along each core/patch edge
+    double cell_size = 0;           // > 0: cells_per_edge from the body's size instead
+    int wall_cells = 10;            // o-h: cells from the core to the wall; o-grid: to the far field
     double core_size = 0.45;        // o-h: core half-size / body half extents
     std::array<int, 3> cells = {20, 20, 20};  // single-block
     std::optional<Vec3> center;
 };
 
+// The boundary layer: first_height given, or estimated from a target y+ by the flat-plate
+// skin-friction correlation (see first_height_from_y_plus).
 struct BoundaryLayerSpec {
     double first_height = 0;  // geometry units
     double growth_ratio = 1;
     int layers = 0;
+    double y_plus = 0;         // > 0 when first_height was derived from y+
+    double reynolds = 0;       // Reynolds number of the y+ estimate
 };
 
+// The far-field boundary of an exterior grid: a sphere of radius `size` or a cube of
+// half-size `size`, centred on the grid centre (size 0: 10 body radii).
+struct FarFieldSpec {
+    std::string shape = "sphere";  // "sphere" | "box"
+    double size = 0;
+};
+
+// The variational optimizer of DESIGN §4-6, per phase: `untangle` while some cell is
+// inverted, `optimize` (pure barrier) afterwards.
 struct SolverSpec {
-    std::string method = "newton-cg";
+    std::string untangle = "newton-cg";
+    std::string optimize = "newton-cg";
     double theta = 0.8;
-    int max_iterations = 200;
+    int max_iterations = 200;       // untangling outer iterations
+    int optimize_iterations = 10;   // barrier outer iterations; 0 keeps the constructed grid
 };
 
 struct Case {
     std::string path;  // the file it came from, for messages
     GeometrySpec geometry;
+    std::string domain = "interior";  // "interior": grid inside the body; "exterior": around it
     GridSpec grid;
+    FarFieldSpec far_field;           // exterior only
     std::optional<BoundaryLayerSpec> boundary_layer;
     SolverSpec solver;
     std::vector<std::string> outputs = {"vtk"};
 };
+
+// Height of the first cell for a target y+ on a flat plate of length L = reynolds * viscosity /
+// (density * velocity): Cf = 0.026 Re^(-1/7), tau_w = Cf rho U^2 / 2, u_tau = sqrt(tau_w / rho),
+// y = y+ mu / (rho u_tau) (the turbulent flat-plate estimate of White, Fluid Mechanics).
+double first_height_from_y_plus(double y_plus, double reynolds, double velocity, double density,
+                                double viscosity);
 
 // Reads and validates a case file. Unknown keys, wrong types and out-of-range values throw
 // InputError naming the key path (e.g. "grid.cells_per_edge") and the expected value.

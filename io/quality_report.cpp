@@ -1,16 +1,86 @@
 #include "io/quality_report.h"
 
+#include <algorithm>
 #include <fmt/format.h>
+#include <initializer_list>
 #include <nlohmann/json.hpp>
 
 namespace hexmesh {
+namespace {
+
+// Names take 30 columns and the value ends in column 46; a longer name pushes the value only
+// as far as it must (one space at least), and further values follow in 11-wide columns.
+std::string table_row(const std::string& name, std::initializer_list<std::string> values) {
+    auto value = values.begin();
+    std::string line = name.size() <= 30 ? fmt::format("  {:<30}{:>14}", name, *value)
+                                         : fmt::format("  {} {:>{}}", name, *value,
+                                                       std::max<int>(0, 43 - int(name.size())));
+    for (++value; value != values.end(); ++value) line += fmt::format("{:>11}", *value);
+    return line + "\n";
+}
+
+std::string number(double x) {
+    return fmt::format("{:.4g}", x);
+}
+
+std::string wall_rows(const WallQuality& w) {
+    const bool thickness_target = w.first_layer_target > 0;
+    const bool growth = w.growth_ratios > 0, growth_target = w.growth_ratio_target > 0;
+    auto percent = [](double fraction) { return fmt::format("{:.1f} %", 100 * fraction); };
+    std::string out;
+    out += table_row("wall cells", {fmt::format("{}", w.wall_cells)});
+    out += table_row(
+        "first-layer thickness min/mean/max",
+        {number(w.first_layer_min), number(w.first_layer_mean), number(w.first_layer_max)});
+    out += table_row("  target, within 10 %",
+                     {thickness_target ? number(w.first_layer_target) : "-",
+                      thickness_target ? percent(w.first_layer_within_10_percent) : "-"});
+    out += table_row("growth ratio min/mean/max", {growth ? number(w.growth_ratio_min) : "-",
+                                                   growth ? number(w.growth_ratio_mean) : "-",
+                                                   growth ? number(w.growth_ratio_max) : "-"});
+    out += table_row("  target, within 5 %",
+                     {growth_target ? number(w.growth_ratio_target) : "-",
+                      growth_target ? percent(w.growth_ratio_within_5_percent) : "-"});
+    out += table_row("wall orthogonality max/mean (deg)",
+                     {fmt::format("{:.2f}", w.orthogonality_max_deg),
+                      fmt::format("{:.2f}", w.orthogonality_mean_deg)});
+    if (w.hausdorff) out += table_row("Hausdorff distance to surface", {number(*w.hausdorff)});
+    return out;
+}
+
+// A target of 0 (no law) is written as null, and so is what is measured against it.
+nlohmann::ordered_json wall_json(const WallQuality& w) {
+    auto or_null = [](bool known, double x) { return known ? nlohmann::ordered_json(x) : nullptr; };
+    const bool thickness_target = w.first_layer_target > 0;
+    const bool growth = w.growth_ratios > 0, growth_target = w.growth_ratio_target > 0;
+    nlohmann::ordered_json j;
+    j["cells"] = w.wall_cells;
+    j["first_layer_thickness"] = {
+        {"min", w.first_layer_min},
+        {"mean", w.first_layer_mean},
+        {"max", w.first_layer_max},
+        {"target", or_null(thickness_target, w.first_layer_target)},
+        {"fraction_within_10_percent", or_null(thickness_target, w.first_layer_within_10_percent)}};
+    j["growth_ratio"] = {
+        {"samples", w.growth_ratios},
+        {"min", or_null(growth, w.growth_ratio_min)},
+        {"mean", or_null(growth, w.growth_ratio_mean)},
+        {"max", or_null(growth, w.growth_ratio_max)},
+        {"target", or_null(growth_target, w.growth_ratio_target)},
+        {"fraction_within_5_percent", or_null(growth_target, w.growth_ratio_within_5_percent)}};
+    j["orthogonality_deg"] = {{"max", w.orthogonality_max_deg}, {"mean", w.orthogonality_mean_deg}};
+    if (w.hausdorff) j["hausdorff_distance"] = *w.hausdorff;
+    if (w.grid_to_surface) j["grid_to_surface_distance"] = *w.grid_to_surface;
+    if (w.surface_to_grid) j["surface_to_grid_distance"] = *w.surface_to_grid;
+    return j;
+}
+
+}  // namespace
 
 std::string format_quality_table(const GridReport& r) {
     const QualityReport& q = r.quality;
     std::string out;
-    auto row = [&](const char* name, const std::string& value) {
-        out += fmt::format("  {:<30}{:>14}\n", name, value);
-    };
+    auto row = [&](const char* name, const std::string& value) { out += table_row(name, {value}); };
     row("cells", fmt::format("{}", q.cells));
     row("inverted corner tets", fmt::format("{}", q.inverted_corner_tets));
     row("inverted cells", fmt::format("{}", q.inverted_cells));
@@ -24,6 +94,12 @@ std::string format_quality_table(const GridReport& r) {
     if (r.max_surface_distance)
         row("max |u| / h on the wall", fmt::format("{:.3g}", *r.max_surface_distance));
     if (r.length_scale) row("h (mean wall edge)", fmt::format("{:.4g}", *r.length_scale));
+    if (r.wall) out += wall_rows(*r.wall);
+    if (!r.phase_seconds.empty()) {
+        out += "  time per phase (s)\n";
+        for (const auto& [name, seconds] : r.phase_seconds)
+            out += table_row("  " + name, {fmt::format("{:.2f}", seconds)});
+    }
     return out;
 }
 
@@ -43,6 +119,12 @@ std::string quality_json(const GridReport& r) {
     j["min_volume"] = q.min_volume;
     if (r.max_surface_distance) j["max_surface_distance_over_h"] = *r.max_surface_distance;
     if (r.length_scale) j["length_scale_h"] = *r.length_scale;
+    if (r.wall) j["wall"] = wall_json(*r.wall);
+    if (!r.phase_seconds.empty()) {
+        nlohmann::ordered_json phases = nlohmann::ordered_json::object();
+        for (const auto& [name, seconds] : r.phase_seconds) phases[name] = seconds;
+        j["phases"] = phases;
+    }
     return j.dump(2) + "\n";
 }
 

@@ -3,8 +3,11 @@
 
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "hexmesh/core/quality.h"
+#include "hexmesh/core/wall_quality.h"
 
 namespace hexmesh {
 
@@ -14,12 +17,21 @@ struct GridReport {
     // wall-edge length), when the grid was built from a known body.
     std::optional<double> max_surface_distance;
     std::optional<double> length_scale;
+    // Boundary-layer metrics and, for grids of a surface file, the Hausdorff distance.
+    std::optional<WallQuality> wall;
+    // Wall-clock seconds per pipeline phase, in the order they ran.
+    std::vector<std::pair<std::string, double>> phase_seconds;
 };
 
-// Aligned "name  value" lines, one per metric, ending in a newline.
+// Aligned "name  value" lines, one per metric, ending in a newline: every first value ends
+// in the same column; rows with several values (min/mean/max) continue to its right. The
+// wall rows appear when `wall` is set, the "time per phase" block when phase_seconds is not
+// empty.
 std::string format_quality_table(const GridReport& report);
 
-// The same numbers as a JSON object (keys as in QualityReport, plus "valid").
+// The same numbers as a JSON object: keys as in QualityReport, plus "valid", and, when
+// present, "wall" (nested objects; null for a target the law did not give) and "phases"
+// (name: seconds).
 std::string quality_json(const GridReport& report);
 
 }  // namespace hexmesh

@@ -6,12 +6,24 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace hexmesh {
 
 namespace {
 
 using Vec2 = Eigen::Vector2d;
+using Piece = ImplicitFunction::Piece;
+
+// Appends the pieces of a max combination whose value is within tolerance of the largest.
+void add_pieces_near_max(const Piece* pieces, int count, double tolerance,
+                         std::vector<Piece>& out) {
+    double largest = -std::numeric_limits<double>::infinity();
+    for (int i = 0; i < count; ++i) largest = std::max(largest, pieces[i].value);
+    const double floor = largest - std::max(tolerance, 0.0);
+    for (int i = 0; i < count; ++i)
+        if (pieces[i].value >= floor) out.push_back(pieces[i]);
+}
 
 void require_positive(double x, const char* what) {
     if (!(x > 0) || !std::isfinite(x))
@@ -110,6 +122,14 @@ Vec3 Box::gradient(const Vec3& p) const {
     return g;
 }
 
+void Box::active_pieces(const Vec3& p, double tolerance, std::vector<Piece>& out) const {
+    const Vec3 d = p - center_;
+    Piece faces[3];
+    for (int a = 0; a < 3; ++a)
+        faces[a] = {std::abs(d[a]) - half_sizes_[a], (d[a] < 0 ? -1.0 : 1.0) * Vec3::Unit(a)};
+    add_pieces_near_max(faces, 3, tolerance, out);
+}
+
 Box3 Box::bounds() const { return {center_ - half_sizes_, center_ + half_sizes_}; }
 
 // ---------------------------------------------------------------- Cylinder
@@ -131,6 +151,13 @@ Vec3 Cylinder::gradient(const Vec3& p) const {
         Vec2(std::hypot(d.x(), d.y()) - radius_, std::abs(d.z()) - half_height_));
     if (d.z() < 0) g[1] = -g[1];
     return from_meridian(d, g);
+}
+
+void Cylinder::active_pieces(const Vec3& p, double tolerance, std::vector<Piece>& out) const {
+    const Vec3 d = p - center_;
+    const Piece pieces[2] = {{std::hypot(d.x(), d.y()) - radius_, radial_direction(d)},
+                             {std::abs(d.z()) - half_height_, Vec3(0, 0, d.z() < 0 ? -1.0 : 1.0)}};
+    add_pieces_near_max(pieces, 2, tolerance, out);
 }
 
 Box3 Cylinder::bounds() const {
@@ -238,6 +265,38 @@ Vec3 Cone::gradient(const Vec3& p) const {
     const MeridianDistance m = cone_meridian(Vec2(std::hypot(d.x(), d.y()), d.z()),
                                              bottom_radius_, top_radius_, half_height_);
     return from_meridian(d, m.gradient);
+}
+
+void Cone::active_pieces(const Vec3& p, double tolerance, std::vector<Piece>& out) const {
+    const Vec3 d = p - center_;
+    const double h = half_height_, r0 = bottom_radius_, r1 = top_radius_;
+    // The side: the line through (r0, -h) and (r1, h) of the meridian plane, turned to the
+    // generator along the unit radial vector e.
+    const Vec2 slant = Vec2(2 * h, r0 - r1) / std::hypot(r1 - r0, 2 * h);
+    auto side = [&](const Vec3& e) {
+        const Vec2 q(d.x() * e.x() + d.y() * e.y(), d.z());
+        return Piece{slant.dot(q - Vec2(r0, -h)), slant[0] * e + slant[1] * Vec3::UnitZ()};
+    };
+    const Vec3 radial = radial_direction(d);
+    const double apex_z = r0 == 0 ? -h : h;
+    const bool near_apex =
+        (r0 == 0 || r1 == 0) && (d - Vec3(0, 0, apex_z)).norm() <= std::max(tolerance, 0.0);
+    if (!near_apex) {
+        Piece pieces[3];
+        int count = 0;
+        pieces[count++] = side(radial);
+        if (r0 > 0) pieces[count++] = {-d.z() - h, -Vec3::UnitZ()};
+        if (r1 > 0) pieces[count++] = {d.z() - h, Vec3::UnitZ()};
+        add_pieces_near_max(pieces, count, tolerance, out);
+        return;
+    }
+    // At an apex the cap (if any) is 2 half_height away; the side counts three times.
+    const double third = 2 * std::acos(-1.0) / 3;
+    for (int k = 0; k < 3; ++k) {
+        const double c = std::cos(k * third), s = std::sin(k * third);
+        out.push_back(
+            side(Vec3(c * radial.x() - s * radial.y(), s * radial.x() + c * radial.y(), 0)));
+    }
 }
 
 Box3 Cone::bounds() const {

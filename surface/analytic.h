@@ -6,7 +6,9 @@
 // - gradient() is analytic for the exact ones; where the distance has a kink (medial
 //   surface, box edges seen from inside, axis of revolution) it returns one of the
 //   one-sided gradients, always a unit vector;
-// - "axis z" means the body is symmetric about the line through `center` along +z.
+// - "axis z" means the body is symmetric about the line through `center` along +z;
+// - active_pieces() of the bodies with sharp edges lists face planes, the side and caps:
+//   the body is their max, so a piece is active when within tolerance of the largest.
 // Constructors throw std::invalid_argument on non-positive sizes.
 #pragma once
 
@@ -46,6 +48,8 @@ public:
     Box(const Vec3& center, const Vec3& half_sizes);
     double value(const Vec3& p) const override;
     Vec3 gradient(const Vec3& p) const override;  // ties inside: the lowest axis index
+    // The face planes on p's side, at most one per axis: 2 on an edge, 3 at a corner.
+    void active_pieces(const Vec3& p, double tolerance, std::vector<Piece>& out) const override;
     Box3 bounds() const override;
 
 private:
@@ -59,6 +63,8 @@ public:
     Cylinder(const Vec3& center, double radius, double half_height);
     double value(const Vec3& p) const override;
     Vec3 gradient(const Vec3& p) const override;
+    // The side (rho - radius, radial gradient; +x on the axis) and the cap on p's side.
+    void active_pieces(const Vec3& p, double tolerance, std::vector<Piece>& out) const override;
     Box3 bounds() const override;
 
 private:
@@ -88,6 +94,10 @@ public:
     Cone(const Vec3& center, double bottom_radius, double top_radius, double half_height);
     double value(const Vec3& p) const override;
     Vec3 gradient(const Vec3& p) const override;
+    // The side (signed distance to the tangent plane along p's generator) and the caps of
+    // non-zero radius. Within tolerance of an apex: the tangent planes along three
+    // generators 120 degrees apart instead of one, so the apex has 3 normals (a corner).
+    void active_pieces(const Vec3& p, double tolerance, std::vector<Piece>& out) const override;
     Box3 bounds() const override;
 
 private:

@@ -1,5 +1,7 @@
 #include "surface/csg.h"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -39,6 +41,28 @@ Vec3 Csg::gradient(const Vec3& p) const {
     const int i = evaluate(p).child;
     const Vec3 g = children_[i]->gradient(p);
     return (op_ == CsgOp::Difference && i > 0) ? Vec3(-g) : g;
+}
+
+void Csg::active_pieces(const Vec3& p, double tolerance, std::vector<Piece>& out) const {
+    const int n = static_cast<int>(children_.size());
+    std::vector<double> values(n);  // negated for a subtracted child
+    for (int i = 0; i < n; ++i) {
+        const double v = children_[i]->value(p);
+        values[i] = (op_ == CsgOp::Difference && i > 0) ? -v : v;
+    }
+    const double u = op_ == CsgOp::Union ? *std::min_element(values.begin(), values.end())
+                                         : *std::max_element(values.begin(), values.end());
+    for (int i = 0; i < n; ++i) {
+        const double slack = std::max(tolerance, 0.0) - std::abs(values[i] - u);
+        if (!(slack >= 0)) continue;
+        const std::size_t first = out.size();
+        children_[i]->active_pieces(p, slack, out);
+        if (op_ != CsgOp::Difference || i == 0) continue;
+        for (std::size_t k = first; k < out.size(); ++k) {
+            out[k].value = -out[k].value;
+            out[k].gradient = -out[k].gradient;
+        }
+    }
 }
 
 Box3 Csg::bounds() const {

@@ -20,6 +20,9 @@ public:
     double value(const Vec3& p) const override;
     // The active child's gradient, negated for a subtracted child (index > 0 in Difference).
     Vec3 gradient(const Vec3& p) const override;
+    // The pieces of every child whose value is within tolerance t of value(p) (d away),
+    // collected from it with tolerance t - d; a subtracted child's pieces negated.
+    void active_pieces(const Vec3& p, double tolerance, std::vector<Piece>& out) const override;
     // Union: hull of the children's boxes; Intersection: intersection of the boxes
     // (collapsed to a point when empty); Difference: the first child's box.
     Box3 bounds() const override;

@@ -31,6 +31,15 @@ Vec3 Transformed::gradient(const Vec3& p) const {
     return rotation_ * child_->gradient(to_child(p));
 }
 
+void Transformed::active_pieces(const Vec3& p, double tolerance, std::vector<Piece>& out) const {
+    const std::size_t first = out.size();
+    child_->active_pieces(to_child(p), tolerance / scale_, out);
+    for (std::size_t k = first; k < out.size(); ++k) {
+        out[k].value *= scale_;
+        out[k].gradient = rotation_ * out[k].gradient;
+    }
+}
+
 Box3 Transformed::bounds() const {
     const Box3 b = child_->bounds();
     Box3 out{Vec3::Constant(std::numeric_limits<double>::infinity()),

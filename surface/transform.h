@@ -16,6 +16,8 @@ public:
                 double scale = 1.0);
     double value(const Vec3& p) const override;
     Vec3 gradient(const Vec3& p) const override;  // rotation * child gradient
+    // The child's pieces (tolerance / scale in child units): values * scale, gradients rotated.
+    void active_pieces(const Vec3& p, double tolerance, std::vector<Piece>& out) const override;
     Box3 bounds() const override;  // axis-aligned hull of the moved child box's 8 corners
 
 private:

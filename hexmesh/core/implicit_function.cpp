@@ -13,4 +13,9 @@ Vec3 ImplicitFunction::gradient(const Vec3& p) const {
     return g;
 }
 
+void ImplicitFunction::active_pieces(const Vec3& p, double /*tolerance*/,
+                                     std::vector<Piece>& out) const {
+    out.push_back({value(p), gradient(p)});
+}
+
 }  // namespace hexmesh

@@ -35,6 +35,14 @@ Body make_shape(const GeometrySpec& s) {
 
 }  // namespace
 
+std::optional<TriangleSurface> reference_surface(const GeometrySpec& spec) {
+    if (spec.kind != "file") return std::nullopt;
+    TriangleSurface surface = read_surface(spec.file);
+    const Mat3 rotation = rotation_from_axis_angle(spec.rotate_axis, spec.rotate_degrees);
+    for (Vec3& p : surface.points) p = spec.translate + spec.scale * (rotation * p);
+    return surface;
+}
+
 Body make_body(const GeometrySpec& spec) {
     Body body = make_shape(spec);
     const bool moved = spec.translate.norm() > 0 || spec.rotate_degrees != 0 || spec.scale != 1;

@@ -1,34 +1,69 @@
 #include "hexmesh/pipeline/run_case.h"
 
 #include <chrono>
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 
 #include "hexmesh/core/reference_hex.h"
 #include "hexmesh/pipeline/make_body.h"
+#include "hexmesh/pipeline/optimize_grid.h"
 #include "io/export_grid.h"
 #include "io/staged_output.h"
 #include "io/vtk_mesh.h"
+#include "volume/feature_snapping.h"
+#include "volume/o_grid.h"
 #include "volume/o_h_grid.h"
+#include "volume/wall_metrics.h"
 #include "volume/single_block_grid.h"
 
 namespace hexmesh {
 namespace {
 
+// Logs one line per finished phase and keeps (phase, seconds) for the report.
 class PhaseTimer {
 public:
     explicit PhaseTimer(std::ostream& log) : log_(log) {}
-    void done(const std::string& what) {
+    void done(const std::string& phase, const std::string& detail = "") {
         const auto now = std::chrono::steady_clock::now();
-        log_ << fmt::format("  {:<40}{:8.2f} s\n", what,
-                            std::chrono::duration<double>(now - start_).count());
+        const double seconds = std::chrono::duration<double>(now - start_).count();
+        log_ << fmt::format("  {:<48}{:8.2f} s\n", detail.empty() ? phase : phase + " " + detail,
+                            seconds);
+        phases_.emplace_back(phase, seconds);
         start_ = now;
     }
+    const std::vector<std::pair<std::string, double>>& phases() const { return phases_; }
 
 private:
     std::ostream& log_;
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+    std::vector<std::pair<std::string, double>> phases_;
 };
+
+untangle::UntangleOptions untangle_options(const SolverSpec& s, std::ostream& log) {
+    untangle::UntangleOptions o;
+    o.untangle_solver.method = untangle::method_from_name(s.untangle);
+    o.optimize_solver.method = untangle::method_from_name(s.optimize);
+    o.theta = s.theta;
+    o.max_untangle_iterations = s.max_iterations;
+    o.max_optimize_iterations = s.optimize_iterations;
+    o.log = &log;
+    return o;
+}
+
+// Cells per patch edge: given, or from the target cell size and the body's size.
+int cells_per_edge(const Case& c, const ImplicitFunction& body) {
+    if (!(c.grid.cell_size > 0)) return c.grid.cells_per_edge;
+    const double n = std::ceil(body.bounds().diagonal() / (std::sqrt(3.0) * c.grid.cell_size));
+    if (!(n <= 4096)) {
+        throw InputError(fmt::format("{}: grid.cell_size: {} gives {:.0f} cells per edge for a body "
+                                     "of diagonal {:.4g}; expected at most 4096",
+                                     c.path, c.grid.cell_size, n, body.bounds().diagonal()));
+    }
+    return std::max(2, int(n));
+}
+
+}  // namespace
 
 WallLayers wall_layers(const Case& c) {
     if (!c.boundary_layer) return {};
@@ -36,9 +71,21 @@ WallLayers wall_layers(const Case& c) {
             c.boundary_layer->layers};
 }
 
-}  // namespace
-
 BlockGrid build_grid(const Case& c, const ImplicitFunction& body) {
+    if (c.domain == "exterior") {
+        OGridOptions o;
+        o.cells_per_edge = cells_per_edge(c, body);
+        o.layers = c.grid.wall_cells;
+        o.wall_layers = wall_layers(c);
+        o.far_field = c.far_field.shape == "box" ? FarFieldShape::box : FarFieldShape::sphere;
+        const Vec3 centre = c.grid.center.value_or(body.bounds().center());
+        o.far_field_size = c.far_field.size > 0
+                               ? c.far_field.size
+                               : 10 * (body.bounds().hi - centre).cwiseAbs().cwiseMax(
+                                          (body.bounds().lo - centre).cwiseAbs()).norm();
+        o.centre = c.grid.center;
+        return make_o_grid(body, o);
+    }
     if (c.grid.topology == "single-block") {
         SingleBlockOptions o;
         o.cells = c.grid.cells;
@@ -47,7 +94,7 @@ BlockGrid build_grid(const Case& c, const ImplicitFunction& body) {
         return make_single_block_grid(body, o);
     }
     OHGridOptions o;
-    o.cells_per_edge = c.grid.cells_per_edge;
+    o.cells_per_edge = cells_per_edge(c, body);
     o.wall_cells = c.grid.wall_cells;
     o.core_size = c.grid.core_size;
     o.wall_layers = wall_layers(c);
@@ -55,10 +102,23 @@ BlockGrid build_grid(const Case& c, const ImplicitFunction& body) {
     return make_o_h_grid(body, o);
 }
 
-GridReport measure_grid(const BlockGrid& grid, const ImplicitFunction& body) {
+GridReport measure_grid(const BlockGrid& grid, const ImplicitFunction& body,
+                        const WallLayers& law, const TriangleSurface* surface) {
     const HexMesh mesh = to_hex_mesh(grid);
     GridReport report;
     report.quality = measure_quality(mesh);
+    const bool has_wall = std::any_of(grid.blocks.begin(), grid.blocks.end(), [](const Block& b) {
+        return std::find(b.face_patch.begin(), b.face_patch.end(), "wall") != b.face_patch.end();
+    });
+    if (has_wall) {
+        report.wall = measure_wall(grid, body, law);
+        if (surface) {
+            const HausdorffDistance d = hausdorff_to_surface(grid, *surface);
+            report.wall->hausdorff = d.hausdorff;
+            report.wall->grid_to_surface = d.grid_to_surface;
+            report.wall->surface_to_grid = d.surface_to_grid;
+        }
+    }
 
     // h: mean length of the hex edges whose two ends lie on the wall.
     double length = 0;
@@ -89,9 +149,29 @@ RunResult run_case(const Case& c, const std::string& outdir, const RunOptions& o
     timer.done("geometry");
     RunResult result;
     result.grid = build_grid(c, *body);
-    timer.done(fmt::format("grid ({}, {} blocks, {} cells)", c.grid.topology,
-                           result.grid.blocks.size(), result.grid.num_cells()));
-    result.report = measure_grid(result.grid, *body);
+    timer.done("grid", fmt::format("({}, {} blocks, {} cells)",
+                                   c.domain == "exterior" ? "o-grid" : c.grid.topology,
+                                   result.grid.blocks.size(), result.grid.num_cells()));
+    if (c.solver.optimize_iterations > 0 || measure_quality(to_hex_mesh(result.grid)).inverted_cells > 0) {
+        const FeatureSnapping snapped = snap_to_features(result.grid, *body);
+        if (snapped.crease_nodes + snapped.corner_nodes > 0)
+            log << fmt::format("  sharp features: {} wall nodes on creases, {} on corners\n",
+                               snapped.crease_nodes, snapped.corner_nodes);
+        GridOptimizationOptions o;
+        o.untangle = untangle_options(c.solver, log);
+        o.wall_layers = wall_layers(c);
+        const GridOptimizationResult r = optimize_grid(result.grid, *body, o);
+        log << untangle::format_untangle_summary(r.solve);
+        if (o.wall_layers.layers > 0) {
+            log << "  boundary layer laid along the wall normals, rest optimized again:\n"
+                << untangle::format_untangle_summary(r.layers_held);
+            if (!r.layers_laid)
+                log << "  the laid layers left inverted cells: the joint optimization's grid is kept\n";
+        }
+        timer.done("optimization");
+    }
+    const std::optional<TriangleSurface> surface = reference_surface(c.geometry);
+    result.report = measure_grid(result.grid, *body, wall_layers(c), surface ? &*surface : nullptr);
     timer.done("quality");
 
     const Id inverted = result.report.quality.inverted_cells;
@@ -107,9 +187,10 @@ RunResult run_case(const Case& c, const std::string& outdir, const RunOptions& o
     for (const std::string& format : c.outputs)  // the VTK grid above is always written
         if (format != "vtk")
             write_grid_format(result.grid, format, out.path(export_file_name(format, stem, result.grid)));
+    timer.done("write");
+    result.report.phase_seconds = timer.phases();
     out.write_text("quality.json", quality_json(result.report));
     result.files = out.commit();
-    timer.done("write");
     return result;
 }
 

@@ -8,7 +8,9 @@
 #include "hexmesh/core/block_grid.h"
 #include "io/case_file.h"
 #include "io/quality_report.h"
+#include "hexmesh/core/triangle_surface.h"
 #include "surface/body.h"
+#include "volume/stretching.h"
 
 namespace hexmesh {
 
@@ -18,11 +20,19 @@ struct RunResult {
     std::vector<std::string> files;  // written outputs, final paths
 };
 
-// The initial grid of the case's body (O-H or single block), before any optimization.
+// The initial grid of the case's body, before any optimization: interior O-H or single
+// block, or the exterior O-grid out to the far field. Throws InputError when a cell_size
+// asks for an absurd number of cells.
 BlockGrid build_grid(const Case& c, const ImplicitFunction& body);
 
-// Quality metrics of `grid`, plus surface fidelity against `body` over its slip nodes.
-GridReport measure_grid(const BlockGrid& grid, const ImplicitFunction& body);
+// The boundary-layer law of the case (layers = 0 without a boundary_layer block).
+WallLayers wall_layers(const Case& c);
+
+// Quality metrics of `grid`, surface fidelity against `body` over its slip nodes, the
+// wall-layer metrics against `law` and, when `surface` is given, the Hausdorff distance
+// between the grid's wall and it.
+GridReport measure_grid(const BlockGrid& grid, const ImplicitFunction& body,
+                        const WallLayers& law = {}, const TriangleSurface* surface = nullptr);
 
 struct RunOptions {
     // A grid with inverted cells is refused (std::runtime_error, nothing written) unless

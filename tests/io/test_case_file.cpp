@@ -25,7 +25,7 @@ TEST(CaseFile, ParsesAFullCase) {
       "geometry": {"sphere": {"center": [1, 2, 3], "radius": 0.5}, "scale": 2},
       "grid": {"topology": "o-h", "cells_per_edge": 16, "wall_cells": 8, "core_size": 0.4},
       "boundary_layer": {"first_height": 0.001, "growth_ratio": 1.1, "layers": 5},
-      "solver": {"method": "lbfgs", "theta": 0.7, "max_iterations": 50},
+      "solver": {"untangle": "lbfgs", "optimize": "explicit", "theta": 0.7, "max_iterations": 50},
       "outputs": ["vtk"]
     })", "case.json");
     EXPECT_EQ(c.geometry.kind, "sphere");
@@ -37,7 +37,9 @@ TEST(CaseFile, ParsesAFullCase) {
     EXPECT_DOUBLE_EQ(c.grid.core_size, 0.4);
     ASSERT_TRUE(c.boundary_layer);
     EXPECT_EQ(c.boundary_layer->layers, 5);
-    EXPECT_EQ(c.solver.method, "lbfgs");
+    EXPECT_EQ(c.solver.untangle, "lbfgs");
+    EXPECT_EQ(c.solver.optimize, "explicit");
+    EXPECT_EQ(c.domain, "interior");
     EXPECT_EQ(c.outputs, std::vector<std::string>{"vtk"});
 }
 
@@ -128,4 +130,53 @@ TEST(CaseFile, MissingFileIsNamed) {
         EXPECT_NE(std::string(e.what()).find("/nonexistent/case.json: cannot open case file"),
                   std::string::npos);
     }
+}
+
+TEST(CaseFile, ExteriorDomainWithFarField) {
+    const Case c = parse_case(R"({"geometry": {"sphere": {"radius": 1}}, "domain": "exterior",
+      "far_field": {"shape": "box", "size": 12}, "grid": {"cell_size": 0.1, "wall_cells": 30}})",
+                              "case.json");
+    EXPECT_EQ(c.domain, "exterior");
+    EXPECT_EQ(c.far_field.shape, "box");
+    EXPECT_DOUBLE_EQ(c.far_field.size, 12);
+    EXPECT_DOUBLE_EQ(c.grid.cell_size, 0.1);
+}
+
+TEST(CaseFile, FarFieldNeedsAnExteriorDomain) {
+    const std::string e =
+        error_of(R"({"geometry": {"sphere": {"radius": 1}}, "far_field": {"size": 10}})");
+    EXPECT_NE(e.find("far_field"), std::string::npos) << e;
+    EXPECT_NE(e.find("\"domain\": \"exterior\""), std::string::npos) << e;
+    EXPECT_NE(error_of(R"({"geometry": {"sphere": {"radius": 1}}, "domain": "outside"})")
+                  .find("domain"),
+              std::string::npos);
+    EXPECT_NE(error_of(R"({"geometry": {"sphere": {"radius": 1}}, "domain": "exterior",
+                           "grid": {"topology": "single-block"}})")
+                  .find("grid.topology"),
+              std::string::npos);
+}
+
+TEST(CaseFile, CellSizeAndCellsPerEdgeExcludeEachOther) {
+    const std::string e = error_of(
+        R"({"geometry": {"sphere": {"radius": 1}}, "grid": {"cells_per_edge": 8, "cell_size": 0.1}})");
+    EXPECT_NE(e.find("grid.cell_size"), std::string::npos) << e;
+}
+
+// White's flat-plate estimate, worked by hand: air (rho 1.225, mu 1.789e-5) at 10 m/s over
+// 1 m: Re = 684 740, Cf = 0.026 / Re^(1/7) = 3.813e-3, u_tau = 0.4367 m/s, y(y+ = 1) = 3.344e-5 m.
+TEST(CaseFile, FirstHeightFromYPlus) {
+    EXPECT_NEAR(first_height_from_y_plus(1, 684740, 10, 1.225, 1.789e-5), 3.344e-5, 0.005e-5);
+    const Case c = parse_case(R"({"geometry": {"sphere": {"radius": 1}},
+      "boundary_layer": {"y_plus": 1, "velocity": 10, "density": 1.225, "viscosity": 1.789e-5,
+                         "length": 1, "growth_ratio": 1.2, "layers": 5}})",
+                              "case.json");
+    ASSERT_TRUE(c.boundary_layer);
+    EXPECT_NEAR(c.boundary_layer->reynolds, 684740, 1);
+    EXPECT_NEAR(c.boundary_layer->first_height, 3.344e-5, 0.005e-5);
+    const std::string both = error_of(R"({"geometry": {"sphere": {"radius": 1}},
+      "boundary_layer": {"y_plus": 1, "first_height": 0.01, "layers": 3}})");
+    EXPECT_NE(both.find("either first_height or y_plus"), std::string::npos) << both;
+    const std::string missing = error_of(R"({"geometry": {"sphere": {"radius": 1}},
+      "boundary_layer": {"y_plus": 1, "velocity": 10, "density": 1.2, "viscosity": 1e-5, "layers": 3}})");
+    EXPECT_NE(missing.find("boundary_layer.length"), std::string::npos) << missing;
 }

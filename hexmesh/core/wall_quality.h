@@ -1,0 +1,45 @@
+// Boundary-layer and surface-fidelity metrics of a grid's wall (DESIGN §8), as plain data.
+#pragma once
+
+#include <optional>
+
+#include "hexmesh/core/types.h"
+
+namespace hexmesh {
+
+// Measured along the wall-normal lines of the grid (volume/wall_metrics.h): one line per
+// node of every block face whose patch is "wall", going into the block. Lengths are in
+// geometry units, fractions in [0, 1]. A target of 0 means "no law given": its fraction is
+// then 0 and means nothing.
+struct WallQuality {
+    Id wall_cells = 0;  // cells with a face on a wall patch, counted once per block face
+
+    // First-layer thickness of a wall cell: mean over its 4 wall nodes of the first edge of
+    // the line projected on the unit wall normal pointing into the grid (> 0 when valid).
+    double first_layer_min = 0;
+    double first_layer_mean = 0;
+    double first_layer_max = 0;
+    double first_layer_target = 0;             // the law's first height
+    double first_layer_within_10_percent = 0;  // fraction of wall cells within 10 % of target
+
+    // Growth ratio spacing(m+1) / spacing(m), spacing(m) = |x(m+1) - x(m)| along a line, over the
+    // boundary-layer edges (m = 0 .. layers-2), or over the whole line without a law.
+    Id growth_ratios = 0;  // number of ratios measured; the statistics are 0 when none
+    double growth_ratio_min = 0;
+    double growth_ratio_mean = 0;
+    double growth_ratio_max = 0;
+    double growth_ratio_target = 0;            // the law's growth ratio
+    double growth_ratio_within_5_percent = 0;  // fraction of ratios within 5 % of target
+
+    // Angle between the first edge of each line and the wall normal, degrees (0 = ideal).
+    double orthogonality_max_deg = 0;
+    double orthogonality_mean_deg = 0;
+
+    // For grids of a surface file: the two one-sided distances (grid wall nodes to the
+    // surface, surface samples to the grid's wall faces) and their maximum.
+    std::optional<double> hausdorff;
+    std::optional<double> grid_to_surface;
+    std::optional<double> surface_to_grid;
+};
+
+}  // namespace hexmesh

@@ -1,0 +1,94 @@
+#include "hexmesh/pipeline/optimize_grid.h"
+
+#include <tbb/parallel_for.h>
+
+#include "hexmesh/core/reference_hex.h"
+#include "surface/implicit_features.h"
+#include "surface/projection.h"
+#include "volume/wall_extrusion.h"
+
+namespace hexmesh {
+namespace {
+
+// Axis (0 = i, 1 = j, 2 = k) of the edge between two nodes of the reference hex.
+constexpr int edge_axis(int a, int b) {
+    constexpr int x[8] = {0, 1, 1, 0, 0, 1, 1, 0}, y[8] = {0, 0, 1, 1, 0, 0, 1, 1};
+    return x[a] != x[b] ? 0 : y[a] != y[b] ? 1 : 2;
+}
+
+// Target of corner tet c of a cell whose edges along i, j, k have the given lengths: the
+// right-angle corner with the tet's three edges in the tet's column order.
+untangle::TetTarget corner_target(int c, const Vec3& lengths) {
+    const auto& t = hex_corner_tets[c];
+    return untangle::box_corner_target(Vec3(lengths[edge_axis(t[0], t[1])],
+                                            lengths[edge_axis(t[0], t[2])],
+                                            lengths[edge_axis(t[0], t[3])]));
+}
+
+// Mean length of the 4 edges of the cell along each of i, j, k.
+Vec3 edge_lengths(const std::vector<Vec3>& points, const std::array<Id, 8>& nodes) {
+    Vec3 sum = Vec3::Zero();
+    for (const auto& e : hex_edges)
+        sum[edge_axis(e[0], e[1])] += (points[nodes[e[0]]] - points[nodes[e[1]]]).norm();
+    return sum / 4;
+}
+
+untangle::Problem make_problem(const BlockGrid& grid, const ImplicitFunction& body) {
+    untangle::Problem p;
+    p.points = grid.points;
+    p.kinds = grid.kinds;
+    const Id cells = grid.num_cells();
+    p.tets.reserve(8 * cells);
+    p.targets.reserve(8 * cells);
+    double total = 0;
+    for (const Block& block : grid.blocks)
+        for_each_cell(block, [&](int, int, int, const std::array<Id, 8>& nodes) {
+            const Vec3 lengths = edge_lengths(grid.points, nodes);
+            total += lengths.sum();
+            for (int c = 0; c < 8; ++c) {
+                const auto& t = hex_corner_tets[c];
+                p.tets.push_back({nodes[t[0]], nodes[t[1]], nodes[t[2]], nodes[t[3]]});
+                p.targets.push_back(corner_target(c, lengths));
+            }
+        });
+    p.length_scale = cells > 0 ? total / (3.0 * double(cells)) : 1.0;
+    const double h = p.length_scale;
+    p.surface_normal = [&body](Id, const Vec3& x) { return body.gradient(x); };
+    p.project_to_surface = [&body, h](Id, const Vec3& x) {
+        ProjectionOptions o;
+        o.tolerance = 1e-12;
+        return project_to_surface(body, x, h, o).point;
+    };
+    p.edge_tangent = [&body, h](Id, const Vec3& x) { return crease_tangent(body, x, 1e-3 * h); };
+    p.project_to_edge = [&body, h](Id, const Vec3& x) { return project_to_crease(body, x, h); };
+    return p;
+}
+
+}  // namespace
+
+GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& body,
+                                     const GridOptimizationOptions& options) {
+    untangle::Problem problem = make_problem(grid, body);
+    GridOptimizationResult result;
+    for (VertexKind k : problem.kinds) {
+        result.slip_nodes += k == VertexKind::slip;
+        result.feature_nodes += k == VertexKind::feature_edge;
+        result.corner_nodes += k == VertexKind::corner;
+    }
+    result.solve = untangle::untangle_and_optimize(problem, options.untangle);
+    grid.points = problem.points;
+    const std::vector<Vec3> joint = problem.points;
+    if (options.wall_layers.layers > 0) {
+        const std::vector<bool> placed = extrude_wall_layers(grid, body, options.wall_layers);
+        problem.points = grid.points;
+        for (size_t v = 0; v < placed.size(); ++v)
+            if (placed[v]) problem.kinds[v] = VertexKind::fixed;
+        result.layers_held = untangle::untangle_and_optimize(problem, options.untangle);
+        result.layers_laid = result.layers_held.inverted_after == 0;
+        if (result.layers_laid) grid.points = problem.points;
+        else grid.points = joint;  // the laid layers cross the rest of the grid: keep the joint result
+    }
+    return result;
+}
+
+}  // namespace hexmesh

@@ -1,0 +1,41 @@
+// Joint untangling and optimization of a block grid on its body: the variational step of `run`.
+#pragma once
+
+#include "hexmesh/core/block_grid.h"
+#include "hexmesh/core/implicit_function.h"
+#include "untangle/untangle.h"
+#include "volume/stretching.h"
+
+namespace hexmesh {
+
+struct GridOptimizationOptions {
+    untangle::UntangleOptions untangle;  // solvers per phase, theta, iteration budgets, log
+    // The boundary layer the grid must keep. With layers > 0, after the joint optimization the
+    // layer nodes are laid again along the optimized wall's normals (volume/wall_extrusion.h)
+    // and the rest of the grid is optimized once more around them, wall and layers held (kept
+    // only if every cell is then valid).
+    WallLayers wall_layers;
+};
+
+struct GridOptimizationResult {
+    untangle::UntangleResult solve;       // the joint optimization
+    untangle::UntangleResult layers_held;  // the pass after the layers were laid again
+    // Whether the grid keeps the laid layers: false when that pass could not make every cell
+    // valid, and the joint optimization's grid was kept instead.
+    bool layers_laid = false;
+    Id slip_nodes = 0, feature_nodes = 0, corner_nodes = 0;
+};
+
+// Splits every hex of `grid` into its 8 corner tets and minimizes the functional of DESIGN §4
+// over the grid's points (updated in place). Each cell's target is the box of its own initial
+// edge lengths along i, j and k (mean of the 4 parallel edges), so the boundary-layer cells the
+// grid was built with (thin in the wall-normal direction) stay thin while their angles are
+// driven towards 90 degrees. Nodes move according to grid.kinds: slip nodes slide on
+// u = 0 of `body` (tangent plane of grad u, then the projection V), feature_edge nodes slide
+// along the body's crease through them (surface/implicit_features.h), corner and fixed
+// nodes stay.
+// Never returns a grid worse than its input (fewer inverted corner tets, then lower energy).
+GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& body,
+                                     const GridOptimizationOptions& options);
+
+}  // namespace hexmesh

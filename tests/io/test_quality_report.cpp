@@ -1,0 +1,160 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "io/quality_report.h"
+
+using namespace hexmesh;
+
+namespace {
+
+GridReport plain_report() {
+    GridReport r;
+    r.quality.cells = 4056;
+    r.quality.min_scaled_jacobian = 0.61;
+    r.max_surface_distance = 1e-13;
+    r.length_scale = 0.0962;
+    return r;
+}
+
+WallQuality wall_quality() {
+    WallQuality w;
+    w.wall_cells = 864;
+    w.first_layer_min = 0.0099;
+    w.first_layer_mean = 0.01;
+    w.first_layer_max = 0.0101;
+    w.first_layer_target = 0.01;
+    w.first_layer_within_10_percent = 0.75;
+    w.growth_ratios = 2592;
+    w.growth_ratio_min = 1.19;
+    w.growth_ratio_mean = 1.2;
+    w.growth_ratio_max = 1.21;
+    w.growth_ratio_target = 1.2;
+    w.growth_ratio_within_5_percent = 1.0;
+    w.orthogonality_max_deg = 3.5;
+    w.orthogonality_mean_deg = 0.25;
+    w.hausdorff = 0.004;
+    w.grid_to_surface = 0.003;
+    w.surface_to_grid = 0.004;
+    return w;
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+    std::vector<std::string> lines;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+    return lines;
+}
+
+// The line that starts with "  " + name, or "" when there is none.
+std::string line_named(const std::string& table, const std::string& name) {
+    for (const std::string& line : lines_of(table))
+        if (line.rfind("  " + name, 0) == 0) return line;
+    return "";
+}
+
+// Where the first value of a row ends (column counted from 0): values hold no two spaces in
+// a row and are separated by at least two.
+size_t first_value_end(const std::string& line, const std::string& name) {
+    const size_t start = line.find_first_not_of(' ', 2 + name.size());
+    return std::min(line.find("  ", start), line.size());
+}
+
+}  // namespace
+
+TEST(QualityReport, WithoutWallTheTableAndJsonAreAsBefore) {
+    const GridReport r = plain_report();
+    const std::string table = format_quality_table(r);
+    EXPECT_NE(table.find("  inverted corner tets                       0\n"), std::string::npos)
+        << table;
+    EXPECT_NE(table.find("  cells                                   4056\n"), std::string::npos);
+    EXPECT_EQ(table.find("first-layer thickness"), std::string::npos);
+    EXPECT_EQ(table.find("Hausdorff"), std::string::npos);
+    EXPECT_EQ(table.find("time per phase"), std::string::npos);
+    EXPECT_EQ(lines_of(table).size(), 12u);
+
+    const auto j = nlohmann::json::parse(quality_json(r));
+    EXPECT_EQ(j.at("cells").get<long>(), 4056);
+    EXPECT_DOUBLE_EQ(j.at("length_scale_h").get<double>(), 0.0962);
+    EXPECT_FALSE(j.contains("wall"));
+    EXPECT_FALSE(j.contains("phases"));
+}
+
+TEST(QualityReport, WallRowsAreAlignedWithTheOthers) {
+    GridReport r = plain_report();
+    r.wall = wall_quality();
+    r.phase_seconds = {{"geometry", 0.012}, {"grid", 1.5}};
+    const std::string table = format_quality_table(r);
+    // The existing rows are unchanged and come first.
+    EXPECT_EQ(table.rfind(format_quality_table(plain_report()), 0), 0u) << table;
+
+    const std::vector<std::pair<std::string, std::string>> rows = {
+        {"wall cells", "864"},
+        {"first-layer thickness min/mean/max", "0.0099       0.01     0.0101"},
+        {"  target, within 10 %", "0.01     75.0 %"},
+        {"growth ratio min/mean/max", "1.19        1.2       1.21"},
+        {"  target, within 5 %", "1.2    100.0 %"},
+        {"wall orthogonality max/mean (deg)", "3.50       0.25"},
+        {"Hausdorff distance to surface", "0.004"},
+        {"  geometry", "0.01"},
+        {"  grid", "1.50"},
+    };
+    const size_t column = line_named(table, "cells").size();  // where values end: 46
+    EXPECT_EQ(column, 46u);
+    for (const auto& [name, values] : rows) {
+        const std::string line = line_named(table, name);
+        ASSERT_FALSE(line.empty()) << name << "\n" << table;
+        EXPECT_EQ(line.substr(line.size() - values.size()), values) << line;
+        EXPECT_EQ(first_value_end(line, name), column) << line;
+    }
+    EXPECT_NE(table.find("\n  time per phase (s)\n    geometry"), std::string::npos) << table;
+}
+
+TEST(QualityReport, UnknownTargetsShowAsDashAndNull) {
+    GridReport r = plain_report();
+    WallQuality w = wall_quality();
+    w.first_layer_target = w.growth_ratio_target = 0;
+    w.hausdorff.reset();
+    r.wall = w;
+    const std::string table = format_quality_table(r);
+    const std::string target = line_named(table, "  target, within 10 %");
+    EXPECT_EQ(target.substr(target.size() - 12), "-" + std::string(10, ' ') + "-") << target;
+    EXPECT_EQ(first_value_end(target, "  target, within 10 %"), 46u) << target;
+    EXPECT_EQ(table.find("Hausdorff"), std::string::npos);
+
+    const auto j = nlohmann::json::parse(quality_json(r));
+    EXPECT_TRUE(j.at("wall").at("first_layer_thickness").at("target").is_null());
+    EXPECT_TRUE(j.at("wall").at("growth_ratio").at("fraction_within_5_percent").is_null());
+    EXPECT_FALSE(j.at("wall").contains("hausdorff_distance"));
+}
+
+TEST(QualityReport, JsonHoldsTheWallAndPhases) {
+    GridReport r = plain_report();
+    r.wall = wall_quality();
+    r.phase_seconds = {{"geometry", 0.012}, {"grid", 1.5}};
+    const auto j = nlohmann::json::parse(quality_json(r));
+    EXPECT_EQ(j.at("cells").get<long>(), 4056);  // existing keys stay
+    const auto& w = j.at("wall");
+    EXPECT_EQ(w.at("cells").get<long>(), 864);
+    EXPECT_DOUBLE_EQ(w.at("first_layer_thickness").at("min").get<double>(), 0.0099);
+    EXPECT_DOUBLE_EQ(w.at("first_layer_thickness").at("mean").get<double>(), 0.01);
+    EXPECT_DOUBLE_EQ(w.at("first_layer_thickness").at("max").get<double>(), 0.0101);
+    EXPECT_DOUBLE_EQ(w.at("first_layer_thickness").at("target").get<double>(), 0.01);
+    EXPECT_DOUBLE_EQ(w.at("first_layer_thickness").at("fraction_within_10_percent").get<double>(),
+                     0.75);
+    EXPECT_EQ(w.at("growth_ratio").at("samples").get<long>(), 2592);
+    EXPECT_DOUBLE_EQ(w.at("growth_ratio").at("min").get<double>(), 1.19);
+    EXPECT_DOUBLE_EQ(w.at("growth_ratio").at("target").get<double>(), 1.2);
+    EXPECT_DOUBLE_EQ(w.at("growth_ratio").at("fraction_within_5_percent").get<double>(), 1.0);
+    EXPECT_DOUBLE_EQ(w.at("orthogonality_deg").at("max").get<double>(), 3.5);
+    EXPECT_DOUBLE_EQ(w.at("orthogonality_deg").at("mean").get<double>(), 0.25);
+    EXPECT_DOUBLE_EQ(w.at("hausdorff_distance").get<double>(), 0.004);
+    EXPECT_DOUBLE_EQ(w.at("grid_to_surface_distance").get<double>(), 0.003);
+    EXPECT_DOUBLE_EQ(w.at("surface_to_grid_distance").get<double>(), 0.004);
+    EXPECT_DOUBLE_EQ(j.at("phases").at("geometry").get<double>(), 0.012);
+    EXPECT_DOUBLE_EQ(j.at("phases").at("grid").get<double>(), 1.5);
+}

@@ -1,0 +1,336 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "grid_checks.h"
+#include "hexmesh/core/quality.h"
+#include "surface/analytic.h"
+#include "volume/o_grid.h"
+#include "volume/o_h_grid.h"
+#include "volume/surface_placement.h"
+
+using namespace hexmesh;
+
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+
+// A sphere pushed in by a smooth bump: u = |x - c| - radius (1 - depth bump(x^)), x^ the
+// direction from c. Dent: bump = exp(-(1 - x^.axis) / width), a pit around `axis`.
+// Groove: bump = exp(-(x^.axis)^2 / width), a channel along the great circle normal to
+// `axis`. Star-shaped around c (depth < 1), concave in the pit or channel.
+class DentedSphere : public ImplicitFunction {
+public:
+    enum Kind { dent, groove };
+    DentedSphere(const Vec3& c, double radius, const Vec3& axis, double depth, double width,
+                 Kind kind = dent)
+        : c_(c),
+          radius_(radius),
+          axis_(axis.normalized()),
+          depth_(depth),
+          width_(width),
+          kind_(kind) {}
+
+    double value(const Vec3& p) const override {
+        const Vec3 x = p - c_;
+        return x.norm() - radius_ * (1 - depth_ * bump(x.normalized()));
+    }
+    Vec3 gradient(const Vec3& p) const override {
+        const Vec3 x = p - c_;
+        const double r = x.norm();
+        const Vec3 e = x / r;
+        const double a = e.dot(axis_);
+        // gradient of bump over the direction, then d(direction)/dx = (I - e e^T) / r
+        const Vec3 db = kind_ == dent ? Vec3(bump(e) / width_ * axis_)
+                                      : Vec3(-2 * a / width_ * bump(e) * axis_);
+        return e + radius_ * depth_ * (db - e.dot(db) * e) / r;
+    }
+    Box3 bounds() const override {
+        return {c_ - Vec3::Constant(radius_), c_ + Vec3::Constant(radius_)};
+    }
+
+private:
+    double bump(const Vec3& e) const {
+        const double a = e.dot(axis_);
+        return std::exp(kind_ == dent ? -(1 - a) / width_ : -a * a / width_);
+    }
+
+    Vec3 c_;
+    double radius_;
+    Vec3 axis_;
+    double depth_, width_;
+    Kind kind_;
+};
+
+// Near-wall facts of the wall-normal lines (nodes k = 0, 1, ... of every block).
+struct WallLines {
+    double min_first = 1e300, max_first = 0;    // |x1 - x0|
+    double min_growth = 1e300, max_growth = 0;  // |x2 - x1| / |x1 - x0|
+    double max_law_error = 0;  // max over the law's layers m of ||x(m+1) - x(m)| / h q^m - 1|
+    double max_angle_deg = 0;  // angle of x1 - x0 with grad u at x0
+    double max_abs_u = 0;      // |u| at the wall nodes
+};
+
+WallLines measure_wall_lines(const BlockGrid& grid, const ImplicitFunction& body,
+                             const WallLayers& law) {
+    WallLines w;
+    for (const Block& b : grid.blocks)
+        for (int j = 0; j < b.nodes.nj; ++j)
+            for (int i = 0; i < b.nodes.ni; ++i) {
+                auto x = [&](int k) { return grid.points[b.node(i, j, k)]; };
+                const double first = (x(1) - x(0)).norm();
+                const double growth = (x(2) - x(1)).norm() / first;
+                w.min_first = std::min(w.min_first, first);
+                w.max_first = std::max(w.max_first, first);
+                w.min_growth = std::min(w.min_growth, growth);
+                w.max_growth = std::max(w.max_growth, growth);
+                double height = law.first_height;
+                for (int m = 0; m < law.layers; ++m, height *= law.growth_ratio) {
+                    const double error = std::abs((x(m + 1) - x(m)).norm() / height - 1);
+                    w.max_law_error = std::max(w.max_law_error, error);
+                }
+                // angle between unit vectors a, n: 2 asin(|a - n| / 2), accurate near 0
+                const Vec3 a = (x(1) - x(0)).normalized(), n = body.gradient(x(0)).normalized();
+                w.max_angle_deg =
+                    std::max(w.max_angle_deg, 2 * std::asin((a - n).norm() / 2) * 180 / pi);
+                w.max_abs_u = std::max(w.max_abs_u, std::abs(body.value(x(0))));
+            }
+    return w;
+}
+
+// The configuration of the quality figures: body size ~1, far field 10 away.
+OGridOptions typical_options() {
+    OGridOptions o;
+    o.cells_per_edge = 16;
+    o.layers = 24;
+    o.wall_layers = {0.005, 1.15, 10};
+    o.far_field_size = 10;
+    return o;
+}
+
+// Runs f and expects std::invalid_argument whose message contains `words`.
+template <class F>
+void expect_invalid_argument(F&& f, const std::string& words) {
+    try {
+        f();
+        ADD_FAILURE() << "no exception, expected one mentioning '" << words << "'";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+}
+
+}  // namespace
+
+TEST(OGrid, SixRightHandedBlocksShareTheirInterfaceNodes) {
+    const Sphere sphere(Vec3(0.1, -0.2, 0.3), 0.5);
+    OGridOptions o = typical_options();
+    o.cells_per_edge = 6;
+    o.layers = 14;
+    const BlockGrid grid = make_o_grid(sphere, o);
+    const int n = o.cells_per_edge, nk = o.layers;
+    const Id patch_nodes = 6 * Id(n) * n + 2;  // unique nodes of the 6 patches
+    const char* names[] = {"shell_xmin", "shell_xmax", "shell_ymin",
+                           "shell_ymax", "shell_zmin", "shell_zmax"};
+    ASSERT_EQ(grid.blocks.size(), 6u);
+    for (int b = 0; b < 6; ++b) {
+        const Block& block = grid.blocks[b];
+        EXPECT_EQ(block.name, names[b]);
+        EXPECT_EQ(block.nodes.ni, n + 1);
+        EXPECT_EQ(block.nodes.nj, n + 1);
+        EXPECT_EQ(block.nodes.nk, nk + 1);
+        EXPECT_EQ(block.face_patch[kmin], "wall");
+        EXPECT_EQ(block.face_patch[kmax], "farfield");
+        for (BlockFace f : {imin, imax, jmin, jmax}) EXPECT_EQ(block.face_patch[f], "");
+        for (int j = 0; j <= n; ++j)
+            for (int i = 0; i <= n; ++i) {
+                EXPECT_EQ(grid.kinds[block.node(i, j, 0)], VertexKind::slip);
+                EXPECT_EQ(grid.kinds[block.node(i, j, nk / 2)], VertexKind::interior);
+                EXPECT_EQ(grid.kinds[block.node(i, j, nk)], VertexKind::fixed);
+                EXPECT_EQ(block.node(i, j, nk) - block.node(i, j, 0), nk * patch_nodes);
+            }
+    }
+    EXPECT_EQ(Id(grid.points.size()), patch_nodes * (nk + 1));
+    EXPECT_EQ(std::count(grid.kinds.begin(), grid.kinds.end(), VertexKind::slip), patch_nodes);
+    EXPECT_EQ(std::count(grid.kinds.begin(), grid.kinds.end(), VertexKind::fixed), patch_nodes);
+    EXPECT_EQ(grid.num_cells(), 6 * Id(n) * n * nk);
+    // Conforming interfaces: the faces used once are the wall and the far field, n^2 per block.
+    const auto faces = test_support::count_faces(to_hex_mesh(grid));
+    EXPECT_EQ(faces.boundary, 2 * 6 * Id(n) * n);
+    EXPECT_EQ(faces.over_shared, 0);
+    // Right-handed: every corner tet of every cell positive (exact predicate).
+    EXPECT_EQ(count_inversions(to_hex_mesh(grid)).corner_tets, 0);
+}
+
+TEST(OGrid, SphereWallAndFarFieldNodesLieOnTheirSurfaces) {
+    const Vec3 c(0.1, -0.2, 0.3);
+    const Sphere sphere(c, 0.5);
+    const OGridOptions o = typical_options();
+    const BlockGrid grid = make_o_grid(sphere, o);
+    const double h = grid_length_scale(sphere, o.cells_per_edge);
+    for (size_t v = 0; v < grid.points.size(); ++v) {
+        const double r = (grid.points[v] - c).norm();
+        if (grid.kinds[v] == VertexKind::slip)
+            EXPECT_LT(std::abs(sphere.value(grid.points[v])), 1e-8 * h);
+        else if (grid.kinds[v] == VertexKind::fixed)
+            EXPECT_NEAR(r, 10.0, 1e-12 * 10);
+        else
+            EXPECT_TRUE(r > 0.5 && r < 10) << r;
+    }
+}
+
+TEST(OGrid, SphereLinesFollowTheLawAndLeaveTheWallOrthogonally) {
+    const Sphere sphere(Vec3(0.1, -0.2, 0.3), 0.5);
+    const OGridOptions o = typical_options();
+    const WallLayers& law = o.wall_layers;
+    const WallLines w = measure_wall_lines(make_o_grid(sphere, o), sphere, law);
+    EXPECT_NEAR(w.min_first, law.first_height, 1e-9 * law.first_height);
+    EXPECT_NEAR(w.max_first, law.first_height, 1e-9 * law.first_height);
+    EXPECT_NEAR(w.min_growth, law.growth_ratio, 1e-9);
+    EXPECT_NEAR(w.max_growth, law.growth_ratio, 1e-9);
+    EXPECT_LT(w.max_law_error, 1e-9);  // all 10 layers
+    EXPECT_LT(w.max_angle_deg, 0.5);
+}
+
+TEST(OGrid, SphereShellIsValid) {
+    const Sphere sphere(Vec3::Zero(), 0.5);
+    const QualityReport q = measure_quality(to_hex_mesh(make_o_grid(sphere, typical_options())));
+    EXPECT_EQ(q.inverted_corner_tets, 0);
+    EXPECT_GT(q.min_scaled_jacobian, 0.8);  // the patch corners: 3 cells at ~120 degrees
+}
+
+TEST(OGrid, EllipsoidShellIsValidAndOrthogonalAtTheWall) {
+    const Ellipsoid body(Vec3(0.1, 0, 0), Vec3(0.6, 0.4, 0.2));
+    const OGridOptions o = typical_options();
+    const BlockGrid grid = make_o_grid(body, o);
+    const QualityReport q = measure_quality(to_hex_mesh(grid));
+    EXPECT_EQ(q.inverted_corner_tets, 0);
+    EXPECT_GT(q.min_scaled_jacobian, 0.4);
+    const WallLines w = measure_wall_lines(grid, body, o.wall_layers);
+    EXPECT_LT(w.max_abs_u, 1e-8 * grid_length_scale(body, o.cells_per_edge));
+    // Bent lines too: the cell heights of the boundary layer are the law's.
+    EXPECT_NEAR(w.min_first, 0.005, 1e-9 * 0.005);
+    EXPECT_NEAR(w.max_first, 0.005, 1e-9 * 0.005);
+    EXPECT_LT(w.max_law_error, 1e-9);
+    EXPECT_LT(w.max_angle_deg, 0.5);
+}
+
+TEST(OGrid, DentedBodyShellIsValidAndOrthogonalAtTheWall) {
+    const DentedSphere body(Vec3::Zero(), 0.5, Vec3(1, 0.3, 0.2), 0.3, 0.15);
+    // The dent is concave: the chord between two of its points 53 degrees apart passes more
+    // than the boundary layer's first 4 heights outside the body.
+    const Vec3 axis = Vec3(1, 0.3, 0.2).normalized(), side = Vec3(-0.3, 1, 0).normalized();
+    const Vec3 a = place_on_surface(body, Vec3::Zero(), axis + 0.5 * side, 1e-3);
+    const Vec3 b = place_on_surface(body, Vec3::Zero(), axis - 0.5 * side, 1e-3);
+    ASSERT_GT(body.value(0.5 * (a + b)), 0.02);
+
+    const OGridOptions o = typical_options();
+    const BlockGrid grid = make_o_grid(body, o);
+    const QualityReport q = measure_quality(to_hex_mesh(grid));
+    EXPECT_EQ(q.inverted_corner_tets, 0);
+    EXPECT_GT(q.min_scaled_jacobian, 0.6);
+    const WallLines w = measure_wall_lines(grid, body, o.wall_layers);
+    EXPECT_LT(w.max_abs_u, 1e-8 * grid_length_scale(body, o.cells_per_edge));
+    // Bent lines too: the cell heights of the boundary layer are the law's.
+    EXPECT_NEAR(w.min_first, 0.005, 1e-9 * 0.005);
+    EXPECT_NEAR(w.max_first, 0.005, 1e-9 * 0.005);
+    EXPECT_LT(w.max_law_error, 1e-9);
+    EXPECT_LT(w.max_angle_deg, 0.5);
+}
+
+TEST(OGrid, GroovedBodyShellIsValid) {
+    // A narrow channel running diagonally to the patch lattice: normals converge within
+    // 0.05 of the wall, well inside the far field's distance.
+    const DentedSphere body(Vec3::Zero(), 0.5, Vec3(1, 1, 1), 0.2, 0.05, DentedSphere::groove);
+    for (int n : {8, 16, 32}) {
+        OGridOptions o = typical_options();
+        o.cells_per_edge = n;
+        const BlockGrid grid = make_o_grid(body, o);
+        const QualityReport q = measure_quality(to_hex_mesh(grid));
+        EXPECT_EQ(q.inverted_corner_tets, 0) << "n = " << n;
+        EXPECT_GT(q.min_scaled_jacobian, 0.1) << "n = " << n;
+        const WallLines w = measure_wall_lines(grid, body, o.wall_layers);
+        EXPECT_LT(w.max_law_error, 1e-9) << "n = " << n;
+        EXPECT_LT(w.max_angle_deg, 0.5) << "n = " << n;
+    }
+}
+
+TEST(OGrid, BoxFarFieldNodesLieOnTheBoxFaces) {
+    const Vec3 c(1, 2, 3);
+    const Ellipsoid body(c, Vec3(0.6, 0.4, 0.2));
+    OGridOptions o = typical_options();
+    o.far_field = FarFieldShape::box;
+    o.far_field_size = 2;
+    const BlockGrid grid = make_o_grid(body, o);
+    const int n = o.cells_per_edge, nk = o.layers;
+    for (size_t b = 0; b < grid.blocks.size(); ++b) {
+        // Block b's far-field face lies on the box face of cube patch b.
+        const int axis = int(b) / 2;
+        const double side = b % 2 ? 2.0 : -2.0;
+        for (int j = 0; j <= n; ++j)
+            for (int i = 0; i <= n; ++i) {
+                const Vec3 x = grid.points[grid.blocks[b].node(i, j, nk)] - c;
+                EXPECT_EQ(x[axis], side);
+                EXPECT_LE(x.cwiseAbs().maxCoeff(), 2.0);
+            }
+    }
+    const QualityReport q = measure_quality(to_hex_mesh(grid));
+    EXPECT_EQ(q.inverted_corner_tets, 0);
+    EXPECT_GT(q.min_scaled_jacobian, 0.25);
+}
+
+TEST(OGrid, FarFieldSphereIsCentredOnTheGivenCentre) {
+    const Sphere sphere(Vec3::Zero(), 0.5);
+    OGridOptions o = typical_options();
+    o.cells_per_edge = 6;
+    o.centre = Vec3(0.2, -0.1, 0.05);
+    const BlockGrid grid = make_o_grid(sphere, o);
+    for (size_t v = 0; v < grid.points.size(); ++v)
+        if (grid.kinds[v] == VertexKind::fixed) {
+            EXPECT_NEAR((grid.points[v] - *o.centre).norm(), 10.0, 1e-12 * 10);
+        }
+    EXPECT_EQ(count_inversions(to_hex_mesh(grid)).corner_tets, 0);
+}
+
+TEST(OGrid, RefusesBadOptions) {
+    const Sphere sphere(Vec3::Zero(), 0.5);  // bounds corners at 0.866 from the centre
+    auto with = [](auto change) {
+        OGridOptions o = typical_options();
+        change(o);
+        return o;
+    };
+    expect_invalid_argument(
+        [&] { make_o_grid(sphere, with([](OGridOptions& o) { o.far_field_size = 0.8; })); },
+        "far-field sphere radius 0.8 does not enclose the body's bounds");
+    expect_invalid_argument(
+        [&] {
+            make_o_grid(sphere, with([](OGridOptions& o) {
+                            o.far_field = FarFieldShape::box;
+                            o.far_field_size = 0.55;
+                        }));
+        },
+        "far-field box half-size 0.55 does not enclose the body's bounds");
+    expect_invalid_argument(
+        [&] { make_o_grid(sphere, with([](OGridOptions& o) { o.cells_per_edge = 1; })); },
+        "cells_per_edge");
+    expect_invalid_argument(
+        [&] { make_o_grid(sphere, with([](OGridOptions& o) { o.layers = 0; })); }, "layers");
+    expect_invalid_argument(
+        [&] { make_o_grid(sphere, with([](OGridOptions& o) { o.layers = 10; })); },
+        "wall_layers has 10 layers but the lines have only 10 cells");
+    expect_invalid_argument(
+        [&] {
+            make_o_grid(sphere, with([](OGridOptions& o) { o.wall_layers = {2.0, 1.2, 10}; }));
+        },
+        "does not fit a wall-normal line");
+    expect_invalid_argument(
+        [&] {
+            make_o_grid(sphere, with([](OGridOptions& o) { o.wall_layers = {0.0, 1.2, 10}; }));
+        },
+        "first height");
+    const Torus torus(Vec3::Zero(), 1.0, 0.3);  // its bounds' centre is in the hole
+    expect_invalid_argument([&] { make_o_grid(torus, typical_options()); },
+                            "is not inside the body");
+}

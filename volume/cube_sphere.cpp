@@ -1,0 +1,37 @@
+#include "volume/cube_sphere.h"
+
+#include <cmath>
+
+namespace hexmesh {
+
+LatticePoint CubeSurfaceLattice::patch_point(const CubePatch& patch, int i, int j) const {
+    LatticePoint p;
+    p[patch.axis] = patch.max_side ? n : 0;
+    p[patch.axis_i] = i;
+    p[patch.axis_j] = j;
+    return p;
+}
+
+CubeSurfaceLattice make_cube_surface_lattice(int n) {
+    CubeSurfaceLattice s;
+    s.n = n;
+    s.lattice = {n + 1, n + 1, n + 1};
+    s.number.assign(s.lattice.count(), -1);
+    for (int c = 0; c <= n; ++c)
+        for (int b = 0; b <= n; ++b)
+            for (int a = 0; a <= n; ++a)
+                if (a == 0 || a == n || b == 0 || b == n || c == 0 || c == n) {
+                    s.number[s.lattice.flat(a, b, c)] = s.size();
+                    s.points.push_back({a, b, c});
+                }
+    return s;
+}
+
+Vec3 cube_sphere_ray(const LatticePoint& p, int n, const Vec3& half) {
+    constexpr double pi = 3.14159265358979323846;
+    Vec3 w;
+    for (int d = 0; d < 3; ++d) w[d] = half[d] * std::tan(pi / 4 * (2.0 * p[d] / n - 1));
+    return w;
+}
+
+}  // namespace hexmesh

@@ -1,0 +1,80 @@
+#include "volume/feature_snapping.h"
+
+#include <limits>
+#include <map>
+
+#include "hexmesh/core/reference_hex.h"
+#include "surface/implicit_features.h"
+
+namespace hexmesh {
+namespace {
+
+// Shortest edge between two slip nodes at each slip node (+inf elsewhere).
+std::vector<double> shortest_wall_edge(const BlockGrid& grid) {
+    std::vector<double> shortest(grid.points.size(), std::numeric_limits<double>::infinity());
+    for (const Block& block : grid.blocks)
+        for_each_cell(block, [&](int, int, int, const std::array<Id, 8>& nodes) {
+            for (const auto& e : hex_edges) {
+                const Id a = nodes[e[0]], b = nodes[e[1]];
+                if (grid.kinds[a] != VertexKind::slip || grid.kinds[b] != VertexKind::slip) continue;
+                const double length = (grid.points[a] - grid.points[b]).norm();
+                shortest[a] = std::min(shortest[a], length);
+                shortest[b] = std::min(shortest[b], length);
+            }
+        });
+    return shortest;
+}
+
+}  // namespace
+
+FeatureSnapping snap_to_features(BlockGrid& grid, const ImplicitFunction& body, double fraction) {
+    const std::vector<double> shortest = shortest_wall_edge(grid);
+    FeatureSnapping result;
+    // Corners first: each keeps its nearest node, keyed by the rounded corner position.
+    struct Claim {
+        Id node;
+        double distance;
+        Vec3 point;
+    };
+    std::map<std::array<long long, 3>, Claim> corners;
+    std::vector<Id> crease_candidates;
+    for (size_t v = 0; v < grid.points.size(); ++v) {
+        if (grid.kinds[v] != VertexKind::slip) continue;
+        const double h = shortest[v], reach = fraction * h;
+        const Vec3& x = grid.points[v];
+        const FeatureKind kind = classify_surface_point(body, x, reach);
+        if (kind == FeatureKind::smooth) continue;
+        crease_candidates.push_back(Id(v));
+        if (kind != FeatureKind::corner) continue;
+        const Vec3 c = snap_to_corner(body, x, h);
+        if (classify_surface_point(body, c, 1e-6 * h) != FeatureKind::corner) continue;
+        const double d = (c - x).norm();
+        if (d > reach) continue;
+        const std::array<long long, 3> key = {std::llround(c.x() / (1e-3 * h)),
+                                              std::llround(c.y() / (1e-3 * h)),
+                                              std::llround(c.z() / (1e-3 * h))};
+        auto [it, added] = corners.try_emplace(key, Claim{Id(v), d, c});
+        if (!added && d < it->second.distance) it->second = {Id(v), d, c};
+    }
+    std::vector<bool> is_corner(grid.points.size(), false);
+    for (const auto& [key, claim] : corners) {
+        grid.points[claim.node] = claim.point;
+        grid.kinds[claim.node] = VertexKind::corner;
+        is_corner[claim.node] = true;
+        ++result.corner_nodes;
+    }
+    for (Id v : crease_candidates) {
+        if (is_corner[v]) continue;
+        const double h = shortest[v];
+        const Vec3 p = project_to_crease(body, grid.points[v], h);
+        if ((p - grid.points[v]).norm() > fraction * h ||
+            classify_surface_point(body, p, 1e-6 * h) == FeatureKind::smooth)
+            continue;
+        grid.points[v] = p;
+        grid.kinds[v] = VertexKind::feature_edge;
+        ++result.crease_nodes;
+    }
+    return result;
+}
+
+}  // namespace hexmesh

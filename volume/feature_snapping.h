@@ -1,0 +1,23 @@
+// Sharp creases and corners of the body captured by a grid's wall nodes.
+#pragma once
+
+#include "hexmesh/core/block_grid.h"
+#include "hexmesh/core/implicit_function.h"
+
+namespace hexmesh {
+
+struct FeatureSnapping {
+    Id crease_nodes = 0;  // now VertexKind::feature_edge, on a crease
+    Id corner_nodes = 0;  // now VertexKind::corner, on a body corner
+};
+
+// Moves slip nodes of `grid` onto the sharp features of `body` (creases and corners of
+// analytic and CSG pieces, see surface/implicit_features.h) and changes their kind, so the
+// optimizer slides them along the crease or keeps them at the corner. A slip node is taken
+// when a crease passes within `fraction` of its shortest wall edge (0.35: the nearest row of
+// nodes on each side of a crease, never two rows); each body corner takes only its nearest
+// node. A smooth body is left untouched.
+FeatureSnapping snap_to_features(BlockGrid& grid, const ImplicitFunction& body,
+                                 double fraction = 0.35);
+
+}  // namespace hexmesh

@@ -1,0 +1,271 @@
+#include "volume/o_grid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+#include <queue>
+#include <stdexcept>
+#include <string>
+#include <tbb/parallel_for.h>
+
+#include "volume/cube_sphere.h"
+#include "volume/o_h_grid.h"
+#include "volume/surface_placement.h"
+
+namespace hexmesh {
+namespace {
+
+// The far field must keep this fraction of the bounds diagonal between itself and the bounds.
+constexpr double far_field_margin = 0.1;
+
+void check_options(const OGridOptions& o) {
+    if (o.cells_per_edge < 2)
+        throw std::invalid_argument(
+            fmt::format("cells_per_edge is {}: it must be at least 2", o.cells_per_edge));
+    if (o.layers < 1)
+        throw std::invalid_argument(fmt::format("layers is {}: it must be at least 1", o.layers));
+    const WallLayers& law = o.wall_layers;
+    if (law.layers < 0 || (law.layers > 0 && !(law.first_height > 0 && law.growth_ratio > 0)))
+        throw std::invalid_argument(fmt::format(
+            "wall_layers (first height {}, growth ratio {}, {} layers): the number of layers "
+            "must be >= 0, and with layers the first height and growth ratio must be > 0",
+            law.first_height, law.growth_ratio, law.layers));
+    if (law.layers >= o.layers)
+        throw std::invalid_argument(fmt::format(
+            "wall_layers has {} layers but the lines have only {} cells (layers): the boundary "
+            "layer needs at least one cell beyond it to reach the far field; use fewer wall "
+            "layers or more cells",
+            law.layers, o.layers));
+}
+
+// Throws unless the far field encloses the bounds with the margin.
+void check_far_field(const Box3& box, const Vec3& centre, const OGridOptions& o) {
+    double reach = 0;  // distance (sphere) or max-norm distance (box) of the farthest corner
+    for (int c = 0; c < 8; ++c) {
+        const Vec3 corner((c & 1 ? box.hi : box.lo).x(), (c & 2 ? box.hi : box.lo).y(),
+                          (c & 4 ? box.hi : box.lo).z());
+        const Vec3 r = corner - centre;
+        reach = std::max(reach,
+                         o.far_field == FarFieldShape::sphere ? r.norm() : r.cwiseAbs().maxCoeff());
+    }
+    const double needed = reach + far_field_margin * box.diagonal();
+    if (!(o.far_field_size >= needed)) {
+        const bool sphere = o.far_field == FarFieldShape::sphere;
+        throw std::invalid_argument(fmt::format(
+            "far-field {} {} {:.6g} does not enclose the body's bounds with margin: it must "
+            "be at least {:.6g} ({:.6g} from the centre to the farthest bounds corner plus "
+            "{} bounds diagonal)",
+            sphere ? "sphere" : "box", sphere ? "radius" : "half-size", o.far_field_size, needed,
+            reach, far_field_margin));
+    }
+}
+
+// Smooth ramp from 0 to 1 on [0, 1] with zero slope at both ends.
+double smoothstep(double t) {
+    t = std::clamp(t, 0.0, 1.0);
+    return t * t * (3 - 2 * t);
+}
+
+// Lines leaving a concave wall along its normals converge at the focal distance rho. Along
+// x(tau) = w + tau m(tau), m turning from the normal to the straight direction with the ramp
+// b = smoothstep(tau / bend), the normal part shrinks the spacing of neighbouring lines by
+// the factor 1 - tau (1 - b) / rho >= 1 - 0.26 bend / rho: bend = 2 rho keeps half of it.
+constexpr double bend_per_focal_distance = 2.0;
+// How fast the bend length may grow along the wall away from a concave part (length per
+// length): a bounded slope keeps neighbouring lines bending alike.
+constexpr double bend_slope = 0.25;
+
+// A wall-normal line x(tau) = wall + tau m(tau), tau in [0, length] the distance from the
+// wall node, m the unit blend of the wall normal and the straight direction to the far-field
+// node (ramp b = smoothstep(tau / bend)): x(0) = wall, x'(0) = normal, x(length) = far.
+struct WallNormalLine {
+    Vec3 wall, normal, straight;
+    double length, bend;
+
+    Vec3 at(double tau) const {
+        const double b = smoothstep(tau / bend);
+        const Vec3 m = (1 - b) * normal + b * straight;
+        // m vanishes only for a normal pointing straight back to the body: go straight.
+        const double norm = m.norm();
+        return wall + tau * (norm > 1e-6 ? Vec3(m / norm) : straight);
+    }
+};
+
+// The nk+1 nodes of a line: the chord |x(k) - x(k-1)| is a(k) - a(k-1) for every cell but
+// the last, a = wall_distances(arc length of the line, nk, law), so the law holds exactly
+// for the cell heights of the bent line too; the last cell ends on the far-field node and
+// takes up the difference between chords and arc (small: the line bends gently there).
+// The arc length is summed over chords of the line sampled 16 times finer than the nodes.
+void place_nodes(const WallNormalLine& line, int nk, const WallLayers& law, std::vector<Vec3>& x) {
+    constexpr int refine = 16;
+    const std::vector<double> d = wall_distances(line.length, nk, law);
+    double arc = 0;
+    Vec3 previous = line.wall;
+    for (int k = 0; k < nk; ++k)
+        for (int r = 1; r <= refine; ++r) {
+            const Vec3 p = line.at(d[k] + (d[k + 1] - d[k]) * r / refine);
+            arc += (p - previous).norm();
+            previous = p;
+        }
+    const std::vector<double> a = wall_distances(arc, nk, law);
+
+    x.assign(nk + 1, line.wall);
+    double tau = 0;
+    for (int k = 1; k < nk; ++k) {
+        // The first tau beyond the previous node at the wanted chord: bracket, then regula
+        // falsi (Illinois variant), which converges in a few steps on these nearly straight
+        // pieces.
+        const double chord = a[k] - a[k - 1];
+        auto excess = [&](double t) { return (line.at(t) - x[k - 1]).norm() - chord; };
+        double lo = tau, hi = std::min(tau + chord, line.length);
+        double f_lo = -chord, f_hi = excess(hi);
+        while (f_hi < 0 && hi < line.length) {
+            lo = hi, f_lo = f_hi;
+            hi = std::min(tau + 2 * (hi - tau), line.length);
+            f_hi = excess(hi);
+        }
+        double t = hi, f = f_hi, g_lo = f_lo, g_hi = f_hi;  // g: Illinois-scaled f at lo, hi
+        int side = 0;  // which end the last step moved: -1 lo, +1 hi
+        for (int it = 0; it < 100 && std::abs(f) > 1e-14 * chord; ++it) {
+            t = hi - g_hi * (hi - lo) / (g_hi - g_lo);
+            if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
+            f = excess(t);
+            if (f < 0) {
+                lo = t, g_lo = f;
+                if (side == -1) g_hi *= 0.5;
+                side = -1;
+            } else {
+                hi = t, g_hi = f;
+                if (side == 1) g_lo *= 0.5;
+                side = 1;
+            }
+        }
+        tau = t;
+        x[k] = line.at(tau);
+    }
+    x[nk] = line.at(line.length);
+}
+
+// Surface numbers of the surface points next to surface point s: those of the 3x3x3 lattice
+// block around it (edge and diagonal neighbours on its patch and across patch edges).
+std::vector<Id> neighbours(const CubeSurfaceLattice& surface, Id s) {
+    std::vector<Id> out;
+    const LatticePoint p = surface.points[s];
+    for (int dc = -1; dc <= 1; ++dc)
+        for (int db = -1; db <= 1; ++db)
+            for (int da = -1; da <= 1; ++da) {
+                const LatticePoint q{p[0] + da, p[1] + db, p[2] + dc};
+                const bool inside =
+                    std::min({q[0], q[1], q[2]}) >= 0 && std::max({q[0], q[1], q[2]}) <= surface.n;
+                if (!inside || (da == 0 && db == 0 && dc == 0)) continue;
+                const Id t = surface.number_of(q);
+                if (t >= 0) out.push_back(t);
+            }
+    return out;
+}
+
+// Distance from the wall over which each wall-normal line turns from the wall normal to its
+// straight direction: the whole line where the wall is convex; bend_per_focal_distance times
+// the focal distance of the normals where they converge (concave wall, measured between
+// neighbouring surface points: features finer than the lattice are not seen); in between,
+// the smallest value of those plus bend_slope times the distance along the lattice.
+std::vector<double> bend_lengths(const CubeSurfaceLattice& surface, const std::vector<Vec3>& wall,
+                                 const std::vector<Vec3>& normal,
+                                 const std::vector<double>& length) {
+    const Id ns = surface.size();
+    std::vector<double> bend(ns, std::numeric_limits<double>::infinity());
+    std::vector<std::vector<Id>> adj(ns);
+    for (Id s = 0; s < ns; ++s) {
+        adj[s] = neighbours(surface, s);
+        for (Id t : adj[s]) {
+            const Vec3 dw = wall[t] - wall[s];
+            const double converge = -dw.dot(normal[t] - normal[s]);
+            if (converge > 0)  // focal distance dw^2 / converge
+                bend[s] = std::min(bend[s], bend_per_focal_distance * dw.squaredNorm() / converge);
+        }
+    }
+    // Lipschitz envelope by Dijkstra's algorithm over the lattice graph.
+    using Item = std::pair<double, Id>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+    for (Id s = 0; s < ns; ++s) queue.push({bend[s], s});
+    while (!queue.empty()) {
+        const auto [value, s] = queue.top();
+        queue.pop();
+        if (value > bend[s]) continue;
+        for (Id t : adj[s]) {
+            const double candidate = value + bend_slope * (wall[t] - wall[s]).norm();
+            if (candidate < bend[t]) {
+                bend[t] = candidate;
+                queue.push({candidate, t});
+            }
+        }
+    }
+    for (Id s = 0; s < ns; ++s) bend[s] = std::min(bend[s], length[s]);
+    return bend;
+}
+
+}  // namespace
+
+BlockGrid make_o_grid(const ImplicitFunction& body, const OGridOptions& options) {
+    check_options(options);
+    const int n = options.cells_per_edge, nk = options.layers;
+    const Box3 box = body.bounds();
+    const Vec3 centre = options.centre.value_or(box.center());
+    const Vec3 half = 0.5 * box.size();
+    const double h = grid_length_scale(body, n);
+    require_inside(body, centre);
+    check_far_field(box, centre, options);
+
+    const CubeSurfaceLattice surface = make_cube_surface_lattice(n);
+    const Id ns = surface.size();
+    std::vector<Vec3> wall(ns), normal(ns), far(ns);
+    tbb::parallel_for(Id(0), ns, [&](Id s) {
+        const LatticePoint& p = surface.points[s];
+        const Vec3 dir = cube_sphere_ray(p, n, half);
+        wall[s] = place_on_surface(body, centre, dir, h);
+        const Vec3 g = body.gradient(wall[s]);
+        normal[s] = g.norm() > 0 ? Vec3(g.normalized()) : Vec3(dir.normalized());
+        if (options.far_field == FarFieldShape::sphere) {
+            far[s] = centre + options.far_field_size * dir.normalized();
+        } else {
+            const Vec3 q = cube_sphere_ray(p, n, Vec3::Ones());
+            far[s] = centre + options.far_field_size * (q / q.cwiseAbs().maxCoeff());
+        }
+    });
+
+    std::vector<double> length(ns);
+    for (Id s = 0; s < ns; ++s) length[s] = (far[s] - wall[s]).norm();
+    const std::vector<double> bend = bend_lengths(surface, wall, normal, length);
+
+    BlockGrid grid;
+    grid.points.assign((nk + 1) * ns, Vec3::Zero());
+    grid.kinds.assign(grid.points.size(), VertexKind::interior);
+    tbb::parallel_for(Id(0), ns, [&](Id s) {
+        const WallNormalLine line{wall[s], normal[s], (far[s] - wall[s]) / length[s], length[s],
+                                  bend[s]};
+        std::vector<Vec3> x;
+        place_nodes(line, nk, options.wall_layers, x);
+        for (int k = 1; k < nk; ++k) grid.points[k * ns + s] = x[k];
+        grid.points[s] = wall[s];
+        grid.points[nk * ns + s] = far[s];
+        grid.kinds[s] = VertexKind::slip;
+        grid.kinds[nk * ns + s] = VertexKind::fixed;
+    });
+
+    for (const CubePatch& patch : cube_patches) {
+        Block b{std::string("shell_") + patch.side, {n + 1, n + 1, nk + 1}, {}, {}};
+        b.face_patch[kmin] = "wall";
+        b.face_patch[kmax] = "farfield";
+        b.node_ids.resize(b.nodes.count());
+        for (int k = 0; k <= nk; ++k)
+            for (int j = 0; j <= n; ++j)
+                for (int i = 0; i <= n; ++i)
+                    b.node_ids[b.nodes.flat(i, j, k)] =
+                        k * ns + surface.number_of(surface.patch_point(patch, i, j));
+        grid.blocks.push_back(std::move(b));
+    }
+    return grid;
+}
+
+}  // namespace hexmesh

@@ -1,0 +1,57 @@
+// The exterior O-grid: six cube-sphere blocks filling the shell between a body and its far field.
+#pragma once
+
+#include <optional>
+
+#include "hexmesh/core/block_grid.h"
+#include "hexmesh/core/implicit_function.h"
+#include "volume/stretching.h"
+
+namespace hexmesh {
+
+enum class FarFieldShape { sphere, box };
+
+struct OGridOptions {
+    int cells_per_edge = 20;  // n: cells along each edge of each of the six patches (>= 2)
+    int layers = 40;          // nk: cells along each wall-normal line, wall to far field
+    WallLayers wall_layers;   // law of the cells next to the wall (layers = 0: uniform)
+    FarFieldShape far_field = FarFieldShape::sphere;
+    // Sphere radius or box half-size, from the centre, in geometry units. It must enclose the
+    // body's bounds with a margin of 0.1 bounds diagonal.
+    double far_field_size = 10;
+    std::optional<Vec3> centre;  // default: centre of the body's bounds; must be inside
+};
+
+// Grid of the shell between the body (u = 0) and a far-field sphere or box around `centre`.
+//
+// Blocks: "shell_xmin", "shell_xmax", "shell_ymin", "shell_ymax", "shell_zmin", "shell_zmax",
+// one per cube-sphere patch (cube_patches in volume/cube_sphere.h, in that order), each
+// (n+1) x (n+1) x (nk+1) nodes. (i, j) run over the patch (its axis_i, axis_j) and k from the
+// wall outwards: k = 0 on the wall (face kmin, patch "wall"), k = nk on the far field (face
+// kmax, patch "farfield"); every block is right-handed in (i, j, k). The other four faces of
+// each block are interfaces. Blocks share the nodes of their interfaces (one node array of
+// (6 n^2 + 2) (nk + 1) points): the node of surface point s (CubeSurfaceLattice numbering)
+// on layer k has id k (6 n^2 + 2) + s. Kinds: wall nodes slip, far-field nodes fixed, all
+// others interior.
+//
+// Wall nodes: the equiangular cube-sphere directions from the centre scaled by the body's
+// half extents (as in the O-H grid) projected radially onto u = 0, so the body must be
+// star-shaped around the centre. Far-field nodes: sphere, centre + size * dir / |dir| for
+// the same direction; box, the equiangular cube-sphere point of the box (every block's
+// far-field face is one face of the box).
+// Wall-normal lines: x(tau) = x0 + tau m(tau), tau in [0, |far - x0|], m the normalized
+// blend (1 - b) normal + b straight of the wall normal grad u / |grad u| at x0 and the
+// direction to the far-field node, b = smoothstep(tau / bend): the line leaves the wall
+// along the normal (b(0) = b'(0) = 0) and ends on its far-field node. bend is the whole line
+// where the wall is convex and shorter where it is concave, so that the normals there do not
+// cross (concave features finer than the patch lattice are not seen). Nodes: the cell
+// heights |x_k - x_(k-1)| are a_k - a_(k-1), a = wall_distances(arc length of the line, nk,
+// wall_layers), for every cell but the last: the boundary layer has exactly the law's first
+// height and growth ratio, on bent lines too; the last cell ends on the far-field node.
+// Throws std::invalid_argument, with a message naming the option, on n < 2, nk < 1, a law
+// that does not fit the lines (wall_layers.layers >= nk, or thicker than a line), a far field
+// that does not enclose the body's bounds with the margin, a centre outside the body, or a
+// body that is not star-shaped around it.
+BlockGrid make_o_grid(const ImplicitFunction& body, const OGridOptions& options);
+
+}  // namespace hexmesh

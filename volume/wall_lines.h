@@ -1,0 +1,39 @@
+// Wall-normal lines of a block grid: the nodes of every "wall" block face and the lines of
+// nodes going from them into their block.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "hexmesh/core/block_grid.h"
+#include "hexmesh/core/implicit_function.h"
+
+namespace hexmesh {
+
+// A "wall" face of a block seen as nodes (p, q) over the face and depth t into the block:
+// t = 0 is the wall, t = depth - 1 the opposite face.
+struct WallFace {
+    const Block* block;
+    int axis;            // index direction normal to the face (0 = i, 1 = j, 2 = k)
+    bool max_side;       // imax, jmax or kmax
+    int axis_p, axis_q;  // the two other index directions, ascending
+    int np, nq, depth;   // node counts along p, q and into the block
+
+    Id node(int p, int q, int t) const {
+        std::array<int, 3> ijk;
+        ijk[axis] = max_side ? depth - 1 - t : t;
+        ijk[axis_p] = p;
+        ijk[axis_q] = q;
+        return block->node(ijk[0], ijk[1], ijk[2]);
+    }
+    Id lines() const { return Id(np) * nq; }
+};
+
+// Wall faces in block order, then BlockFace order; faces one node thick are skipped.
+std::vector<WallFace> wall_faces(const BlockGrid& grid);
+
+// +1 when the grid lies on the u > 0 side of the face (exterior grid), -1 when on u < 0:
+// the majority sign of u at the middle nodes of the face's lines.
+double grid_side(const WallFace& f, const std::vector<Vec3>& points, const ImplicitFunction& body);
+
+}  // namespace hexmesh

@@ -1,0 +1,163 @@
+#include "volume/wall_metrics.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+#include "surface/exact_distance.h"
+#include "volume/wall_lines.h"
+
+namespace hexmesh {
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+constexpr double inf = std::numeric_limits<double>::infinity();
+
+// What one wall-normal line contributes.
+struct LineMeasures {
+    double first_layer = 0;  // (x1 - x0) . n
+    double angle_deg = 0;    // between x1 - x0 and n
+    Id ratios = 0, ratios_within = 0;
+    double ratio_min = inf, ratio_max = -inf, ratio_sum = 0;
+};
+
+LineMeasures measure_line(const WallFace& f, int p, int q, const std::vector<Vec3>& points,
+                          const ImplicitFunction& body, double side, int ratios,
+                          double growth_target) {
+    LineMeasures m;
+    const Vec3 x0 = points[f.node(p, q, 0)];
+    const Vec3 edge = points[f.node(p, q, 1)] - x0;
+    const Vec3 g = body.gradient(x0);
+    const double g_norm = g.norm();
+    const Vec3 n =
+        g_norm > 0 && std::isfinite(g_norm) ? Vec3(side * g / g_norm) : Vec3(edge.normalized());
+    m.first_layer = edge.dot(n);
+    m.angle_deg = std::atan2(edge.cross(n).norm(), edge.dot(n)) * 180 / pi;
+
+    double spacing = edge.norm();
+    for (int e = 1; e <= ratios; ++e) {
+        const double next = (points[f.node(p, q, e + 1)] - points[f.node(p, q, e)]).norm();
+        const double r = next / spacing;
+        ++m.ratios;
+        m.ratios_within += growth_target > 0 && std::abs(r - growth_target) <= 0.05 * growth_target;
+        m.ratio_min = std::min(m.ratio_min, r);
+        m.ratio_max = std::max(m.ratio_max, r);
+        m.ratio_sum += r;
+        spacing = next;
+    }
+    return m;
+}
+
+}  // namespace
+
+WallQuality measure_wall(const BlockGrid& grid, const ImplicitFunction& body,
+                         const WallLayers& law) {
+    WallQuality w;
+    w.first_layer_target = law.layers > 0 ? law.first_height : 0;
+    w.growth_ratio_target = law.layers > 1 ? law.growth_ratio : 0;
+
+    double thickness_sum = 0, angle_sum = 0, ratio_sum = 0;
+    Id thickness_within = 0, angles = 0, ratios_within = 0;
+    w.first_layer_min = w.growth_ratio_min = inf;
+    w.first_layer_max = w.growth_ratio_max = -inf;
+    for (const WallFace& f : wall_faces(grid)) {
+        const double side = grid_side(f, grid.points, body);
+        // Ratios m = 0 .. ratios-1 compare edges m and m+1 of the line.
+        const int edges = f.depth - 1;
+        const int ratios =
+            std::max(0, law.layers > 0 ? std::min(law.layers, edges) - 1 : edges - 1);
+        std::vector<LineMeasures> lines(f.lines());
+        tbb::parallel_for(Id(0), f.lines(), [&](Id l) {
+            lines[l] = measure_line(f, int(l % f.np), int(l / f.np), grid.points, body, side,
+                                    ratios, w.growth_ratio_target);
+        });
+
+        // Reduced in a fixed order, so the sums do not depend on the thread count.
+        for (const LineMeasures& m : lines) {
+            w.orthogonality_max_deg = std::max(w.orthogonality_max_deg, m.angle_deg);
+            angle_sum += m.angle_deg;
+            ++angles;
+            w.growth_ratios += m.ratios;
+            ratios_within += m.ratios_within;
+            w.growth_ratio_min = std::min(w.growth_ratio_min, m.ratio_min);
+            w.growth_ratio_max = std::max(w.growth_ratio_max, m.ratio_max);
+            ratio_sum += m.ratio_sum;
+        }
+        for (int q = 0; q + 1 < f.nq; ++q)
+            for (int p = 0; p + 1 < f.np; ++p) {
+                auto at = [&](int a, int b) { return lines[a + Id(f.np) * b].first_layer; };
+                const double t = 0.25 * (at(p, q) + at(p + 1, q) + at(p, q + 1) + at(p + 1, q + 1));
+                ++w.wall_cells;
+                thickness_sum += t;
+                w.first_layer_min = std::min(w.first_layer_min, t);
+                w.first_layer_max = std::max(w.first_layer_max, t);
+                thickness_within +=
+                    w.first_layer_target > 0 &&
+                    std::abs(t - w.first_layer_target) <= 0.1 * w.first_layer_target;
+            }
+    }
+
+    if (w.wall_cells > 0) {
+        w.first_layer_mean = thickness_sum / w.wall_cells;
+        w.first_layer_within_10_percent = double(thickness_within) / w.wall_cells;
+    } else {
+        w.first_layer_min = w.first_layer_max = 0;
+    }
+    if (angles > 0) w.orthogonality_mean_deg = angle_sum / angles;
+    if (w.growth_ratios > 0) {
+        w.growth_ratio_mean = ratio_sum / w.growth_ratios;
+        w.growth_ratio_within_5_percent = double(ratios_within) / w.growth_ratios;
+    } else {
+        w.growth_ratio_min = w.growth_ratio_max = 0;
+    }
+    return w;
+}
+
+HausdorffDistance hausdorff_to_surface(const BlockGrid& grid, const TriangleSurface& surface) {
+    // The grid's wall as a triangle surface of its own, on the wall nodes only.
+    TriangleSurface wall;
+    std::vector<int> local(grid.points.size(), -1);
+    auto local_id = [&](Id v) {
+        if (local[v] < 0) {
+            if (wall.points.size() >= size_t(std::numeric_limits<int>::max()))
+                throw std::invalid_argument("hausdorff_to_surface: too many wall nodes");
+            local[v] = int(wall.points.size());
+            wall.points.push_back(grid.points[v]);
+        }
+        return local[v];
+    };
+    for (const WallFace& f : wall_faces(grid))
+        for (int q = 0; q + 1 < f.nq; ++q)
+            for (int p = 0; p + 1 < f.np; ++p) {
+                const int a = local_id(f.node(p, q, 0)), b = local_id(f.node(p + 1, q, 0)),
+                          c = local_id(f.node(p + 1, q + 1, 0)), d = local_id(f.node(p, q + 1, 0));
+                wall.triangles.push_back({a, b, c});
+                wall.triangles.push_back({a, c, d});
+            }
+    if (wall.triangles.empty())
+        throw std::invalid_argument("hausdorff_to_surface: the grid has no wall face");
+
+    // Surface samples: the vertices the triangles use, then the centroids.
+    std::vector<char> used(surface.points.size(), 0);
+    for (const auto& t : surface.triangles)
+        for (int v : t) used[v] = 1;
+    std::vector<Vec3> samples;
+    for (size_t v = 0; v < surface.points.size(); ++v)
+        if (used[v]) samples.push_back(surface.points[v]);
+    for (const auto& t : surface.triangles)
+        samples.push_back((surface.points[t[0]] + surface.points[t[1]] + surface.points[t[2]]) / 3);
+
+    HausdorffDistance d;
+    d.grid_to_surface = max_distance_to(ExactDistance(surface), wall.points);
+    d.surface_to_grid = max_distance_to(ExactDistance(wall), samples);
+    d.hausdorff = std::max(d.grid_to_surface, d.surface_to_grid);
+    return d;
+}
+
+}  // namespace hexmesh

@@ -1,0 +1,41 @@
+// Boundary-layer metrics of a block grid (first-layer thickness, growth ratio, wall
+// orthogonality) and its Hausdorff distance to a triangle surface.
+#pragma once
+
+#include "hexmesh/core/block_grid.h"
+#include "hexmesh/core/implicit_function.h"
+#include "hexmesh/core/triangle_surface.h"
+#include "hexmesh/core/wall_quality.h"
+#include "volume/stretching.h"
+
+namespace hexmesh {
+
+// Wall-normal lines: for every block face whose face_patch is "wall", every node x0 of the
+// face and the nodes x1, x2, ... going into the block along the face's index direction
+// (face kmax: k = nk-1, nk-2, ...; face imin: i = 0, 1, ...). A node shared by several
+// blocks starts one line per block face. The wall normal at x0 is grad u / |grad u|,
+// oriented into the grid: towards u < 0 when most nodes in the middle of the face's lines
+// have u < 0 (interior grid), towards u > 0 otherwise (exterior grid); where grad u
+// vanishes, the first edge direction stands in for it. The law gives the targets
+// (law.first_height, law.growth_ratio) and how many edges of a line form the boundary
+// layer; law.layers == 0 means no law: targets 0 and growth ratios over whole lines.
+// The hausdorff fields are left empty. Deterministic, parallel over the lines of a face.
+WallQuality measure_wall(const BlockGrid& grid, const ImplicitFunction& body,
+                         const WallLayers& law);
+
+struct HausdorffDistance {
+    double grid_to_surface = 0;  // max over the grid's wall nodes of the distance to surface
+    double surface_to_grid = 0;  // max over surface samples of the distance to the wall faces
+    double hausdorff = 0;        // the larger of the two
+};
+
+// Exact distances (CGAL AABB tree) between the grid's wall and a triangle surface. The
+// grid's wall is its "wall" block faces, each quad (a, b, c, d) split into triangles
+// (a, b, c) and (a, c, d); the surface is sampled at the vertices its triangles use and at
+// the triangles' centroids, so surface_to_grid may fall short of the exact one-sided
+// distance by at most the largest distance from a point of a triangle to its nearest
+// sample (the distance is 1-Lipschitz). Throws std::invalid_argument when the
+// grid has no wall face or the surface no triangle of non-zero area.
+HausdorffDistance hausdorff_to_surface(const BlockGrid& grid, const TriangleSurface& surface);
+
+}  // namespace hexmesh
