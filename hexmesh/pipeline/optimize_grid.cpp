@@ -1,6 +1,6 @@
 #include "hexmesh/pipeline/optimize_grid.h"
 
-#include <tbb/parallel_for.h>
+#include <algorithm>
 
 #include "hexmesh/core/reference_hex.h"
 #include "surface/implicit_features.h"
@@ -83,7 +83,12 @@ GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& bo
         problem.points = grid.points;
         for (size_t v = 0; v < placed.size(); ++v)
             if (placed[v]) problem.kinds[v] = VertexKind::fixed;
-        result.layers_held = untangle::untangle_and_optimize(problem, options.untangle);
+        // Laid layers that cross the grid are rarely repaired by the rest alone: a short
+        // untangling budget, then the joint result is kept.
+        untangle::UntangleOptions held = options.untangle;
+        held.max_untangle_iterations = std::min(held.max_untangle_iterations, 30);
+        held.stall_iterations = std::min(held.stall_iterations, 10);
+        result.layers_held = untangle::untangle_and_optimize(problem, held);
         result.layers_laid = result.layers_held.inverted_after == 0;
         if (result.layers_laid) grid.points = problem.points;
         else grid.points = joint;  // the laid layers cross the rest of the grid: keep the joint result

@@ -1,11 +1,19 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
 #include <regex>
 #include <sstream>
+#include <vector>
 
 #include "export_test_support.h"
+#include "hexmesh/core/quality.h"
 #include "hexmesh/pipeline/run_case.h"
 #include "io/case_file.h"
+#include "io/openfoam_mesh.h"
+#include "volume/o_grid.h"
 
 using namespace hexmesh;
 using namespace hexmesh::test_export;
@@ -26,6 +34,148 @@ std::string check_mesh_command(const fs::path& case_dir) {
     if (!std::getenv("WM_PROJECT_DIR") && fs::exists("/usr/share/openfoam/etc/controlDict"))
         env = "WM_PROJECT_DIR=/usr/share/openfoam ";
     return env + "checkMesh -case '" + case_dir.string() + "'";
+}
+
+// The number token after `label` in checkMesh's output, as printed ("" if absent).
+std::string token_after(const std::string& text, const std::string& label) {
+    const auto at = text.find(label);
+    if (at == std::string::npos) return "";
+    const std::string rest = text.substr(at + label.size());
+    std::smatch m;
+    if (!std::regex_search(rest, m, std::regex(R"(^\s*([-+]?[0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?))"))) return "";
+    return m[1];
+}
+
+// True when `ours` agrees with `printed`, a number checkMesh wrote with its stream's default
+// 6 significant digits: |ours - printed| <= half a unit of the 6th significant digit of
+// printed (plus 1e-12 relative slack for the text round trip).
+bool equal_to_printed_digits(const std::string& printed, double ours) {
+    if (printed.empty()) return false;
+    const double v = std::strtod(printed.c_str(), nullptr);
+    if (v == 0) return ours == 0;
+    const double unit = std::pow(10.0, std::floor(std::log10(std::fabs(v))) - 5);
+    return std::fabs(ours - v) <= 0.5 * unit + 1e-12 * std::fabs(v);
+}
+
+std::string full(double v) {
+    std::ostringstream s;
+    s.precision(17);
+    s << v;
+    return s.str();
+}
+
+struct FoamPatch {
+    std::string name, type;
+    long n_faces = -1, start_face = -1;
+};
+
+// The entries of constant/polyMesh/boundary (name, type, nFaces, startFace), in file order,
+// and the list size the file declares (-1 if unreadable).
+std::vector<FoamPatch> read_foam_boundary(const fs::path& file, long& declared) {
+    std::ifstream in(file);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    declared = -1;
+    std::smatch m;
+    // The list size is the first bare integer after the FoamFile header's closing brace.
+    const auto header_end = text.find("}");
+    if (header_end != std::string::npos) {
+        const std::string body = text.substr(header_end + 1);
+        if (std::regex_search(body, m, std::regex(R"((\d+)\s*\()"))) declared = std::stol(m[1]);
+    }
+    std::vector<FoamPatch> patches;
+    const std::regex entry(
+        R"((\w+)\s*\{\s*type\s+(\w+);[^}]*?nFaces\s+(\d+);\s*startFace\s+(\d+);\s*\})");
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), entry); it != std::sregex_iterator(); ++it)
+        patches.push_back({(*it)[1], (*it)[2], std::stol((*it)[3]), std::stol((*it)[4])});
+    return patches;
+}
+
+// The exterior O-grid of the unit sphere out to a far field of size 10 (sphere radius or box
+// half-size): n = 12, 24 layers, a boundary layer of 6 cells from 0.01 growing by 1.2.
+BlockGrid exterior_o_grid(FarFieldShape shape) {
+    const Sphere sphere(Vec3::Zero(), 1.0);
+    OGridOptions o;
+    o.cells_per_edge = 12;
+    o.layers = 24;
+    o.wall_layers = WallLayers{0.01, 1.2, 6};
+    o.far_field = shape;
+    o.far_field_size = 10;
+    return make_o_grid(sphere, o);
+}
+
+// Writes the exterior O-grid as an OpenFOAM case, runs checkMesh on it and checks what the
+// export issue asks: "Mesh OK.", our cell count, min volume and max non-orthogonality to the
+// digits checkMesh prints, and exactly the patches wall (type wall) and farfield (type patch),
+// 6 n^2 faces each, in the boundary file and as checkMesh reads them.
+void check_exterior_o_grid(FarFieldShape shape, const std::string& name) {
+    const BlockGrid grid = exterior_o_grid(shape);
+    const int n = 12, layers = 24;
+    ASSERT_EQ(grid.blocks.size(), 6u);
+    const QualityReport q = measure_quality(to_hex_mesh(grid));
+    ASSERT_EQ(q.cells, 6 * n * n * layers);
+    ASSERT_EQ(q.inverted_cells, 0);
+
+    const fs::path case_dir = scratch(name) / "case";
+    write_openfoam_mesh(grid, case_dir.string());
+    const ToolRun r = run_tool(check_mesh_command(case_dir));
+    std::ofstream((case_dir.parent_path() / "checkMesh.log").string()) << r.output;  // to inspect
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("Mesh OK."), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("Failed"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("***"), std::string::npos) << r.output;  // no failed check at all
+    EXPECT_NE(r.output.find("Upper triangular ordering OK."), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("Boundary definition OK."), std::string::npos) << r.output;
+
+    EXPECT_EQ(number_after(r.output, "    cells:"), double(q.cells)) << r.output;
+    const std::string min_volume = token_after(r.output, "Min volume = ");
+    EXPECT_TRUE(equal_to_printed_digits(min_volume, q.min_volume))
+        << "checkMesh min volume " << min_volume << ", ours " << full(q.min_volume);
+    const std::string non_orth = token_after(r.output, "Mesh non-orthogonality Max: ");
+    EXPECT_TRUE(equal_to_printed_digits(non_orth, q.max_non_orthogonality_deg))
+        << "checkMesh max non-orthogonality " << non_orth << ", ours "
+        << full(q.max_non_orthogonality_deg);
+
+    // Beyond the issue's list, skewness and aspect ratio agree to the printed digits as well.
+    // The boundary layer's aspect ratio (first height 0.01 against a tangential spacing of
+    // about 0.13) stays far under checkMesh's threshold of 1000, so no check may fail.
+    const std::string skewness = token_after(r.output, "Max skewness = ");
+    EXPECT_TRUE(equal_to_printed_digits(skewness, q.max_skewness))
+        << "checkMesh max skewness " << skewness << ", ours " << full(q.max_skewness);
+    const std::string aspect = token_after(r.output, "Max aspect ratio = ");
+    EXPECT_TRUE(equal_to_printed_digits(aspect, q.max_aspect_ratio))
+        << "checkMesh max aspect ratio " << aspect << ", ours " << full(q.max_aspect_ratio);
+
+    // The boundary file: exactly wall and farfield, 6 n^2 faces each, after the internal faces.
+    long declared = -1;
+    const std::vector<FoamPatch> patches =
+        read_foam_boundary(case_dir / "constant" / "polyMesh" / "boundary", declared);
+    EXPECT_EQ(declared, 2);
+    ASSERT_EQ(patches.size(), 2u);
+    long start = patches[0].start_face;
+    for (const FoamPatch& p : patches) {
+        SCOPED_TRACE(p.name);
+        EXPECT_TRUE(p.name == "wall" || p.name == "farfield");
+        EXPECT_EQ(p.type, p.name == "wall" ? "wall" : "patch");
+        EXPECT_EQ(p.n_faces, 6L * n * n);
+        EXPECT_EQ(p.start_face, start);
+        start += p.n_faces;
+    }
+    EXPECT_NE(patches[0].name, patches[1].name);
+    // Every face of a hex is shared by two cells except the 2 * 6 n^2 boundary faces.
+    EXPECT_EQ(patches[0].start_face, (6L * q.cells - 2 * 6L * n * n) / 2);
+    EXPECT_EQ(number_after(r.output, "    boundary patches:"), 2.0) << r.output;
+    // checkMesh's own patch table: each patch a closed, singly connected surface.
+    for (const char* patch : {"wall", "farfield"}) {
+        std::smatch m;
+        EXPECT_TRUE(std::regex_search(
+            r.output, m,
+            std::regex(std::string(R"(\n\s*)") + patch + R"(\s+(\d+)\s+(\d+)\s+ok \(closed singly connected\))")))
+            << patch << "\n" << r.output;
+        if (!m.empty()) {
+            EXPECT_EQ(std::stol(m[1]), 6L * n * n) << patch;
+            EXPECT_EQ(std::stol(m[2]), 6L * n * n + 2) << patch;
+        }
+    }
 }
 
 }  // namespace
@@ -59,4 +209,17 @@ TEST(OpenFoam, CheckMeshAcceptsTheSphereGridAndAgreesWithOurMetrics) {
     EXPECT_NEAR(number_after(r.output, "Max aspect ratio = "), q.max_aspect_ratio, 1e-3 * q.max_aspect_ratio);
     EXPECT_NE(r.output.find("Upper triangular ordering OK."), std::string::npos);
     EXPECT_NE(r.output.find("Boundary definition OK."), std::string::npos);
+}
+
+// The exterior O-grid (six shell blocks, patch wall on the sphere, farfield on a sphere of
+// radius 10) with a boundary layer of first height 0.01: checkMesh passes every check.
+TEST(OpenFoam, CheckMeshAcceptsTheExteriorOGridWithSphereFarField) {
+    if (!have_tool("checkMesh")) GTEST_SKIP() << "checkMesh not installed (Debian package openfoam)";
+    check_exterior_o_grid(FarFieldShape::sphere, "openfoam_o_grid_sphere");
+}
+
+// The same with a box far field of half-size 10.
+TEST(OpenFoam, CheckMeshAcceptsTheExteriorOGridWithBoxFarField) {
+    if (!have_tool("checkMesh")) GTEST_SKIP() << "checkMesh not installed (Debian package openfoam)";
+    check_exterior_o_grid(FarFieldShape::box, "openfoam_o_grid_box");
 }

@@ -1,0 +1,132 @@
+// The black-box job end to end: `hexmesh run` on interior and exterior cases, each grid checked
+// against the boundary-layer targets with our report and with the independent checker.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "cli.h"
+#include "star_surface.h"
+
+using namespace hexmesh;
+using namespace hexmesh::test_support;
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+struct BlackBoxCase {
+    std::string name;
+    std::string case_file;   // relative to the source tree, or "" for a case written by the test
+    double min_sj;           // required minimum scaled Jacobian
+    double max_orthogonality_deg;
+    bool from_surface;       // geometry from an STL: the Hausdorff distance is reported
+};
+
+std::ostream& operator<<(std::ostream& out, const BlackBoxCase& c) { return out << c.name; }
+
+// The peanut case: a non-convex STL made here, gridded inside.
+fs::path write_peanut_case() {
+    const fs::path dir = scratch("peanut_case");
+    fs::create_directories(dir);
+    write_star_stl((dir / "peanut.stl").string(), peanut_radius, 32);
+    std::ofstream(dir / "case.json") << R"({
+      "geometry": {"file": "peanut.stl", "voxel_size": 0.01},
+      "grid": {"topology": "o-h", "cells_per_edge": 16, "wall_cells": 10, "core_size": 0.35},
+      "boundary_layer": {"first_height": 0.004, "growth_ratio": 1.2, "layers": 5}
+    })";
+    return dir / "case.json";
+}
+
+class BlackBox : public ::testing::TestWithParam<BlackBoxCase> {
+protected:
+    void SetUp() override {
+        const BlackBoxCase& c = GetParam();
+        out = scratch("black_box_" + c.name);
+        fs::remove_all(out);
+        const std::string file = c.case_file.empty() ? write_peanut_case().string() : c.case_file;
+        result = run_hexmesh("run '" + file + "' -o '" + out.string() + "'");
+        ASSERT_EQ(result.exit_code, 0) << result.out << result.err;
+        report = json::parse(read_text(out / "quality.json"));
+    }
+    void TearDown() override {
+        fs::remove_all(out);
+        fs::remove_all(scratch("peanut_case"));
+    }
+
+    fs::path out;
+    CommandResult result;
+    json report;
+};
+
+TEST_P(BlackBox, GridIsValidAndKeepsTheBoundaryLayer) {
+    const BlackBoxCase& c = GetParam();
+    EXPECT_TRUE(report.at("valid").get<bool>());
+    EXPECT_EQ(report.at("inverted_corner_tets").get<long>(), 0);
+    EXPECT_GE(report.at("min_scaled_jacobian").get<double>(), c.min_sj);
+    EXPECT_LT(report.at("max_surface_distance_over_h").get<double>(), 1e-3);
+    const json& wall = report.at("wall");
+    EXPECT_GE(wall.at("first_layer_thickness").at("fraction_within_10_percent").get<double>(), 0.95);
+    EXPECT_GE(wall.at("growth_ratio").at("fraction_within_5_percent").get<double>(), 0.95);
+    EXPECT_LE(wall.at("orthogonality_deg").at("max").get<double>(), c.max_orthogonality_deg);
+    EXPECT_EQ(wall.contains("hausdorff_distance"), c.from_surface);
+    if (c.from_surface) {  // within about a voxel (0.01) of the STL: its SDF's resolution
+        EXPECT_LT(wall.at("hausdorff_distance").get<double>(), 0.015);
+    }
+    for (const char* phase : {"geometry", "grid", "optimization", "quality", "write"})
+        EXPECT_TRUE(report.at("phases").contains(phase)) << phase;
+    EXPECT_NE(result.out.find("first-layer thickness"), std::string::npos) << result.out;
+
+    // Second opinion on the same grid (one test per case: ctest runs each test in its own
+    // process, and a run takes seconds).
+    const fs::path checker = fs::path(HEXMESH_SOURCE_DIR) / ".." / "shared" / "tools" / "check_grid.py";
+    if (!fs::exists(checker)) GTEST_SKIP() << "no " << checker << " beside the project";
+    if (run_command("/usr/bin/python3 -c 'import vtk'").exit_code != 0)
+        GTEST_SKIP() << "python3-vtk9 is not installed";
+    const CommandResult check = run_command("/usr/bin/python3 '" + checker.string() + "' '" +
+                                        (out / "grid.vtm").string() + "' --json");
+    ASSERT_EQ(check.exit_code, 0) << check.out << check.err;
+    const json j = json::parse(check.out);
+    EXPECT_EQ(j.at("inverted").get<long>(), 0);
+    EXPECT_EQ(j.at("hexes").get<long>(), report.at("cells").get<long>());
+    EXPECT_NEAR(j.at("min_sj").get<double>(), report.at("min_scaled_jacobian").get<double>(), 1e-4);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, BlackBox,
+    ::testing::Values(BlackBoxCase{"sphere", "cases/sphere/case.json", 0.5, 1.0, false},
+                      BlackBoxCase{"ellipsoid", "cases/ellipsoid/case.json", 0.3, 1.0, false},
+                      BlackBoxCase{"bean", "cases/bean/case.json", 0.3, 1.0, true},
+                      BlackBoxCase{"peanut", "", 0.3, 1.0, true},
+                      BlackBoxCase{"sphere_exterior", "cases/sphere_exterior/case.json", 0.5, 5.0, false},
+                      BlackBoxCase{"bean_exterior", "cases/bean_exterior/case.json", 0.3, 5.0, true}),
+    [](const ::testing::TestParamInfo<BlackBoxCase>& info) { return info.param.name; });
+
+// A body with sharp edges: its creases and corners are captured by wall nodes and the grid is
+// valid. (Its minimum scaled Jacobian stays low where the body's creases cross the cube-sphere
+// patches; see the README.)
+TEST(BlackBoxCsg, BoxUnionCylinderIsValidWithItsCreasesCaptured) {
+    const fs::path out = scratch("black_box_csg");
+    fs::remove_all(out);
+    const CommandResult r = run_hexmesh("run cases/box_cylinder/case.json -o '" + out.string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    EXPECT_NE(r.out.find("sharp features:"), std::string::npos) << r.out;
+    const json q = json::parse(read_text(out / "quality.json"));
+    EXPECT_TRUE(q.at("valid").get<bool>());
+    EXPECT_GT(q.at("min_scaled_jacobian").get<double>(), 0.0);
+    fs::remove_all(out);
+}
+
+TEST(BlackBoxExterior, FarFieldAndWallPatchesReachOpenFoam) {
+    const fs::path out = scratch("black_box_foam");
+    fs::remove_all(out);
+    const CommandResult r = run_hexmesh("run cases/sphere_exterior/case.json -o '" + out.string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    const std::string boundary = read_text(out / "grid_openfoam" / "constant" / "polyMesh" / "boundary");
+    EXPECT_NE(boundary.find("wall"), std::string::npos) << boundary;
+    EXPECT_NE(boundary.find("farfield"), std::string::npos) << boundary;
+    fs::remove_all(out);
+}
+
+}  // namespace
