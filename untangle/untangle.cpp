@@ -168,7 +168,11 @@ UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& op
             result.history.push_back(r);
             log_line(options.log, r);
             best.offer(x, stats.inverted, m.energy);
-            if (m.steps == 0 || e_prev - m.energy <= options.optimize_tolerance * std::abs(e_prev)) break;
+            // eps stays 0 here: an inner solve that converged before its step budget would
+            // only be confirmed by another outer iteration.
+            if (m.steps < options.inner_steps ||
+                e_prev - m.energy <= options.optimize_tolerance * std::abs(e_prev))
+                break;
             e_prev = m.energy;
         }
     }
