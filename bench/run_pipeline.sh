@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Black-box pipeline benchmark: `hexmesh run CASE -o OUT`, end to end, under /usr/bin/time -v.
 #
-# What it runs. Four cases, each at three sizes (about 32^3, 64^3 and 128^3 cells in total),
-# all with a boundary layer of first_height 0.005 and growth_ratio 1.15:
+# What it runs. Four cases, each at the sizes of --sizes (default: about 32^3, 64^3 and
+# 128^3 cells in total; "1M" is the project's target size), all with a boundary layer of
+# first_height 0.005 and growth_ratio 1.15:
 #
 #   case        body                                  grid                                       layers
 #   sphere-int  analytic sphere, radius 1             O-H, n = cells_per_edge, wall_cells n/2,    6
@@ -25,12 +26,13 @@
 # seconds (default 1200) and reported as TIMEOUT; its address space is capped at
 # --mem-limit-gb (default 16, prlimit --as) so that a run too big for the machine fails
 # (reported as OUT OF MEMORY) instead of pushing the machine into swap or the OOM killer.
-# For every run it records the per-phase times that `run` reports (quality.json "phases": geometry, grid, optimization, quality,
-# write), the wall and CPU (user+sys) time and the peak RSS ("Maximum resident set size")
-# from /usr/bin/time -v, and from quality.json the min/mean scaled Jacobian, inverted cells
-# and the fraction of wall cells whose first layer is within 10 % of first_height. It prints
-# a markdown table at the end (and after every run to stderr), and keeps results.tsv, the
-# case files, logs and grids in the work dir. The 1-minute load average before and after
+# For every run it records the per-phase times that `run` reports (quality.json "phases":
+# geometry, grid, optimization, quality, write), the wall and CPU (user+sys) time and the
+# peak RSS ("Maximum resident set size") from /usr/bin/time -v, and from quality.json the
+# min/mean scaled Jacobian, inverted cells and the fraction of wall cells whose first
+# layer is within 10 % of first_height. It prints a markdown table at the end (and a line
+# after every run to stderr), and keeps results.tsv, the case files, logs and grids in the
+# work dir. The 1-minute load average before and after
 # each run is recorded too: on a shared machine the wall times are only as good as that.
 # Use one work dir per concurrent invocation (the binary snapshot is rewritten at start).
 #
@@ -39,13 +41,14 @@
 # the benchmark cannot change or break the binary under test.
 #
 # Reproduce (from the repository root, Release build in build/):
-#   bash bench/run_pipeline.sh                                   # everything (hours at 128^3)
+#   bash bench/run_pipeline.sh               # everything: hours (a 128^3 run takes 12-20+ min
+#                                            # and ~12 GB with the default solver)
 #   bash bench/run_pipeline.sh --sizes "32 64"                   # the small and medium sizes
 #   bash bench/run_pipeline.sh --sizes 128 --cases sphere-int --timeout 1200
 #   bash bench/run_pipeline.sh --sizes "64 1M" --optimize-iterations 0   # construction only
 #   HEXMESH=/work/build/hexmesh/cli/hexmesh bash bench/run_pipeline.sh --workdir /tmp/hxbench
 #   bash bench/run_pipeline.sh --table /tmp/hxbench/results.tsv  # print the table of past runs
-# Needs: bash, GNU time (/usr/bin/time), coreutils timeout, util-linux prlimit, jq.
+# Needs: bash, GNU time (/usr/bin/time), coreutils timeout and stdbuf, util-linux prlimit, jq.
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -84,7 +87,7 @@ print_table() {
 }
 if [[ -n "$table_only" ]]; then print_table "$table_only"; exit 0; fi
 
-for tool in /usr/bin/time timeout prlimit jq; do
+for tool in /usr/bin/time timeout stdbuf prlimit jq; do
     command -v "$tool" >/dev/null || { echo "run_pipeline.sh: needs $tool" >&2; exit 1; }
 done
 [[ -x "$HEXMESH" ]] || { echo "run_pipeline.sh: no executable $HEXMESH (set HEXMESH)" >&2; exit 1; }
@@ -156,6 +159,8 @@ run_one() {  # name size
     dir="$workdir/$name-$size${optimize_iterations:+-opt$optimize_iterations}"
     rm -rf "$dir" && mkdir -p "$dir"
     write_case "$name" "$n" "$dir/case.json"
+    # stdbuf -oL: the log lines reach run.log as they are printed, so a killed run still
+    # shows how far it got (phases done, optimizer iterations).
     echo "== $name size $size: n $n, wall_cells $w, $cells cells ($(date +%T))" >&2
     local load0 load1
     load0="$(cut -d' ' -f1 /proc/loadavg)"
@@ -163,7 +168,7 @@ run_one() {  # name size
     /usr/bin/time -v -o "$dir/time.txt" \
         timeout --kill-after=30 "$timeout_s" \
         prlimit --as=$((mem_limit_gb * 1024 * 1024 * 1024)) \
-        "$bin" run "$dir/case.json" -o "$dir/out" >"$dir/run.log" 2>&1
+        stdbuf -oL "$bin" run "$dir/case.json" -o "$dir/out" >"$dir/run.log" 2>&1
     rc=$?
     set -e
     load1="$(cut -d' ' -f1 /proc/loadavg)"

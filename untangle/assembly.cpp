@@ -75,19 +75,29 @@ Assembly::Assembly(const Problem& problem) : problem_(problem) {
     // Block pattern: vertex pairs sharing an element, plus every diagonal.
     std::vector<std::vector<Id>> adjacent(nv);
     for (Id v = 0; v < nv; ++v) adjacent[v].push_back(v);
+    // Rows are short (about 20 blocks for hex corner tets): a linear search keeps each row
+    // free of duplicates as it grows, so no row ever holds the 16 pairs of every element.
     for (const auto& t : problem.tets)
         for (Id a : t)
-            for (Id b : t) adjacent[a].push_back(b);
+            for (Id b : t)
+                if (std::find(adjacent[a].begin(), adjacent[a].end(), b) == adjacent[a].end())
+                    adjacent[a].push_back(b);
     pattern_.row_start.assign(nv + 1, 0);
     for (Id v = 0; v < nv; ++v) {
-        auto& row = adjacent[v];
-        std::sort(row.begin(), row.end());
-        row.erase(std::unique(row.begin(), row.end()), row.end());
-        pattern_.row_start[v + 1] = pattern_.row_start[v] + Id(row.size());
+        std::sort(adjacent[v].begin(), adjacent[v].end());
+        pattern_.row_start[v + 1] = pattern_.row_start[v] + Id(adjacent[v].size());
     }
     pattern_.col.reserve(pattern_.row_start[nv]);
-    for (Id v = 0; v < nv; ++v) pattern_.col.insert(pattern_.col.end(), adjacent[v].begin(), adjacent[v].end());
-    pattern_.block.assign(pattern_.col.size(), Mat3::Zero());
+    for (Id v = 0; v < nv; ++v) {
+        pattern_.col.insert(pattern_.col.end(), adjacent[v].begin(), adjacent[v].end());
+        std::vector<Id>().swap(adjacent[v]);
+    }
+}
+
+BlockMatrix Assembly::empty_hessian() const {
+    BlockMatrix h = pattern_;
+    h.block.assign(h.col.size(), Mat3::Zero());
+    return h;
 }
 
 Mat34 Assembly::corners(const std::vector<Vec3>& x, Id e) const {

@@ -40,7 +40,8 @@ public:
     // F(x), gradient and the PSD-projected Hessian in `h` (pattern from empty_hessian()).
     double hessian(const std::vector<Vec3>& x, const EnergyParams& p, std::vector<Vec3>& g,
                    BlockMatrix& h) const;
-    BlockMatrix empty_hessian() const { return pattern_; }
+    // The Hessian's pattern with zero blocks (the pattern itself keeps no values).
+    BlockMatrix empty_hessian() const;
     // F(x), gradient and only the diagonal blocks of the PSD Hessian (#V blocks).
     double diagonal_hessian(const std::vector<Vec3>& x, const EnergyParams& p,
                             std::vector<Vec3>& g, std::vector<Mat3>& diagonal) const;
@@ -63,7 +64,7 @@ private:
     const Problem& problem_;
     std::vector<Id> order_;         // elements sorted by colour
     std::vector<Id> colour_start_;  // offsets into order_
-    BlockMatrix pattern_;
+    BlockMatrix pattern_;  // row_start and col only
 };
 
 }  // namespace hexmesh::untangle

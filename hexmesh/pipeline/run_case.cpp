@@ -1,13 +1,15 @@
 #include "hexmesh/pipeline/run_case.h"
 
-#include <chrono>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <fmt/format.h>
 
 #include "hexmesh/core/reference_hex.h"
 #include "hexmesh/pipeline/make_body.h"
 #include "hexmesh/pipeline/optimize_grid.h"
+#include "hexmesh/pipeline/refine_family.h"
 #include "io/export_grid.h"
 #include "io/staged_output.h"
 #include "io/vtk_mesh.h"
@@ -29,6 +31,7 @@ public:
         const double seconds = std::chrono::duration<double>(now - start_).count();
         log_ << fmt::format("  {:<48}{:8.2f} s\n", detail.empty() ? phase : phase + " " + detail,
                             seconds);
+        log_.flush();
         phases_.emplace_back(phase, seconds);
         start_ = now;
     }
@@ -61,6 +64,31 @@ int cells_per_edge(const Case& c, const ImplicitFunction& body) {
                                      c.path, c.grid.cell_size, n, body.bounds().diagonal()));
     }
     return std::max(2, int(n));
+}
+
+// Writes one grid, its quality.json and grid.case.json into out under `dir` ("" or
+// "level_2/"), refusing a grid with inverted cells unless keep_invalid.
+void write_level(const Case& c, const BlockGrid& grid, GridReport report, const std::string& dir,
+                 const RunOptions& options, PhaseTimer& timer, StagedOutput& out) {
+    const Id inverted = report.quality.inverted_cells;
+    if (inverted > 0 && !options.keep_invalid) {
+        throw std::runtime_error(fmt::format(
+            "{}: the grid {}has {} inverted cells (min scaled Jacobian {:.3g}); nothing written "
+            "(use --keep-invalid to write it as grid_invalid.*)",
+            c.path, dir.empty() ? "" : "of " + dir.substr(0, dir.size() - 1) + " ", inverted,
+            report.quality.min_scaled_jacobian));
+    }
+    const std::string stem = dir + (inverted > 0 ? "grid_invalid" : "grid");
+    const std::string file = out.path(stem + (grid.blocks.size() == 1 ? ".vts" : ".vtm"));
+    std::filesystem::create_directories(std::filesystem::path(file).parent_path());
+    write_vtk_grid(grid, file);
+    for (const std::string& format : c.outputs)  // the VTK grid above is always written
+        if (format != "vtk")
+            write_grid_format(grid, format, out.path(dir + export_file_name(format, stem.substr(dir.size()), grid)));
+    timer.done("write", dir);
+    report.phase_seconds = timer.phases();
+    out.write_text(dir + "quality.json", quality_json(report));
+    out.write_text(dir + "grid.case.json", case_to_json(c));
 }
 
 }  // namespace
@@ -174,23 +202,37 @@ RunResult run_case(const Case& c, const std::string& outdir, const RunOptions& o
     result.report = measure_grid(result.grid, *body, wall_layers(c), surface ? &*surface : nullptr);
     timer.done("quality");
 
-    const Id inverted = result.report.quality.inverted_cells;
-    if (inverted > 0 && !options.keep_invalid) {
-        throw std::runtime_error(fmt::format(
-            "{}: the grid has {} inverted cells (min scaled Jacobian {:.3g}); nothing written "
-            "(use --keep-invalid to write it as grid_invalid.*)",
-            c.path, inverted, result.report.quality.min_scaled_jacobian));
+    if (c.refinement.levels == 1) {
+        StagedOutput out(outdir);
+        write_level(c, result.grid, result.report, "", options, timer, out);
+        result.report.phase_seconds = timer.phases();
+        result.files = out.commit();
+        return result;
     }
-    const std::string stem = inverted > 0 ? "grid_invalid" : "grid";
+    result.level_reports.push_back(result.report);
+    std::vector<BlockGrid> grids = {result.grid};
+    RefinementOptions refinement;
+    refinement.theta = c.solver.theta;
+    for (int level = 2; level <= c.refinement.levels; ++level) {
+        RefinementResult r = refine_on_body(grids.back(), *body, refinement);
+        timer.done("refinement", fmt::format("level {} ({} cells, {} wall nodes projected)", level,
+                                             r.grid.num_cells(), r.projected));
+        result.level_reports.push_back(measure_grid(
+            r.grid, *body, refined_wall_layers(wall_layers(c), level), surface ? &*surface : nullptr));
+        timer.done("quality", fmt::format("level {}", level));
+        grids.push_back(std::move(r.grid));
+    }
     StagedOutput out(outdir);
-    write_vtk_grid(result.grid, out.path(stem + (result.grid.blocks.size() == 1 ? ".vts" : ".vtm")));
-    for (const std::string& format : c.outputs)  // the VTK grid above is always written
-        if (format != "vtk")
-            write_grid_format(result.grid, format, out.path(export_file_name(format, stem, result.grid)));
-    timer.done("write");
-    result.report.phase_seconds = timer.phases();
-    out.write_text("quality.json", quality_json(result.report));
+    std::vector<FamilyLevel> table;
+    for (int level = 1; level <= c.refinement.levels; ++level) {
+        const std::string dir = fmt::format("level_{}/", level);
+        write_level(c, grids[level - 1], result.level_reports[level - 1], dir, options, timer, out);
+        table.push_back(family_level(level, result.level_reports[level - 1]));
+    }
+    out.write_text("family.json", family_json(table));
     result.files = out.commit();
+    result.grid = std::move(grids.back());
+    result.report = result.level_reports.back();
     return result;
 }
 
