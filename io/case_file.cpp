@@ -64,11 +64,14 @@ void parse_primitive(const JsonFields& p, GeometrySpec& s) {
     s.center = p.vec3("center", zero);
 }
 
-// {"file": "part.stl", "voxel_size": 0.01}: a path relative to the case file's folder.
+// {"file": "part.stl", "voxel_size": 0.01}, {"points": "cloud.ply"}, {"sections": "stack.txt"}:
+// a path relative to the case file's folder, under the key s.kind.
 void parse_surface_file(const JsonFields& g, const std::string& file, GeometrySpec& s) {
-    const json& name = g.at("file");
+    const json& name = g.at(s.kind.c_str());
     if (!name.is_string() || name.get<std::string>().empty())
-        g.fail("file", "a surface file name (.stl, .obj, .off or .ply)");
+        g.fail(s.kind.c_str(), s.kind == "file" ? "a surface file name (.stl, .obj, .off or .ply)"
+                               : s.kind == "points" ? "a point cloud file name (.ply or .xyz)"
+                                                    : "a cross-section file name");
     const std::filesystem::path relative(name.get<std::string>());
     s.file = relative.is_absolute()
                  ? relative.string()
@@ -79,10 +82,11 @@ void parse_surface_file(const JsonFields& g, const std::string& file, GeometrySp
 GeometrySpec parse_geometry(const json& value, const std::string& file, const std::string& path) {
     const JsonFields g(value, file, path);
     static const char* primitives[] = {"sphere", "ellipsoid", "box", "cylinder", "torus", "cone",
-                                       "file"};
+                                       "file", "points", "sections"};
     static const char* operations[] = {"union", "intersection", "difference"};
-    g.allow_only({"sphere", "ellipsoid", "box", "cylinder", "torus", "cone", "file", "voxel_size",
-                  "union", "intersection", "difference", "translate", "rotate", "scale"});
+    g.allow_only({"sphere", "ellipsoid", "box", "cylinder", "torus", "cone", "file", "points",
+                  "sections", "voxel_size", "union", "intersection", "difference", "translate",
+                  "rotate", "scale"});
     GeometrySpec s;
     int shapes = 0;
     for (const char* k : primitives)
@@ -92,14 +96,14 @@ GeometrySpec parse_geometry(const json& value, const std::string& file, const st
     if (shapes != 1) {
         throw InputError(fmt::format(
             "{}: {}: expected exactly one shape (sphere, ellipsoid, box, cylinder, torus, cone, "
-            "file, union, intersection, difference), got {}",
+            "file, points, sections, union, intersection, difference), got {}",
             file, path, shapes));
     }
     if (g.has("voxel_size") && s.kind != "file")
         g.fail("voxel_size", "no voxel size: it goes with \"file\"");
     if (s.kind == "union" || s.kind == "intersection" || s.kind == "difference")
         s.children = parse_operands(g, s.kind.c_str(), file);
-    else if (s.kind == "file")
+    else if (s.kind == "file" || s.kind == "points" || s.kind == "sections")
         parse_surface_file(g, file, s);
     else
         parse_primitive(g.object(s.kind.c_str()), s);
@@ -224,7 +228,68 @@ std::vector<std::string> parse_outputs(const JsonFields& top, const std::string&
     return outputs;
 }
 
+json vec3_json(const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
+
+json geometry_json(const GeometrySpec& s) {
+    json g;
+    if (s.kind == "union" || s.kind == "intersection" || s.kind == "difference") {
+        json children = json::array();
+        for (const GeometrySpec& child : s.children) children.push_back(geometry_json(child));
+        g[s.kind] = children;
+    } else if (s.kind == "file" || s.kind == "points" || s.kind == "sections") {
+        g[s.kind] = std::filesystem::absolute(s.file).lexically_normal().string();
+        if (s.voxel_size > 0) g["voxel_size"] = s.voxel_size;
+    } else {
+        json p = {{"center", vec3_json(s.center)}};
+        if (s.kind == "sphere") p["radius"] = s.radius;
+        if (s.kind == "ellipsoid") p["semi_axes"] = vec3_json(s.semi_axes);
+        if (s.kind == "box") p["size"] = vec3_json(s.size);
+        if (s.kind == "cylinder") p["radius"] = s.radius, p["height"] = s.height;
+        if (s.kind == "torus")
+            p["major_radius"] = s.major_radius, p["minor_radius"] = s.minor_radius;
+        if (s.kind == "cone") {
+            p["bottom_radius"] = s.bottom_radius;
+            p["top_radius"] = s.top_radius;
+            p["height"] = s.height;
+        }
+        g[s.kind] = p;
+    }
+    if (s.translate != Vec3::Zero()) g["translate"] = vec3_json(s.translate);
+    if (s.scale != 1) g["scale"] = s.scale;
+    if (s.rotate_degrees != 0)
+        g["rotate"] = {{"axis", vec3_json(s.rotate_axis)}, {"degrees", s.rotate_degrees}};
+    return g;
+}
+
 }  // namespace
+
+std::string case_to_json(const Case& c) {
+    json root;
+    root["geometry"] = geometry_json(c.geometry);
+    root["domain"] = c.domain;
+    json grid = {{"topology", c.grid.topology},
+                 {"wall_cells", c.grid.wall_cells},
+                 {"core_size", c.grid.core_size},
+                 {"cells", c.grid.cells}};
+    if (c.grid.cell_size > 0) grid["cell_size"] = c.grid.cell_size;
+    else grid["cells_per_edge"] = c.grid.cells_per_edge;
+    if (c.grid.center) grid["center"] = vec3_json(*c.grid.center);
+    root["grid"] = grid;
+    if (c.domain == "exterior") {
+        root["far_field"] = {{"shape", c.far_field.shape}};
+        if (c.far_field.size > 0) root["far_field"]["size"] = c.far_field.size;
+    }
+    if (c.boundary_layer)
+        root["boundary_layer"] = {{"first_height", c.boundary_layer->first_height},
+                                  {"growth_ratio", c.boundary_layer->growth_ratio},
+                                  {"layers", c.boundary_layer->layers}};
+    root["solver"] = {{"untangle", c.solver.untangle},
+                      {"optimize", c.solver.optimize},
+                      {"theta", c.solver.theta},
+                      {"max_iterations", c.solver.max_iterations},
+                      {"optimize_iterations", c.solver.optimize_iterations}};
+    return root.dump(2) + "\n";
+}
 
 double first_height_from_y_plus(double y_plus, double reynolds, double velocity, double density,
                                 double viscosity) {
@@ -244,8 +309,8 @@ Case parse_case(const std::string& text, const std::string& path) {
         throw InputError(fmt::format("{}: malformed JSON: {}", path, what));
     }
     const JsonFields top(root, path, "");
-    top.allow_only(
-        {"geometry", "domain", "grid", "far_field", "boundary_layer", "solver", "outputs"});
+    top.allow_only({"geometry", "domain", "grid", "far_field", "boundary_layer", "solver",
+                    "outputs", "refinement"});
     Case c;
     c.path = path;
     if (!top.has("geometry")) top.fail("geometry", "an object describing the body");
@@ -263,6 +328,11 @@ Case parse_case(const std::string& text, const std::string& path) {
         c.boundary_layer = parse_boundary_layer(top.object("boundary_layer"), c.grid);
     if (top.has("solver")) c.solver = parse_solver(top.object("solver"));
     if (top.has("outputs")) c.outputs = parse_outputs(top, path);
+    if (top.has("refinement")) {
+        const JsonFields r = top.object("refinement");
+        r.allow_only({"levels"});
+        c.refinement.levels = r.integer("levels", c.refinement.levels, 1, 5);
+    }
     return c;
 }
 

@@ -19,7 +19,8 @@ struct InputError : std::runtime_error {
 // A body as written in the case: a primitive, or a CSG node over children, with an
 // optional transform (applied as scale, then rotate, then translate).
 struct GeometrySpec {
-    std::string kind;  // sphere ellipsoid box cylinder torus cone file | union intersection difference
+    std::string kind;  // sphere ellipsoid box cylinder torus cone file points sections
+                       // | union intersection difference
     Vec3 center = Vec3::Zero();
     double radius = 0;        // sphere, cylinder
     Vec3 semi_axes = Vec3::Zero();  // ellipsoid
@@ -28,7 +29,9 @@ struct GeometrySpec {
     double major_radius = 0, minor_radius = 0;  // torus in the xy plane
     double bottom_radius = 0, top_radius = 0;   // cone (frustum), bottom at lower z
     std::vector<GeometrySpec> children;         // CSG operands, in order
-    std::string file;        // file: surface (STL OBJ OFF PLY), resolved against the case's folder
+    // file: surface (STL OBJ OFF PLY); points: oriented point cloud (PLY XYZ); sections: a
+    // cross-section stack (io/sample_readers.h). Resolved against the case's folder.
+    std::string file;
     double voxel_size = 0;   // file: voxel of its signed distance field (0: longest side / 256)
     Vec3 translate = Vec3::Zero();
     Vec3 rotate_axis = Vec3::UnitZ();
@@ -73,6 +76,12 @@ struct SolverSpec {
     int optimize_iterations = 10;   // barrier outer iterations; 0 keeps the constructed grid
 };
 
+// A nested grid-convergence family: `run` writes levels 1..levels, each level the one before
+// with every cell split into 8 (hexmesh/pipeline/refine_family.h). 1: the grid alone.
+struct RefinementSpec {
+    int levels = 1;  // 1..5
+};
+
 struct Case {
     std::string path;  // the file it came from, for messages
     GeometrySpec geometry;
@@ -82,6 +91,7 @@ struct Case {
     std::optional<BoundaryLayerSpec> boundary_layer;
     SolverSpec solver;
     std::vector<std::string> outputs = {"vtk"};
+    RefinementSpec refinement;
 };
 
 // Height of the first cell for a target y+ on a flat plate of length L = reynolds * viscosity /
@@ -96,5 +106,12 @@ Case read_case(const std::string& path);
 
 // Same, from JSON text; `path` only labels messages.
 Case parse_case(const std::string& text, const std::string& path);
+
+// The case as JSON text that parse_case reads back to the same geometry, domain, grid, far
+// field, boundary layer (first_height, also when it came from y+) and solver; surface file
+// paths absolute, so the text is valid wherever it is stored (the grid.case.json `run`
+// writes beside a grid). Outputs and refinement are left out: they describe a run, not the
+// grid.
+std::string case_to_json(const Case& c);
 
 }  // namespace hexmesh

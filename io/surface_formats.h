@@ -43,6 +43,13 @@ void split_tokens(std::string_view line, std::vector<std::string_view>& tokens);
 bool parse_double(std::string_view token, double& value);
 bool parse_int(std::string_view token, long long& value);
 
+// The extension of the file name in `path`, lower case, without the dot ("" if none).
+std::string file_extension(const std::string& path);
+
+// The whole file; throws InputError "<path>: cannot open (...)", "cannot read" or
+// "empty file".
+std::string read_file(const std::string& path);
+
 // Calls visit(line_number, line) for each line of text (1-based, without the newline).
 template <typename Visit>
 void for_each_line(std::string_view text, Visit visit) {

@@ -84,16 +84,32 @@ bool parse_int(std::string_view token, long long& value) {
     return r.ec == std::errc() && r.ptr == end;
 }
 
-}  // namespace surface_io
-
-TriangleSurface read_surface(const std::string& path, const SurfaceReadOptions& options) {
-    using namespace surface_io;
+std::string file_extension(const std::string& path) {
     std::string extension;
     const auto dot = path.find_last_of('.');
     if (dot != std::string::npos && path.find('/', dot) == std::string::npos)
         extension = path.substr(dot + 1);
     std::transform(extension.begin(), extension.end(), extension.begin(),
                    [](unsigned char c) { return std::tolower(c); });
+    return extension;
+}
+
+std::string read_file(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(fmt::format("{}: cannot open ({})", path, std::strerror(errno)));
+    std::ostringstream buffer;
+    buffer << in.rdbuf();
+    if (in.bad()) throw InputError(fmt::format("{}: cannot read", path));
+    std::string data = buffer.str();
+    if (data.empty()) throw InputError(fmt::format("{}: empty file", path));
+    return data;
+}
+
+}  // namespace surface_io
+
+TriangleSurface read_surface(const std::string& path, const SurfaceReadOptions& options) {
+    using namespace surface_io;
+    const std::string extension = file_extension(path);
     using Reader = TriangleSurface (*)(const std::string&, SurfaceBuilder&);
     Reader reader = extension == "stl"   ? read_stl
                     : extension == "obj" ? read_obj
@@ -105,13 +121,7 @@ TriangleSurface read_surface(const std::string& path, const SurfaceReadOptions& 
             "{}: unknown surface format '{}' (expected a .stl, .obj, .off or .ply file)", path,
             extension.empty() ? "no extension" : "." + extension));
 
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(fmt::format("{}: cannot open ({})", path, std::strerror(errno)));
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    if (in.bad()) throw InputError(fmt::format("{}: cannot read", path));
-    const std::string data = buffer.str();
-    if (data.empty()) throw InputError(fmt::format("{}: empty file", path));
+    const std::string data = read_file(path);
     SurfaceBuilder builder(path, options.allow_degenerate);
     return reader(data, builder);
 }

@@ -14,5 +14,7 @@ void add_inspect_command(CLI::App& app, int& exit_code);
 void add_sdf_command(CLI::App& app, int& exit_code);
 void add_export_command(CLI::App& app, int& exit_code);
 void add_untangle_command(CLI::App& app, int& exit_code);
+void add_refine_command(CLI::App& app, int& exit_code);
+void add_gci_command(CLI::App& app, int& exit_code);
 
 }  // namespace hexmesh::cli

@@ -13,6 +13,8 @@ int main(int argc, char** argv) {
     hexmesh::cli::add_sdf_command(app, exit_code);
     hexmesh::cli::add_export_command(app, exit_code);
     hexmesh::cli::add_untangle_command(app, exit_code);
+    hexmesh::cli::add_refine_command(app, exit_code);
+    hexmesh::cli::add_gci_command(app, exit_code);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "hexmesh/cli/commands.h"
+#include "hexmesh/pipeline/refine_family.h"
 #include "hexmesh/pipeline/run_case.h"
 #include "io/case_file.h"
 #include "io/quality_report.h"
@@ -28,6 +29,14 @@ void add_run_command(CLI::App& app, int& exit_code) {
         options.keep_invalid = args->keep_invalid;
         const RunResult result = run_case(c, args->outdir, options, std::cout);
         std::cout << "\n" << format_quality_table(result.report) << "\n";
+        if (!result.level_reports.empty()) {
+            std::vector<FamilyLevel> table;
+            for (size_t l = 0; l < result.level_reports.size(); ++l)
+                table.push_back(family_level(int(l) + 1, result.level_reports[l]));
+            std::cout << "grid-convergence family (refinement ratio 2; the table above is the "
+                         "finest level):\n"
+                      << format_family_table(table) << "\n";
+        }
         for (const std::string& f : result.files) std::cout << "written: " << f << "\n";
         exit_code = result.report.quality.inverted_corner_tets == 0 ? 0 : 3;
     });

@@ -2,10 +2,13 @@
 
 #include <memory>
 
+#include "io/sample_readers.h"
 #include "io/surface_reader.h"
 #include "surface/analytic.h"
+#include "surface/cross_sections.h"
 #include "surface/csg.h"
 #include "surface/mesh_sdf.h"
+#include "surface/point_cloud.h"
 #include "surface/transform.h"
 
 namespace hexmesh {
@@ -25,6 +28,8 @@ Body make_shape(const GeometrySpec& s) {
         options.voxel_size = s.voxel_size;
         return std::make_shared<MeshSdf>(read_surface(s.file), options);
     }
+    if (s.kind == "points") return std::make_shared<PointCloudSdf>(read_point_cloud(s.file));
+    if (s.kind == "sections") return std::make_shared<CrossSectionSdf>(read_sections(s.file));
     std::vector<Body> children;
     for (const GeometrySpec& c : s.children) children.push_back(make_body(c));
     const CsgOp op = s.kind == "union"          ? CsgOp::Union

@@ -33,16 +33,23 @@ Vec3 edge_lengths(const std::vector<Vec3>& points, const std::array<Id, 8>& node
     return sum / 4;
 }
 
-untangle::Problem make_problem(const BlockGrid& grid, const ImplicitFunction& body) {
+// The corner tets of every cell that has a node free to move (`held` empty: every cell).
+untangle::Problem make_problem(const BlockGrid& grid, const ImplicitFunction& body,
+                               const std::vector<bool>& held) {
     untangle::Problem p;
     p.points = grid.points;
     p.kinds = grid.kinds;
+    for (size_t v = 0; v < held.size(); ++v)
+        if (held[v]) p.kinds[v] = VertexKind::fixed;
     const Id cells = grid.num_cells();
     p.tets.reserve(8 * cells);
     p.targets.reserve(8 * cells);
     double total = 0;
     for (const Block& block : grid.blocks)
         for_each_cell(block, [&](int, int, int, const std::array<Id, 8>& nodes) {
+            if (!held.empty() && std::all_of(nodes.begin(), nodes.end(),
+                                             [&](Id v) { return bool(held[v]); }))
+                return;
             const Vec3 lengths = edge_lengths(grid.points, nodes);
             total += lengths.sum();
             for (int c = 0; c < 8; ++c) {
@@ -51,7 +58,8 @@ untangle::Problem make_problem(const BlockGrid& grid, const ImplicitFunction& bo
                 p.targets.push_back(corner_target(c, lengths));
             }
         });
-    p.length_scale = cells > 0 ? total / (3.0 * double(cells)) : 1.0;
+    const double used = double(p.tets.size() / 8);
+    p.length_scale = used > 0 ? total / (3.0 * used) : 1.0;
     const double h = p.length_scale;
     p.surface_normal = [&body](Id, const Vec3& x) { return body.gradient(x); };
     p.project_to_surface = [&body, h](Id, const Vec3& x) {
@@ -68,7 +76,7 @@ untangle::Problem make_problem(const BlockGrid& grid, const ImplicitFunction& bo
 
 GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& body,
                                      const GridOptimizationOptions& options) {
-    untangle::Problem problem = make_problem(grid, body);
+    untangle::Problem problem = make_problem(grid, body, options.held);
     GridOptimizationResult result;
     for (VertexKind k : problem.kinds) {
         result.slip_nodes += k == VertexKind::slip;

@@ -15,6 +15,10 @@ struct GridOptimizationOptions {
     // and the rest of the grid is optimized once more around them, wall and layers held (kept
     // only if every cell is then valid).
     WallLayers wall_layers;
+    // Nodes that must not move whatever their kind (sized like grid.points, or empty for
+    // none), e.g. the coarse nodes of a refined grid, which keep a family nested. Cells whose
+    // 8 nodes are all held are left out of the functional.
+    std::vector<bool> held;
 };
 
 struct GridOptimizationResult {

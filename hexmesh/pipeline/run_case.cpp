@@ -66,10 +66,9 @@ int cells_per_edge(const Case& c, const ImplicitFunction& body) {
     return std::max(2, int(n));
 }
 
-// Writes one grid, its quality.json and grid.case.json into out under `dir` ("" or
-// "level_2/"), refusing a grid with inverted cells unless keep_invalid.
-void write_level(const Case& c, const BlockGrid& grid, GridReport report, const std::string& dir,
-                 const RunOptions& options, PhaseTimer& timer, StagedOutput& out) {
+// Throws (nothing written) when the grid has inverted cells, unless keep_invalid.
+void refuse_invalid(const Case& c, const GridReport& report, const std::string& dir,
+                    const RunOptions& options) {
     const Id inverted = report.quality.inverted_cells;
     if (inverted > 0 && !options.keep_invalid) {
         throw std::runtime_error(fmt::format(
@@ -78,14 +77,24 @@ void write_level(const Case& c, const BlockGrid& grid, GridReport report, const 
             c.path, dir.empty() ? "" : "of " + dir.substr(0, dir.size() - 1) + " ", inverted,
             report.quality.min_scaled_jacobian));
     }
+}
+
+// Writes one grid, its quality.json and grid.case.json into `out` under `dir` ("" or
+// "level_2/"), refusing a grid with inverted cells unless keep_invalid.
+void write_level(const Case& c, const BlockGrid& grid, GridReport report, const std::string& dir,
+                 const RunOptions& options, PhaseTimer& timer, StagedOutput& out) {
+    refuse_invalid(c, report, dir, options);
+    const Id inverted = report.quality.inverted_cells;
     const std::string stem = dir + (inverted > 0 ? "grid_invalid" : "grid");
     const std::string file = out.path(stem + (grid.blocks.size() == 1 ? ".vts" : ".vtm"));
     std::filesystem::create_directories(std::filesystem::path(file).parent_path());
     write_vtk_grid(grid, file);
     for (const std::string& format : c.outputs)  // the VTK grid above is always written
         if (format != "vtk")
-            write_grid_format(grid, format, out.path(dir + export_file_name(format, stem.substr(dir.size()), grid)));
-    timer.done("write", dir);
+            write_grid_format(
+                grid, format,
+                out.path(dir + export_file_name(format, stem.substr(dir.size()), grid)));
+    timer.done(dir.empty() ? "write" : "write " + dir.substr(0, dir.size() - 1));
     report.phase_seconds = timer.phases();
     out.write_text(dir + "quality.json", quality_json(report));
     out.write_text(dir + "grid.case.json", case_to_json(c));
@@ -209,17 +218,20 @@ RunResult run_case(const Case& c, const std::string& outdir, const RunOptions& o
         result.files = out.commit();
         return result;
     }
+    refuse_invalid(c, result.report, "level_1/", options);  // before refining it
     result.level_reports.push_back(result.report);
     std::vector<BlockGrid> grids = {result.grid};
     RefinementOptions refinement;
     refinement.theta = c.solver.theta;
     for (int level = 2; level <= c.refinement.levels; ++level) {
         RefinementResult r = refine_on_body(grids.back(), *body, refinement);
-        timer.done("refinement", fmt::format("level {} ({} cells, {} wall nodes projected)", level,
-                                             r.grid.num_cells(), r.projected));
-        result.level_reports.push_back(measure_grid(
-            r.grid, *body, refined_wall_layers(wall_layers(c), level), surface ? &*surface : nullptr));
-        timer.done("quality", fmt::format("level {}", level));
+        timer.done(fmt::format("refinement level {}", level),
+                   fmt::format("({} cells, {} wall nodes projected)", r.grid.num_cells(),
+                               r.projected));
+        const WallLayers law = refined_wall_layers(wall_layers(c), level);
+        result.level_reports.push_back(
+            measure_grid(r.grid, *body, law, surface ? &*surface : nullptr));
+        timer.done(fmt::format("quality level {}", level));
         grids.push_back(std::move(r.grid));
     }
     StagedOutput out(outdir);

@@ -15,8 +15,10 @@
 namespace hexmesh {
 
 struct RunResult {
-    BlockGrid grid;
-    GridReport report;
+    BlockGrid grid;     // the finest level written
+    GridReport report;  // its report
+    // With "refinement": {"levels": N > 1}, the report of each level, level 1 first.
+    std::vector<GridReport> level_reports;
     std::vector<std::string> files;  // written outputs, final paths
 };
 
@@ -40,8 +42,12 @@ struct RunOptions {
     bool keep_invalid = false;
 };
 
-// Builds the grid, measures it and writes OUTDIR/grid.vtm (grid.vts for one block) and
-// OUTDIR/quality.json, all or nothing. Progress goes to `log`, one line per phase.
+// Builds the grid, measures it and writes OUTDIR/grid.vtm (grid.vts for one block),
+// OUTDIR/quality.json and OUTDIR/grid.case.json (case_to_json: the geometry `hexmesh refine`
+// projects new wall nodes onto), all or nothing. With c.refinement.levels = N > 1, the grid is
+// level 1 of a nested family: OUTDIR/level_1 ... OUTDIR/level_N each hold those three files,
+// level L + 1 being refine_on_body of level L (its wall law refined_wall_layers), and
+// OUTDIR/family.json the study table. Progress goes to `log`, one line per phase.
 RunResult run_case(const Case& c, const std::string& outdir, const RunOptions& options,
                    std::ostream& log);
 

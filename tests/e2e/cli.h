@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
@@ -50,6 +51,27 @@ inline int count_lines(const std::string& text) {
     int n = 0;
     for (char c : text) n += c == '\n';
     return n;
+}
+
+// The last word of the table row starting with `name` in `out`, if there is such a row.
+inline std::optional<std::string> row_last_word(const std::string& out, const std::string& name) {
+    const auto at = out.find("  " + name + " ");
+    if (at == std::string::npos) return std::nullopt;
+    const auto end = out.find('\n', at);
+    const std::string line = out.substr(at, end - at);
+    return line.substr(line.find_last_of(' ') + 1);
+}
+
+// The integer printed on the table row starting with `name`, or -1.
+inline long long row_value(const std::string& out, const std::string& name) {
+    const auto word = row_last_word(out, name);
+    return word ? std::stoll(*word) : -1;
+}
+
+// The number printed on the table row starting with `name`, or -1.
+inline double real_value(const std::string& out, const std::string& name) {
+    const auto word = row_last_word(out, name);
+    return word ? std::stod(*word) : -1;
 }
 
 }  // namespace hexmesh::test_support

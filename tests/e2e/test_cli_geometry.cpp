@@ -11,15 +11,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The integer printed on the table row starting with `name`, or -1.
-long long row_value(const std::string& out, const std::string& name) {
-    const auto at = out.find("  " + name + " ");
-    if (at == std::string::npos) return -1;
-    const auto end = out.find('\n', at);
-    const std::string line = out.substr(at, end - at);
-    return std::stoll(line.substr(line.find_last_of(' ') + 1));
-}
-
 void expect_one_error_line(const CommandResult& r, const std::string& message) {
     EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
     EXPECT_EQ(count_lines(r.err), 1) << r.err;

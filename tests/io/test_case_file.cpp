@@ -180,3 +180,47 @@ TEST(CaseFile, FirstHeightFromYPlus) {
       "boundary_layer": {"y_plus": 1, "velocity": 10, "density": 1.2, "viscosity": 1e-5, "layers": 3}})");
     EXPECT_NE(missing.find("boundary_layer.length"), std::string::npos) << missing;
 }
+
+TEST(CaseFile, RefinementLevels) {
+    const Case c = parse_case(R"({"geometry": {"sphere": {"radius": 1}},
+                                  "refinement": {"levels": 3}})", "case.json");
+    EXPECT_EQ(c.refinement.levels, 3);
+    EXPECT_EQ(parse_case(R"({"geometry": {"sphere": {"radius": 1}}})", "c.json").refinement.levels, 1);
+}
+
+TEST(CaseFile, RefinementLevelsOutOfRangeOrUnknownKeysAreRefused) {
+    EXPECT_NE(error_of(R"({"geometry": {"sphere": {"radius": 1}}, "refinement": {"levels": 6}})")
+                  .find("refinement.levels"),
+              std::string::npos);
+    EXPECT_NE(error_of(R"({"geometry": {"sphere": {"radius": 1}}, "refinement": {"levels": 0}})")
+                  .find("refinement.levels"),
+              std::string::npos);
+    EXPECT_NE(error_of(R"({"geometry": {"sphere": {"radius": 1}}, "refinement": {"ratio": 2}})")
+                  .find("refinement.ratio"),
+              std::string::npos);
+}
+
+TEST(CaseFile, CaseToJsonReadsBackTheSameGridAndGeometry) {
+    const Case c = parse_case(R"({
+      "geometry": {"difference": [{"box": {"size": [2, 2, 2]}},
+                                  {"cylinder": {"radius": 0.5, "height": 3}}],
+                   "rotate": {"axis": [0, 0, 1], "degrees": 30}, "translate": [1, 0, 0]},
+      "grid": {"cells_per_edge": 12, "wall_cells": 5, "core_size": 0.4},
+      "boundary_layer": {"y_plus": 1, "velocity": 10, "density": 1.2, "viscosity": 1.8e-5,
+                         "length": 1, "layers": 3},
+      "solver": {"optimize": "lbfgs", "optimize_iterations": 4},
+      "refinement": {"levels": 2}
+    })", "case.json");
+    const Case back = parse_case(case_to_json(c), "grid.case.json");
+    EXPECT_EQ(back.geometry.kind, "difference");
+    ASSERT_EQ(back.geometry.children.size(), 2u);
+    EXPECT_EQ(back.geometry.children[1].radius, 0.5);
+    EXPECT_EQ(back.geometry.rotate_degrees, 30);
+    EXPECT_EQ(back.geometry.translate, Vec3(1, 0, 0));
+    EXPECT_EQ(back.grid.cells_per_edge, 12);
+    EXPECT_EQ(back.grid.wall_cells, 5);
+    ASSERT_TRUE(back.boundary_layer);
+    EXPECT_DOUBLE_EQ(back.boundary_layer->first_height, c.boundary_layer->first_height);
+    EXPECT_EQ(back.solver.optimize, "lbfgs");
+    EXPECT_EQ(back.refinement.levels, 1);  // a run setting, not part of the grid
+}

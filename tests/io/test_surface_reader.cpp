@@ -3,40 +3,22 @@
 
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
 
 #include "io/surface_reader.h"
+#include "tests/io/scratch_files.h"
 #include "tests/surface/sample_surfaces.h"
 
 namespace hexmesh {
 namespace {
 
-namespace fs = std::filesystem;
-
-class SurfaceReader : public ::testing::Test {
+class SurfaceReader : public test::ScratchFiles {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() / ("hexmesh_reader_" + std::to_string(::getpid()));
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
+    SurfaceReader() : ScratchFiles("hexmesh_reader_") {}
 
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
-    std::string write(const std::string& name, const std::string& text) const {
-        std::ofstream(path(name), std::ios::binary) << text;
-        return path(name);
-    }
     // The InputError message of reading `file`, or "" if it reads fine.
     static std::string error_of(const std::string& file) {
-        try {
-            read_surface(file);
-        } catch (const InputError& e) {
-            return e.what();
-        }
-        return "";
+        return test::input_error_of([](const std::string& f) { read_surface(f); }, file);
     }
-
-    fs::path dir_;
 };
 
 TEST_F(SurfaceReader, BinaryStlStartingWithSolidMergesCorners) {

@@ -1,0 +1,83 @@
+// `hexmesh refine GRID -o OUTDIR [--levels N] [--case CASE.json]`: a grid one (or N) levels finer.
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include "hexmesh/cli/commands.h"
+#include "hexmesh/pipeline/make_body.h"
+#include "hexmesh/pipeline/refine_family.h"
+#include "hexmesh/pipeline/run_case.h"
+#include "io/case_file.h"
+#include "io/quality_report.h"
+#include "io/staged_output.h"
+#include "io/vtk_mesh.h"
+
+namespace hexmesh::cli {
+namespace {
+
+// The case of a grid: --case, else the grid.case.json `run` wrote beside it.
+Case case_of_grid(const std::string& grid_path, const std::string& case_path) {
+    if (!case_path.empty()) return read_case(case_path);
+    const std::filesystem::path sidecar =
+        std::filesystem::path(grid_path).parent_path() / "grid.case.json";
+    if (!std::filesystem::exists(sidecar))
+        throw InputError(fmt::format(
+            "{}: no case for this grid: give --case CASE.json (its geometry receives the new wall "
+            "nodes) or keep the grid.case.json `run` writes beside the grid",
+            grid_path));
+    return read_case(sidecar.string());
+}
+
+}  // namespace
+
+void add_refine_command(CLI::App& app, int& exit_code) {
+    struct Args {
+        std::string grid_path, outdir, case_path;
+        int levels = 1;
+    };
+    auto args = std::make_shared<Args>();
+    CLI::App* cmd = app.add_subcommand(
+        "refine", "split every cell of a block grid into 8 (nested: the old nodes stay put)");
+    cmd->add_option("grid", args->grid_path, "block grid (.vtm or .vts from `run`)")->required();
+    cmd->add_option("-o,--output", args->outdir, "output directory")->required();
+    cmd->add_option("--levels", args->levels, "how many times to refine")
+        ->check(CLI::Range(1, 4))
+        ->capture_default_str();
+    cmd->add_option("--case", args->case_path,
+                    "case file of the grid (default: grid.case.json beside it)");
+    cmd->callback([args, &exit_code] {
+        if (!std::filesystem::exists(args->grid_path))
+            throw InputError(fmt::format("{}: no such grid file", args->grid_path));
+        const Case c = case_of_grid(args->grid_path, args->case_path);
+        BlockGrid grid = read_vtk_block_grid(args->grid_path);
+        const Body body = make_body(c.geometry);
+        std::cout << fmt::format("hexmesh refine {} ({} blocks, {} cells)\n", args->grid_path,
+                                 grid.blocks.size(), grid.num_cells());
+        for (int level = 1; level <= args->levels; ++level) {
+            RefinementResult r = refine_on_body(grid, *body);
+            std::cout << fmt::format(
+                "  refined: {} cells, {} new wall nodes projected (max move "
+                "{:.3g}), min det after {:.3g}\n",
+                r.grid.num_cells(), r.projected, r.max_projection, r.solve.min_det_after);
+            grid = std::move(r.grid);
+        }
+        const std::optional<TriangleSurface> surface = reference_surface(c.geometry);
+        const GridReport report = measure_grid(grid, *body, {}, surface ? &*surface : nullptr);
+        std::cout << "\n" << format_quality_table(report) << "\n";
+        if (report.quality.inverted_cells > 0)
+            throw std::runtime_error(
+                fmt::format("{}: the refined grid has {} inverted cells; "
+                            "nothing written",
+                            args->grid_path, report.quality.inverted_cells));
+        StagedOutput out(args->outdir);
+        write_vtk_grid(grid, out.path(grid.blocks.size() == 1 ? "grid.vts" : "grid.vtm"));
+        out.write_text("quality.json", quality_json(report));
+        out.write_text("grid.case.json", case_to_json(c));
+        for (const std::string& f : out.commit()) std::cout << "written: " << f << "\n";
+        exit_code = 0;
+    });
+}
+
+}  // namespace hexmesh::cli

@@ -1,0 +1,71 @@
+// Nested refinement on the body: refine_grid, new wall nodes onto u = 0, a local polish.
+#pragma once
+
+#include <ostream>
+#include <vector>
+
+#include "hexmesh/core/block_grid.h"
+#include "hexmesh/core/implicit_function.h"
+#include "io/quality_report.h"
+#include "untangle/untangle.h"
+#include "volume/stretching.h"
+
+namespace hexmesh {
+
+struct RefinementOptions {
+    int sweeps = 4;               // descent steps of the block-diagonal solver on the new nodes
+    double theta = 0.8;           // volume weight of the functional (DESIGN §4)
+    std::ostream* log = nullptr;  // the solver's progress lines
+};
+
+struct RefinementResult {
+    BlockGrid grid;
+    untangle::UntangleResult solve;  // the local optimization of the new nodes
+    Id projected = 0;                // new wall nodes moved onto u = 0 (or onto a crease)
+    double max_projection = 0;       // the longest such move, in geometry units
+};
+
+// One level finer than `coarse` (a grid on `body`, e.g. from `run` or a previous level):
+// refine_grid (volume/refine.h), then every new slip node projected onto u = 0 of `body`
+// (project_to_surface) and every new feature_edge node onto its crease, then `sweeps`
+// steps of the block-diagonal solver (slip on u = 0) over the new nodes of the cells that
+// touch the wall, each cell's target the box of its own edge lengths after interpolation (as
+// in optimize_grid); the interpolated interior needs no polish and is left as it is. Where
+// the polish leaves a cell below the worst scaled Jacobian of the interpolated grid, that
+// cell's new nodes return to their interpolated positions, so refinement never lowers the
+// interpolation's min scaled Jacobian. The coarse nodes are held at their exact positions:
+// node v < coarse.points.size() of the result is coarse node v, so the levels are nested.
+// Inverted cells (there should be none) are untangled by the same local solver.
+RefinementResult refine_on_body(const BlockGrid& coarse, const ImplicitFunction& body,
+                                const RefinementOptions& options = {});
+
+// The nested family level_1 = `coarse`, level_2, ..., level_`levels` (levels >= 1), each
+// level refine_on_body of the one before.
+std::vector<BlockGrid> refine_family(const BlockGrid& coarse, const ImplicitFunction& body,
+                                     int levels, const RefinementOptions& options = {});
+
+// The boundary-layer law level `level` (1 = the coarse grid) of a family follows when level 1
+// follows `law`: each cell is split in two along the wall normal, so per level the growth
+// ratio r becomes sqrt(r), the first height h becomes h / (1 + sqrt(r)) (about h / 2: the
+// first coarse cell holds two fine cells of ratio sqrt(r)) and the layers double.
+WallLayers refined_wall_layers(const WallLayers& law, int level);
+
+// One row of a grid-convergence study table.
+struct FamilyLevel {
+    int level = 1;
+    Id cells = 0;
+    double min_scaled_jacobian = 0, mean_scaled_jacobian = 0;
+    double first_layer = 0;            // mean first-layer height at the wall (0: no wall)
+    double growth_ratio = 0;           // mean growth ratio along the wall-normal lines
+    double max_non_orthogonality = 0;  // degrees
+};
+
+FamilyLevel family_level(int level, const GridReport& report);
+
+// The study table printed by `run` (a header line, one line per level).
+std::string format_family_table(const std::vector<FamilyLevel>& levels);
+
+// family.json: {"refinement_ratio": 2, "levels": [{"level", "directory", "cells", ...}]}.
+std::string family_json(const std::vector<FamilyLevel>& levels);
+
+}  // namespace hexmesh

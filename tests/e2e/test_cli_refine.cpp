@@ -1,0 +1,154 @@
+// `hexmesh run` with a refinement family, `hexmesh refine` and `hexmesh gci`, as a user runs them.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "cli.h"
+#include "io/vtk_mesh.h"
+
+using namespace hexmesh;
+using namespace hexmesh::test_support;
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+const fs::path family_dir = scratch("family");
+const fs::path refined_dir = scratch("refined");
+
+// A small sphere family, run once for the tests of this file, then its level 1 refined by
+// `hexmesh refine` (the case found through grid.case.json).
+class SphereFamily : public ::testing::Test {
+  protected:
+    static void SetUpTestSuite() {
+        fs::remove_all(family_dir);
+        fs::remove_all(refined_dir);
+        fs::create_directories(family_dir);
+        std::ofstream(scratch("family_case.json")) << R"({
+          "geometry": {"sphere": {"center": [0, 0, 0], "radius": 1.0}},
+          "grid": {"cells_per_edge": 8, "wall_cells": 6},
+          "boundary_layer": {"first_height": 0.02, "growth_ratio": 1.2, "layers": 3},
+          "solver": {"optimize_iterations": 5},
+          "refinement": {"levels": 3}
+        })";
+        run = run_hexmesh("run '" + scratch("family_case.json").string() + "' -o '" +
+                          family_dir.string() + "'");
+        refine = run_hexmesh("refine '" + (family_dir / "level_1" / "grid.vtm").string() +
+                             "' -o '" + refined_dir.string() + "'");
+    }
+    static void TearDownTestSuite() {
+        fs::remove_all(family_dir);
+        fs::remove_all(refined_dir);
+        fs::remove(scratch("family_case.json"));
+    }
+    static CommandResult run, refine;
+};
+CommandResult SphereFamily::run, SphereFamily::refine;
+
+}  // namespace
+
+TEST_F(SphereFamily, RunWritesEveryLevelAndTheFamilyTable) {
+    ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+    for (int level = 1; level <= 3; ++level) {
+        const fs::path dir = family_dir / ("level_" + std::to_string(level));
+        EXPECT_TRUE(fs::exists(dir / "grid.vtm")) << dir;
+        EXPECT_TRUE(fs::exists(dir / "quality.json")) << dir;
+        EXPECT_TRUE(fs::exists(dir / "grid.case.json")) << dir;
+    }
+    const json family = json::parse(read_text(family_dir / "family.json"));
+    ASSERT_EQ(family.at("levels").size(), 3u);
+    const long cells = 8 * 8 * 8 + 6 * 8 * 8 * 6;
+    EXPECT_EQ(family["levels"][0]["cells"].get<long>(), cells);
+    EXPECT_EQ(family["levels"][2]["cells"].get<long>(), 64 * cells);
+    EXPECT_NE(run.out.find("grid-convergence family"), std::string::npos) << run.out;
+}
+
+TEST_F(SphereFamily, FirstLayerHalvesAndGrowthRatioTakesItsSquareRoot) {
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    // A first cell h of ratio r holds two cells h / (1 + sqrt(r)) and sqrt(r) h / (1 + sqrt(r)).
+    const json levels = json::parse(read_text(family_dir / "family.json")).at("levels");
+    double r = 1.2;
+    for (size_t l = 0; l + 1 < levels.size(); ++l, r = std::sqrt(r)) {
+        const double h0 = levels[l]["first_layer_mean"], h1 = levels[l + 1]["first_layer_mean"];
+        EXPECT_NEAR(h1 / h0, 1 / (1 + std::sqrt(r)), 0.02) << l;
+    }
+    const json fine = json::parse(read_text(family_dir / "level_2" / "quality.json"));
+    EXPECT_NEAR(fine.at("wall").at("growth_ratio").at("mean").get<double>(), std::sqrt(1.2), 0.02);
+}
+
+TEST_F(SphereFamily, EveryLevelIsValidAndKeepsItsMinScaledJacobian) {
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const json levels = json::parse(read_text(family_dir / "family.json")).at("levels");
+    for (size_t l = 0; l < levels.size(); ++l) {
+        const json q = json::parse(
+            read_text(family_dir / ("level_" + std::to_string(l + 1)) / "quality.json"));
+        EXPECT_TRUE(q.at("valid").get<bool>()) << l;
+        EXPECT_LT(q.at("max_surface_distance_over_h").get<double>(), 1e-3) << l;
+        if (l > 0) {
+            EXPECT_GE(levels[l]["min_scaled_jacobian"].get<double>(),
+                      levels[l - 1]["min_scaled_jacobian"].get<double>() - 0.05);
+        }
+    }
+}
+
+TEST_F(SphereFamily, RefineCommandWritesTheNextLevelOfTheFamily) {
+    ASSERT_EQ(refine.exit_code, 0) << refine.out << refine.err;
+    const HexMesh mine = read_vtk_mesh((refined_dir / "grid.vtm").string());
+    const HexMesh runs = read_vtk_mesh((family_dir / "level_2" / "grid.vtm").string());
+    EXPECT_EQ(mine.num_cells(), runs.num_cells());
+    const json q = json::parse(read_text(refined_dir / "quality.json"));
+    EXPECT_TRUE(q.at("valid").get<bool>());
+    EXPECT_TRUE(fs::exists(refined_dir / "grid.case.json"));
+}
+
+TEST_F(SphereFamily, RefinedGridContainsEveryCoarseNode) {
+    ASSERT_EQ(refine.exit_code, 0) << refine.err;
+    const BlockGrid coarse = read_vtk_block_grid((family_dir / "level_1" / "grid.vtm").string());
+    const BlockGrid fine = read_vtk_block_grid((refined_dir / "grid.vtm").string());
+    for (size_t b = 0; b < coarse.blocks.size(); ++b) {
+        const Block &c = coarse.blocks[b], &f = fine.blocks[b];
+        ASSERT_EQ(f.nodes.ni, 2 * c.nodes.ni - 1);
+        for (int k = 0; k < c.nodes.nk; ++k)
+            for (int j = 0; j < c.nodes.nj; ++j)
+                for (int i = 0; i < c.nodes.ni; ++i)
+                    ASSERT_EQ(fine.points[f.node(2 * i, 2 * j, 2 * k)],
+                              coarse.points[c.node(i, j, k)]);
+    }
+}
+
+TEST(CliRefine, MissingGridIsOneErrorLine) {
+    const CommandResult r =
+        run_hexmesh("refine no/such/grid.vtm -o '" + scratch("nothing").string() + "'");
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("no/such/grid.vtm"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(scratch("nothing")));
+}
+
+TEST(CliGci, ReproducesCelikTable1) {
+    // Celik et al., J. Fluids Eng. 130 (2008) 078001, Table 1: phi = 6.063, 5.972, 5.863 on
+    // N = 18000, 8000, 4500 cells (2D: r21 = 1.5, r32 = 4/3); p = 1.53, phi_ext = 6.1685,
+    // e_a = 1.5 %, e_ext = 1.7 %, GCI_fine = 2.2 %.
+    const CommandResult r = run_hexmesh("gci 6.063 5.972 5.863 --ratio 1.5 --ratio32 1.333333333");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("observed order p                    1.53"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("phi_ext^21       6.168"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("GCI_fine^21                         2.17"), std::string::npos) << r.out;
+}
+
+TEST(CliGci, ZeroDifferenceIsOneErrorLine) {
+    const CommandResult r = run_hexmesh("gci 1.0 1.0 2.0");
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("differ"), std::string::npos) << r.err;
+}
+
+TEST(CliGci, NonMonotoneValuesAreOneErrorLine) {
+    const CommandResult r = run_hexmesh("gci 6.0042 5.9624 6.0909");
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("not monotone"), std::string::npos) << r.err;
+}

@@ -1,0 +1,110 @@
+// Nested families on the body: refine_on_body and refine_family on the sphere and the bean STL.
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "hexmesh/pipeline/make_body.h"
+#include "hexmesh/pipeline/optimize_grid.h"
+#include "hexmesh/pipeline/refine_family.h"
+#include "hexmesh/pipeline/run_case.h"
+
+using namespace hexmesh;
+
+namespace {
+
+struct Family {
+    Body body;
+    std::vector<BlockGrid> levels;
+    std::vector<GridReport> reports;
+};
+
+// Three levels from a small O-H grid of `case_text`, level 1 optimized as `run` does.
+Family make_family(const std::string& case_text) {
+    const Case c = parse_case(case_text, "family.json");
+    Family f;
+    f.body = make_body(c.geometry);
+    BlockGrid coarse = build_grid(c, *f.body);
+    GridOptimizationOptions o;
+    o.untangle.optimize_solver.method = untangle::Method::block_diagonal;
+    o.untangle.max_optimize_iterations = 5;
+    optimize_grid(coarse, *f.body, o);
+    f.levels = refine_family(coarse, *f.body, 3);
+    for (const BlockGrid& g : f.levels) f.reports.push_back(measure_grid(g, *f.body));
+    return f;
+}
+
+const Family& family(const std::string& name) {
+    static std::map<std::string, Family> cache;
+    if (!cache.count(name)) {
+        const std::string bean = std::string(HEXMESH_SOURCE_DIR) + "/cases/bean/bean.stl";
+        cache[name] = make_family(
+            name == "sphere" ? R"({"geometry": {"sphere": {"center": [0.1, 0, -0.2], "radius": 1}},
+                     "grid": {"cells_per_edge": 6, "wall_cells": 4}})"
+                             : R"({"geometry": {"file": ")" + bean + R"(", "voxel_size": 0.02},
+                     "grid": {"cells_per_edge": 6, "wall_cells": 4, "core_size": 0.4}})");
+    }
+    return cache.at(name);
+}
+
+class RefineFamily : public ::testing::TestWithParam<std::string> {};
+
+}  // namespace
+
+TEST_P(RefineFamily, HasThreeLevelsOfEightTimesTheCells) {
+    const Family& f = family(GetParam());
+    ASSERT_EQ(f.levels.size(), 3u);
+    EXPECT_EQ(f.levels[1].num_cells(), 8 * f.levels[0].num_cells());
+    EXPECT_EQ(f.levels[2].num_cells(), 64 * f.levels[0].num_cells());
+}
+
+TEST_P(RefineFamily, IsNestedNodeByNode) {
+    const Family& f = family(GetParam());
+    for (size_t l = 0; l + 1 < f.levels.size(); ++l)
+        for (size_t v = 0; v < f.levels[l].points.size(); ++v)
+            ASSERT_EQ(f.levels[l + 1].points[v], f.levels[l].points[v]) << "level " << l + 1;
+}
+
+TEST_P(RefineFamily, WallNodesLieOnTheBody) {
+    const Family& f = family(GetParam());
+    for (const GridReport& r : f.reports) {
+        ASSERT_TRUE(r.max_surface_distance);
+        EXPECT_LT(*r.max_surface_distance, 1e-3);  // max |u| / h over the wall nodes
+    }
+}
+
+TEST_P(RefineFamily, NoLevelHasAnInvertedCell) {
+    for (const GridReport& r : family(GetParam()).reports)
+        EXPECT_EQ(r.quality.inverted_corner_tets, 0);
+}
+
+TEST_P(RefineFamily, MinScaledJacobianDropsByAtMostFiveHundredthsPerLevel) {
+    const Family& f = family(GetParam());
+    for (size_t l = 0; l + 1 < f.reports.size(); ++l) {
+        std::cout << GetParam() << " level " << l + 1 << " min SJ "
+                  << f.reports[l].quality.min_scaled_jacobian << ", level " << l + 2 << " "
+                  << f.reports[l + 1].quality.min_scaled_jacobian << "\n";
+        EXPECT_GE(f.reports[l + 1].quality.min_scaled_jacobian,
+                  f.reports[l].quality.min_scaled_jacobian - 0.05);
+    }
+}
+
+TEST_P(RefineFamily, FirstLayerAboutHalvesPerLevel) {
+    const Family& f = family(GetParam());
+    for (size_t l = 0; l + 1 < f.reports.size(); ++l) {
+        ASSERT_TRUE(f.reports[l].wall && f.reports[l + 1].wall);
+        EXPECT_NEAR(f.reports[l + 1].wall->first_layer_mean / f.reports[l].wall->first_layer_mean,
+                    0.5, 0.06);
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Bodies, RefineFamily, ::testing::Values("sphere", "bean"));
+
+TEST(RefinedWallLayers, SplitTheFirstCellInTwoOfRatioSqrtR) {
+    const WallLayers fine = refined_wall_layers({0.01, 1.21, 4}, 2);
+    EXPECT_NEAR(fine.growth_ratio, 1.1, 1e-12);
+    EXPECT_NEAR(fine.first_height * (1 + 1.1), 0.01, 1e-15);  // h1 + h1 sqrt(r) = h
+    EXPECT_EQ(fine.layers, 8);
+    const WallLayers finer = refined_wall_layers({0.01, 1.21, 4}, 3);
+    EXPECT_NEAR(finer.first_height * (1 + std::sqrt(1.1)), fine.first_height, 1e-15);
+    EXPECT_EQ(finer.layers, 16);
+}

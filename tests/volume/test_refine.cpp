@@ -1,0 +1,146 @@
+// refine_grid: topology, nesting and conformity of a refined O-H sphere grid.
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "grid_checks.h"
+#include "hexmesh/core/quality.h"
+#include "hexmesh/core/reference_hex.h"
+#include "surface/analytic.h"
+#include "volume/o_h_grid.h"
+#include "volume/refine.h"
+
+using namespace hexmesh;
+
+namespace {
+
+BlockGrid sphere_grid() {
+    OHGridOptions o;
+    o.cells_per_edge = 6;
+    o.wall_cells = 4;
+    o.wall_layers = {0.02, 1.2, 2};
+    return make_o_h_grid(Sphere(Vec3(0.1, -0.2, 0.3), 1.0), o);
+}
+
+// Distinct coarse edges and faces of a grid's cells, by their sorted node ids.
+std::pair<Id, Id> count_edges_and_faces(const BlockGrid& grid) {
+    std::set<std::array<Id, 2>> edges;
+    std::set<std::array<Id, 4>> faces;
+    const HexMesh mesh = to_hex_mesh(grid);
+    for (Id c = 0; c < mesh.num_cells(); ++c) {
+        for (const auto& e : hex_edges) {
+            std::array<Id, 2> key{mesh.node(c, e[0]), mesh.node(c, e[1])};
+            std::sort(key.begin(), key.end());
+            edges.insert(key);
+        }
+        for (const auto& f : hex_faces) {
+            std::array<Id, 4> key{mesh.node(c, f[0]), mesh.node(c, f[1]), mesh.node(c, f[2]),
+                                  mesh.node(c, f[3])};
+            std::sort(key.begin(), key.end());
+            faces.insert(key);
+        }
+    }
+    return {Id(edges.size()), Id(faces.size())};
+}
+
+}  // namespace
+
+TEST(RefineGrid, EachBlockGoesFromNToTwoNMinusOneNodesPerDirection) {
+    const BlockGrid coarse = sphere_grid();
+    const BlockGrid fine = refine_grid(coarse);
+    ASSERT_EQ(fine.blocks.size(), coarse.blocks.size());
+    for (size_t b = 0; b < coarse.blocks.size(); ++b) {
+        const Dims c = coarse.blocks[b].nodes, f = fine.blocks[b].nodes;
+        EXPECT_EQ(f.ni, 2 * c.ni - 1);
+        EXPECT_EQ(f.nj, 2 * c.nj - 1);
+        EXPECT_EQ(f.nk, 2 * c.nk - 1);
+        EXPECT_EQ(fine.blocks[b].name, coarse.blocks[b].name);
+        EXPECT_EQ(fine.blocks[b].face_patch, coarse.blocks[b].face_patch);
+    }
+    EXPECT_EQ(fine.num_cells(), 8 * coarse.num_cells());
+}
+
+TEST(RefineGrid, OneNewNodePerCoarseEdgeFaceAndCell) {
+    const BlockGrid coarse = sphere_grid();
+    const BlockGrid fine = refine_grid(coarse);
+    const auto [edges, faces] = count_edges_and_faces(coarse);
+    EXPECT_EQ(Id(fine.points.size()),
+              Id(coarse.points.size()) + edges + faces + coarse.num_cells());
+    EXPECT_EQ(fine.kinds.size(), fine.points.size());
+}
+
+TEST(RefineGrid, CoarseNodesKeepTheirIdsAndExactPositionsAtEvenIndices) {
+    const BlockGrid coarse = sphere_grid();
+    const BlockGrid fine = refine_grid(coarse);
+    for (size_t v = 0; v < coarse.points.size(); ++v) {
+        ASSERT_EQ(fine.points[v], coarse.points[v]) << v;  // bitwise: the family is nested
+        ASSERT_EQ(fine.kinds[v], coarse.kinds[v]) << v;
+    }
+    for (size_t b = 0; b < coarse.blocks.size(); ++b) {
+        const Block &c = coarse.blocks[b], &f = fine.blocks[b];
+        for (int k = 0; k < c.nodes.nk; ++k)
+            for (int j = 0; j < c.nodes.nj; ++j)
+                for (int i = 0; i < c.nodes.ni; ++i)
+                    ASSERT_EQ(f.node(2 * i, 2 * j, 2 * k), c.node(i, j, k));
+    }
+}
+
+TEST(RefineGrid, InterfacesStayConforming) {
+    const BlockGrid coarse = sphere_grid();
+    const auto before = test_support::count_faces(to_hex_mesh(coarse));
+    const auto after = test_support::count_faces(to_hex_mesh(refine_grid(coarse)));
+    EXPECT_EQ(after.over_shared, 0);
+    EXPECT_EQ(after.boundary, 4 * before.boundary);  // only the wall, each wall face split in 4
+    EXPECT_EQ(after.internal, 4 * before.internal + 12 * coarse.num_cells());
+}
+
+TEST(RefineGrid, NoCellIsInverted) {
+    const QualityReport q = measure_quality(to_hex_mesh(refine_grid(sphere_grid())));
+    EXPECT_EQ(q.inverted_corner_tets, 0);
+    EXPECT_GT(q.min_scaled_jacobian, 0.3);
+}
+
+TEST(RefineGrid, NewWallNodesSlipAndStayCloseToTheSphere) {
+    const BlockGrid coarse = sphere_grid();
+    const BlockGrid fine = refine_grid(coarse);
+    const Sphere sphere(Vec3(0.1, -0.2, 0.3), 1.0);
+    const Id coarse_slip = std::count(coarse.kinds.begin(), coarse.kinds.end(), VertexKind::slip);
+    const Id fine_slip = std::count(fine.kinds.begin(), fine.kinds.end(), VertexKind::slip);
+    EXPECT_EQ(fine_slip, 4 * (coarse_slip - 2) + 2);  // V - E + F = 2 on the wall, F x 4
+    double worst = 0;
+    for (size_t v = coarse.points.size(); v < fine.points.size(); ++v)
+        if (fine.kinds[v] == VertexKind::slip)
+            worst = std::max(worst, std::abs(sphere.value(fine.points[v])));
+    // Cubic interpolation along the wall's grid lines: far below the chordal error of a
+    // 6-cell patch edge (about 1 - cos(pi / 24) = 8.6e-3).
+    EXPECT_LT(worst, 2e-3);
+}
+
+TEST(RefineGrid, GeometricStretchingBecomesItsSquareRoot) {
+    // One block, a line of nodes x_m = sum r^l along i: the refined spacing grows by sqrt(r).
+    BlockGrid grid;
+    const double r = 1.21;
+    const int n = 9;
+    Block b;
+    b.name = "line";
+    b.nodes = {n, 2, 2};
+    double x = 0, h = 1;
+    std::vector<double> xs;
+    for (int m = 0; m < n; ++m, x += h, h *= r) xs.push_back(x);
+    for (int k = 0; k < 2; ++k)
+        for (int j = 0; j < 2; ++j)
+            for (int i = 0; i < n; ++i) {
+                b.node_ids.push_back(Id(grid.points.size()));
+                grid.points.emplace_back(xs[i], j, k);
+                grid.kinds.push_back(VertexKind::interior);
+            }
+    grid.blocks.push_back(b);
+    const BlockGrid fine = refine_grid(grid);
+    const Block& f = fine.blocks[0];
+    for (int i = 4; i + 4 < f.nodes.ni; ++i) {  // away from the quadratic end stencils
+        const double a = fine.points[f.node(i + 1, 0, 0)].x() - fine.points[f.node(i, 0, 0)].x();
+        const double c =
+            fine.points[f.node(i + 2, 0, 0)].x() - fine.points[f.node(i + 1, 0, 0)].x();
+        EXPECT_NEAR(c / a, std::sqrt(r), 2e-3) << i;
+    }
+}
