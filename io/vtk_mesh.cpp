@@ -118,7 +118,9 @@ void append_hexes(vtkDataSet* data, const std::string& path, HexMesh& mesh, Poin
 
 
 
-// Appends one structured piece to `grid` as a block, merging points equal to earlier ones.
+// Appends one structured piece to `grid` as a block. Blocks meet only on their faces: points
+// on the block's faces are merged with equal points of earlier blocks, interior points are
+// the block's own (so the lookup table holds face points only).
 void append_block(vtkStructuredGrid* piece, const std::string& fallback_name, BlockGrid& grid,
                   PointIds& point_ids) {
     Block block;
@@ -128,16 +130,26 @@ void append_block(vtkStructuredGrid* piece, const std::string& fallback_name, Bl
     block.nodes = {dims[0], dims[1], dims[2]};
     auto* kinds = vtkUnsignedCharArray::SafeDownCast(piece->GetPointData()->GetArray("vertex_kind"));
     block.node_ids.resize(piece->GetNumberOfPoints());
-    for (vtkIdType m = 0; m < piece->GetNumberOfPoints(); ++m) {
-        std::array<double, 3> x;
-        piece->GetPoint(m, x.data());
-        auto [it, inserted] = point_ids.emplace(x, Id(grid.points.size()));
-        if (inserted) {
-            grid.points.emplace_back(x[0], x[1], x[2]);
-            grid.kinds.push_back(kinds ? VertexKind(kinds->GetValue(m)) : VertexKind{});
-        }
-        block.node_ids[m] = it->second;
-    }
+    grid.points.reserve(grid.points.size() + block.node_ids.size());
+    grid.kinds.reserve(grid.kinds.size() + block.node_ids.size());
+    vtkIdType m = 0;
+    for (int k = 0; k < dims[2]; ++k)
+        for (int j = 0; j < dims[1]; ++j)
+            for (int i = 0; i < dims[0]; ++i, ++m) {
+                std::array<double, 3> x;
+                piece->GetPoint(m, x.data());
+                const bool on_face = i == 0 || j == 0 || k == 0 || i == dims[0] - 1 ||
+                                     j == dims[1] - 1 || k == dims[2] - 1;
+                if (on_face) {
+                    auto [it, inserted] = point_ids.emplace(x, Id(grid.points.size()));
+                    block.node_ids[m] = it->second;
+                    if (!inserted) continue;
+                } else {
+                    block.node_ids[m] = Id(grid.points.size());
+                }
+                grid.points.emplace_back(x[0], x[1], x[2]);
+                grid.kinds.push_back(kinds ? VertexKind(kinds->GetValue(m)) : VertexKind{});
+            }
     vtkFieldData* fields = piece->GetFieldData();
     if (auto* name = vtkStringArray::SafeDownCast(fields->GetAbstractArray("block_name")))
         if (name->GetNumberOfValues() == 1) block.name = name->GetValue(0);
