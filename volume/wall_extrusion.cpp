@@ -1,12 +1,45 @@
 #include "volume/wall_extrusion.h"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <tbb/parallel_for.h>
 
+#include "surface/implicit_features.h"
 #include "volume/wall_lines.h"
 
 namespace hexmesh {
+namespace {
+
+// The least-norm step t with n_i . t = 1 for the unit normals n_i (pointing into the grid, side
+// = +1 outside the body, -1 inside) of the distinct smooth pieces of the wall active at x0:
+// x0 + d t lies at distance d from each piece's plane, i.e. on the offset surfaces. One piece:
+// its normal; a crease: along the bisector, 1 / cos(half the angle) long; a corner: the
+// corner of the three offset planes. nullopt where that step would be degenerate (a knife
+// edge) or the wall has no normal.
+std::optional<Vec3> unit_offset(const ImplicitFunction& body, const Vec3& x0, double side,
+                                double tolerance) {
+    std::vector<ImplicitFunction::Piece> pieces;
+    body.active_pieces(x0, tolerance, pieces);
+    std::vector<Vec3> normals;
+    const double same = std::cos(same_normal_degrees * 3.14159265358979323846 / 180);
+    for (const auto& piece : pieces) {
+        if (!(piece.gradient.norm() > 0) || !piece.gradient.allFinite()) continue;
+        const Vec3 n = side * piece.gradient.normalized();
+        if (std::none_of(normals.begin(), normals.end(), [&](const Vec3& m) { return m.dot(n) > same; }))
+            normals.push_back(n);
+    }
+    if (normals.empty()) return std::nullopt;
+    Eigen::MatrixXd a(normals.size(), 3);
+    for (size_t i = 0; i < normals.size(); ++i) a.row(Eigen::Index(i)) = normals[i].transpose();
+    const Eigen::VectorXd ones = Eigen::VectorXd::Ones(Eigen::Index(normals.size()));
+    const Vec3 t = a.completeOrthogonalDecomposition().solve(ones);
+    if (!t.allFinite() || t.norm() > 4 || (a * t - ones).norm() > 1e-6) return std::nullopt;
+    return t;
+}
+
+}  // namespace
 
 std::vector<bool> extrude_wall_layers(BlockGrid& grid, const ImplicitFunction& body,
                                       const WallLayers& law) {
@@ -21,21 +54,20 @@ std::vector<bool> extrude_wall_layers(BlockGrid& grid, const ImplicitFunction& b
         const int last = f.depth - 1, layers = std::min(law.layers, last - 1);
         // Lines of different faces share nodes only where they coincide (block interfaces),
         // and then they compute the same positions: the parallel writes agree.
+        std::vector<char> laid(f.lines(), 0);
         tbb::parallel_for(Id(0), f.lines(), [&](Id l) {
             const int p = int(l % f.np), q = int(l / f.np);
-            const Id wall = f.node(p, q, 0);
-            if (grid.kinds[wall] != VertexKind::slip) return;  // creases have no single normal
-            const Vec3 x0 = grid.points[wall];
-            const Vec3 g = body.gradient(x0);
-            if (!(g.norm() > 0)) return;
-            const Vec3 n = side * g.normalized();
-            const Vec3 shift = x0 + d[layers] * n - grid.points[f.node(p, q, layers)];
-            for (int m = 1; m <= layers; ++m) grid.points[f.node(p, q, m)] = x0 + d[m] * n;
+            const Vec3 x0 = grid.points[f.node(p, q, 0)];
+            const std::optional<Vec3> n = unit_offset(body, x0, side, 1e-3 * law.first_height);
+            if (!n) return;
+            const Vec3 shift = x0 + d[layers] * *n - grid.points[f.node(p, q, layers)];
+            for (int m = 1; m <= layers; ++m) grid.points[f.node(p, q, m)] = x0 + d[m] * *n;
             for (int m = layers + 1; m < last; ++m)
                 grid.points[f.node(p, q, m)] += shift * (double(last - m) / (last - layers));
+            laid[l] = 1;
         });
         for (Id l = 0; l < f.lines(); ++l)
-            if (grid.kinds[f.node(int(l % f.np), int(l / f.np), 0)] == VertexKind::slip)
+            if (laid[l])
                 for (int m = 0; m <= layers; ++m)
                     placed[f.node(int(l % f.np), int(l / f.np), m)] = true;
     }

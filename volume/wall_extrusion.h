@@ -11,14 +11,15 @@
 namespace hexmesh {
 
 // For every wall-normal line of `grid` (volume/wall_lines.h), puts its nodes m = 1 ..
-// law.layers at x0 + d_m n, n the unit normal of u = 0 at the wall node x0 pointing into
-// the grid and d_m the law's distances (first_height (1 + g + ... + g^(m-1))), and shifts the
-// nodes beyond by the displacement of node law.layers, decreasing linearly to zero at the
-// line's far end, so the line stays smooth where the layers end. Wall nodes and far ends do
-// not move. Lines starting at a wall node that is not of kind slip (on a crease or a
-// corner, where the wall has no single normal) are left as they are. Returns, per node, whether it is a wall or a layer node (the ones the law now
-// fixes). Lines shorter than law.layers + 1 edges keep their last node. law.layers == 0
-// leaves the grid as it is.
+// law.layers at x0 + d_m n, with d_m the law's distances (first_height (1 + g + ... +
+// g^(m-1))) and n the unit normal of u = 0 at the wall node x0 pointing into the grid; at a
+// crease or corner of the body, n is the step that keeps the node at distance d_m from every
+// face meeting there (on their offset surfaces). The nodes beyond are shifted by the
+// displacement of node law.layers, decreasing linearly to zero at the line's far end, so the
+// line stays smooth where the layers end. Wall nodes and far ends do not move. Lines at knife
+// edges (faces meeting at less than about 30 degrees) are left as they are. Returns, per
+// node, whether it is a wall or a layer node (the ones the law now fixes). Lines shorter than
+// law.layers + 1 edges keep their last node. law.layers == 0 leaves the grid as it is.
 std::vector<bool> extrude_wall_layers(BlockGrid& grid, const ImplicitFunction& body,
                                       const WallLayers& law);
 

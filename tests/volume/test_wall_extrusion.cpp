@@ -1,0 +1,40 @@
+#include <gtest/gtest.h>
+
+#include "surface/analytic.h"
+#include "volume/feature_snapping.h"
+#include "volume/o_h_grid.h"
+#include "volume/wall_extrusion.h"
+#include "volume/wall_lines.h"
+
+using namespace hexmesh;
+
+// On a box the layer nodes of every line, at its faces, edges and corners alike, end up at
+// the law's distance from every face through their wall node: value = -d_m exactly.
+TEST(WallExtrusion, LayersLieOnTheOffsetsOfEveryFaceAtEdgesAndCorners) {
+    const Box body(Vec3::Zero(), Vec3(1, 0.75, 0.5));
+    OHGridOptions o;
+    o.cells_per_edge = 8;
+    o.wall_cells = 6;
+    o.core_size = 0.4;
+    BlockGrid grid = make_o_h_grid(body, o);
+    const FeatureSnapping snapped = snap_to_features(grid, body);
+    ASSERT_EQ(snapped.corner_nodes, 8);
+    ASSERT_EQ(snapped.crease_nodes, 12 * 7);
+
+    const WallLayers law{0.01, 1.2, 3};
+    const std::vector<bool> placed = extrude_wall_layers(grid, body, law);
+    const double d[4] = {0, 0.01, 0.022, 0.0364};
+    Id lines = 0, crease_lines = 0;
+    for (const WallFace& f : wall_faces(grid))
+        for (int q = 0; q < f.nq; ++q)
+            for (int p = 0; p < f.np; ++p, ++lines) {
+                crease_lines += grid.kinds[f.node(p, q, 0)] != VertexKind::slip;
+                for (int m = 0; m <= 3; ++m) {
+                    const Id v = f.node(p, q, m);
+                    EXPECT_TRUE(placed[v]);
+                    EXPECT_NEAR(body.value(grid.points[v]), -d[m], 1e-12) << p << " " << q << " " << m;
+                }
+            }
+    EXPECT_GT(crease_lines, 0);
+    EXPECT_EQ(lines, 6 * 9 * 9);
+}
