@@ -5,18 +5,12 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "hexmesh/core/array_hash.h"
+
 namespace hexmesh {
 namespace {
 
 using FaceKey = std::array<Id, 4>;
-
-struct FaceKeyHash {
-    size_t operator()(const FaceKey& key) const {
-        size_t h = 0;
-        for (Id v : key) h = h * 1000003u ^ std::hash<Id>()(v);
-        return h;
-    }
-};
 
 FaceKey sorted_key(std::array<Id, 4> nodes) {
     std::sort(nodes.begin(), nodes.end());
@@ -48,7 +42,7 @@ GridFaces make_grid_faces(const BlockGrid& grid) {
     }
 
     // Interface faces (block faces without a patch name) meet by their sorted node ids.
-    std::unordered_map<FaceKey, FaceSlot, FaceKeyHash> open;
+    std::unordered_map<FaceKey, FaceSlot, ArrayHash<Id, 4>> open;
     for (int b = 0; b < nblocks; ++b) {
         const Block& block = grid.blocks[b];
         const Dims c = block.cells();

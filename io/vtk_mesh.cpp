@@ -27,6 +27,7 @@
 #include <vtkXMLStructuredGridWriter.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
+#include "hexmesh/core/array_hash.h"
 #include "hexmesh/core/quality.h"
 #include "io/case_file.h"
 #include "io/vtk_support.h"
@@ -82,14 +83,7 @@ vtkSmartPointer<vtkStructuredGrid> to_vtk_block(const BlockGrid& grid, const Blo
 
 
 // Points keyed by their exact coordinates, so copies of one node in several pieces merge.
-struct ExactPointHash {
-    size_t operator()(const std::array<double, 3>& x) const {
-        size_t h = 0;
-        for (double v : x) h = h * 1000003u ^ std::hash<double>()(v);
-        return h;
-    }
-};
-using PointIds = std::unordered_map<std::array<double, 3>, Id, ExactPointHash>;
+using PointIds = std::unordered_map<std::array<double, 3>, Id, ArrayHash<double, 3>>;
 
 // Appends the hexahedra of one data set to `mesh`, merging points equal to earlier ones.
 void append_hexes(vtkDataSet* data, const std::string& path, HexMesh& mesh, PointIds& point_ids) {

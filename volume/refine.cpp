@@ -7,19 +7,13 @@
 #include <limits>
 #include <unordered_map>
 
+#include "hexmesh/core/array_hash.h"
+
 namespace hexmesh {
 namespace {
 
 // A coarse edge (2 ids, then padding) or face (4 ids), sorted: the key of its new node.
 using EntityKey = std::array<Id, 4>;
-
-struct EntityKeyHash {
-    size_t operator()(const EntityKey& k) const {
-        size_t h = 0;
-        for (Id v : k) h = h * 0x9E3779B97F4A7C15ull + std::hash<Id>()(v);
-        return h;
-    }
-};
 
 // Fills the odd entries of a fine line whose even entries (the coarse samples) are set:
 // x(m + 1/2) by cubic Lagrange in the index where two samples lie on each side, quadratic at
@@ -112,7 +106,7 @@ BlockGrid refine_grid(const BlockGrid& coarse) {
     BlockGrid fine;
     fine.points = coarse.points;
     fine.kinds = coarse.kinds;
-    std::unordered_map<EntityKey, Id, EntityKeyHash> shared;  // new nodes on block faces
+    std::unordered_map<EntityKey, Id, ArrayHash<Id, 4>> shared;  // new nodes on block faces
     for (const Block& block : coarse.blocks) {
         const Dims& c = block.nodes;
         const Dims f = {2 * c.ni - 1, 2 * c.nj - 1, 2 * c.nk - 1};

@@ -78,11 +78,6 @@ GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& bo
                                      const GridOptimizationOptions& options) {
     untangle::Problem problem = make_problem(grid, body, options.held);
     GridOptimizationResult result;
-    for (VertexKind k : problem.kinds) {
-        result.slip_nodes += k == VertexKind::slip;
-        result.feature_nodes += k == VertexKind::feature_edge;
-        result.corner_nodes += k == VertexKind::corner;
-    }
     result.solve = untangle::untangle_and_optimize(problem, options.untangle);
     grid.points = problem.points;
     const std::vector<Vec3> joint = problem.points;

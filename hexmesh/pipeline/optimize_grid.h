@@ -27,7 +27,6 @@ struct GridOptimizationResult {
     // Whether the grid keeps the laid layers: false when that pass could not make every cell
     // valid, and the joint optimization's grid was kept instead.
     bool layers_laid = false;
-    Id slip_nodes = 0, feature_nodes = 0, corner_nodes = 0;
 };
 
 // Splits every hex of `grid` into its 8 corner tets and minimizes the functional of DESIGN §4
