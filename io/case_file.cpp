@@ -212,6 +212,20 @@ FarFieldSpec parse_far_field(const JsonFields& f) {
     return far;
 }
 
+TetMeshSpec parse_tet_mesh(const JsonFields& f) {
+    f.allow_only({"cell_size", "wall_cell_size", "grading", "facet_distance", "feature_angle"});
+    TetMeshSpec t;
+    t.cell_size = f.positive_number("cell_size", 0);
+    t.wall_cell_size = f.positive_number("wall_cell_size", 0);
+    t.grading = f.positive_number("grading", t.grading);
+    t.facet_distance = f.positive_number("facet_distance", 0);
+    t.feature_angle = f.number("feature_angle", t.feature_angle);
+    if (!(t.feature_angle > 0 && t.feature_angle < 180)) f.fail("feature_angle", "an angle in (0, 180) degrees");
+    if (t.cell_size > 0 && t.wall_cell_size > t.cell_size)
+        f.fail("wall_cell_size", "a size at most cell_size (" + std::to_string(t.cell_size) + ")");
+    return t;
+}
+
 std::vector<std::string> parse_outputs(const JsonFields& top, const std::string& file) {
     const json& list = top.at("outputs");
     if (!list.is_array()) top.fail("outputs", "an array of format names (" + export_format_list() + ")");
@@ -310,7 +324,7 @@ Case parse_case(const std::string& text, const std::string& path) {
     }
     const JsonFields top(root, path, "");
     top.allow_only({"geometry", "domain", "grid", "far_field", "boundary_layer", "solver",
-                    "outputs", "refinement"});
+                    "outputs", "refinement", "tet_mesh"});
     Case c;
     c.path = path;
     if (!top.has("geometry")) top.fail("geometry", "an object describing the body");
@@ -333,6 +347,7 @@ Case parse_case(const std::string& text, const std::string& path) {
         r.allow_only({"levels"});
         c.refinement.levels = r.integer("levels", c.refinement.levels, 1, 5);
     }
+    if (top.has("tet_mesh")) c.tet_mesh = parse_tet_mesh(top.object("tet_mesh"));
     return c;
 }
 

@@ -82,6 +82,16 @@ struct RefinementSpec {
     int levels = 1;  // 1..5
 };
 
+// A tetrahedral mesh of the body's interior (`hexmesh tetmesh`): edge lengths follow
+// h(x) = min(cell_size, wall_cell_size + grading |u(x)|), fine at the wall, coarser inside.
+struct TetMeshSpec {
+    double cell_size = 0;       // 0: grid.cell_size if given, else the body's diagonal / 30
+    double wall_cell_size = 0;  // 0: cell_size everywhere
+    double grading = 0.5;       // growth of the size per unit distance from the wall
+    double facet_distance = 0;  // 0: a tenth of the wall cell size
+    double feature_angle = 30;  // surface files: edges turning more than this are creases (degrees)
+};
+
 struct Case {
     std::string path;  // the file it came from, for messages
     GeometrySpec geometry;
@@ -92,6 +102,7 @@ struct Case {
     SolverSpec solver;
     std::vector<std::string> outputs = {"vtk"};
     RefinementSpec refinement;
+    TetMeshSpec tet_mesh;
 };
 
 // Height of the first cell for a target y+ on a flat plate of length L = reynolds * viscosity /

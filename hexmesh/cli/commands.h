@@ -16,5 +16,6 @@ void add_export_command(CLI::App& app, int& exit_code);
 void add_untangle_command(CLI::App& app, int& exit_code);
 void add_refine_command(CLI::App& app, int& exit_code);
 void add_gci_command(CLI::App& app, int& exit_code);
+void add_tetmesh_command(CLI::App& app, int& exit_code);
 
 }  // namespace hexmesh::cli

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
     hexmesh::cli::add_untangle_command(app, exit_code);
     hexmesh::cli::add_refine_command(app, exit_code);
     hexmesh::cli::add_gci_command(app, exit_code);
+    hexmesh::cli::add_tetmesh_command(app, exit_code);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

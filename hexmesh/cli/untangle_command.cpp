@@ -5,7 +5,10 @@
 #include <memory>
 
 #include "hexmesh/cli/commands.h"
+#include "hexmesh/pipeline/make_body.h"
+#include "hexmesh/pipeline/tet_mesh_case.h"
 #include "hexmesh/pipeline/untangle_mesh.h"
+#include "io/case_file.h"
 #include "io/quality_report.h"
 #include "io/surface_reader.h"
 #include "io/volume_mesh_io.h"
@@ -51,7 +54,14 @@ int run(const Args& args) {
     if (!args.surface.empty()) {
         if (options.boundary != BoundaryMode::slip)
             throw std::invalid_argument("--surface needs --boundary slip");
-        options.surface = read_surface(args.surface);
+        if (std::filesystem::path(args.surface).extension() == ".json") {
+            // A case file: slip on its geometry (u = 0 of the body, or its surface file).
+            const Case c = read_case(args.surface);
+            const Body body = make_body(c.geometry);
+            options.geometry = case_boundary(c, body, tet_sizes(c, *body).wall);
+        } else {
+            options.surface = read_surface(args.surface);
+        }
     }
     check_volume_mesh_output(args.output);
     VolumeMesh mesh = read_volume_mesh(args.input);
@@ -96,7 +106,7 @@ void add_untangle_command(CLI::App& app, int& exit_code) {
     cmd->add_flag("--matrix-free", args->matrix_free, "newton-cg: Hessian products without a matrix");
     cmd->add_option("--boundary", args->boundary, "boundary vertices: fixed or slip")
         ->check(CLI::IsMember({"fixed", "slip"}))->capture_default_str();
-    cmd->add_option("--surface", args->surface, "surface to slip on (.stl .obj .off .ply)");
+    cmd->add_option("--surface", args->surface, "surface to slip on (.stl .obj .off .ply), or a case file (.json) whose geometry it is");
     cmd->add_option("--feature-angle", args->feature_angle, "crease angle of the slip surface (degrees)")
         ->capture_default_str();
     cmd->add_option("--target", args->target, "target cell size: cell (each cell's own) or uniform")

@@ -7,8 +7,6 @@
 #include <memory>
 
 #include "hexmesh/core/reference_hex.h"
-#include "surface/exact_distance.h"
-#include "surface/sharp_features.h"
 
 namespace hexmesh {
 namespace {
@@ -120,39 +118,20 @@ UntangleMeshResult untangle_volume_mesh(VolumeMesh& mesh, const UntangleMeshOpti
 
     p.kinds.assign(mesh.points.size(), VertexKind::interior);
     UntangleMeshResult result;
-    std::shared_ptr<const TriangleSurface> surface;
-    std::shared_ptr<const ExactDistance> exact;
-    std::shared_ptr<const FeatureCurves> features;
+    std::optional<BoundaryGeometry> geometry;
     if (options.boundary == BoundaryMode::slip) {
-        surface = std::make_shared<const TriangleSurface>(options.surface ? *options.surface : triangulate(mesh, faces));
-        exact = std::make_shared<const ExactDistance>(*surface);
-        features = std::make_shared<const FeatureCurves>(
-            detect_sharp_features(*surface, {options.feature_angle_degrees, true}));
-        // Boundary vertices on a crease slide along it; at a corner they stay.
+        geometry = options.geometry ? *options.geometry
+                                    : BoundaryGeometry::triangles(options.surface ? *options.surface
+                                                                                  : triangulate(mesh, faces),
+                                                                  options.feature_angle_degrees, p.length_scale);
+        // Boundary vertices on a crease slide along it; at a corner they stay, exactly on it.
         const double near = 1e-3 * p.length_scale;
         for (size_t v = 0; v < mesh.points.size(); ++v) {
             if (!on_boundary[v]) continue;
-            p.kinds[v] = VertexKind::slip;
-            if (features->chains.empty()) continue;
-            const Vec3& x = mesh.points[v];
-            int corner = -1;
-            for (int c : features->corners)
-                if ((surface->points[c] - x).norm() < near) corner = c;
-            if (corner >= 0) {
-                p.kinds[v] = VertexKind::corner;
-                p.points[v] = surface->points[corner];  // exactly on the body's corner
-            } else if (project_to_features(*surface, *features, x).distance < near) p.kinds[v] = VertexKind::feature_edge;
+            p.kinds[v] = geometry->kind_at(mesh.points[v], near);
+            if (p.kinds[v] == VertexKind::corner) p.points[v] = geometry->place(p.points[v], VertexKind::corner);
         }
-        p.surface_normal = [exact](Id, const Vec3& x) { return exact->closest_normal(x); };
-        p.project_to_surface = [exact](Id, const Vec3& x) { return exact->closest_point(x); };
-        p.edge_tangent = [surface, features](Id, const Vec3& x) {
-            const FeatureProjection f = project_to_features(*surface, *features, x);
-            const auto& chain = features->chains[f.chain];
-            return Vec3(surface->points[chain[f.segment + 1]] - surface->points[chain[f.segment]]);
-        };
-        p.project_to_edge = [surface, features](Id, const Vec3& x) {
-            return project_to_features(*surface, *features, x).point;
-        };
+        geometry->constrain(p);
     } else {
         for (size_t v = 0; v < mesh.points.size(); ++v)
             if (on_boundary[v]) p.kinds[v] = VertexKind::fixed;
@@ -193,10 +172,11 @@ UntangleMeshResult untangle_volume_mesh(VolumeMesh& mesh, const UntangleMeshOpti
     }
     mesh.points = p.points;
     if (mesh.num_hexes() > 0) result.hex_after = measure_quality(HexMesh{mesh.points, mesh.hexes});
-    if (exact)
+    if (geometry)
         for (size_t v = 0; v < mesh.points.size(); ++v)
             if (on_boundary[v] && (mesh.fixed.empty() || !mesh.fixed[v]))
-                result.max_surface_distance = std::max(result.max_surface_distance, exact->distance(mesh.points[v]));
+                result.max_surface_distance =
+                    std::max(result.max_surface_distance, geometry->surface_distance(mesh.points[v]));
     return result;
 }
 

@@ -9,6 +9,7 @@
 #include "hexmesh/core/hex_mesh.h"
 #include "hexmesh/core/quality.h"
 #include "hexmesh/core/triangle_surface.h"
+#include "hexmesh/pipeline/boundary_geometry.h"
 #include "untangle/untangle.h"
 
 namespace hexmesh {
@@ -21,6 +22,8 @@ struct UntangleMeshOptions {
     // slip: the surface boundary vertices slide on; absent: the mesh's own boundary faces,
     // triangulated. Its creases (dihedral angle > feature_angle) become feature edges.
     std::optional<TriangleSurface> surface;
+    // slip: an implicit body (or any other geometry) instead of `surface`.
+    std::optional<BoundaryGeometry> geometry;
     double feature_angle_degrees = 30;
     // Target cell size: each cell's own mean edge length (keeps the grading of a graded
     // mesh), or the mean over the whole mesh (robust when the input is badly distorted).

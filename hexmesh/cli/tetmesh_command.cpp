@@ -1,0 +1,79 @@
+// `hexmesh tetmesh CASE.json -o OUT`: a sliver-free tetrahedral mesh of a case's body.
+#include <fmt/format.h>
+#include <iostream>
+#include <memory>
+
+#include "hexmesh/cli/commands.h"
+#include "hexmesh/pipeline/tet_mesh_case.h"
+#include "io/case_file.h"
+#include "io/volume_mesh_io.h"
+#include "untangle/solver_options.h"
+
+namespace hexmesh::cli {
+
+void add_tetmesh_command(CLI::App& app, int& exit_code) {
+    struct Args {
+        std::string case_path, output, cgal_output;
+        bool compare_cgal = false;
+        double theta = tet_untangle_options().theta;
+        int optimize_iterations = 20;
+        Reweighting reweighting;
+        double cap_degrees = 20;
+    };
+    auto args = std::make_shared<Args>();
+    CLI::App* cmd = app.add_subcommand("tetmesh", "tetrahedral mesh of a case's body, slivers removed");
+    cmd->add_option("case", args->case_path, "case file (JSON)")->required();
+    cmd->add_option("-o,--output", args->output, "output mesh (.vtu .vtk)")->required();
+    cmd->add_flag("--compare-cgal", args->compare_cgal,
+                  "also run CGAL's perturb + exude on the same mesh and print both side by side");
+    cmd->add_option("--cgal-output", args->cgal_output, "write CGAL's perturbed and exuded mesh here")
+        ->needs("--compare-cgal");
+    cmd->add_option("--theta", args->theta, "weight of volume against shape, in (0, 1)")
+        ->check(CLI::Range(0.0, 1.0))->capture_default_str();
+    cmd->add_option("--optimize-iterations", args->optimize_iterations, "outer optimization iterations")
+        ->check(CLI::NonNegativeNumber)->capture_default_str();
+    cmd->add_option("--reweight-rounds", args->reweighting.rounds,
+                    "rounds that reweight each tet by its distortion to lift the worst")
+        ->check(CLI::NonNegativeNumber)->capture_default_str();
+    cmd->add_option("--reweight-power", args->reweighting.power, "exponent p of sum w phi^p the rounds aim at")
+        ->check(CLI::Range(1.0, 8.0))->capture_default_str();
+    cmd->add_option("--cap-angle", args->cap_degrees,
+                    "remove boundary caps (four points on the surface) below this dihedral angle (degrees, 0: none)")
+        ->check(CLI::Range(0.0, 60.0))->capture_default_str();
+    cmd->callback([args, &exit_code] {
+        const Case c = read_case(args->case_path);
+        check_volume_mesh_output(args->output);
+        if (!args->cgal_output.empty()) check_volume_mesh_output(args->cgal_output);
+        std::cout << fmt::format("hexmesh tetmesh {}\n", args->case_path);
+        TetCaseOptions options;
+        options.compare_cgal = args->compare_cgal;
+        options.reweighting = args->reweighting;
+        options.cap_degrees = args->cap_degrees;
+        options.untangle.theta = args->theta;
+        options.untangle.max_optimize_iterations = args->optimize_iterations;
+        options.untangle.untangle_solver.method = untangle::method_from_name(c.solver.untangle);
+        options.untangle.optimize_solver.method = untangle::method_from_name(c.solver.optimize);
+        options.untangle.max_untangle_iterations = c.solver.max_iterations;
+        options.untangle.log = &std::cout;
+        const TetCaseResult r = run_tet_case(c, options, std::cout);
+        std::cout << "\n" << untangle::format_untangle_summary(r.optimization.solve) << "\n"
+                  << format_tet_comparison(r)
+                  << fmt::format("  {:<32}{:>20.2e}\n", "max crease distance / h",
+                                 r.optimization.max_crease_distance / r.wall_size);
+        if (r.optimized.inverted > 0) {
+            std::cout << fmt::format("\n{} inverted tets remain: nothing written\n", r.optimized.inverted);
+            exit_code = 3;
+            return;
+        }
+        write_volume_mesh(VolumeMesh{r.mesh.points, {}, r.mesh.tets, {}}, args->output);
+        std::cout << "\nwritten: " << args->output << "\n";
+        if (!args->cgal_output.empty()) {
+            const TetMesh& m = r.generation.cgal_optimized->mesh;
+            write_volume_mesh(VolumeMesh{m.points, {}, m.tets, {}}, args->cgal_output);
+            std::cout << "written: " << args->cgal_output << "\n";
+        }
+        exit_code = 0;
+    });
+}
+
+}  // namespace hexmesh::cli

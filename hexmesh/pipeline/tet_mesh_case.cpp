@@ -1,0 +1,288 @@
+#include "hexmesh/pipeline/tet_mesh_case.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+#include <unordered_map>
+
+#include "hexmesh/core/array_hash.h"
+#include "hexmesh/pipeline/make_body.h"
+#include "io/quality_report.h"
+#include "surface/crease_curves.h"
+#include "surface/sharp_features.h"
+#include "untangle/tet_energy.h"
+
+namespace hexmesh {
+namespace {
+
+double elapsed(std::chrono::steady_clock::time_point since) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+}
+
+std::array<Vec3, 4> corners_of(const TetMesh& mesh, Id cell) {
+    return {mesh.points[mesh.node(cell, 0)], mesh.points[mesh.node(cell, 1)], mesh.points[mesh.node(cell, 2)],
+            mesh.points[mesh.node(cell, 3)]};
+}
+
+// Crease polylines for CGAL's feature protection: a surface file's sharp edges, or the
+// creases of the implicit body traced at spacing `step`.
+std::vector<std::vector<Vec3>> body_creases(const Case& c, const ImplicitFunction& body, double step,
+                                            Id& corners) {
+    std::vector<std::vector<Vec3>> lines;
+    if (const auto surface = reference_surface(c.geometry)) {
+        const FeatureCurves f = detect_sharp_features(*surface, {c.tet_mesh.feature_angle, true});
+        for (const auto& chain : f.chains) {
+            std::vector<Vec3> line;
+            for (int id : chain) line.push_back(surface->points[id]);
+            lines.push_back(std::move(line));
+        }
+        corners = Id(f.corners.size());
+        return lines;
+    }
+    CreaseCurves curves = trace_creases(body, step);
+    corners = Id(curves.corners.size());
+    return std::move(curves.polylines);
+}
+
+double max_placed_distance(const TetMesh& mesh, const std::vector<std::int8_t>& dimension,
+                           const BoundaryGeometry& boundary) {
+    double d = 0;
+    for (size_t v = 0; v < mesh.points.size(); ++v)
+        if (dimension[v] < 3) d = std::max(d, boundary.surface_distance(mesh.points[v]));
+    return d;
+}
+
+// Per point: on a face of one tet.
+std::vector<bool> on_boundary(const TetMesh& mesh) {
+    static constexpr int faces[4][3] = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+    std::unordered_map<std::array<Id, 3>, int, ArrayHash<Id, 3>> uses;
+    for (Id t = 0; t < mesh.num_cells(); ++t)
+        for (const auto& f : faces) {
+            std::array<Id, 3> key = {mesh.node(t, f[0]), mesh.node(t, f[1]), mesh.node(t, f[2])};
+            std::sort(key.begin(), key.end());
+            ++uses[key];
+        }
+    std::vector<bool> boundary(mesh.points.size(), false);
+    for (const auto& [key, count] : uses)
+        if (count == 1)
+            for (Id v : key) boundary[v] = true;
+    return boundary;
+}
+
+}  // namespace
+
+untangle::UntangleOptions tet_untangle_options() {
+    untangle::UntangleOptions o;
+    o.theta = 0.3;
+    return o;
+}
+
+TetSizes tet_sizes(const Case& c, const ImplicitFunction& body) {
+    TetSizes s;
+    s.core = c.tet_mesh.cell_size > 0 ? c.tet_mesh.cell_size
+             : c.grid.cell_size > 0   ? c.grid.cell_size
+                                      : body.bounds().diagonal() / 30;
+    s.wall = c.tet_mesh.wall_cell_size > 0 ? std::min(c.tet_mesh.wall_cell_size, s.core) : s.core;
+    return s;
+}
+
+SizingFunction tet_sizing(const Case& c, std::shared_ptr<const ImplicitFunction> body) {
+    const TetSizes s = tet_sizes(c, *body);
+    if (s.wall >= s.core) return [core = s.core](const Vec3&) { return core; };
+    return [s, grading = c.tet_mesh.grading, body](const Vec3& x) {
+        return std::min(s.core, s.wall + grading * std::abs(body->value(x)));
+    };
+}
+
+BoundaryGeometry case_boundary(const Case& c, std::shared_ptr<const ImplicitFunction> body, double h) {
+    if (auto surface = reference_surface(c.geometry))
+        return BoundaryGeometry::triangles(*surface, c.tet_mesh.feature_angle, h);
+    return BoundaryGeometry::implicit(std::move(body), h);
+}
+
+std::vector<VertexKind> kinds_from_dimensions(const std::vector<std::int8_t>& dimension) {
+    std::vector<VertexKind> kinds(dimension.size());
+    for (size_t v = 0; v < dimension.size(); ++v)
+        kinds[v] = dimension[v] >= 3   ? VertexKind::interior
+                   : dimension[v] == 2 ? VertexKind::slip
+                   : dimension[v] == 1 ? VertexKind::feature_edge
+                                       : VertexKind::corner;
+    return kinds;
+}
+
+std::vector<VertexKind> boundary_kinds(const TetMesh& mesh, const BoundaryGeometry& boundary, double reach) {
+    const std::vector<bool> outer = on_boundary(mesh);
+    std::vector<VertexKind> kinds(mesh.points.size(), VertexKind::interior);
+    for (size_t v = 0; v < kinds.size(); ++v)
+        if (outer[v]) kinds[v] = boundary.kind_at(mesh.points[v], reach);
+    return kinds;
+}
+
+double max_boundary_distance(const TetMesh& mesh, const BoundaryGeometry& boundary) {
+    const std::vector<bool> outer = on_boundary(mesh);
+    double d = 0;
+    for (size_t v = 0; v < outer.size(); ++v)
+        if (outer[v]) d = std::max(d, boundary.surface_distance(mesh.points[v]));
+    return d;
+}
+
+TetOptimization optimize_tet_mesh(TetMesh& mesh, const std::vector<VertexKind>& kinds,
+                                  const BoundaryGeometry& boundary, const SizingFunction& size,
+                                  const untangle::UntangleOptions& options, const Reweighting& reweighting) {
+    untangle::Problem p;
+    p.kinds = kinds;
+    p.points = mesh.points;
+    const Id cells = mesh.num_cells();
+    // Target edges c h(centroid), c such that the regular targets fill the mesh's volume.
+    std::vector<double> edge(cells);
+    double volume = 0, target_volume = 0, total_edge = 0;
+    const double regular_volume = 1 / (6 * std::sqrt(2.0));  // of the unit-edge regular tet
+    for (Id t = 0; t < cells; ++t) {
+        const auto y = corners_of(mesh, t);
+        volume += std::abs((y[1] - y[0]).dot((y[2] - y[0]).cross(y[3] - y[0]))) / 6;
+        edge[t] = size(0.25 * (y[0] + y[1] + y[2] + y[3]));
+        target_volume += regular_volume * std::pow(edge[t], 3);
+    }
+    const double scale = target_volume > 0 ? std::cbrt(volume / target_volume) : 1;
+    p.tets.reserve(cells);
+    p.targets.reserve(cells);
+    for (Id t = 0; t < cells; ++t) {
+        p.tets.push_back({mesh.node(t, 0), mesh.node(t, 1), mesh.node(t, 2), mesh.node(t, 3)});
+        p.targets.push_back(untangle::regular_tet_target(scale * edge[t]));
+        total_edge += scale * edge[t];
+    }
+    p.length_scale = cells > 0 ? total_edge / double(cells) : 1;
+    for (size_t v = 0; v < p.points.size(); ++v) p.points[v] = boundary.place(p.points[v], kinds[v]);
+    boundary.constrain(p);
+
+    TetOptimization result;
+    if (measure_tet_quality(TetMesh{p.points, mesh.tets}).inverted > 0) {
+        // Tangled: untangle with the boundary held first (it lies on the surface already, and
+        // a fixed boundary is the easier problem), then let it slip.
+        untangle::Problem held = p;
+        for (VertexKind& k : held.kinds)
+            if (k != VertexKind::interior) k = VertexKind::fixed;
+        untangle::UntangleOptions first = options;
+        first.max_optimize_iterations = 0;
+        const untangle::UntangleResult r = untangle::untangle_and_optimize(held, first);
+        p.points = held.points;
+        result.solve.history = r.history;
+        result.solve.seconds = r.seconds;
+    }
+    {
+        untangle::UntangleResult r = untangle::untangle_and_optimize(p, options);
+        r.history.insert(r.history.begin(), result.solve.history.begin(), result.solve.history.end());
+        r.seconds += result.solve.seconds;
+        result.solve = std::move(r);
+    }
+    // The sum of energies tolerates a few poor tets. Reweighting each by its own distortion,
+    // w phi^(power - 1) (iteratively reweighted: towards the minimizer of sum w phi^power),
+    // lifts the worst; the round with the largest smallest dihedral angle is kept.
+    auto smallest_angle = [&] {
+        double worst = 180;
+        for (Id t = 0; t < cells; ++t) {
+            const auto angles = dihedral_angles({p.points[p.tets[t][0]], p.points[p.tets[t][1]],
+                                                 p.points[p.tets[t][2]], p.points[p.tets[t][3]]});
+            worst = std::min(worst, *std::min_element(angles.begin(), angles.end()));
+        }
+        return worst;
+    };
+    const std::vector<untangle::TetTarget> base = p.targets;
+    std::vector<Vec3> best = p.points;
+    double best_angle = result.solve.inverted_after == 0 ? smallest_angle() : 0;
+    for (int round = 0; round < reweighting.rounds && result.solve.inverted_after == 0; ++round) {
+        const untangle::EnergyParams params{options.theta, 0};
+        for (Id t = 0; t < cells; ++t) {
+            untangle::Mat34 y;
+            for (int a = 0; a < 4; ++a) y.col(a) = p.points[p.tets[t][a]];
+            const double phi = untangle::tet_energy(y, base[t], params) / base[t].weight;
+            p.targets[t].weight = base[t].weight * std::pow(phi, reweighting.power - 1);
+        }
+        const untangle::UntangleResult r = untangle::untangle_and_optimize(p, options);
+        result.solve.history.insert(result.solve.history.end(), r.history.begin(), r.history.end());
+        result.solve.seconds += r.seconds;
+        if (r.inverted_after > 0) break;
+        const double angle = smallest_angle();
+        if (angle > best_angle) {
+            best_angle = angle;
+            best = p.points;
+            result.solve.min_det_after = r.min_det_after;
+        }
+    }
+    if (result.solve.inverted_after == 0) p.points = best;
+    mesh.points = p.points;
+    for (size_t v = 0; v < kinds.size(); ++v) {
+        if (kinds[v] == VertexKind::interior || kinds[v] == VertexKind::fixed) continue;
+        result.max_surface_distance = std::max(result.max_surface_distance, boundary.surface_distance(mesh.points[v]));
+        if (kinds[v] != VertexKind::slip)
+            result.max_crease_distance = std::max(result.max_crease_distance, boundary.crease_distance(mesh.points[v]));
+    }
+    return result;
+}
+
+TetCaseResult run_tet_case(const Case& c, const TetCaseOptions& options, std::ostream& log) {
+    if (c.domain != "interior")
+        throw InputError(c.path + ": domain: tetmesh meshes the body's interior (\"domain\": \"interior\")");
+    TetCaseResult r;
+    const std::shared_ptr<const ImplicitFunction> body = make_body(c.geometry);
+    const TetSizes sizes = tet_sizes(c, *body);
+    r.wall_size = sizes.wall;
+    r.core_size = sizes.core;
+    const SizingFunction size = tet_sizing(c, body);
+
+    auto start = std::chrono::steady_clock::now();
+    TetMeshOptions mesh_options;
+    mesh_options.size = size;
+    mesh_options.facet_distance = c.tet_mesh.facet_distance > 0 ? c.tet_mesh.facet_distance : 0.1 * sizes.wall;
+    Id corners = 0;
+    mesh_options.features = body_creases(c, *body, 0.5 * sizes.wall, corners);
+    mesh_options.cgal_sliver_removal = options.compare_cgal;
+    r.crease_polylines = Id(mesh_options.features.size());
+    r.corners = corners;
+    r.seconds_features = elapsed(start);
+    log << fmt::format("creases: {} polylines, {} corners ({:.2f} s)\n", r.crease_polylines, r.corners,
+                       r.seconds_features)
+        << std::flush;
+
+    r.generation = generate_tet_mesh(*body, mesh_options);
+    const PlacedTetMesh& refined = r.generation.refined;
+    log << fmt::format("Delaunay refinement: {} tets, {} points ({:.2f} s)\n", refined.mesh.num_cells(),
+                       refined.mesh.points.size(), r.generation.seconds);
+    if (r.generation.cgal_optimized)
+        log << fmt::format("CGAL perturb + exude: {:.2f} s\n", r.generation.cgal_seconds);
+    log << std::flush;
+
+    const BoundaryGeometry boundary = case_boundary(c, body, sizes.wall);
+    r.refined = measure_tet_quality(refined.mesh);
+    r.refined_surface_distance = max_placed_distance(refined.mesh, refined.dimension, boundary);
+    if (r.generation.cgal_optimized) {
+        r.cgal = measure_tet_quality(r.generation.cgal_optimized->mesh);
+        r.cgal_surface_distance =
+            max_placed_distance(r.generation.cgal_optimized->mesh, r.generation.cgal_optimized->dimension, boundary);
+    }
+
+    start = std::chrono::steady_clock::now();
+    PlacedTetMesh work = refined;
+    r.caps_removed = options.cap_degrees > 0 ? remove_boundary_caps(work, options.cap_degrees) : 0;
+    log << fmt::format("boundary caps removed: {}\n", r.caps_removed) << std::flush;
+    r.mesh = std::move(work.mesh);
+    r.optimization = optimize_tet_mesh(r.mesh, kinds_from_dimensions(work.dimension), boundary, size,
+                                       options.untangle, options.reweighting);
+    r.seconds_optimize = elapsed(start);
+    r.optimized = measure_tet_quality(r.mesh);
+    return r;
+}
+
+std::string format_tet_comparison(const TetCaseResult& r) {
+    const double h = r.wall_size;
+    std::vector<TetQualityColumn> columns = {
+        {"refined", &r.refined, r.refined_surface_distance / h, r.generation.seconds}};
+    if (r.cgal)
+        columns.push_back({"CGAL perturb+exude", &*r.cgal, r.cgal_surface_distance / h, r.generation.cgal_seconds});
+    columns.push_back({"variational", &r.optimized, r.optimization.max_surface_distance / h, r.seconds_optimize});
+    return format_tet_quality_table(columns);
+}
+
+}  // namespace hexmesh

@@ -1,0 +1,140 @@
+// End-to-end: `hexmesh tetmesh` on a case, `hexmesh quality` and `hexmesh untangle --surface
+// CASE.json` on tet meshes, and their messages for bad input.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <sstream>
+
+#include "cli.h"
+#include "hexmesh/core/tet_quality.h"
+#include "io/volume_mesh_io.h"
+
+using namespace hexmesh;
+using namespace hexmesh::test_support;
+namespace fs = std::filesystem;
+
+namespace {
+
+// The numbers on the table row starting with `name` (after the label).
+std::vector<double> row_numbers(const std::string& out, const std::string& name) {
+    const auto at = out.find("  " + name + " ");
+    if (at == std::string::npos) return {};
+    std::istringstream line(out.substr(at + name.size() + 2, out.find('\n', at) - at - name.size() - 2));
+    std::vector<double> numbers;
+    for (std::string word; line >> word;) numbers.push_back(std::stod(word));
+    return numbers;
+}
+
+fs::path write_case(const std::string& name, const std::string& json) {
+    const fs::path path = scratch(name);
+    std::ofstream(path) << json;
+    return path;
+}
+
+const char* box_cylinder = R"({"geometry": {"union": [
+    {"box": {"center": [0, 0, 0], "size": [2, 2, 1.2]}},
+    {"cylinder": {"center": [0, 0, 0.5], "radius": 0.6, "height": 1.4}}]},
+    "tet_mesh": {"cell_size": 0.25}})";
+
+TEST(CliTetmesh, CsgBodyComparedWithCgal) {
+    const fs::path case_file = write_case("tet_case.json", box_cylinder);
+    const fs::path out = scratch("tets.vtu"), cgal = scratch("tets_cgal.vtu");
+    const CommandResult r = run_hexmesh("tetmesh '" + case_file.string() + "' -o '" + out.string() +
+                                        "' --compare-cgal --cgal-output '" + cgal.string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    EXPECT_NE(r.out.find("creases: 14 polylines, 8 corners"), std::string::npos) << r.out;
+    // Columns: refined, CGAL perturb + exude, variational.
+    const auto min_angle = row_numbers(r.out, "min dihedral angle (deg)");
+    ASSERT_EQ(min_angle.size(), 3u) << r.out;
+    EXPECT_GT(min_angle[2], min_angle[1]);
+    EXPECT_GT(min_angle[2], 10);
+    const auto slivers = row_numbers(r.out, "slivers (dihedral < 10 deg)");
+    ASSERT_EQ(slivers.size(), 3u);
+    EXPECT_GT(slivers[0], 0);
+    EXPECT_EQ(slivers[2], 0);
+    EXPECT_LT(row_numbers(r.out, "max boundary distance / h")[2], 1e-3);
+    EXPECT_LT(real_value(r.out, "max crease distance / h"), 1e-3);
+
+    // The files hold what the table says, read back by our reader and measured again.
+    const VolumeMesh m = read_volume_mesh(out.string());
+    EXPECT_EQ(m.num_hexes(), 0);
+    const TetQualityReport q = measure_tet_quality(TetMesh{m.points, m.tets});
+    EXPECT_EQ(q.cells, Id(row_numbers(r.out, "tets")[2]));
+    EXPECT_EQ(q.inverted, 0);
+    EXPECT_NEAR(q.min_dihedral, min_angle[2], 0.01);
+    const VolumeMesh c = read_volume_mesh(cgal.string());
+    EXPECT_NEAR(measure_tet_quality(TetMesh{c.points, c.tets}).min_dihedral, min_angle[1], 0.01);
+
+    // `quality` reads a tet mesh and measures its boundary against the case's body.
+    const CommandResult json = run_hexmesh("quality '" + out.string() + "' --json --surface '" + case_file.string() + "'");
+    ASSERT_EQ(json.exit_code, 0) << json.err;
+    const auto j = nlohmann::json::parse(json.out);
+    EXPECT_TRUE(j["valid"].get<bool>());
+    EXPECT_EQ(j["slivers"].get<int>(), 0);
+    EXPECT_NEAR(j["min_dihedral_deg"].get<double>(), min_angle[2], 0.01);
+    EXPECT_LT(j["max_boundary_distance_over_h"].get<double>(), 1e-3);
+    for (const auto& f : {case_file, out, cgal}) fs::remove(f);
+}
+
+TEST(CliTetmesh, TangledTetMeshUntangledOnTheCaseBody) {
+    const fs::path case_file = write_case("sphere_case.json",
+        R"({"geometry": {"sphere": {"center": [0, 0, 0], "radius": 1}}, "tet_mesh": {"cell_size": 0.25}})");
+    const fs::path mesh = scratch("sphere_tets.vtu"), tangled = scratch("tangled.vtu"), fixed = scratch("untangled.vtu");
+    ASSERT_EQ(run_hexmesh("tetmesh '" + case_file.string() + "' -o '" + mesh.string() + "'").exit_code, 0);
+    VolumeMesh m = read_volume_mesh(mesh.string());
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> shift(-0.12, 0.12);
+    std::vector<bool> on_sphere(m.points.size());
+    for (size_t v = 0; v < m.points.size(); ++v) {
+        on_sphere[v] = m.points[v].norm() > 1 - 1e-9;
+        if (!on_sphere[v]) m.points[v] += Vec3(shift(rng), shift(rng), shift(rng));
+    }
+    write_volume_mesh(m, tangled.string());
+    ASSERT_GT(measure_tet_quality(TetMesh{m.points, m.tets}).inverted, 20);
+
+    const CommandResult r = run_hexmesh("untangle '" + tangled.string() + "' -o '" + fixed.string() +
+                                        "' --boundary slip --surface '" + case_file.string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    const VolumeMesh u = read_volume_mesh(fixed.string());
+    EXPECT_EQ(measure_tet_quality(TetMesh{u.points, u.tets}).inverted, 0);
+    double off_surface = 0;
+    for (size_t v = 0; v < u.points.size(); ++v)
+        if (on_sphere[v]) off_surface = std::max(off_surface, std::abs(u.points[v].norm() - 1));
+    EXPECT_LT(off_surface, 1e-3 * 0.25);
+    for (const auto& f : {case_file, mesh, tangled, fixed}) fs::remove(f);
+}
+
+TEST(CliTetmesh, BadInputIsNamed) {
+    const fs::path out = scratch("never.vtu");
+    struct Bad {
+        std::string json, message;
+    };
+    const std::vector<Bad> cases = {
+        {R"({"geometry": {"sphere": {"center": [0,0,0], "radius": 1}}, "domain": "exterior"})",
+         "domain: tetmesh meshes the body's interior"},
+        {R"({"geometry": {"sphere": {"center": [0,0,0], "radius": 1}}, "tet_mesh": {"cell_sise": 0.1}})",
+         "tet_mesh"},
+        {R"({"geometry": {"sphere": {"center": [0,0,0], "radius": 1}}, "tet_mesh": {"cell_size": -1}})",
+         "tet_mesh.cell_size: expected a positive number"},
+        {R"({"geometry": {"sphere": {"center": [0,0,0], "radius": 1}},
+             "tet_mesh": {"cell_size": 0.1, "wall_cell_size": 0.2}})",
+         "tet_mesh.wall_cell_size: expected a size at most cell_size"},
+    };
+    for (const Bad& b : cases) {
+        const fs::path case_file = write_case("bad.json", b.json);
+        const CommandResult r = run_hexmesh("tetmesh '" + case_file.string() + "' -o '" + out.string() + "'");
+        EXPECT_NE(r.exit_code, 0) << b.json;
+        EXPECT_NE(r.err.find(b.message), std::string::npos) << r.err;
+        EXPECT_EQ(count_lines(r.err), 1) << r.err;
+        EXPECT_FALSE(fs::exists(out));
+        fs::remove(case_file);
+    }
+    const CommandResult missing = run_hexmesh("tetmesh /nonexistent/case.json -o '" + out.string() + "'");
+    EXPECT_NE(missing.exit_code, 0);
+    EXPECT_NE(missing.err.find("/nonexistent/case.json: cannot open case file"), std::string::npos) << missing.err;
+}
+
+}  // namespace

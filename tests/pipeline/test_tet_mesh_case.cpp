@@ -1,0 +1,176 @@
+// Tests of the tetmesh job: CGAL's Delaunay refinement of implicit and STL bodies with their
+// creases protected, then the variational optimizer with slip, against CGAL's perturb + exude.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <unistd.h>
+
+#include "hexmesh/pipeline/make_body.h"
+#include "hexmesh/pipeline/tet_mesh_case.h"
+#include "surface/implicit_features.h"
+
+namespace hexmesh {
+namespace {
+
+const double pi = std::acos(-1.0);
+
+double mesh_volume(const TetMesh& m) {
+    double v = 0;
+    for (Id t = 0; t < m.num_cells(); ++t) {
+        const Vec3 &a = m.points[m.node(t, 0)], &b = m.points[m.node(t, 1)], &c = m.points[m.node(t, 2)],
+                   &d = m.points[m.node(t, 3)];
+        v += (b - a).dot((c - a).cross(d - a)) / 6;
+    }
+    return v;
+}
+
+TetCaseResult run(const std::string& json) {
+    TetCaseOptions options;
+    options.compare_cgal = true;
+    std::ostringstream log;
+    return run_tet_case(parse_case(json, "test.json"), options, log);
+}
+
+// What every optimized mesh must show against the refined mesh and CGAL's sliver removal.
+void expect_better_than_cgal(const TetCaseResult& r) {
+    ASSERT_TRUE(r.cgal);
+    EXPECT_EQ(r.optimized.inverted, 0);
+    EXPECT_EQ(r.optimized.slivers, 0);
+    EXPECT_GT(r.refined.slivers, 0);  // there was something to remove
+    EXPECT_GT(r.optimized.min_dihedral, r.cgal->min_dihedral)
+        << "variational " << r.optimized.min_dihedral << " CGAL " << r.cgal->min_dihedral;
+    EXPECT_LT(r.optimization.max_surface_distance, 1e-3 * r.wall_size);
+    EXPECT_LT(r.optimization.max_crease_distance, 1e-3 * r.wall_size);
+}
+
+TEST(TetMeshCase, SphereBeatsCgalSliverRemoval) {
+    const TetCaseResult r =
+        run(R"({"geometry": {"sphere": {"center": [0, 0, 0], "radius": 1}}, "tet_mesh": {"cell_size": 0.25}})");
+    expect_better_than_cgal(r);
+    EXPECT_EQ(r.crease_polylines, 0);
+    EXPECT_NEAR(mesh_volume(r.mesh), 4 * pi / 3, 0.03 * 4 * pi / 3);
+}
+
+TEST(TetMeshCase, CsgBodyKeepsItsCreasesAndCorners) {
+    const std::string json = R"({"geometry": {"union": [
+        {"box": {"center": [0, 0, 0], "size": [2, 2, 1.2]}},
+        {"cylinder": {"center": [0, 0, 0.5], "radius": 0.6, "height": 1.4}}]},
+        "tet_mesh": {"cell_size": 0.25}})";
+    const TetCaseResult r = run(json);
+    expect_better_than_cgal(r);
+    EXPECT_EQ(r.crease_polylines, 14);  // 12 box edges, the cylinder's rim, where it leaves the box
+    EXPECT_EQ(r.corners, 8);
+    // Every box corner is a mesh point, exactly.
+    int found = 0;
+    for (int sx : {-1, 1})
+        for (int sy : {-1, 1})
+            for (int sz : {-1, 1}) {
+                const Vec3 corner(sx, sy, 0.6 * sz);
+                for (const Vec3& p : r.mesh.points) found += (p - corner).norm() < 1e-9;
+            }
+    EXPECT_EQ(found, 8);
+    // Both circular creases keep points exactly on them after the optimization.
+    int on_top_rim = 0, on_junction = 0;
+    for (const Vec3& p : r.mesh.points) {
+        if (std::abs(std::hypot(p.x(), p.y()) - 0.6) > 1e-9) continue;
+        on_top_rim += std::abs(p.z() - 1.2) < 1e-9;
+        on_junction += std::abs(p.z() - 0.6) < 1e-9;
+    }
+    EXPECT_GE(on_top_rim, 12);  // circumference 3.8 at spacing about h = 0.25
+    EXPECT_GE(on_junction, 12);
+    const double exact = 2 * 2 * 1.2 + pi * 0.36 * 0.6;  // box + the cylinder above it
+    EXPECT_NEAR(mesh_volume(r.mesh), exact, 0.02 * exact);
+}
+
+// A closed cylinder (radius 0.5, height 1) of n side facets as an ASCII STL: sharp rims, a
+// smooth side (neighbouring facets turn by 360 / n degrees).
+void write_cylinder_stl(const std::string& path, int n) {
+    std::ofstream out(path);
+    out << "solid cylinder\n";
+    auto facet = [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+        out << "facet normal 0 0 0\nouter loop\n";
+        for (const Vec3& p : {a, b, c}) out << "vertex " << p.x() << " " << p.y() << " " << p.z() << "\n";
+        out << "endloop\nendfacet\n";
+    };
+    out.precision(17);
+    auto rim = [&](int k, double z) {
+        k %= n;  // the last facet closes on the first point, bitwise
+        return Vec3(0.5 * std::cos(2 * pi * k / n), 0.5 * std::sin(2 * pi * k / n), z);
+    };
+    for (int k = 0; k < n; ++k) {
+        facet(rim(k, 0), rim(k + 1, 0), rim(k + 1, 1));
+        facet(rim(k, 0), rim(k + 1, 1), rim(k, 1));
+        facet(Vec3(0, 0, 0), rim(k + 1, 0), rim(k, 0));
+        facet(Vec3(0, 0, 1), rim(k, 1), rim(k + 1, 1));
+    }
+    out << "endsolid cylinder\n";
+}
+
+TEST(TetMeshCase, StlBodyKeepsItsSharpRims) {
+    const auto path = std::filesystem::temp_directory_path() / ("hexmesh_tet_" + std::to_string(::getpid()) + ".stl");
+    write_cylinder_stl(path.string(), 64);
+    const TetCaseResult r = run(R"({"geometry": {"file": ")" + path.string() +
+                                R"("}, "tet_mesh": {"cell_size": 0.12}})");
+    std::filesystem::remove(path);
+    expect_better_than_cgal(r);
+    EXPECT_EQ(r.crease_polylines, 2);  // the two rims
+    EXPECT_EQ(r.corners, 0);
+}
+
+TEST(TetMeshCase, GradedSizesFollowTheSizingFunction) {
+    const Case c = parse_case(R"({"geometry": {"sphere": {"center": [0, 0, 0], "radius": 1}},
+        "tet_mesh": {"cell_size": 0.3, "wall_cell_size": 0.1, "grading": 0.5}})", "test.json");
+    const SizingFunction size = tet_sizing(c, make_body(c.geometry));
+    EXPECT_NEAR(size(Vec3(1, 0, 0)), 0.1, 1e-12);
+    EXPECT_NEAR(size(Vec3(0.8, 0, 0)), 0.2, 1e-9);
+    EXPECT_NEAR(size(Vec3(0, 0, 0)), 0.3, 1e-12);
+}
+
+TEST(TetMeshCase, TangledMeshIsUntangledWithSlip) {
+    const Case c = parse_case(R"({"geometry": {"sphere": {"center": [0, 0, 0], "radius": 1}},
+        "tet_mesh": {"cell_size": 0.25}})", "test.json");
+    const Body body = make_body(c.geometry);
+    TetMeshOptions options;
+    options.size = tet_sizing(c, body);
+    PlacedTetMesh placed = generate_tet_mesh(*body, options).refined;
+    // Interior points moved at random by up to 0.6 h along each axis: many tets fold.
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> shift(-0.15, 0.15);
+    for (size_t v = 0; v < placed.mesh.points.size(); ++v)
+        if (placed.dimension[v] == 3) placed.mesh.points[v] += Vec3(shift(rng), shift(rng), shift(rng));
+    ASSERT_GT(measure_tet_quality(placed.mesh).inverted, 50);
+
+    const BoundaryGeometry boundary = case_boundary(c, body, 0.25);
+    // Kinds from the mesh's own boundary faces, as for a tet mesh read from a file.
+    const std::vector<VertexKind> kinds = boundary_kinds(placed.mesh, boundary, 1e-3 * 0.25);
+    const untangle::UntangleOptions o = tet_untangle_options();
+    const TetOptimization r = optimize_tet_mesh(placed.mesh, kinds, boundary, options.size, o);
+    EXPECT_EQ(r.solve.inverted_after, 0);
+    EXPECT_EQ(measure_tet_quality(placed.mesh).inverted, 0);
+    EXPECT_LT(r.max_surface_distance, 1e-3 * 0.25);
+    double off = 0;
+    for (size_t v = 0; v < kinds.size(); ++v)
+        if (kinds[v] == VertexKind::slip) off = std::max(off, std::abs(body->value(placed.mesh.points[v])));
+    EXPECT_LT(off, 1e-9);
+}
+
+TEST(TetMeshCase, ExteriorDomainIsRefused) {
+    const Case c = parse_case(R"({"geometry": {"sphere": {"center": [0, 0, 0], "radius": 1}},
+        "domain": "exterior"})", "ext.json");
+    std::ostringstream log;
+    try {
+        run_tet_case(c, {}, log);
+        FAIL() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("ext.json: domain: tetmesh meshes the body's interior"), std::string::npos)
+            << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace hexmesh
