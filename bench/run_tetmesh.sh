@@ -76,11 +76,12 @@ for name in sphere box-cylinder cylinder-stl bean-stl; do
 import sys
 log, name, size, rss = sys.argv[1:]
 text = open(log).read()
-def row(label):
+def row(label):  # the comparison table's row: the last one of that label, three columns
+    found = ["-"] * 3
     for line in text.splitlines():
-        if line.startswith("  " + label + " "):
-            return line[2 + len(label):].split()
-    return ["-"] * 3
+        if line.startswith("  " + label + " ") and len(line[2 + len(label):].split()) == 3:
+            found = line[2 + len(label):].split()
+    return found
 rows = {k: row(k) for k in ["tets", "min dihedral angle (deg)", "max dihedral angle (deg)",
                             "slivers (dihedral < 10 deg)", "min radius ratio", "max boundary distance / h",
                             "time (s)"]}

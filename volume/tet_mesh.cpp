@@ -1,5 +1,6 @@
 #include "volume/tet_mesh.h"
 
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Labeled_mesh_domain_3.h>
 #include <CGAL/Mesh_complex_3_in_triangulation_3.h>
@@ -12,6 +13,8 @@
 #include <chrono>
 #include <stdexcept>
 #include <unordered_map>
+
+#include "hexmesh/core/quality.h"
 
 namespace hexmesh {
 namespace {
@@ -56,10 +59,9 @@ PlacedTetMesh extract(const C3t3& c3t3) {
     for (auto c = c3t3.cells_in_complex_begin(); c != c3t3.cells_in_complex_end(); ++c) {
         std::array<Id, 4> t;
         for (int i = 0; i < 4; ++i) t[i] = id_of(c->vertex(i));
-        const Vec3& p0 = out.mesh.points[t[0]];
-        Mat3 q;
-        q << out.mesh.points[t[1]] - p0, out.mesh.points[t[2]] - p0, out.mesh.points[t[3]] - p0;
-        if (q.determinant() < 0) std::swap(t[2], t[3]);
+        // CGAL's cells are positively oriented already; the exact predicate makes sure.
+        const auto& x = out.mesh.points;
+        if (exact_orientation(x[t[0]], x[t[1]], x[t[2]], x[t[3]]) < 0) std::swap(t[2], t[3]);
         out.mesh.tets.insert(out.mesh.tets.end(), t.begin(), t.end());
     }
     return out;
@@ -86,6 +88,9 @@ TetMeshGeneration generate_tet_mesh(const ImplicitFunction& body, const TetMeshO
         polylines.push_back(std::move(l));
     }
     if (!polylines.empty()) domain.add_features(polylines.begin(), polylines.end());
+    std::vector<Point> corners;
+    for (const Vec3& c : options.corners) corners.push_back(to_point(c));
+    if (!corners.empty()) domain.add_corners(corners.begin(), corners.end());
 
     // A regular tet of edge a has circumradius 0.612 a, its faces 0.577 a.
     const ScaledSize edge{&options.size, 1.0}, facet{&options.size, 0.577}, cell{&options.size, 0.612};
@@ -105,8 +110,9 @@ TetMeshGeneration generate_tet_mesh(const ImplicitFunction& body, const TetMeshO
         throw std::runtime_error("tet mesh: refinement gave no tetrahedron; the body may be thinner than the cell size");
     if (options.cgal_sliver_removal) {
         const auto again = std::chrono::steady_clock::now();
-        CGAL::perturb_mesh_3(c3t3, domain, p::time_limit = 0, p::sliver_bound = 0);
-        CGAL::exude_mesh_3(c3t3, p::time_limit = 0, p::sliver_bound = 0);
+        CGAL::perturb_mesh_3(c3t3, domain, p::time_limit = options.cgal_time_limit,
+                             p::sliver_bound = options.cgal_sliver_bound);
+        CGAL::exude_mesh_3(c3t3, p::time_limit = options.cgal_time_limit, p::sliver_bound = 0);
         result.cgal_seconds = elapsed(again);
         result.cgal_optimized = extract(c3t3);
     }

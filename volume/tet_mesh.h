@@ -23,7 +23,14 @@ struct TetMeshOptions {
     // along them first, so the mesh keeps the sharp edges. Open polylines meet at equal end
     // points (the corners); a closed one repeats its first point.
     std::vector<std::vector<Vec3>> features;
+    // Corners of the body to protect as well: those that end no polyline (a cone's apex) need
+    // it; polyline ends may be listed too.
+    std::vector<Vec3> corners;
     bool cgal_sliver_removal = false;  // also run CGAL's perturb + exude on a copy
+    // The smallest dihedral angle (degrees) CGAL's perturber aims at; 0 is CGAL's default,
+    // 12 degrees (what make_mesh_3 does). It stops once every tet reaches it or no move helps.
+    double cgal_sliver_bound = 0;
+    double cgal_time_limit = 0;  // seconds for perturb and for exude each; 0: no limit
 };
 
 // A tet mesh with, per point, where it lies: 0 a corner, 1 a crease, 2 the surface u = 0,
@@ -47,8 +54,9 @@ struct TetMeshGeneration {
 TetMeshGeneration generate_tet_mesh(const ImplicitFunction& body, const TetMeshOptions& options);
 
 // Removes the boundary caps: tets whose four points lie on the boundary (dimension < 3) with
-// at least two faces on the boundary and a dihedral angle below max_degrees. Such a tet spans
-// a curved or bent part of the surface and stays flat whatever its points do on the surface;
+// at least two faces on the boundary and a dihedral angle below max_degrees at an edge that
+// is not along a crease (both ends of dimension <= 1: there the angle is the body's own).
+// Such a tet spans a curved part of the surface and stays flat whatever its points do on it;
 // without it, its two inner faces become boundary faces (off u = 0 by about the facets'
 // own chord error). One pass; points no tet uses any more are dropped. Returns the count.
 Id remove_boundary_caps(PlacedTetMesh& placed, double max_degrees);

@@ -1,5 +1,6 @@
 // `hexmesh quality MESH [--json] [--surface CASE.json]`: the quality table of a hexahedral or
 // tetrahedral mesh file.
+#include <cctype>
 #include <filesystem>
 #include <fmt/format.h>
 #include <iostream>
@@ -22,15 +23,15 @@ struct Args {
 
 // A file of tetrahedra only (legacy VTK or VTK XML unstructured), else nullopt.
 std::optional<TetMesh> read_tet_mesh(const std::string& path) {
-    const std::string ext = std::filesystem::path(path).extension().string();
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
     if (ext != ".vtu" && ext != ".vtk") return std::nullopt;
     VolumeMesh m = read_volume_mesh(path);
     if (m.num_tets() == 0 || m.num_hexes() > 0) return std::nullopt;
     return TetMesh{std::move(m.points), std::move(m.tets)};
 }
 
-void print_tet_quality(const Args& args, const TetMesh& mesh) {
-    const TetQualityReport q = measure_tet_quality(mesh);
+void print_tet_quality(const Args& args, const TetMesh& mesh, const TetQualityReport& q) {
     std::optional<double> distance;
     if (!args.surface.empty()) {
         const Case c = read_case(args.surface);
@@ -58,8 +59,9 @@ void add_quality_command(CLI::App& app, int& exit_code) {
                     "tet meshes: case file whose body the boundary should lie on (distance over its wall cell size)");
     cmd->callback([args, &exit_code] {
         if (const auto tets = read_tet_mesh(args->mesh_path)) {
-            print_tet_quality(*args, *tets);
-            exit_code = measure_tet_quality(*tets).inverted == 0 ? 0 : 3;
+            const TetQualityReport q = measure_tet_quality(*tets);
+            print_tet_quality(*args, *tets, q);
+            exit_code = q.inverted == 0 ? 0 : 3;
             return;
         }
         if (!args->surface.empty()) throw std::invalid_argument("--surface is for tetrahedral meshes");

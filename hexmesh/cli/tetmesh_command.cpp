@@ -1,4 +1,5 @@
 // `hexmesh tetmesh CASE.json -o OUT`: a sliver-free tetrahedral mesh of a case's body.
+#include <filesystem>
 #include <fmt/format.h>
 #include <iostream>
 #include <memory>
@@ -18,7 +19,7 @@ void add_tetmesh_command(CLI::App& app, int& exit_code) {
         double theta = tet_untangle_options().theta;
         int optimize_iterations = 20;
         Reweighting reweighting;
-        double cap_degrees = 20;
+        double cap_degrees = 20, cgal_sliver_bound = 0, cgal_time_limit = 0;
     };
     auto args = std::make_shared<Args>();
     CLI::App* cmd = app.add_subcommand("tetmesh", "tetrahedral mesh of a case's body, slivers removed");
@@ -40,15 +41,27 @@ void add_tetmesh_command(CLI::App& app, int& exit_code) {
     cmd->add_option("--cap-angle", args->cap_degrees,
                     "remove boundary caps (four points on the surface) below this dihedral angle (degrees, 0: none)")
         ->check(CLI::Range(0.0, 60.0))->capture_default_str();
+    cmd->add_option("--cgal-sliver-bound", args->cgal_sliver_bound,
+                    "--compare-cgal: smallest dihedral angle CGAL's perturber aims at (degrees; 0: its default, 12)")
+        ->check(CLI::Range(0.0, 60.0))->capture_default_str();
+    cmd->add_option("--cgal-time-limit", args->cgal_time_limit,
+                    "--compare-cgal: seconds for CGAL's perturb and for its exude (0: no limit)")
+        ->check(CLI::NonNegativeNumber)->capture_default_str();
     cmd->callback([args, &exit_code] {
         const Case c = read_case(args->case_path);
         check_volume_mesh_output(args->output);
-        if (!args->cgal_output.empty()) check_volume_mesh_output(args->cgal_output);
+        if (!args->cgal_output.empty()) {
+            check_volume_mesh_output(args->cgal_output);
+            if (std::filesystem::weakly_canonical(args->cgal_output) == std::filesystem::weakly_canonical(args->output))
+                throw std::invalid_argument("--cgal-output must differ from -o (" + args->output + ")");
+        }
         std::cout << fmt::format("hexmesh tetmesh {}\n", args->case_path);
         TetCaseOptions options;
         options.compare_cgal = args->compare_cgal;
         options.reweighting = args->reweighting;
         options.cap_degrees = args->cap_degrees;
+        options.cgal_sliver_bound = args->cgal_sliver_bound;
+        options.cgal_time_limit = args->cgal_time_limit;
         options.untangle.theta = args->theta;
         options.untangle.max_optimize_iterations = args->optimize_iterations;
         options.untangle.untangle_solver.method = untangle::method_from_name(c.solver.untangle);
@@ -66,12 +79,17 @@ void add_tetmesh_command(CLI::App& app, int& exit_code) {
             return;
         }
         write_volume_mesh(VolumeMesh{r.mesh.points, {}, r.mesh.tets, {}}, args->output);
-        std::cout << "\nwritten: " << args->output << "\n";
         if (!args->cgal_output.empty()) {
             const TetMesh& m = r.generation.cgal_optimized->mesh;
-            write_volume_mesh(VolumeMesh{m.points, {}, m.tets, {}}, args->cgal_output);
-            std::cout << "written: " << args->cgal_output << "\n";
+            try {
+                write_volume_mesh(VolumeMesh{m.points, {}, m.tets, {}}, args->cgal_output);
+            } catch (...) {
+                std::filesystem::remove(args->output);  // both or neither
+                throw;
+            }
         }
+        std::cout << "\nwritten: " << args->output << "\n";
+        if (!args->cgal_output.empty()) std::cout << "written: " << args->cgal_output << "\n";
         exit_code = 0;
     });
 }

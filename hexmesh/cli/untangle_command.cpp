@@ -59,6 +59,7 @@ int run(const Args& args) {
             const Case c = read_case(args.surface);
             const Body body = make_body(c.geometry);
             options.geometry = case_boundary(c, body, tet_sizes(c, *body).wall);
+            options.tet_size = tet_sizing(c, body);
         } else {
             options.surface = read_surface(args.surface);
         }

@@ -21,29 +21,26 @@ double elapsed(std::chrono::steady_clock::time_point since) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
 }
 
-std::array<Vec3, 4> corners_of(const TetMesh& mesh, Id cell) {
-    return {mesh.points[mesh.node(cell, 0)], mesh.points[mesh.node(cell, 1)], mesh.points[mesh.node(cell, 2)],
-            mesh.points[mesh.node(cell, 3)]};
-}
-
-// Crease polylines for CGAL's feature protection: a surface file's sharp edges, or the
+// Creases and corners for CGAL's feature protection: a surface file's sharp edges, or the
 // creases of the implicit body traced at spacing `step`.
-std::vector<std::vector<Vec3>> body_creases(const Case& c, const ImplicitFunction& body, double step,
-                                            Id& corners) {
-    std::vector<std::vector<Vec3>> lines;
+CreaseCurves body_creases(const Case& c, const ImplicitFunction& body, double step) {
+    CreaseCurves curves;
     if (const auto surface = reference_surface(c.geometry)) {
         const FeatureCurves f = detect_sharp_features(*surface, {c.tet_mesh.feature_angle, true});
         for (const auto& chain : f.chains) {
             std::vector<Vec3> line;
             for (int id : chain) line.push_back(surface->points[id]);
-            lines.push_back(std::move(line));
+            curves.polylines.push_back(std::move(line));
         }
-        corners = Id(f.corners.size());
-        return lines;
+        for (int id : f.corners) curves.corners.push_back(surface->points[id]);
+        return curves;
     }
-    CreaseCurves curves = trace_creases(body, step);
-    corners = Id(curves.corners.size());
-    return std::move(curves.polylines);
+    try {
+        return trace_creases(body, step);
+    } catch (const std::invalid_argument& e) {
+        throw InputError(fmt::format("{}: tet_mesh.wall_cell_size: too small for the body to trace its creases ({})",
+                                     c.path, e.what()));
+    }
 }
 
 double max_placed_distance(const TetMesh& mesh, const std::vector<std::int8_t>& dimension,
@@ -105,10 +102,10 @@ BoundaryGeometry case_boundary(const Case& c, std::shared_ptr<const ImplicitFunc
 std::vector<VertexKind> kinds_from_dimensions(const std::vector<std::int8_t>& dimension) {
     std::vector<VertexKind> kinds(dimension.size());
     for (size_t v = 0; v < dimension.size(); ++v)
-        kinds[v] = dimension[v] >= 3   ? VertexKind::interior
-                   : dimension[v] == 2 ? VertexKind::slip
+        kinds[v] = dimension[v] == 2   ? VertexKind::slip
                    : dimension[v] == 1 ? VertexKind::feature_edge
-                                       : VertexKind::corner;
+                   : dimension[v] == 0 ? VertexKind::corner
+                                       : VertexKind::interior;
     return kinds;
 }
 
@@ -128,6 +125,27 @@ double max_boundary_distance(const TetMesh& mesh, const BoundaryGeometry& bounda
     return d;
 }
 
+std::vector<untangle::TetTarget> sized_tet_targets(const std::vector<Vec3>& points, const std::vector<Id>& tets,
+                                                  const SizingFunction& size) {
+    const Id cells = Id(tets.size() / 4);
+    std::vector<double> edge(cells);
+    double volume = 0, unsigned_volume = 0, target_volume = 0;
+    for (Id t = 0; t < cells; ++t) {
+        const Vec3 &a = points[tets[4 * t]], &b = points[tets[4 * t + 1]], &c = points[tets[4 * t + 2]],
+                   &d = points[tets[4 * t + 3]];
+        const double v = (b - a).dot((c - a).cross(d - a)) / 6;
+        volume += v;
+        unsigned_volume += std::abs(v);
+        edge[t] = size(0.25 * (a + b + c + d));
+        target_volume += std::pow(edge[t], 3) / (6 * std::sqrt(2.0));  // regular tet of that edge
+    }
+    if (!(volume > 0)) volume = unsigned_volume;  // folded beyond recognition: the best guess
+    const double scale = target_volume > 0 ? std::cbrt(volume / target_volume) : 1;
+    std::vector<untangle::TetTarget> targets(cells);
+    for (Id t = 0; t < cells; ++t) targets[t] = untangle::regular_tet_target(scale * edge[t]);
+    return targets;
+}
+
 TetOptimization optimize_tet_mesh(TetMesh& mesh, const std::vector<VertexKind>& kinds,
                                   const BoundaryGeometry& boundary, const SizingFunction& size,
                                   const untangle::UntangleOptions& options, const Reweighting& reweighting) {
@@ -135,23 +153,12 @@ TetOptimization optimize_tet_mesh(TetMesh& mesh, const std::vector<VertexKind>& 
     p.kinds = kinds;
     p.points = mesh.points;
     const Id cells = mesh.num_cells();
-    // Target edges c h(centroid), c such that the regular targets fill the mesh's volume.
-    std::vector<double> edge(cells);
-    double volume = 0, target_volume = 0, total_edge = 0;
-    const double regular_volume = 1 / (6 * std::sqrt(2.0));  // of the unit-edge regular tet
-    for (Id t = 0; t < cells; ++t) {
-        const auto y = corners_of(mesh, t);
-        volume += std::abs((y[1] - y[0]).dot((y[2] - y[0]).cross(y[3] - y[0]))) / 6;
-        edge[t] = size(0.25 * (y[0] + y[1] + y[2] + y[3]));
-        target_volume += regular_volume * std::pow(edge[t], 3);
-    }
-    const double scale = target_volume > 0 ? std::cbrt(volume / target_volume) : 1;
+    p.targets = sized_tet_targets(mesh.points, mesh.tets, size);
     p.tets.reserve(cells);
-    p.targets.reserve(cells);
+    double total_edge = 0;
     for (Id t = 0; t < cells; ++t) {
         p.tets.push_back({mesh.node(t, 0), mesh.node(t, 1), mesh.node(t, 2), mesh.node(t, 3)});
-        p.targets.push_back(untangle::regular_tet_target(scale * edge[t]));
-        total_edge += scale * edge[t];
+        total_edge += std::cbrt(6 * std::sqrt(2.0) * p.targets[t].weight);  // the target's edge
     }
     p.length_scale = cells > 0 ? total_edge / double(cells) : 1;
     for (size_t v = 0; v < p.points.size(); ++v) p.points[v] = boundary.place(p.points[v], kinds[v]);
@@ -166,13 +173,15 @@ TetOptimization optimize_tet_mesh(TetMesh& mesh, const std::vector<VertexKind>& 
             if (k != VertexKind::interior) k = VertexKind::fixed;
         untangle::UntangleOptions first = options;
         first.max_optimize_iterations = 0;
-        const untangle::UntangleResult r = untangle::untangle_and_optimize(held, first);
+        result.solve = untangle::untangle_and_optimize(held, first);
         p.points = held.points;
-        result.solve.history = r.history;
-        result.solve.seconds = r.seconds;
     }
     {
         untangle::UntangleResult r = untangle::untangle_and_optimize(p, options);
+        if (!result.solve.history.empty()) {  // report the tangled input as "before"
+            r.inverted_before = result.solve.inverted_before;
+            r.min_det_before = result.solve.min_det_before;
+        }
         r.history.insert(r.history.begin(), result.solve.history.begin(), result.solve.history.end());
         r.seconds += result.solve.seconds;
         result.solve = std::move(r);
@@ -236,11 +245,14 @@ TetCaseResult run_tet_case(const Case& c, const TetCaseOptions& options, std::os
     TetMeshOptions mesh_options;
     mesh_options.size = size;
     mesh_options.facet_distance = c.tet_mesh.facet_distance > 0 ? c.tet_mesh.facet_distance : 0.1 * sizes.wall;
-    Id corners = 0;
-    mesh_options.features = body_creases(c, *body, 0.5 * sizes.wall, corners);
+    CreaseCurves creases = body_creases(c, *body, 0.5 * sizes.wall);
+    r.crease_polylines = Id(creases.polylines.size());
+    r.corners = Id(creases.corners.size());
+    mesh_options.features = std::move(creases.polylines);
+    mesh_options.corners = std::move(creases.corners);
     mesh_options.cgal_sliver_removal = options.compare_cgal;
-    r.crease_polylines = Id(mesh_options.features.size());
-    r.corners = corners;
+    mesh_options.cgal_sliver_bound = options.cgal_sliver_bound;
+    mesh_options.cgal_time_limit = options.cgal_time_limit;
     r.seconds_features = elapsed(start);
     log << fmt::format("creases: {} polylines, {} corners ({:.2f} s)\n", r.crease_polylines, r.corners,
                        r.seconds_features)

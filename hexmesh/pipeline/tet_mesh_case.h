@@ -40,6 +40,13 @@ std::vector<VertexKind> kinds_from_dimensions(const std::vector<std::int8_t>& di
 // boundary.kind_at(x, reach) says.
 std::vector<VertexKind> boundary_kinds(const TetMesh& mesh, const BoundaryGeometry& boundary, double reach);
 
+// Regular targets (DESIGN §4: v0 from the sizing function) whose edges follow `size` at each
+// tet's centroid, all scaled by one factor so that their volumes add up to the mesh's signed
+// volume: the domain's volume, also while the mesh is tangled (its unsigned volume if the
+// signed one is not positive). tets: 4 point ids per tet.
+std::vector<untangle::TetTarget> sized_tet_targets(const std::vector<Vec3>& points, const std::vector<Id>& tets,
+                                                  const SizingFunction& size);
+
 // The largest distance of the mesh's boundary points (on faces of one tet) to `boundary`.
 double max_boundary_distance(const TetMesh& mesh, const BoundaryGeometry& boundary);
 
@@ -60,10 +67,9 @@ struct Reweighting {
 // dihedral angles are a shape measure); the rest as UntangleOptions has them.
 untangle::UntangleOptions tet_untangle_options();
 
-// Moves every boundary vertex onto the part of the surface its kind names, then untangles and
-// optimizes `mesh` with regular targets whose edge follows `size` at each tet's centroid,
-// scaled so that the targets' volumes add up to the mesh's (DESIGN §4: v0 from the sizing
-// function), then reweights (the round with the largest smallest dihedral angle is kept).
+// Moves every boundary vertex onto the part of the surface its kind names, then untangles (the
+// boundary held first when the mesh is tangled) and optimizes `mesh` with the targets of
+// sized_tet_targets, then reweights (the round with the largest smallest dihedral angle is kept).
 // kinds: one per point.
 TetOptimization optimize_tet_mesh(TetMesh& mesh, const std::vector<VertexKind>& kinds,
                                   const BoundaryGeometry& boundary, const SizingFunction& size,
@@ -73,6 +79,8 @@ struct TetCaseOptions {
     bool compare_cgal = false;  // also run CGAL's perturb + exude on the refined mesh
     // Boundary caps below this dihedral angle are removed before optimizing (0: none).
     double cap_degrees = 20;
+    double cgal_sliver_bound = 0;  // compare_cgal: TetMeshOptions::cgal_sliver_bound
+    double cgal_time_limit = 0;
     untangle::UntangleOptions untangle = tet_untangle_options();
     Reweighting reweighting;
 };
@@ -90,7 +98,7 @@ struct TetCaseResult {
 };
 
 // The whole job; one progress line per phase to `log`. Throws InputError for a case it
-// cannot mesh (an exterior domain).
+// cannot mesh (an exterior domain, a wall cell size too small to trace the creases at).
 TetCaseResult run_tet_case(const Case& c, const TetCaseOptions& options, std::ostream& log);
 
 // The comparison table: refined, CGAL perturb + exude (when run), variational.

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "hexmesh/core/reference_hex.h"
+#include "hexmesh/pipeline/tet_mesh_case.h"
 
 namespace hexmesh {
 namespace {
@@ -109,6 +110,10 @@ UntangleMeshResult untangle_volume_mesh(VolumeMesh& mesh, const UntangleMeshOpti
     double total_edge = 0;
     Id edges = 0;
     add_elements(mesh, options.uniform_target, p, total_edge, edges);
+    if (options.tet_size && mesh.num_tets() > 0) {
+        const auto sized = sized_tet_targets(mesh.points, mesh.tets, options.tet_size);
+        std::copy(sized.begin(), sized.end(), p.targets.end() - sized.size());
+    }
     p.length_scale = edges ? total_edge / edges : 1;
 
     const auto faces = boundary_faces(mesh);
@@ -125,7 +130,9 @@ UntangleMeshResult untangle_volume_mesh(VolumeMesh& mesh, const UntangleMeshOpti
                                                                                   : triangulate(mesh, faces),
                                                                   options.feature_angle_degrees, p.length_scale);
         // Boundary vertices on a crease slide along it; at a corner they stay, exactly on it.
-        const double near = 1e-3 * p.length_scale;
+        // A given geometry (an implicit body) is sought further: a tet mesher lays crease
+        // points on chords of curved creases, some 1e-2 h off them.
+        const double near = (options.geometry ? 1e-2 : 1e-3) * p.length_scale;
         for (size_t v = 0; v < mesh.points.size(); ++v) {
             if (!on_boundary[v]) continue;
             p.kinds[v] = geometry->kind_at(mesh.points[v], near);

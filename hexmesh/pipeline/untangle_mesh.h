@@ -1,6 +1,7 @@
 // The `untangle` job: a hex or tet mesh from a file, its boundary fixed or slipping, made valid.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -28,6 +29,9 @@ struct UntangleMeshOptions {
     // Target cell size: each cell's own mean edge length (keeps the grading of a graded
     // mesh), or the mean over the whole mesh (robust when the input is badly distorted).
     bool uniform_target = false;
+    // Set: tets get regular targets from this sizing function (sized_tet_targets of
+    // tet_mesh_case.h) instead of their own or the mean size.
+    std::function<double(const Vec3&)> tet_size;
 };
 
 // A corner tet that is inverted while its four vertices may not move: no method that keeps

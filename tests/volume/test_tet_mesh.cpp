@@ -95,6 +95,21 @@ TEST(TetMesh, BoxEdgesAndCornersAreProtected) {
               measure_tet_quality(g.refined.mesh).min_dihedral);
 }
 
+TEST(TetMesh, IsolatedCornerIsProtected) {
+    // A pointed cone: its apex is a corner that ends no crease polyline.
+    const Cone cone(Vec3::Zero(), 0.5, 0, 0.5);
+    const double h = 0.1;
+    const CreaseCurves creases = trace_creases(cone, 0.5 * h);
+    TetMeshOptions o = uniform(h);
+    o.features = creases.polylines;
+    o.corners = creases.corners;
+    const PlacedTetMesh placed = generate_tet_mesh(cone, o).refined;
+    int apex = 0;
+    for (size_t v = 0; v < placed.mesh.points.size(); ++v)
+        if ((placed.mesh.points[v] - Vec3(0, 0, 0.5)).norm() < 1e-9) apex += placed.dimension[v] == 0;
+    EXPECT_EQ(apex, 1);
+}
+
 TEST(TetMesh, SizingFunctionGradesTheMesh) {
     const Sphere sphere(Vec3::Zero(), 1);
     TetMeshOptions o;
@@ -143,6 +158,21 @@ TEST(TetMesh, BoundaryCapsAreRemovedAndOthersKept) {
     EXPECT_EQ(placed.dimension[7], 0);
     // Nothing below 1 degree here: nothing goes.
     EXPECT_EQ(remove_boundary_caps(placed, 1), 0);
+}
+
+TEST(TetMesh, TetsAlongASharpCreaseAreNoCaps) {
+    // Four boundary points, the small dihedral angle at the edge 01 that runs along a crease
+    // (both ends of dimension 1): the angle is the body's own, the tet stays.
+    PlacedTetMesh placed;
+    placed.mesh.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.5, 1, 0), Vec3(0.5, 1, 0.1)};
+    placed.dimension = {1, 1, 2, 2};
+    placed.mesh.tets = {0, 1, 2, 3};
+    const auto angles = dihedral_angles({placed.mesh.points[0], placed.mesh.points[1], placed.mesh.points[2],
+                                         placed.mesh.points[3]});
+    ASSERT_LT(angles[0], 10);  // edge 01
+    EXPECT_EQ(remove_boundary_caps(placed, 20), 0);
+    placed.dimension = {2, 1, 2, 2};  // the same tet off the crease is a cap
+    EXPECT_EQ(remove_boundary_caps(placed, 20), 1);
 }
 
 }  // namespace
