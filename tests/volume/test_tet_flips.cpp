@@ -1,0 +1,147 @@
+// Tests of edge removal and 2-3 flips: same region, same boundary, positive tets, smallest dihedral
+// angle never lowered.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "hexmesh/core/quality.h"
+#include "hexmesh/core/tet_quality.h"
+#include "surface/analytic.h"
+#include "volume/tet_flips.h"
+#include "volume/tet_mesh.h"
+
+namespace hexmesh {
+namespace {
+
+double volume(const TetMesh& m) {
+    double v = 0;
+    for (Id t = 0; t < m.num_cells(); ++t) {
+        const Vec3 &a = m.points[m.node(t, 0)], &b = m.points[m.node(t, 1)], &c = m.points[m.node(t, 2)],
+                   &d = m.points[m.node(t, 3)];
+        v += (b - a).dot((c - a).cross(d - a)) / 6;
+    }
+    return v;
+}
+
+// The faces used by one tet, as sorted point ids.
+std::set<std::array<Id, 3>> boundary_faces(const TetMesh& m) {
+    std::map<std::array<Id, 3>, int> uses;
+    for (Id t = 0; t < m.num_cells(); ++t)
+        for (int f = 0; f < 4; ++f) {
+            std::array<Id, 3> key = {m.node(t, (f + 1) % 4), m.node(t, (f + 2) % 4), m.node(t, (f + 3) % 4)};
+            std::sort(key.begin(), key.end());
+            ++uses[key];
+        }
+    std::set<std::array<Id, 3>> out;
+    for (const auto& [key, n] : uses)
+        if (n == 1) out.insert(key);
+    return out;
+}
+
+double smallest(const std::vector<Vec3>& x, std::array<Id, 4> t) {
+    const auto a = dihedral_angles({x[t[0]], x[t[1]], x[t[2]], x[t[3]]});
+    return *std::min_element(a.begin(), a.end());
+}
+
+TEST(TetFlips, DelaunayMeshOfASphereKeepsItsRegionAndBoundary) {
+    const Sphere sphere(Vec3::Zero(), 1);
+    TetMeshOptions o;
+    o.size = [](const Vec3&) { return 0.2; };
+    TetMesh mesh = generate_tet_mesh(sphere, o).refined.mesh;
+    const double volume_before = volume(mesh);
+    const auto boundary_before = boundary_faces(mesh);
+    const TetQualityReport before = measure_tet_quality(mesh);
+    ASSERT_GT(before.slivers, 0);
+
+    const FlipResult r = improve_by_flips(mesh, 30);
+    EXPECT_GT(r.edge_removals + r.flips_23, 0);
+    EXPECT_NEAR(volume(mesh), volume_before, 1e-9 * volume_before);
+    EXPECT_EQ(boundary_faces(mesh), boundary_before);
+    const TetQualityReport after = measure_tet_quality(mesh);
+    EXPECT_EQ(after.inverted, 0);
+    EXPECT_GT(after.min_dihedral, before.min_dihedral);
+    EXPECT_LT(after.slivers, before.slivers);
+}
+
+TEST(TetFlips, ThreeWedgesAroundAnEdgeBecomeTwo) {
+    // The edge ab pierces the triangle cde close to c: the three tets around it are thin
+    // wedges (smallest angle 14 degrees); the two tets on cde have 42.
+    TetMesh mesh;
+    mesh.points = {Vec3(0.6, 0, 1), Vec3(0.6, 0, -1), Vec3(1, 0, 0), Vec3(-0.5, 0.866, 0), Vec3(-0.5, -0.866, 0)};
+    mesh.tets = {0, 1, 2, 3, 0, 1, 3, 4, 0, 1, 4, 2};
+    for (Id t = 0; t < 3; ++t)  // orient positively
+        if (exact_orientation(mesh.points[mesh.tets[4 * t]], mesh.points[mesh.tets[4 * t + 1]],
+                              mesh.points[mesh.tets[4 * t + 2]], mesh.points[mesh.tets[4 * t + 3]]) < 0)
+            std::swap(mesh.tets[4 * t + 2], mesh.tets[4 * t + 3]);
+    const double old_angle = measure_tet_quality(mesh).min_dihedral;
+    const double new_angle = std::min(smallest(mesh.points, {2, 3, 4, 0}), smallest(mesh.points, {2, 3, 4, 1}));
+    ASSERT_GT(new_angle, old_angle);
+    const FlipResult r = improve_by_flips(mesh, 60);
+    EXPECT_EQ(r.edge_removals, 1);
+    ASSERT_EQ(mesh.num_cells(), 2);
+    EXPECT_NEAR(measure_tet_quality(mesh).min_dihedral, new_angle, 1e-9);
+    EXPECT_EQ(measure_tet_quality(mesh).inverted, 0);
+}
+
+TEST(TetFlips, FiveTetsAroundAnEdgeBecomeSix) {
+    // The inner edge ab (points 0, 1) with a ring of five points around it: one of the five tets
+    // around ab is a sliver (smallest angle 1.2 degrees). Removing ab leaves the ring's best
+    // triangulation joined to a and to b: six tets, smallest angle 35.0 degrees.
+    TetMesh mesh;
+    mesh.points = {Vec3(-0.17, 0.19, 0.95), Vec3(0.03, 0.09, -0.95), Vec3(-0.55, 0.39, 0.01), Vec3(-1.1, 0, 0.18),
+                   Vec3(-0.3, -0.44, 0.14), Vec3(0.54, -1.02, 0.1), Vec3(0.83, -0.28, -0.06)};
+    for (Id i = 0; i < 5; ++i) {
+        std::array<Id, 4> t = {0, 1, 2 + i, 2 + (i + 1) % 5};
+        if (exact_orientation(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]], mesh.points[t[3]]) < 0)
+            std::swap(t[2], t[3]);
+        mesh.tets.insert(mesh.tets.end(), t.begin(), t.end());
+    }
+    const TetQualityReport before = measure_tet_quality(mesh);
+    ASSERT_EQ(before.inverted, 0);
+    ASSERT_LT(before.min_dihedral, 1.5);
+    const double volume_before = volume(mesh);
+    const auto boundary_before = boundary_faces(mesh);
+    const FlipResult r = improve_by_flips(mesh, 30);
+    EXPECT_EQ(r.edge_removals, 1);
+    ASSERT_EQ(mesh.num_cells(), 6);
+    EXPECT_NEAR(measure_tet_quality(mesh).min_dihedral, 35.0, 0.01);
+    EXPECT_EQ(measure_tet_quality(mesh).inverted, 0);
+    EXPECT_NEAR(volume(mesh), volume_before, 1e-12);
+    EXPECT_EQ(boundary_faces(mesh), boundary_before);
+}
+
+TEST(TetFlips, TwoFlatTetsOnAWideFaceBecomeThree) {
+    // Two flat tets on the wide triangle abc, apexes d and e 0.2 above and below its centre
+    // (smallest angle 21.8 degrees); the three tets around the edge de have 43.6.
+    TetMesh mesh;
+    mesh.points = {Vec3(1, 0, 0), Vec3(-0.5, 0.866, 0), Vec3(-0.5, -0.866, 0), Vec3(0, 0, 0.2), Vec3(0, 0, -0.2)};
+    mesh.tets = {0, 1, 2, 3, 0, 2, 1, 4};
+    ASSERT_EQ(measure_tet_quality(mesh).inverted, 0);
+    double new_angle = 180;
+    for (const std::array<Id, 4>& t : {std::array<Id, 4>{0, 1, 3, 4}, {1, 2, 3, 4}, {2, 0, 3, 4}})
+        new_angle = std::min(new_angle, smallest(mesh.points, t));
+    ASSERT_GT(new_angle, measure_tet_quality(mesh).min_dihedral + 20);
+    const FlipResult r = improve_by_flips(mesh, 60);
+    EXPECT_EQ(r.flips_23, 1);
+    ASSERT_EQ(mesh.num_cells(), 3);
+    EXPECT_NEAR(measure_tet_quality(mesh).min_dihedral, new_angle, 1e-9);
+    EXPECT_EQ(measure_tet_quality(mesh).inverted, 0);
+    EXPECT_NEAR(volume(mesh), 2 * 0.2 * (3 * std::sqrt(3.0) / 4 * 1.0) / 3 * 1.0, 1e-3);
+}
+
+TEST(TetFlips, BoundaryFacesAreNeverFlipped) {
+    // One tet alone: every face is on the boundary, nothing can change.
+    TetMesh mesh;
+    mesh.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0.01)};
+    mesh.tets = {0, 1, 2, 3};
+    const FlipResult r = improve_by_flips(mesh, 60);
+    EXPECT_EQ(r.edge_removals + r.flips_23, 0);
+    EXPECT_EQ(mesh.tets, (std::vector<Id>{0, 1, 2, 3}));
+}
+
+}  // namespace
+}  // namespace hexmesh

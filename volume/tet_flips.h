@@ -1,0 +1,22 @@
+// Local reconnection of a tet mesh: edge removals (3-2 flips and their generalization) and
+// 2-3 flips that raise the smallest dihedral angle of the tets they replace. Points do not move and the boundary faces stay as they are.
+#pragma once
+
+#include "hexmesh/core/hex_mesh.h"
+
+namespace hexmesh {
+
+struct FlipResult {
+    Id edge_removals = 0;  // m tets around an inner edge became 2m - 4 (m = 3: a 3-2 flip)
+    Id flips_23 = 0;       // two tets on an inner face became three
+};
+
+// Visits the tets whose smallest dihedral angle is below `below_degrees`, worst first, and
+// replaces a tet and its neighbours by another triangulation of their union when that raises
+// the smallest dihedral angle among them: edge removal (the 3 to 7 tets around an inner edge
+// of the tet become the best triangulation of their ring joined to the edge's two ends) and
+// 2-3 (two tets sharing a face become three around a new edge). Repeats until a pass
+// changes nothing or after `passes` passes. Tets stay positively oriented.
+FlipResult improve_by_flips(TetMesh& mesh, double below_degrees, int passes = 8);
+
+}  // namespace hexmesh
