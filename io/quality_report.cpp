@@ -158,6 +158,9 @@ std::string format_tet_quality_table(const std::vector<TetQualityColumn>& column
     if (std::any_of(columns.begin(), columns.end(), [](const TetQualityColumn& c) { return bool(c.boundary_distance); }))
         row("max boundary distance / h",
             [&](const TetQualityColumn& c) { return optional(c.boundary_distance, "{:.2e}"); });
+    if (std::any_of(columns.begin(), columns.end(), [](const TetQualityColumn& c) { return bool(c.crease_distance); }))
+        row("max crease distance / h",
+            [&](const TetQualityColumn& c) { return optional(c.crease_distance, "{:.2e}"); });
     if (std::any_of(columns.begin(), columns.end(), [](const TetQualityColumn& c) { return bool(c.seconds); }))
         row("time (s)", [&](const TetQualityColumn& c) { return optional(c.seconds, "{:.2f}"); });
     return out;

@@ -42,6 +42,7 @@ struct TetQualityColumn {
     const TetQualityReport* quality = nullptr;
     std::optional<double> boundary_distance;
     std::optional<double> seconds;
+    std::optional<double> crease_distance;  // largest distance of a crease point to its crease, / h
 };
 
 // The metrics of TetQualityReport as rows, one column per mesh (side by side to compare).

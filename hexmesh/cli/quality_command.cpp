@@ -44,7 +44,7 @@ void print_tet_quality(const Args& args, const TetMesh& mesh, const TetQualityRe
         return;
     }
     std::cout << fmt::format("quality of {} ({} points)\n", args.mesh_path, q.points)
-              << format_tet_quality_table({{"", &q, distance, std::nullopt}});
+              << format_tet_quality_table({{"", &q, distance, std::nullopt, std::nullopt}});
 }
 
 }  // namespace

@@ -19,7 +19,8 @@ void add_tetmesh_command(CLI::App& app, int& exit_code) {
         double theta = tet_untangle_options().theta;
         int optimize_iterations = 20;
         Reweighting reweighting;
-        double cap_degrees = 20, cgal_sliver_bound = 0, cgal_time_limit = 0;
+        double cap_degrees = 20, cgal_sliver_bound = 0, cgal_time_limit = 0, flip_degrees = 30;
+        int flip_cycles = 3;
     };
     auto args = std::make_shared<Args>();
     CLI::App* cmd = app.add_subcommand("tetmesh", "tetrahedral mesh of a case's body, slivers removed");
@@ -41,6 +42,11 @@ void add_tetmesh_command(CLI::App& app, int& exit_code) {
     cmd->add_option("--cap-angle", args->cap_degrees,
                     "remove boundary caps (four points on the surface) below this dihedral angle (degrees, 0: none)")
         ->check(CLI::Range(0.0, 60.0))->capture_default_str();
+    cmd->add_option("--flip-cycles", args->flip_cycles,
+                    "cycles of edge removals and 2-3 flips, each followed by the optimization again (0: none)")
+        ->check(CLI::NonNegativeNumber)->capture_default_str();
+    cmd->add_option("--flip-angle", args->flip_degrees, "flip around the tets below this dihedral angle (degrees)")
+        ->check(CLI::Range(0.0, 70.0))->capture_default_str();
     cmd->add_option("--cgal-sliver-bound", args->cgal_sliver_bound,
                     "--compare-cgal: smallest dihedral angle CGAL's perturber aims at (degrees; 0: its default, 12)")
         ->check(CLI::Range(0.0, 60.0))->capture_default_str();
@@ -61,6 +67,8 @@ void add_tetmesh_command(CLI::App& app, int& exit_code) {
         options.reweighting = args->reweighting;
         options.cap_degrees = args->cap_degrees;
         options.cgal_sliver_bound = args->cgal_sliver_bound;
+        options.flip_cycles = args->flip_cycles;
+        options.flip_degrees = args->flip_degrees;
         options.cgal_time_limit = args->cgal_time_limit;
         options.untangle.theta = args->theta;
         options.untangle.max_optimize_iterations = args->optimize_iterations;
@@ -70,9 +78,7 @@ void add_tetmesh_command(CLI::App& app, int& exit_code) {
         options.untangle.log = &std::cout;
         const TetCaseResult r = run_tet_case(c, options, std::cout);
         std::cout << "\n" << untangle::format_untangle_summary(r.optimization.solve) << "\n"
-                  << format_tet_comparison(r)
-                  << fmt::format("  {:<32}{:>20.2e}\n", "max crease distance / h",
-                                 r.optimization.max_crease_distance / r.wall_size);
+                  << format_tet_comparison(r);
         if (r.optimized.inverted > 0) {
             std::cout << fmt::format("\n{} inverted tets remain: nothing written\n", r.optimized.inverted);
             exit_code = 3;

@@ -13,6 +13,7 @@
 #include "surface/crease_curves.h"
 #include "surface/sharp_features.h"
 #include "untangle/tet_energy.h"
+#include "volume/tet_flips.h"
 
 namespace hexmesh {
 namespace {
@@ -280,8 +281,31 @@ TetCaseResult run_tet_case(const Case& c, const TetCaseOptions& options, std::os
     r.caps_removed = options.cap_degrees > 0 ? remove_boundary_caps(work, options.cap_degrees) : 0;
     log << fmt::format("boundary caps removed: {}\n", r.caps_removed) << std::flush;
     r.mesh = std::move(work.mesh);
-    r.optimization = optimize_tet_mesh(r.mesh, kinds_from_dimensions(work.dimension), boundary, size,
-                                       options.untangle, options.reweighting);
+    const std::vector<VertexKind> kinds = kinds_from_dimensions(work.dimension);
+    r.optimization = optimize_tet_mesh(r.mesh, kinds, boundary, size, options.untangle, options.reweighting);
+    // Flips where moving points is not enough, then the points again; kept while it helps.
+    for (int cycle = 0; cycle < options.flip_cycles && r.optimization.solve.inverted_after == 0; ++cycle) {
+        const TetMesh before = r.mesh;
+        const double before_angle = measure_tet_quality(before).min_dihedral;
+        const FlipResult f = improve_by_flips(r.mesh, options.flip_degrees);
+        if (f.edge_removals + f.flips_23 == 0) break;
+        const TetOptimization again = optimize_tet_mesh(r.mesh, kinds, boundary, size, options.untangle,
+                                                        options.reweighting);
+        if (again.solve.inverted_after > 0 || measure_tet_quality(r.mesh).min_dihedral <= before_angle) {
+            r.mesh = before;
+            break;
+        }
+        r.flips_23 += f.flips_23;
+        r.edge_removals += f.edge_removals;
+        r.optimization.max_surface_distance = again.max_surface_distance;
+        r.optimization.max_crease_distance = again.max_crease_distance;
+        r.optimization.solve.history.insert(r.optimization.solve.history.end(), again.solve.history.begin(),
+                                            again.solve.history.end());
+        r.optimization.solve.seconds += again.solve.seconds;
+        r.optimization.solve.min_det_after = again.solve.min_det_after;
+        r.optimization.solve.energy_after = again.solve.energy_after;
+        log << fmt::format("flips: {} edge removals, {} 2-3\n", f.edge_removals, f.flips_23) << std::flush;
+    }
     r.seconds_optimize = elapsed(start);
     r.optimized = measure_tet_quality(r.mesh);
     return r;
@@ -290,10 +314,12 @@ TetCaseResult run_tet_case(const Case& c, const TetCaseOptions& options, std::os
 std::string format_tet_comparison(const TetCaseResult& r) {
     const double h = r.wall_size;
     std::vector<TetQualityColumn> columns = {
-        {"refined", &r.refined, r.refined_surface_distance / h, r.generation.seconds}};
+        {"refined", &r.refined, r.refined_surface_distance / h, r.generation.seconds, std::nullopt}};
     if (r.cgal)
-        columns.push_back({"CGAL perturb+exude", &*r.cgal, r.cgal_surface_distance / h, r.generation.cgal_seconds});
-    columns.push_back({"variational", &r.optimized, r.optimization.max_surface_distance / h, r.seconds_optimize});
+        columns.push_back({"CGAL perturb+exude", &*r.cgal, r.cgal_surface_distance / h, r.generation.cgal_seconds,
+                           std::nullopt});
+    columns.push_back({"variational", &r.optimized, r.optimization.max_surface_distance / h, r.seconds_optimize,
+                       r.optimization.max_crease_distance / h});
     return format_tet_quality_table(columns);
 }
 

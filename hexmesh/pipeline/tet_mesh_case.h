@@ -1,6 +1,6 @@
 // The `tetmesh` job: a tetrahedral mesh of a case's body by CGAL's Delaunay refinement, made
-// sliver-free by the variational optimizer with boundary vertices sliding on the body, and
-// compared with CGAL's own sliver removal on the same mesh.
+// sliver-free by the variational optimizer (boundary vertices sliding on the body) and flips,
+// and compared with CGAL's own sliver removal on the same mesh.
 #pragma once
 
 #include <functional>
@@ -79,6 +79,10 @@ struct TetCaseOptions {
     bool compare_cgal = false;  // also run CGAL's perturb + exude on the refined mesh
     // Boundary caps below this dihedral angle are removed before optimizing (0: none).
     double cap_degrees = 20;
+    // Cycles of flips (2-3, 3-2) on the tets below flip_degrees, each followed by the
+    // optimization again; a cycle that does not raise the smallest angle is undone and ends them.
+    int flip_cycles = 3;
+    double flip_degrees = 30;
     double cgal_sliver_bound = 0;  // compare_cgal: TetMeshOptions::cgal_sliver_bound
     double cgal_time_limit = 0;
     untangle::UntangleOptions untangle = tet_untangle_options();
@@ -88,7 +92,7 @@ struct TetCaseOptions {
 struct TetCaseResult {
     TetMeshGeneration generation;
     TetMesh mesh;  // the optimized mesh
-    Id crease_polylines = 0, corners = 0, caps_removed = 0;
+    Id crease_polylines = 0, corners = 0, caps_removed = 0, edge_removals = 0, flips_23 = 0;
     TetQualityReport refined, optimized;
     std::optional<TetQualityReport> cgal;
     double refined_surface_distance = 0, cgal_surface_distance = 0;  // max over boundary vertices

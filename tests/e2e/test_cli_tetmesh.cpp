@@ -2,6 +2,7 @@
 // CASE.json` on tet meshes, and their messages for bad input.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -107,6 +108,39 @@ TEST(CliTetmesh, TangledTetMeshUntangledOnTheCaseBody) {
     for (size_t v = 0; v < u.points.size(); ++v)
         if (on_sphere[v]) off_surface = std::max(off_surface, std::abs(u.points[v].norm() - 1));
     EXPECT_LT(off_surface, 1e-3 * 0.25);
+    for (const auto& f : {case_file, mesh, tangled, fixed}) fs::remove(f);
+}
+
+TEST(CliTetmesh, TangledCsgMeshKeepsItsCreases) {
+    const fs::path case_file = write_case("csg_case.json", box_cylinder);
+    const fs::path mesh = scratch("csg_tets.vtu"), tangled = scratch("csg_tangled.vtu"), fixed = scratch("csg_fixed.vtu");
+    ASSERT_EQ(run_hexmesh("tetmesh '" + case_file.string() + "' -o '" + mesh.string() + "'").exit_code, 0);
+    VolumeMesh m = read_volume_mesh(mesh.string());
+    // Points on the two circular creases (the cylinder's rim, where it leaves the box).
+    auto on_circle = [](const Vec3& p) {
+        return std::abs(std::hypot(p.x(), p.y()) - 0.6) < 1e-9 &&
+               (std::abs(p.z() - 1.2) < 1e-9 || std::abs(p.z() - 0.6) < 1e-9);
+    };
+    std::vector<bool> crease(m.points.size());
+    int on_creases = 0;
+    for (size_t v = 0; v < m.points.size(); ++v) on_creases += crease[v] = on_circle(m.points[v]);
+    ASSERT_GT(on_creases, 20);
+    // Points well inside moved at random: some tets fold.
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> shift(-0.1, 0.1);
+    for (Vec3& p : m.points)
+        if (p.cwiseAbs().maxCoeff() < 0.8 && p.z() < 0.4 && p.z() > -0.4) p += Vec3(shift(rng), shift(rng), shift(rng));
+    write_volume_mesh(m, tangled.string());
+    ASSERT_GT(measure_tet_quality(TetMesh{m.points, m.tets}).inverted, 0);
+
+    const CommandResult r = run_hexmesh("untangle '" + tangled.string() + "' -o '" + fixed.string() +
+                                        "' --boundary slip --surface '" + case_file.string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    EXPECT_NE(r.out.find("on creases"), std::string::npos);
+    const VolumeMesh u = read_volume_mesh(fixed.string());
+    EXPECT_EQ(measure_tet_quality(TetMesh{u.points, u.tets}).inverted, 0);
+    for (size_t v = 0; v < u.points.size(); ++v)
+        if (crease[v]) EXPECT_TRUE(on_circle(u.points[v])) << u.points[v].transpose();
     for (const auto& f : {case_file, mesh, tangled, fixed}) fs::remove(f);
 }
 
