@@ -16,6 +16,7 @@ namespace {
 
 constexpr double infinity = std::numeric_limits<double>::infinity();
 constexpr double tiny_eps = 1e-10;
+constexpr double negligible_eps = 1e-9;
 
 // Orders states: fewer inverted elements first, then lower barrier energy.
 struct Best {
@@ -44,7 +45,9 @@ void log_line(std::ostream* log, const IterationRecord& r) {
 // The eps continuation on `problem` (DESIGN §4), from x = problem.points, until at most
 // options.unrepairable elements are inverted, the iteration budget is spent or progress
 // stalls. Every outer iteration is logged and offered to `best` (judged on `judge`, the
-// whole problem, since `problem` may be a local part of it).
+// whole problem, since `problem` may be a local part of it). eps first shrinks fast; when
+// that stalls, the continuation restarts from the best state it reached, at the eps that
+// state was found with, and shrinks eps by the safe rule.
 void continuation(Problem& problem, const Assembly& judge, const UntangleOptions& options,
                   const std::function<double()>& seconds, Best& best, UntangleResult& result) {
     const Assembly assembly(problem);
@@ -52,6 +55,10 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
     ElementStats stats = judge.stats(x);
     Minimizer minimizer(problem, assembly, options.untangle_solver);
     double eps = std::sqrt(tiny_eps + 0.04 * stats.min_det * stats.min_det);
+    bool fast = options.fast_sigma > options.safe_sigma;
+    Id fewest = stats.inverted;  // the best state of this continuation, and its eps
+    std::vector<Vec3> restart = x;
+    double restart_eps = eps;
     int stalled = 0;
     const int first = int(result.history.size()) + 1;
     for (int it = first; it < first + options.max_untangle_iterations && stats.inverted > options.unrepairable; ++it) {
@@ -68,11 +75,22 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
                           m.linear_iterations};
         result.history.push_back(r);
         log_line(options.log, r);
-        const Id before = best.inverted;
         best.offer(x, stats.inverted, stats.inverted ? infinity : judge.energy(x, {options.theta, 0}));
-        stalled = best.inverted < before ? 0 : stalled + 1;
-        if (stalled >= options.stall_iterations) break;
-        const double sigma = std::max(1 - m.energy / e_prev, 0.1);
+        if (stats.inverted < fewest) {
+            fewest = stats.inverted, restart = x, restart_eps = eps, stalled = 0;
+        } else {
+            ++stalled;
+        }
+        // eps this small (in target units) no longer changes anything but the energy's scale.
+        const bool stuck = stalled > 0 && eps < negligible_eps;
+        if (fast && (stalled >= options.fast_stall || stuck) && stats.inverted > options.unrepairable) {
+            fast = false, stalled = 0;
+            x = restart, eps = restart_eps;
+            stats = judge.stats(x);
+            continue;
+        }
+        if (stalled >= options.stall_iterations || stuck) break;
+        const double sigma = std::max(1 - m.energy / e_prev, fast ? options.fast_sigma : options.safe_sigma);
         const double mu = (1 - sigma) * chi(local.min_det, eps);
         eps = local.min_det < mu ? 2 * std::sqrt(mu * (mu - local.min_det)) : tiny_eps;
     }
@@ -147,6 +165,7 @@ UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& op
             if (!local_part(problem, elements_of, rings, part)) break;
             UntangleOptions local = options;
             local.max_untangle_iterations = std::min(options.max_untangle_iterations, 50);
+            local.stall_iterations = std::min(options.stall_iterations, 10);  // the global pass follows
             continuation(part, assembly, local, seconds, best, result);
             x = best.points;
         }

@@ -16,6 +16,14 @@ struct UntangleOptions {
     double untangle_theta = 0.1;  // volume weight while untangling: shape first is more robust
     int max_untangle_iterations = 200;  // outer iterations (eps updates)
     int stall_iterations = 40;          // stop untangling after this many without progress
+    // eps continuation speed: eps shrinks as if each inner solve had lowered the energy by at
+    // least this share (DESIGN §4's sigma floor). Untangling starts with fast_sigma (about
+    // 5x smaller eps per outer iteration) and, after fast_stall iterations without fewer
+    // inverted elements, goes back to its best state and on with safe_sigma, the floor of
+    // the published rule (about 10 % per iteration).
+    double fast_sigma = 0.8;
+    double safe_sigma = 0.1;
+    int fast_stall = 2;
     // Inverted elements are first repaired in their neighbourhood of this many element
     // rings (doubled until it works or covers half the mesh); 0 untangles globally only.
     int local_rings = 2;

@@ -165,6 +165,8 @@ UntangleMeshResult untangle_volume_mesh(VolumeMesh& mesh, const UntangleMeshOpti
             if (k != VertexKind::interior) k = VertexKind::fixed;
         untangle::UntangleOptions first = options.untangle;
         first.max_optimize_iterations = 0;
+        first.unrepairable = Id(find_blocked(mesh, held).size());
+        first.stall_iterations = std::min(first.stall_iterations, 3);  // a start: slip does the rest
         const untangle::UntangleResult r = untangle::untangle_and_optimize(held, first);
         p.points = held.points;
         result.solve = untangle::untangle_and_optimize(p, options.untangle);
