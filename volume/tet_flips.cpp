@@ -2,6 +2,8 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
+#include <cassert>
 #include <cmath>
 #include <unordered_map>
 #include <utility>
@@ -28,6 +30,9 @@ Edge edge_key(Id a, Id b) { return a < b ? Edge{a, b} : Edge{b, a}; }
 constexpr int tet_edges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
 // Largest ring of tets around an edge that edge removal tries (7 tets become 10).
 constexpr int max_ring = 7;
+// A replacement must raise the smallest dihedral angle by more than this (degrees), so that
+// round-off cannot make two triangulations flip back and forth.
+constexpr double min_gain_degrees = 1e-6;
 
 // The tets with their face and edge incidences, kept up to date as tets come and go.
 class Topology {
@@ -59,7 +64,11 @@ public:
     void remove(Id id) {
         const Tet& t = tets_[id];
         alive_[id] = false;
-        auto drop = [id](std::vector<Id>& list) { list.erase(std::find(list.begin(), list.end(), id)); };
+        auto drop = [id](std::vector<Id>& list) {
+            const auto it = std::find(list.begin(), list.end(), id);
+            assert(it != list.end());
+            list.erase(it);
+        };
         for (int f = 0; f < 4; ++f) {
             const Face key = face_key(t[(f + 1) % 4], t[(f + 2) % 4], t[(f + 3) % 4]);
             auto& list = faces_[key];
@@ -94,33 +103,15 @@ double smallest_angle(const std::vector<Vec3>& x, const Tet& t) {
     return *std::min_element(a.begin(), a.end());
 }
 
-double signed_volume(const std::vector<Vec3>& x, const Tet& t) {
-    return (x[t[1]] - x[t[0]]).dot((x[t[2]] - x[t[0]]).cross(x[t[3]] - x[t[0]])) / 6;
-}
-
-// `t` positively oriented by the exact predicate (two vertices swapped if needed); false if flat.
-bool orient(const std::vector<Vec3>& x, Tet& t) {
-    const int s = exact_orientation(x[t[0]], x[t[1]], x[t[2]], x[t[3]]);
-    if (s < 0) std::swap(t[2], t[3]);
-    return s != 0;
-}
-
-// Replaces the tets `old` by `fresh` (oriented here) if `fresh` fills the same region (equal
-// total volume, so no overlap) and raises the smallest dihedral angle.
-bool try_replace(Topology& topo, const std::vector<Id>& old, std::vector<Tet> fresh) {
+// Replaces the tets `old` by `fresh` when that raises the smallest dihedral angle. The
+// callers build `fresh` positively oriented (exact predicate) over the same region as `old`:
+// edge removal from a closed ring, 2-3 only where the apexes' edge crosses the shared face.
+bool try_replace(Topology& topo, const std::vector<Id>& old, const std::vector<Tet>& fresh) {
     const auto& x = topo.points();
-    double old_volume = 0, old_angle = 180, new_volume = 0, new_angle = 180;
-    for (Id t : old) {
-        old_volume += signed_volume(x, topo.tet(t));
-        old_angle = std::min(old_angle, smallest_angle(x, topo.tet(t)));
-    }
-    for (Tet& t : fresh) {
-        if (!orient(x, t)) return false;
-        new_volume += signed_volume(x, t);
-        new_angle = std::min(new_angle, smallest_angle(x, t));
-    }
-    if (!(new_angle > old_angle + 1e-6)) return false;
-    if (std::abs(new_volume - old_volume) > 1e-9 * old_volume) return false;
+    double old_angle = 180, new_angle = 180;
+    for (Id t : old) old_angle = std::min(old_angle, smallest_angle(x, topo.tet(t)));
+    for (const Tet& t : fresh) new_angle = std::min(new_angle, smallest_angle(x, t));
+    if (!(new_angle > old_angle + min_gain_degrees)) return false;
     for (Id t : old) topo.remove(t);
     for (const Tet& t : fresh) topo.add(t);
     return true;
@@ -137,7 +128,8 @@ bool edge_ring(const Topology& topo, Id a, Id b, std::vector<Id>& ring, std::vec
         Edge l{-1, -1};
         int k = 0;
         for (Id v : topo.tet(t))
-            if (v != a && v != b) l[k++] = v;
+            if (v != a && v != b && k < 2) l[k++] = v;
+        if (k != 2) return false;  // a tet with a repeated point
         links.push_back(l);
     }
     ring = {links[0][0], links[0][1]};
@@ -196,7 +188,10 @@ bool remove_edge(Topology& topo, Id a, Id b) {
                 if (!usable(i, k)) continue;
                 for (int j = i + 1; j < k; ++j) {
                     const double q = std::min({best_of[i][j], best_of[j][k], quality(i, j, k, sign)});
-                    if (q > best_of[i][k]) best_of[i][k] = q, split[i][k] = j;
+                    if (q > best_of[i][k]) {
+                        best_of[i][k] = q;
+                        split[i][k] = j;
+                    }
                 }
             }
         if (best_of[0][m - 1] <= best) continue;
@@ -208,8 +203,14 @@ bool remove_edge(Topology& topo, Id a, Id b) {
             todo.pop_back();
             if (k - i < 2) continue;
             const int j = split[i][k];
-            best_tets.push_back({ring[i], ring[j], ring[k], a});
-            best_tets.push_back({ring[i], ring[k], ring[j], b});
+            // Both new tets have orientation `sign`: reversed ones are flipped to positive.
+            if (sign > 0) {
+                best_tets.push_back({ring[i], ring[j], ring[k], a});
+                best_tets.push_back({ring[i], ring[k], ring[j], b});
+            } else {
+                best_tets.push_back({ring[i], ring[k], ring[j], a});
+                best_tets.push_back({ring[i], ring[j], ring[k], b});
+            }
             todo.push_back({i, j});
             todo.push_back({j, k});
         }
@@ -226,16 +227,28 @@ bool flip_23(Topology& topo, Id a, Id b, Id c) {
         for (Id v : topo.tet(pair[k]))
             if (v != a && v != b && v != c) apex[k] = v;
     if (topo.around_edge(edge_key(apex[0], apex[1]))) return false;  // that edge exists elsewhere
+    // The three new tets fill the two old ones exactly when the apexes' edge crosses the
+    // inside of abc: then all three have the same (non-zero) orientation.
+    const auto& x = topo.points();
+    std::vector<Tet> fresh = {{a, b, apex[0], apex[1]}, {b, c, apex[0], apex[1]}, {c, a, apex[0], apex[1]}};
+    const int sign = exact_orientation(x[a], x[b], x[apex[0]], x[apex[1]]);
+    for (const Tet& t : fresh)
+        if (sign == 0 || exact_orientation(x[t[0]], x[t[1]], x[t[2]], x[t[3]]) != sign) return false;
+    if (sign < 0)
+        for (Tet& t : fresh) std::swap(t[0], t[1]);
     const std::vector<Id> old = pair;
-    return try_replace(topo, old,
-                       {{a, b, apex[0], apex[1]}, {b, c, apex[0], apex[1]}, {c, a, apex[0], apex[1]}});
+    return try_replace(topo, old, fresh);
 }
 
 }  // namespace
 
 FlipResult improve_by_flips(TetMesh& mesh, double below_degrees, int passes) {
-    Topology topo(mesh);
     FlipResult result;
+    for (Id t = 0; t < mesh.num_cells(); ++t)
+        if (exact_orientation(mesh.points[mesh.node(t, 0)], mesh.points[mesh.node(t, 1)], mesh.points[mesh.node(t, 2)],
+                              mesh.points[mesh.node(t, 3)]) <= 0)
+            return result;
+    Topology topo(mesh);
     for (int pass = 0; pass < passes; ++pass) {
         std::vector<std::pair<double, Id>> poor;
         for (Id t : topo.alive_tets()) {
@@ -249,9 +262,15 @@ FlipResult improve_by_flips(TetMesh& mesh, double below_degrees, int passes) {
             const Tet tet = topo.tet(t);
             bool done = false;
             for (const auto& e : tet_edges)
-                if (!done && remove_edge(topo, tet[e[0]], tet[e[1]])) done = true, ++result.edge_removals;
+                if (!done && remove_edge(topo, tet[e[0]], tet[e[1]])) {
+                    done = true;
+                    ++result.edge_removals;
+                }
             for (int f = 0; f < 4 && !done; ++f)
-                if (flip_23(topo, tet[(f + 1) % 4], tet[(f + 2) % 4], tet[(f + 3) % 4])) done = true, ++result.flips_23;
+                if (flip_23(topo, tet[(f + 1) % 4], tet[(f + 2) % 4], tet[(f + 3) % 4])) {
+                    done = true;
+                    ++result.flips_23;
+                }
             flipped += done;
         }
         if (flipped == 0) break;

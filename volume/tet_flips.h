@@ -1,5 +1,6 @@
 // Local reconnection of a tet mesh: edge removals (3-2 flips and their generalization) and
-// 2-3 flips that raise the smallest dihedral angle of the tets they replace. Points do not move and the boundary faces stay as they are.
+// 2-3 flips that raise the smallest dihedral angle of the tets they replace. Points do not
+// move and the boundary faces stay as they are.
 #pragma once
 
 #include "hexmesh/core/hex_mesh.h"
@@ -16,7 +17,9 @@ struct FlipResult {
 // the smallest dihedral angle among them: edge removal (the 3 to 7 tets around an inner edge
 // of the tet become the best triangulation of their ring joined to the edge's two ends) and
 // 2-3 (two tets sharing a face become three around a new edge). Repeats until a pass
-// changes nothing or after `passes` passes. Tets stay positively oriented.
+// changes nothing or after `passes` passes. Every tet must be positively oriented (exact
+// predicate): a mesh with an inverted or flat tet is left as it is (nothing flipped), since
+// a region around it has no well-defined re-triangulation. Tets stay positively oriented.
 FlipResult improve_by_flips(TetMesh& mesh, double below_degrees, int passes = 8);
 
 }  // namespace hexmesh

@@ -79,8 +79,9 @@ struct TetCaseOptions {
     bool compare_cgal = false;  // also run CGAL's perturb + exude on the refined mesh
     // Boundary caps below this dihedral angle are removed before optimizing (0: none).
     double cap_degrees = 20;
-    // Cycles of flips (2-3, 3-2) on the tets below flip_degrees, each followed by the
-    // optimization again; a cycle that does not raise the smallest angle is undone and ends them.
+    // Cycles of flips (edge removal of 3 to 7 tets, 2-3) on the tets below flip_degrees, each
+    // followed by the optimization again; a cycle that does not raise the smallest angle is
+    // undone and ends them.
     int flip_cycles = 3;
     double flip_degrees = 30;
     double cgal_sliver_bound = 0;  // compare_cgal: TetMeshOptions::cgal_sliver_bound

@@ -87,10 +87,8 @@ TEST(TetFlips, ThreeWedgesAroundAnEdgeBecomeTwo) {
     EXPECT_EQ(measure_tet_quality(mesh).inverted, 0);
 }
 
-TEST(TetFlips, FiveTetsAroundAnEdgeBecomeSix) {
-    // The inner edge ab (points 0, 1) with a ring of five points around it: one of the five tets
-    // around ab is a sliver (smallest angle 1.2 degrees). Removing ab leaves the ring's best
-    // triangulation joined to a and to b: six tets, smallest angle 35.0 degrees.
+// The five tets around the edge (0, 1) of FiveTetsAroundAnEdgeBecomeSix, positively oriented.
+TetMesh five_tets_around_an_edge() {
     TetMesh mesh;
     mesh.points = {Vec3(-0.17, 0.19, 0.95), Vec3(0.03, 0.09, -0.95), Vec3(-0.55, 0.39, 0.01), Vec3(-1.1, 0, 0.18),
                    Vec3(-0.3, -0.44, 0.14), Vec3(0.54, -1.02, 0.1), Vec3(0.83, -0.28, -0.06)};
@@ -100,6 +98,14 @@ TEST(TetFlips, FiveTetsAroundAnEdgeBecomeSix) {
             std::swap(t[2], t[3]);
         mesh.tets.insert(mesh.tets.end(), t.begin(), t.end());
     }
+    return mesh;
+}
+
+TEST(TetFlips, FiveTetsAroundAnEdgeBecomeSix) {
+    // The inner edge ab (points 0, 1) with a ring of five points around it: one of the five tets
+    // around ab is a sliver (smallest angle 1.2 degrees). Removing ab leaves the ring's best
+    // triangulation joined to a and to b: six tets, smallest angle 35.0 degrees.
+    TetMesh mesh = five_tets_around_an_edge();
     const TetQualityReport before = measure_tet_quality(mesh);
     ASSERT_EQ(before.inverted, 0);
     ASSERT_LT(before.min_dihedral, 1.5);
@@ -112,6 +118,43 @@ TEST(TetFlips, FiveTetsAroundAnEdgeBecomeSix) {
     EXPECT_EQ(measure_tet_quality(mesh).inverted, 0);
     EXPECT_NEAR(volume(mesh), volume_before, 1e-12);
     EXPECT_EQ(boundary_faces(mesh), boundary_before);
+}
+
+TEST(TetFlips, OpenFanAroundABoundaryEdgeIsNotRemoved) {
+    // Four of the five tets around the edge (0, 1): the edge is now on the boundary, its ring
+    // of points does not close, and whatever flips happen keep the region and its boundary.
+    for (Id dropped = 0; dropped < 5; ++dropped) {
+        TetMesh mesh = five_tets_around_an_edge();
+        mesh.tets.erase(mesh.tets.begin() + 4 * dropped, mesh.tets.begin() + 4 * dropped + 4);
+        const double volume_before = volume(mesh);
+        const auto boundary_before = boundary_faces(mesh);
+        const FlipResult r = improve_by_flips(mesh, 60);
+        EXPECT_EQ(r.edge_removals, 0) << "dropped tet " << dropped;
+        EXPECT_EQ(measure_tet_quality(mesh).inverted, 0);
+        EXPECT_NEAR(volume(mesh), volume_before, 1e-12);
+        EXPECT_EQ(boundary_faces(mesh), boundary_before);
+    }
+}
+
+TEST(TetFlips, TwoTetsWhoseApexEdgeMissesTheirFaceStay) {
+    // The apexes' edge passes beside the shared face abc: three tets around it would overlap.
+    TetMesh mesh;
+    mesh.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1.5, 1.5, 0.3), Vec3(1.5, 1.5, -0.3)};
+    mesh.tets = {0, 1, 2, 3, 0, 2, 1, 4};
+    ASSERT_EQ(measure_tet_quality(mesh).inverted, 0);
+    const std::vector<Id> before = mesh.tets;
+    const FlipResult r = improve_by_flips(mesh, 60);
+    EXPECT_EQ(r.edge_removals + r.flips_23, 0);
+    EXPECT_EQ(mesh.tets, before);
+}
+
+TEST(TetFlips, MeshWithAnInvertedTetIsLeftAsItIs) {
+    TetMesh mesh = five_tets_around_an_edge();
+    std::swap(mesh.tets[2], mesh.tets[3]);  // the first tet inverted
+    const std::vector<Id> before = mesh.tets;
+    const FlipResult r = improve_by_flips(mesh, 60);
+    EXPECT_EQ(r.edge_removals + r.flips_23, 0);
+    EXPECT_EQ(mesh.tets, before);
 }
 
 TEST(TetFlips, TwoFlatTetsOnAWideFaceBecomeThree) {
