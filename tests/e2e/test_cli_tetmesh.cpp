@@ -141,9 +141,10 @@ TEST(CliTetmesh, TangledCsgMeshKeepsItsCreases) {
     EXPECT_NE(r.out.find("on creases"), std::string::npos);
     const VolumeMesh u = read_volume_mesh(fixed.string());
     EXPECT_EQ(measure_tet_quality(TetMesh{u.points, u.tets}).inverted, 0);
-    for (size_t v = 0; v < u.points.size(); ++v) {
-        if (crease[v]) EXPECT_TRUE(on_circle(u.points[v])) << u.points[v].transpose();
-    }
+    for (size_t v = 0; v < u.points.size(); ++v)
+        if (crease[v]) {
+            EXPECT_TRUE(on_circle(u.points[v])) << u.points[v].transpose();
+        }
     for (const auto& f : {case_file, mesh, tangled, fixed}) fs::remove(f);
 }
 
