@@ -4,6 +4,7 @@
 #include <bitset>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <stdexcept>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -14,6 +15,7 @@ namespace {
 
 constexpr int max_colours = 512;
 constexpr size_t grain = 2048;
+constexpr Id chunk_elements = 256;  // elements per chunk (fewer if colouring needs it)
 
 // Deterministic sum: the split depends on the size and grain only, never on the threads.
 double deterministic_sum(const std::vector<double>& v) {
@@ -51,26 +53,16 @@ Assembly::Assembly(const Problem& problem) : problem_(problem) {
         for (Id v : t)
             if (v < 0 || v >= nv) throw std::invalid_argument("element refers to a missing vertex");
 
-    // Greedy colouring in element order.
-    std::vector<std::bitset<max_colours>> used(nv);
-    std::vector<int> colour(ne);
-    int n_colours = 0;
-    for (Id e = 0; e < ne; ++e) {
-        std::bitset<max_colours> taken;
-        for (Id v : problem.tets[e]) taken |= used[v];
-        int c = 0;
-        while (c < max_colours && taken[c]) ++c;
-        if (c == max_colours) throw std::runtime_error("element colouring needs too many colours");
-        colour[e] = c;
-        n_colours = std::max(n_colours, c + 1);
-        for (Id v : problem.tets[e]) used[v].set(c);
-    }
-    colour_start_.assign(n_colours + 1, 0);
-    for (Id e = 0; e < ne; ++e) ++colour_start_[colour[e] + 1];
-    for (int c = 0; c < n_colours; ++c) colour_start_[c + 1] += colour_start_[c];
+    // Chunks of consecutive elements (their targets stream from memory in order; the mesh's
+    // own order usually keeps neighbours close), coloured; chunks shrink if a colouring needs
+    // too many colours.
     order_.resize(ne);
-    std::vector<Id> next(colour_start_.begin(), colour_start_.end() - 1);
-    for (Id e = 0; e < ne; ++e) order_[next[colour[e]]++] = e;
+    for (Id e = 0; e < ne; ++e) order_[e] = e;
+    Id size = chunk_elements;
+    while (!colour_chunks(size)) {
+        if (size == 1) throw std::runtime_error("element colouring needs too many colours");
+        size /= 2;
+    }
 
     // Block pattern: vertex pairs sharing an element, plus every diagonal.
     std::vector<std::vector<Id>> adjacent(nv);
@@ -92,6 +84,42 @@ Assembly::Assembly(const Problem& problem) : problem_(problem) {
         pattern_.col.insert(pattern_.col.end(), adjacent[v].begin(), adjacent[v].end());
         std::vector<Id>().swap(adjacent[v]);
     }
+}
+
+bool Assembly::colour_chunks(Id size) {
+    const Id ne = Id(order_.size()), n_chunks = (ne + size - 1) / size;
+    std::vector<std::bitset<max_colours>> used(problem_.points.size());
+    std::vector<int> colour(n_chunks);
+    int n_colours = 0;
+    for (Id k = 0; k < n_chunks; ++k) {
+        const Id first = k * size, last = std::min(ne, first + size);
+        std::bitset<max_colours> taken;
+        for (Id m = first; m < last; ++m)
+            for (Id v : problem_.tets[order_[m]]) taken |= used[v];
+        int c = 0;
+        while (c < max_colours && taken[c]) ++c;
+        if (c == max_colours) return false;
+        colour[k] = c;
+        n_colours = std::max(n_colours, c + 1);
+        for (Id m = first; m < last; ++m)
+            for (Id v : problem_.tets[order_[m]]) used[v].set(c);
+    }
+    // Chunks grouped by colour, in element order within a colour.
+    colour_start_.assign(n_colours + 1, 0);
+    for (Id k = 0; k < n_chunks; ++k) ++colour_start_[colour[k] + 1];
+    for (int c = 0; c < n_colours; ++c) colour_start_[c + 1] += colour_start_[c];
+    std::vector<Id> next(colour_start_.begin(), colour_start_.end() - 1), slot(n_chunks);
+    for (Id k = 0; k < n_chunks; ++k) slot[next[colour[k]]++] = k;
+    std::vector<Id> order;
+    order.reserve(ne);
+    chunk_start_.assign(1, 0);
+    for (Id k : slot) {
+        const Id first = k * size, last = std::min(ne, first + size);
+        order.insert(order.end(), order_.begin() + first, order_.begin() + last);
+        chunk_start_.push_back(Id(order.size()));
+    }
+    order_.swap(order);
+    return true;
 }
 
 BlockMatrix Assembly::empty_hessian() const {
@@ -127,7 +155,9 @@ double Assembly::energy(const std::vector<Vec3>& x, const EnergyParams& p) const
 template <class Kernel>
 void Assembly::for_each_by_colour(Kernel&& kernel) const {
     for (int c = 0; c < colours(); ++c)
-        tbb::parallel_for(colour_start_[c], colour_start_[c + 1], [&](Id m) { kernel(order_[m]); });
+        tbb::parallel_for(colour_start_[c], colour_start_[c + 1], [&](Id k) {
+            for (Id m = chunk_start_[k]; m < chunk_start_[k + 1]; ++m) kernel(order_[m]);
+        });
 }
 
 template <class Scatter>
@@ -181,13 +211,36 @@ double Assembly::gradient(const std::vector<Vec3>& x, const EnergyParams& p, std
     return deterministic_sum(value);
 }
 
+const std::vector<std::array<Id, 16>>& Assembly::hessian_slots() const {
+    std::call_once(slots_once_, [this] {
+        slots_.resize(problem_.tets.size());
+        tbb::parallel_for(size_t(0), problem_.tets.size(), [&](size_t e) {
+            const auto& t = problem_.tets[e];
+            for (int a = 0; a < 4; ++a)
+                for (int b = 0; b < 4; ++b) slots_[e][4 * a + b] = pattern_.find(t[a], t[b]);
+        });
+    });
+    return slots_;
+}
+
 double Assembly::hessian(const std::vector<Vec3>& x, const EnergyParams& p, std::vector<Vec3>& g,
                          BlockMatrix& h) const {
+    const std::vector<std::array<Id, 16>>& slots = hessian_slots();
     std::fill(h.block.begin(), h.block.end(), Mat3::Zero());
-    return assemble_hessian(x, p, g, [&](const std::array<Id, 4>& t, const Mat12& he) {
-        for (int a = 0; a < 4; ++a)
-            for (int b = 0; b < 4; ++b) h.block[h.find(t[a], t[b])] += he.block<3, 3>(3 * a, 3 * b);
+    g.assign(x.size(), Vec3::Zero());
+    std::vector<double> value(problem_.tets.size());
+    for_each_by_colour([&](Id e) {
+        Mat34 ge;
+        Mat12 he;
+        value[e] = tet_energy_hessian(corners(x, e), problem_.targets[e], p, ge, he);
+        if (!std::isfinite(value[e])) return;
+        const auto& t = problem_.tets[e];
+        for (int a = 0; a < 4; ++a) {
+            g[t[a]] += ge.col(a);
+            for (int b = 0; b < 4; ++b) h.block[slots[e][4 * a + b]] += he.block<3, 3>(3 * a, 3 * b);
+        }
     });
+    return deterministic_sum(value);
 }
 
 }  // namespace hexmesh::untangle

@@ -1,6 +1,8 @@
 // Assembly of the functional over all elements: energy, gradient and block Hessian.
 #pragma once
 
+#include <array>
+#include <mutex>
 #include <vector>
 
 #include "untangle/problem.h"
@@ -25,9 +27,11 @@ struct ElementStats {
     Id inverted = 0;  // elements with det S <= 0
 };
 
-// Precomputes the element colouring (no two elements of one colour share a vertex) and the
-// Hessian's block pattern, so that every sum below is parallel yet deterministic: the same
-// input gives the same bits whatever the number of threads.
+// Precomputes the element schedule and the Hessian's block pattern, so that every sum below
+// is parallel yet deterministic (the same input gives the same bits whatever the number of
+// threads). Elements are cut into chunks of consecutive elements; chunks are coloured so
+// that no two chunks of one colour share a vertex. Colours run one after the other, the chunks of a colour in parallel, the elements
+// of a chunk in order: few synchronizations, and neighbouring elements share the cache.
 class Assembly {
 public:
     explicit Assembly(const Problem& problem);
@@ -50,21 +54,33 @@ public:
                          const std::vector<Vec3>& v, std::vector<Vec3>& out) const;
 
     int colours() const { return int(colour_start_.size()) - 1; }
+    Id chunks() const { return Id(chunk_start_.size()) - 1; }
 
 private:
     Mat34 corners(const std::vector<Vec3>& x, Id e) const;
-    // Runs kernel(e) for every element, colour after colour, elements of a colour in parallel.
+    // Runs kernel(e) for every element, colour after colour, the chunks of a colour in
+    // parallel, each chunk's elements in order.
     template <class Kernel>
     void for_each_by_colour(Kernel&& kernel) const;
+    // Cuts order_ into chunks of `size` elements and colours them; false if that needs more
+    // colours than the colouring can hold.
+    bool colour_chunks(Id size);
     // F(x) and its gradient in g; each finite element's PSD Hessian goes to scatter(tet, he).
     template <class Scatter>
     double assemble_hessian(const std::vector<Vec3>& x, const EnergyParams& p,
                             std::vector<Vec3>& g, Scatter&& scatter) const;
 
+    // Index into the pattern's blocks of block (a, b) of each element's Hessian (4 a + b),
+    // computed on first use: only the assembled Hessian needs it.
+    const std::vector<std::array<Id, 16>>& hessian_slots() const;
+
     const Problem& problem_;
-    std::vector<Id> order_;         // elements sorted by colour
-    std::vector<Id> colour_start_;  // offsets into order_
+    std::vector<Id> order_;         // elements, chunk after chunk, chunks sorted by colour
+    std::vector<Id> chunk_start_;   // offsets into order_
+    std::vector<Id> colour_start_;  // offsets into the chunks
     BlockMatrix pattern_;  // row_start and col only
+    mutable std::once_flag slots_once_;
+    mutable std::vector<std::array<Id, 16>> slots_;
 };
 
 }  // namespace hexmesh::untangle

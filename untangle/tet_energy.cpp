@@ -2,7 +2,6 @@
 
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
-#include <Eigen/SVD>
 #include <cmath>
 #include <limits>
 
@@ -35,10 +34,14 @@ struct Invariants {
 
 Invariants phi(double i, double d, double v0, const EnergyParams& p, bool second) {
     const double eps = p.eps, theta = p.theta;
-    const double x = eps > 0 ? chi(d, eps) : d;
-    const double x1 = eps > 0 ? chi_derivative(d, eps) : 1.0;
-    const double r = std::hypot(eps, d);
-    const double x2 = eps > 0 ? 0.5 * eps * eps / (r * r * r) : 0.0;
+    // chi(d, eps) and its first two derivatives, one square root for all three.
+    double x = d, x1 = 1, x2 = 0;
+    if (eps > 0) {
+        const double r = regularization_radius(d, eps);
+        x = chi(d, eps, r);
+        x1 = chi_derivative(d, eps, r);
+        x2 = 0.5 * eps * eps / (r * r * r);
+    }
     const double x23 = std::cbrt(x * x);  // chi^(2/3)
     const double mu = 0.5 * (v0 / x + x / v0), mu1 = 0.5 * (1 / v0 - v0 / (x * x));
     const double nu = i / (3 * x23), nu1 = -2.0 / 9 * i / (x23 * x);
@@ -55,6 +58,27 @@ Invariants phi(double i, double d, double v0, const EnergyParams& p, bool second
     return f;
 }
 
+
+// Signed SVD S = U diag(sigma) V^T with U, V rotations (sigma[2] < 0 when det S < 0), from
+// the closed-form eigensystem of S^T S: V its eigenvectors (largest first), U by
+// Gram-Schmidt on S V, sigma the diagonal of U^T S V. Accurate where the singular values are
+// apart; where they nearly coincide any basis of their space is a valid choice.
+void signed_svd(const Mat3& s, Mat3& u, Vec3& sigma, Mat3& v) {
+    Eigen::SelfAdjointEigenSolver<Mat3> eigen;
+    eigen.computeDirect(s.transpose() * s);
+    v = eigen.eigenvectors().rowwise().reverse();  // eigenvalues ascend: largest first
+    if (v.determinant() < 0) v.col(2) *= -1;
+    const Mat3 sv = s * v;
+    auto unit_or = [](const Vec3& w, const Vec3& fallback) {
+        const double n = w.norm();
+        return n > 1e-300 ? Vec3(w / n) : fallback;
+    };
+    u.col(0) = unit_or(sv.col(0), Vec3::UnitX());
+    const Vec3 any_normal = u.col(0).unitOrthogonal();
+    u.col(1) = unit_or(sv.col(1) - u.col(0).dot(sv.col(1)) * u.col(0), any_normal);
+    u.col(2) = u.col(0).cross(u.col(1));
+    for (int k = 0; k < 3; ++k) sigma[k] = u.col(k).dot(sv.col(k));
+}
 
 // S = Q H^-1, the derivatives of phi at S and the vertex gradient; false (nothing set
 // beyond s) when eps = 0 and det S <= 0, where the barrier is infinite.
@@ -102,11 +126,9 @@ double tet_energy_hessian(const Mat34& y, const TetTarget& t, const EnergyParams
     // and the scalings U diag(v) V^T span the rest, where v are the eigenvectors of the 3 x 3
     // Hessian of f(sum sigma^2, prod sigma) in sigma. Each mode q contributes
     // lambda (D^T q)(D^T q)^T to the 12 x 12 Hessian, with (D^T q)_a = U M V^T g_a.
-    Eigen::JacobiSVD<Mat3> svd(s, Eigen::ComputeFullU | Eigen::ComputeFullV);
-    Mat3 u = svd.matrixU(), v = svd.matrixV();
-    Vec3 sigma = svd.singularValues();
-    if (u.determinant() < 0) u.col(2) *= -1, sigma[2] *= -1;
-    if (v.determinant() < 0) v.col(2) *= -1, sigma[2] *= -1;
+    Mat3 u, v;
+    Vec3 sigma;
+    signed_svd(s, u, sigma, v);
     const Vec3 d_i(sigma[1] * sigma[2], sigma[0] * sigma[2], sigma[0] * sigma[1]);
     Mat3 a;
     for (int i = 0; i < 3; ++i)
@@ -116,17 +138,18 @@ double tet_energy_hessian(const Mat34& y, const TetTarget& t, const EnergyParams
     Eigen::SelfAdjointEigenSolver<Mat3> scaling;
     scaling.computeDirect(a);
 
-    Eigen::Matrix<double, 3, 4> g;  // columns: d(vec S)/d y_a factors (rows of H^-1)
-    for (int k = 1; k < 4; ++k) g.col(k) = t.inverse.row(k - 1).transpose();
-    g.col(0) = -(g.col(1) + g.col(2) + g.col(3));
-    const Eigen::Matrix<double, 3, 4> vg = v.transpose() * g;
-    hess.setZero();
-    auto add_mode = [&](const Mat3& m, double lambda) {
-        if (project_psd && lambda <= 0) return;
-        const Mat3 um = u * m;
-        Eigen::Matrix<double, 12, 1> w;
-        for (int k = 0; k < 4; ++k) w.segment<3>(3 * k) = um * vg.col(k);
-        hess.noalias() += lambda * w * w.transpose();
+    // The modes act on vertices 1..3 through the rows of H^-1; vertex 0 moves by minus their
+    // sum, so its blocks follow from the 9 x 9 part: W Lambda W^T with W the 9 x 9 matrix
+    // of the modes' vertex vectors.
+    const Mat3 vg = v.transpose() * t.inverse.transpose();  // column a - 1: V^T g_a
+    Eigen::Matrix<double, 9, 9> w;
+    Eigen::Matrix<double, 9, 1> lambda;
+    int modes = 0;
+    auto add_mode = [&](const Mat3& m, double l) {
+        if (project_psd && l <= 0) return;
+        const Mat3 umvg = u * m * vg;
+        for (int a = 0; a < 3; ++a) w.col(modes).segment<3>(3 * a) = umvg.col(a);
+        lambda[modes++] = l;
     };
     for (int m = 0; m < 3; ++m) add_mode(scaling.eigenvectors().col(m).asDiagonal(), scaling.eigenvalues()[m]);
     const double r = std::sqrt(0.5);
@@ -138,6 +161,23 @@ double tet_energy_hessian(const Mat34& y, const TetTarget& t, const EnergyParams
         add_mode(twist, 2 * f.f_i + f.f_d * sigma[k]);
         add_mode(flip, 2 * f.f_i - f.f_d * sigma[k]);
     }
+    Eigen::Matrix<double, 9, 9> h9;
+    if (modes == 0) {
+        h9.setZero();
+    } else {
+        const auto wm = w.leftCols(modes);
+        h9.noalias() = wm * (lambda.head(modes).asDiagonal() * wm.transpose());
+    }
+    hess.bottomRightCorner<9, 9>() = h9;
+    for (int b = 0; b < 3; ++b) {
+        Mat3 column = Mat3::Zero();  // block (0, b + 1) = -sum_a block (a + 1, b + 1)
+        for (int a = 0; a < 3; ++a) column -= h9.block<3, 3>(3 * a, 3 * b);
+        hess.block<3, 3>(0, 3 + 3 * b) = column;
+        hess.block<3, 3>(3 + 3 * b, 0) = column.transpose();
+    }
+    Mat3 corner = Mat3::Zero();
+    for (int b = 0; b < 3; ++b) corner -= hess.block<3, 3>(0, 3 + 3 * b);
+    hess.topLeftCorner<3, 3>() = corner;
     hess *= t.weight;
     return t.weight * f.value;
 }
