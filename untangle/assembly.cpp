@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bitset>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <mutex>
 #include <stdexcept>
@@ -171,7 +172,7 @@ double Assembly::assemble_hessian(const std::vector<Vec3>& x, const EnergyParams
         value[e] = tet_energy_hessian(corners(x, e), problem_.targets[e], p, ge, he);
         if (!std::isfinite(value[e])) return;
         for (int a = 0; a < 4; ++a) g[problem_.tets[e][a]] += ge.col(a);
-        scatter(problem_.tets[e], he);
+        scatter(e, he);
     });
     return deterministic_sum(value);
 }
@@ -179,8 +180,8 @@ double Assembly::assemble_hessian(const std::vector<Vec3>& x, const EnergyParams
 double Assembly::diagonal_hessian(const std::vector<Vec3>& x, const EnergyParams& p,
                                   std::vector<Vec3>& g, std::vector<Mat3>& diagonal) const {
     diagonal.assign(x.size(), Mat3::Zero());
-    return assemble_hessian(x, p, g, [&](const std::array<Id, 4>& t, const Mat12& he) {
-        for (int a = 0; a < 4; ++a) diagonal[t[a]] += he.block<3, 3>(3 * a, 3 * a);
+    return assemble_hessian(x, p, g, [&](Id e, const Mat12& he) {
+        for (int a = 0; a < 4; ++a) diagonal[problem_.tets[e][a]] += he.block<3, 3>(3 * a, 3 * a);
     });
 }
 
@@ -211,13 +212,15 @@ double Assembly::gradient(const std::vector<Vec3>& x, const EnergyParams& p, std
     return deterministic_sum(value);
 }
 
-const std::vector<std::array<Id, 16>>& Assembly::hessian_slots() const {
+const std::vector<std::array<int32_t, 16>>& Assembly::hessian_slots() const {
     std::call_once(slots_once_, [this] {
+        if (pattern_.col.size() > size_t(std::numeric_limits<int32_t>::max()))
+            throw std::runtime_error("Hessian pattern too large for 32-bit block indices");
         slots_.resize(problem_.tets.size());
         tbb::parallel_for(size_t(0), problem_.tets.size(), [&](size_t e) {
             const auto& t = problem_.tets[e];
             for (int a = 0; a < 4; ++a)
-                for (int b = 0; b < 4; ++b) slots_[e][4 * a + b] = pattern_.find(t[a], t[b]);
+                for (int b = 0; b < 4; ++b) slots_[e][4 * a + b] = int32_t(pattern_.find(t[a], t[b]));
         });
     });
     return slots_;
@@ -225,22 +228,12 @@ const std::vector<std::array<Id, 16>>& Assembly::hessian_slots() const {
 
 double Assembly::hessian(const std::vector<Vec3>& x, const EnergyParams& p, std::vector<Vec3>& g,
                          BlockMatrix& h) const {
-    const std::vector<std::array<Id, 16>>& slots = hessian_slots();
+    const std::vector<std::array<int32_t, 16>>& slots = hessian_slots();
     std::fill(h.block.begin(), h.block.end(), Mat3::Zero());
-    g.assign(x.size(), Vec3::Zero());
-    std::vector<double> value(problem_.tets.size());
-    for_each_by_colour([&](Id e) {
-        Mat34 ge;
-        Mat12 he;
-        value[e] = tet_energy_hessian(corners(x, e), problem_.targets[e], p, ge, he);
-        if (!std::isfinite(value[e])) return;
-        const auto& t = problem_.tets[e];
-        for (int a = 0; a < 4; ++a) {
-            g[t[a]] += ge.col(a);
+    return assemble_hessian(x, p, g, [&](Id e, const Mat12& he) {
+        for (int a = 0; a < 4; ++a)
             for (int b = 0; b < 4; ++b) h.block[slots[e][4 * a + b]] += he.block<3, 3>(3 * a, 3 * b);
-        }
     });
-    return deterministic_sum(value);
 }
 
 }  // namespace hexmesh::untangle

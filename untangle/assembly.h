@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <mutex>
 #include <vector>
 
@@ -65,14 +66,14 @@ private:
     // Cuts order_ into chunks of `size` elements and colours them; false if that needs more
     // colours than the colouring can hold.
     bool colour_chunks(Id size);
-    // F(x) and its gradient in g; each finite element's PSD Hessian goes to scatter(tet, he).
+    // F(x) and its gradient in g; each finite element's PSD Hessian goes to scatter(e, he).
     template <class Scatter>
     double assemble_hessian(const std::vector<Vec3>& x, const EnergyParams& p,
                             std::vector<Vec3>& g, Scatter&& scatter) const;
 
     // Index into the pattern's blocks of block (a, b) of each element's Hessian (4 a + b),
     // computed on first use: only the assembled Hessian needs it.
-    const std::vector<std::array<Id, 16>>& hessian_slots() const;
+    const std::vector<std::array<int32_t, 16>>& hessian_slots() const;
 
     const Problem& problem_;
     std::vector<Id> order_;         // elements, chunk after chunk, chunks sorted by colour
@@ -80,7 +81,7 @@ private:
     std::vector<Id> colour_start_;  // offsets into the chunks
     BlockMatrix pattern_;  // row_start and col only
     mutable std::once_flag slots_once_;
-    mutable std::vector<std::array<Id, 16>> slots_;
+    mutable std::vector<std::array<int32_t, 16>> slots_;
 };
 
 }  // namespace hexmesh::untangle
