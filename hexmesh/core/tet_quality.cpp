@@ -57,6 +57,18 @@ std::array<double, 6> dihedral_angles(const std::array<Vec3, 4>& p) {
     return angles;
 }
 
+double signed_volume(const std::array<Vec3, 4>& p) {
+    return (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0])) / 6;
+}
+
+double signed_volume(const TetMesh& mesh) {
+    double v = 0;
+    for (Id t = 0; t < mesh.num_cells(); ++t)
+        v += signed_volume({mesh.points[mesh.node(t, 0)], mesh.points[mesh.node(t, 1)], mesh.points[mesh.node(t, 2)],
+                            mesh.points[mesh.node(t, 3)]});
+    return v;
+}
+
 double radius_ratio(const std::array<Vec3, 4>& p) {
     const Vec3 a = p[1] - p[0], b = p[2] - p[0], c = p[3] - p[0];
     const double det = a.dot(b.cross(c));

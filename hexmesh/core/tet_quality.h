@@ -12,6 +12,12 @@ namespace hexmesh {
 // A degenerate edge or face gives 0.
 std::array<double, 6> dihedral_angles(const std::array<Vec3, 4>& p);
 
+// det[p1 - p0, p2 - p0, p3 - p0] / 6: the volume, negative for an inverted tet.
+double signed_volume(const std::array<Vec3, 4>& p);
+
+// Sum of the signed volumes of all tets of `mesh`.
+double signed_volume(const TetMesh& mesh);
+
 // 3 r / R (inradius over circumradius, normalized: 1 for a regular tet, 0 when flat);
 // 0 for a tet with det[p1 - p0, p2 - p0, p3 - p0] <= 0.
 double radius_ratio(const std::array<Vec3, 4>& p);

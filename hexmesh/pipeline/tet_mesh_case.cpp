@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "hexmesh/core/array_hash.h"
+#include "hexmesh/core/tet_quality.h"
 #include "hexmesh/pipeline/make_body.h"
 #include "io/quality_report.h"
 #include "surface/crease_curves.h"
@@ -134,7 +135,7 @@ std::vector<untangle::TetTarget> sized_tet_targets(const std::vector<Vec3>& poin
     for (Id t = 0; t < cells; ++t) {
         const Vec3 &a = points[tets[4 * t]], &b = points[tets[4 * t + 1]], &c = points[tets[4 * t + 2]],
                    &d = points[tets[4 * t + 3]];
-        const double v = (b - a).dot((c - a).cross(d - a)) / 6;
+        const double v = signed_volume({a, b, c, d});
         volume += v;
         unsigned_volume += std::abs(v);
         edge[t] = size(0.25 * (a + b + c + d));

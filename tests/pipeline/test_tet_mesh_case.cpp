@@ -10,6 +10,7 @@
 #include <sstream>
 #include <unistd.h>
 
+#include "hexmesh/core/tet_quality.h"
 #include "hexmesh/pipeline/make_body.h"
 #include "hexmesh/pipeline/tet_mesh_case.h"
 #include "surface/implicit_features.h"
@@ -18,16 +19,6 @@ namespace hexmesh {
 namespace {
 
 const double pi = std::acos(-1.0);
-
-double mesh_volume(const TetMesh& m) {
-    double v = 0;
-    for (Id t = 0; t < m.num_cells(); ++t) {
-        const Vec3 &a = m.points[m.node(t, 0)], &b = m.points[m.node(t, 1)], &c = m.points[m.node(t, 2)],
-                   &d = m.points[m.node(t, 3)];
-        v += (b - a).dot((c - a).cross(d - a)) / 6;
-    }
-    return v;
-}
 
 TetCaseResult run(const std::string& json) {
     TetCaseOptions options;
@@ -54,7 +45,7 @@ TEST(TetMeshCase, SphereBeatsCgalSliverRemoval) {
         run(R"({"geometry": {"sphere": {"center": [0, 0, 0], "radius": 1}}, "tet_mesh": {"cell_size": 0.25}})");
     expect_better_than_cgal(r);
     EXPECT_EQ(r.crease_polylines, 0);
-    EXPECT_NEAR(mesh_volume(r.mesh), 4 * pi / 3, 0.03 * 4 * pi / 3);
+    EXPECT_NEAR(signed_volume(r.mesh), 4 * pi / 3, 0.03 * 4 * pi / 3);
 }
 
 TEST(TetMeshCase, CsgBodyKeepsItsCreasesAndCorners) {
@@ -85,7 +76,7 @@ TEST(TetMeshCase, CsgBodyKeepsItsCreasesAndCorners) {
     EXPECT_GE(on_top_rim, 12);  // circumference 3.8 at spacing about h = 0.25
     EXPECT_GE(on_junction, 12);
     const double exact = 2 * 2 * 1.2 + pi * 0.36 * 0.6;  // box + the cylinder above it
-    EXPECT_NEAR(mesh_volume(r.mesh), exact, 0.02 * exact);
+    EXPECT_NEAR(signed_volume(r.mesh), exact, 0.02 * exact);
 }
 
 // A closed cylinder (radius 0.5, height 1) of n side facets as an ASCII STL: sharp rims, a

@@ -17,16 +17,6 @@
 namespace hexmesh {
 namespace {
 
-double volume(const TetMesh& m) {
-    double v = 0;
-    for (Id t = 0; t < m.num_cells(); ++t) {
-        const Vec3 &a = m.points[m.node(t, 0)], &b = m.points[m.node(t, 1)], &c = m.points[m.node(t, 2)],
-                   &d = m.points[m.node(t, 3)];
-        v += (b - a).dot((c - a).cross(d - a)) / 6;
-    }
-    return v;
-}
-
 // The faces used by one tet, as sorted point ids.
 std::set<std::array<Id, 3>> boundary_faces(const TetMesh& m) {
     std::map<std::array<Id, 3>, int> uses;
@@ -52,14 +42,14 @@ TEST(TetFlips, DelaunayMeshOfASphereKeepsItsRegionAndBoundary) {
     TetMeshOptions o;
     o.size = [](const Vec3&) { return 0.2; };
     TetMesh mesh = generate_tet_mesh(sphere, o).refined.mesh;
-    const double volume_before = volume(mesh);
+    const double volume_before = signed_volume(mesh);
     const auto boundary_before = boundary_faces(mesh);
     const TetQualityReport before = measure_tet_quality(mesh);
     ASSERT_GT(before.slivers, 0);
 
     const FlipResult r = improve_by_flips(mesh, 30);
     EXPECT_GT(r.edge_removals + r.flips_23, 0);
-    EXPECT_NEAR(volume(mesh), volume_before, 1e-9 * volume_before);
+    EXPECT_NEAR(signed_volume(mesh), volume_before, 1e-9 * volume_before);
     EXPECT_EQ(boundary_faces(mesh), boundary_before);
     const TetQualityReport after = measure_tet_quality(mesh);
     EXPECT_EQ(after.inverted, 0);
@@ -109,14 +99,14 @@ TEST(TetFlips, FiveTetsAroundAnEdgeBecomeSix) {
     const TetQualityReport before = measure_tet_quality(mesh);
     ASSERT_EQ(before.inverted, 0);
     ASSERT_LT(before.min_dihedral, 1.5);
-    const double volume_before = volume(mesh);
+    const double volume_before = signed_volume(mesh);
     const auto boundary_before = boundary_faces(mesh);
     const FlipResult r = improve_by_flips(mesh, 30);
     EXPECT_EQ(r.edge_removals, 1);
     ASSERT_EQ(mesh.num_cells(), 6);
     EXPECT_NEAR(measure_tet_quality(mesh).min_dihedral, 35.0, 0.01);
     EXPECT_EQ(measure_tet_quality(mesh).inverted, 0);
-    EXPECT_NEAR(volume(mesh), volume_before, 1e-12);
+    EXPECT_NEAR(signed_volume(mesh), volume_before, 1e-12);
     EXPECT_EQ(boundary_faces(mesh), boundary_before);
 }
 
@@ -126,12 +116,12 @@ TEST(TetFlips, OpenFanAroundABoundaryEdgeIsNotRemoved) {
     for (Id dropped = 0; dropped < 5; ++dropped) {
         TetMesh mesh = five_tets_around_an_edge();
         mesh.tets.erase(mesh.tets.begin() + 4 * dropped, mesh.tets.begin() + 4 * dropped + 4);
-        const double volume_before = volume(mesh);
+        const double volume_before = signed_volume(mesh);
         const auto boundary_before = boundary_faces(mesh);
         const FlipResult r = improve_by_flips(mesh, 60);
         EXPECT_EQ(r.edge_removals, 0) << "dropped tet " << dropped;
         EXPECT_EQ(measure_tet_quality(mesh).inverted, 0);
-        EXPECT_NEAR(volume(mesh), volume_before, 1e-12);
+        EXPECT_NEAR(signed_volume(mesh), volume_before, 1e-12);
         EXPECT_EQ(boundary_faces(mesh), boundary_before);
     }
 }
@@ -173,7 +163,7 @@ TEST(TetFlips, TwoFlatTetsOnAWideFaceBecomeThree) {
     ASSERT_EQ(mesh.num_cells(), 3);
     EXPECT_NEAR(measure_tet_quality(mesh).min_dihedral, new_angle, 1e-9);
     EXPECT_EQ(measure_tet_quality(mesh).inverted, 0);
-    EXPECT_NEAR(volume(mesh), 2 * 0.2 * (3 * std::sqrt(3.0) / 4 * 1.0) / 3 * 1.0, 1e-3);
+    EXPECT_NEAR(signed_volume(mesh), 2 * 0.2 * (3 * std::sqrt(3.0) / 4 * 1.0) / 3 * 1.0, 1e-3);
 }
 
 TEST(TetFlips, BoundaryFacesAreNeverFlipped) {

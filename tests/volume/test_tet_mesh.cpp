@@ -23,16 +23,6 @@ TetMeshOptions uniform(double h) {
     return o;
 }
 
-double volume(const TetMesh& m) {
-    double v = 0;
-    for (Id t = 0; t < m.num_cells(); ++t) {
-        const Vec3 &a = m.points[m.node(t, 0)], &b = m.points[m.node(t, 1)], &c = m.points[m.node(t, 2)],
-                   &d = m.points[m.node(t, 3)];
-        v += (b - a).dot((c - a).cross(d - a)) / 6;
-    }
-    return v;
-}
-
 TEST(TetMesh, SphereIsFilledWithPositiveTetsAndItsSurfacePointsLieOnIt) {
     const Sphere sphere(Vec3(0.5, -1, 2), 1);
     const double h = 0.2;
@@ -56,7 +46,7 @@ TEST(TetMesh, SphereIsFilledWithPositiveTetsAndItsSurfacePointsLieOnIt) {
         }
     }
     EXPECT_GT(surface, 100);
-    EXPECT_NEAR(volume(m), 4 * pi / 3, 0.03 * 4 * pi / 3);
+    EXPECT_NEAR(signed_volume(m), 4 * pi / 3, 0.03 * 4 * pi / 3);
     // Deterministic: the same input gives the same mesh, bitwise.
     const TetMeshGeneration again = generate_tet_mesh(sphere, uniform(h));
     EXPECT_EQ(again.refined.mesh.points, m.points);
@@ -87,7 +77,7 @@ TEST(TetMesh, BoxEdgesAndCornersAreProtected) {
         }
         EXPECT_EQ(corners, 8);
         EXPECT_GT(on_edges, 12 * 3);
-        EXPECT_NEAR(volume(placed->mesh), 2 * 1.4 * 1.0, 1e-6);  // flat faces, sharp edges: exact
+        EXPECT_NEAR(signed_volume(placed->mesh), 2 * 1.4 * 1.0, 1e-6);  // flat faces, sharp edges: exact
     }
     // CGAL's sliver removal keeps the mesh valid and raises its smallest dihedral angle.
     EXPECT_EQ(measure_tet_quality(g.cgal_optimized->mesh).inverted, 0);
