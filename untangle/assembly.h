@@ -10,12 +10,18 @@
 
 namespace hexmesh::untangle {
 
+// One 3 x 3 block of the Hessian, in single precision: the matrix only shapes the Newton
+// direction (its linear solve stops at a relative residual of about 1e-2) while energies,
+// gradients and the line search stay in double; half the memory and half the traffic of
+// every CG product.
+using HessianBlock = Eigen::Matrix3f;
+
 // Symmetric sparse matrix of 3 x 3 blocks, one block row per vertex (CSR over vertices,
 // columns sorted, the diagonal block always present).
 struct BlockMatrix {
-    std::vector<Id> row_start;  // #V + 1
-    std::vector<Id> col;        // column vertex of each block
-    std::vector<Mat3> block;    // values, same length as col
+    std::vector<Id> row_start;        // #V + 1
+    std::vector<int32_t> col;         // column vertex of each block
+    std::vector<HessianBlock> block;  // values, same length as col
 
     Id rows() const { return Id(row_start.size()) - 1; }
     Id find(Id row, Id column) const;  // index into col/block, or -1
@@ -55,33 +61,43 @@ public:
                          const std::vector<Vec3>& v, std::vector<Vec3>& out) const;
 
     int colours() const { return int(colour_start_.size()) - 1; }
-    Id chunks() const { return Id(chunk_start_.size()) - 1; }
+    Id chunks() const { return Id(chunk_order_.size()); }
 
 private:
-    Mat34 corners(const std::vector<Vec3>& x, Id e) const;
-    // Runs kernel(e) for every element, colour after colour, the chunks of a colour in
-    // parallel, each chunk's elements in order.
+    Mat34 corners(const std::vector<Vec3>& x, const std::array<Id, 4>& nodes) const;
+    Mat38 hex_corners(const std::vector<Vec3>& x, Id h) const;
+    // Runs kernel(first, last) on the elements [first, last) of every chunk, colour after
+    // colour, the chunks of a colour in parallel, and returns the sum of what it returned
+    // (over the chunks in a fixed order).
     template <class Kernel>
-    void for_each_by_colour(Kernel&& kernel) const;
-    // Cuts order_ into chunks of `size` elements and colours them; false if that needs more
-    // colours than the colouring can hold.
+    double sum_by_colour(Kernel&& kernel) const;
+    // The same with kernel(e) called on each element in order.
+    template <class Kernel>
+    double sum_by_colour_each(Kernel&& kernel) const;
+    // Cuts the elements into chunks of `size` consecutive ones and colours them; false if
+    // that needs more colours than the colouring can hold.
     bool colour_chunks(Id size);
     // F(x) and its gradient in g; each finite element's PSD Hessian goes to scatter(e, he).
     template <class Scatter>
     double assemble_hessian(const std::vector<Vec3>& x, const EnergyParams& p,
                             std::vector<Vec3>& g, Scatter&& scatter) const;
 
-    // Index into the pattern's blocks of block (a, b) of each element's Hessian (4 a + b),
-    // computed on first use: only the assembled Hessian needs it.
-    const std::vector<std::array<int32_t, 16>>& hessian_slots() const;
+    // Where the element Hessians' blocks go, as offsets in the block row of their first
+    // vertex: per hex for the node pairs (a, b) of its corner tets (8 a + b), per plain tet
+    // for (a, b) (4 a + b). Computed on first use: only the assembled Hessian needs them.
+    struct Slots {
+        std::vector<std::array<uint16_t, 64>> hex;
+        std::vector<std::array<uint16_t, 16>> tet;
+    };
+    const Slots& hessian_slots() const;
 
     const Problem& problem_;
-    std::vector<Id> order_;         // elements, chunk after chunk, chunks sorted by colour
-    std::vector<Id> chunk_start_;   // offsets into order_
-    std::vector<Id> colour_start_;  // offsets into the chunks
+    Id chunk_size_ = 0;              // elements per chunk (the last one may be shorter)
+    std::vector<Id> chunk_order_;    // chunk numbers (chunk k = elements from k chunk_size_), by colour
+    std::vector<Id> colour_start_;   // offsets into chunk_order_
     BlockMatrix pattern_;  // row_start and col only
     mutable std::once_flag slots_once_;
-    mutable std::vector<std::array<int32_t, 16>> slots_;
+    mutable Slots slots_;
 };
 
 }  // namespace hexmesh::untangle

@@ -99,12 +99,17 @@ double Minimizer::newton_direction(const std::vector<Vec3>& x, const EnergyParam
     } else {
         if (hessian_.col.empty()) hessian_ = assembly_.empty_hessian();
         f = assembly_.hessian(x, p, g, hessian_);
+        // Into the bases of the allowed directions (nothing to do between two free vertices).
+        const auto& kinds = problem_.kinds;
         tbb::parallel_for(Id(0), hessian_.rows(), [&](Id a) {
-            for (Id m = hessian_.row_start[a]; m < hessian_.row_start[a + 1]; ++m)
-                hessian_.block[m] = basis[a].transpose() * hessian_.block[m] * basis[hessian_.col[m]];
+            for (Id m = hessian_.row_start[a]; m < hessian_.row_start[a + 1]; ++m) {
+                const Id b = hessian_.col[m];
+                if (kinds[a] == VertexKind::interior && kinds[b] == VertexKind::interior) continue;
+                hessian_.block[m] = (basis[a].transpose() * hessian_.block[m].cast<double>() * basis[b]).cast<float>();
+            }
         });
         diagonal.resize(n);
-        for (size_t a = 0; a < n; ++a) diagonal[a] = hessian_.block[hessian_.find(Id(a), Id(a))];
+        for (size_t a = 0; a < n; ++a) diagonal[a] = hessian_.block[hessian_.find(Id(a), Id(a))].cast<double>();
     }
     if (!std::isfinite(f)) return f;
     if (matrix_free)
@@ -112,7 +117,7 @@ double Minimizer::newton_direction(const std::vector<Vec3>& x, const EnergyParam
     const DiagonalShift shift(basis, diagonal);
     for (size_t a = 0; a < n; ++a) diagonal[a] += shift.shift[a].asDiagonal();
     if (!matrix_free)
-        for (size_t a = 0; a < n; ++a) hessian_.block[hessian_.find(Id(a), Id(a))] = diagonal[a];
+        for (size_t a = 0; a < n; ++a) hessian_.block[hessian_.find(Id(a), Id(a))] = diagonal[a].cast<float>();
 
     std::vector<Vec3> rhs(n), reduced(n);
     for (size_t a = 0; a < n; ++a) rhs[a] = -(basis[a].transpose() * g[a]);

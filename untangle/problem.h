@@ -5,20 +5,36 @@
 #include <functional>
 #include <vector>
 
+#include "hexmesh/core/reference_hex.h"
 #include "hexmesh/core/types.h"
 #include "hexmesh/core/vertex_kind.h"
 #include "untangle/tet_energy.h"
 
 namespace hexmesh::untangle {
 
-// A mesh split into tetrahedra (hex corner tets, plain tets). Vertices move according to
-// their kind: interior (free), slip (in the tangent plane of u = 0, then projected back by
-// V), feature_edge (along the crease tangent, then projected onto the crease), corner and
-// fixed (never). The geometry comes as functions of (vertex id, position), so the untangler
-// knows nothing of how the surface is represented.
+// The target of corner tet c of a hex whose edges along its local x, y, z have the given
+// lengths: the box corner with the tet's three edges in the tet's column order.
+inline TetTarget hex_corner_target(int c, const Vec3& edges) {
+    const auto& t = hex_corner_tets[c];
+    return box_corner_target(
+        Vec3(edges[hex_edge_axis(t[0], t[1])], edges[hex_edge_axis(t[0], t[2])], edges[hex_edge_axis(t[0], t[3])]));
+}
+
+// A mesh split into tetrahedra: hexahedra, each split into its 8 corner tets, and plain tets.
+// Vertices move according to their kind: interior (free), slip (in the tangent plane of
+// u = 0, then projected back by V), feature_edge (along the crease tangent, then projected
+// onto the crease), corner and fixed (never). The geometry comes as functions of (vertex id,
+// position), so the untangler knows nothing of how the surface is represented.
+//
+// Elements are numbered hex corners first: element e < 8 #hexes is corner tet e % 8
+// (hex_corner_tets) of hex e / 8, whose target is the corner of an axis-aligned box with the
+// hex's edge lengths along its local x, y, z; the others are tets[e - 8 #hexes]. A hex takes
+// 88 bytes where its 8 tets with full targets would take 960.
 struct Problem {
     std::vector<Vec3> points;                // #V
     std::vector<VertexKind> kinds;           // #V
+    std::vector<std::array<Id, 8>> hexes;    // #H, VTK node order
+    std::vector<Vec3> hex_edges;             // #H, box edge lengths along x (0-1), y (0-3), z (0-4)
     std::vector<std::array<Id, 4>> tets;     // #T, vertex ids, positively oriented target
     std::vector<TetTarget> targets;          // #T
     std::function<Vec3(Id, const Vec3&)> surface_normal;      // slip: normal of u = 0 (grad u)
@@ -26,6 +42,24 @@ struct Problem {
     std::function<Vec3(Id, const Vec3&)> edge_tangent;        // feature_edge: crease direction
     std::function<Vec3(Id, const Vec3&)> project_to_edge;     // feature_edge: onto the crease
     double length_scale = 1;  // typical edge length: tolerances are relative to it
+
+    Id num_elements() const { return 8 * Id(hexes.size()) + Id(tets.size()); }
+    bool is_hex_corner(Id e) const { return e < 8 * Id(hexes.size()); }
+    // The 4 vertex ids of element e.
+    std::array<Id, 4> element(Id e) const {
+        if (!is_hex_corner(e)) return tets[e - 8 * Id(hexes.size())];
+        const auto& h = hexes[e / 8];
+        const auto& c = hex_corner_tets[e % 8];
+        return {h[c[0]], h[c[1]], h[c[2]], h[c[3]]};
+    }
+    TetTarget target(Id e) const {
+        return is_hex_corner(e) ? hex_corner_target(int(e % 8), hex_edges[e / 8]) : targets[e - 8 * Id(hexes.size())];
+    }
+    // Adds a hex (its corner tets' targets are those of a box with the given edge lengths).
+    void add_hex(const std::array<Id, 8>& nodes, const Vec3& edges) {
+        hexes.push_back(nodes);
+        hex_edges.push_back(edges);
+    }
 };
 
 }  // namespace hexmesh::untangle

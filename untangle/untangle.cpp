@@ -1,5 +1,6 @@
 #include "untangle/untangle.h"
 
+#include <algorithm>
 #include <chrono>
 #include <functional>
 #include <cmath>
@@ -97,42 +98,52 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
 }
 
 // The part of `problem` around its inverted elements: vertices within `rings` element rings
-// of them stay free (if they were), all others are fixed, and only elements touching a free
-// vertex are kept. Returns false when that part is already the whole problem.
+// of them stay free (if they were), all others are fixed, and only the hexes and tets with
+// a free vertex are kept. Returns false when that part is already the whole problem.
 bool local_part(const Problem& problem, const std::vector<std::vector<Id>>& elements_of, int rings,
                 Problem& part) {
     const size_t nv = problem.points.size();
+    const Id ne = problem.num_elements();
     std::vector<char> in(nv, 0);
-    for (size_t e = 0; e < problem.tets.size(); ++e) {
+    for (Id e = 0; e < ne; ++e) {
+        const std::array<Id, 4> t = problem.element(e);
         Mat34 y;
-        for (int a = 0; a < 4; ++a) y.col(a) = problem.points[problem.tets[e][a]];
-        if (!(tet_det(y, problem.targets[e]) > 0))
-            for (Id v : problem.tets[e]) in[v] = 1;
+        for (int a = 0; a < 4; ++a) y.col(a) = problem.points[t[a]];
+        if (!(tet_det(y, problem.target(e)) > 0))
+            for (Id v : t) in[v] = 1;
     }
     for (int r = 0; r < rings; ++r) {
         std::vector<char> grown = in;
         for (size_t v = 0; v < nv; ++v)
             if (in[v])
                 for (Id e : elements_of[v])
-                    for (Id w : problem.tets[e]) grown[w] = 1;
+                    for (Id w : problem.element(e)) grown[w] = 1;
         in.swap(grown);
     }
-    part = problem;
-    part.tets.clear();
-    part.targets.clear();
+    part.points = problem.points;
+    part.kinds = problem.kinds;
+    part.surface_normal = problem.surface_normal;
+    part.project_to_surface = problem.project_to_surface;
+    part.edge_tangent = problem.edge_tangent;
+    part.project_to_edge = problem.project_to_edge;
+    part.length_scale = problem.length_scale;
     size_t free = 0;
     for (size_t v = 0; v < nv; ++v) {
         if (!in[v]) part.kinds[v] = VertexKind::fixed;
         free += in[v] && degrees_of_freedom(part.kinds[v]) > 0;
     }
-    for (size_t e = 0; e < problem.tets.size(); ++e) {
-        bool touches = false;
-        for (Id v : problem.tets[e]) touches = touches || (in[v] && degrees_of_freedom(part.kinds[v]) > 0);
-        if (!touches) continue;
-        part.tets.push_back(problem.tets[e]);
-        part.targets.push_back(problem.targets[e]);
-    }
-    return free > 0 && part.tets.size() < problem.tets.size() / 2;
+    const auto touches = [&](const auto& nodes) {
+        return std::any_of(nodes.begin(), nodes.end(),
+                           [&](Id v) { return in[v] && degrees_of_freedom(part.kinds[v]) > 0; });
+    };
+    for (size_t h = 0; h < problem.hexes.size(); ++h)
+        if (touches(problem.hexes[h])) part.add_hex(problem.hexes[h], problem.hex_edges[h]);
+    for (size_t t = 0; t < problem.tets.size(); ++t)
+        if (touches(problem.tets[t])) {
+            part.tets.push_back(problem.tets[t]);
+            part.targets.push_back(problem.targets[t]);
+        }
+    return free > 0 && part.num_elements() < ne / 2;
 }
 
 }  // namespace
@@ -158,8 +169,8 @@ UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& op
     // neighbourhoods; what is left (or a widespread tangle) is untangled globally.
     if (stats.inverted > options.unrepairable && options.local_rings > 0) {
         std::vector<std::vector<Id>> elements_of(x.size());
-        for (size_t e = 0; e < problem.tets.size(); ++e)
-            for (Id v : problem.tets[e]) elements_of[v].push_back(Id(e));
+        for (Id e = 0; e < problem.num_elements(); ++e)
+            for (Id v : problem.element(e)) elements_of[v].push_back(e);
         for (int rings = options.local_rings; best.inverted > options.unrepairable; rings *= 2) {
             Problem part;
             if (!local_part(problem, elements_of, rings, part)) break;
@@ -180,7 +191,7 @@ UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& op
         const EnergyParams p{options.theta, 0};
         double e_prev = assembly.energy(x, p);
         for (int it = 1; it <= options.max_optimize_iterations; ++it) {
-            const MinimizeOutcome m = minimizer.minimize(x, p, options.inner_steps, options.inner_tolerance);
+            const MinimizeOutcome m = minimizer.minimize(x, p, options.inner_steps, options.optimize_tolerance);
             stats = assembly.stats(x);
             IterationRecord r{it, true, m.energy, 0.0, stats.min_det, seconds(), stats.inverted, m.steps,
                               m.linear_iterations};

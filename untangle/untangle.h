@@ -9,9 +9,19 @@
 
 namespace hexmesh::untangle {
 
+// Solver options whose linear solves stop at a relative residual of 0.1.
+inline SolverOptions loose_solve() {
+    SolverOptions o;
+    o.cg_tolerance = 0.1;
+    return o;
+}
+
 struct UntangleOptions {
     SolverOptions untangle_solver;   // while some det <= 0 (global method recommended)
-    SolverOptions optimize_solver;   // once all det > 0, eps = 0 (barrier)
+    // Once all det > 0, eps = 0 (barrier). Its linear solves stop at a relative residual of
+    // 0.1: the optimized grid is the same to the digits reported (min and mean scaled
+    // Jacobian) as with 0.01, for about half the CG iterations.
+    SolverOptions optimize_solver = loose_solve();
     double theta = 0.8;           // volume weight while optimizing (DESIGN §4)
     double untangle_theta = 0.1;  // volume weight while untangling: shape first is more robust
     int max_untangle_iterations = 200;  // outer iterations (eps updates)
@@ -30,7 +40,9 @@ struct UntangleOptions {
     int max_optimize_iterations = 20;
     int inner_steps = 30;               // descent steps per outer iteration
     double inner_tolerance = 1e-6;      // relative decrease that ends an inner solve
-    double optimize_tolerance = 1e-5;   // relative energy change that ends optimization
+    // Relative energy change that ends optimization: a barrier step (and so an outer
+    // iteration) that lowers F by less ends it.
+    double optimize_tolerance = 1e-5;
     std::ostream* log = nullptr;        // one progress line per outer iteration
     // Elements known to stay inverted whatever is done (all their vertices fixed): untangling
     // stops once only that many remain.

@@ -48,4 +48,10 @@ inline constexpr std::array<std::array<int, 2>, 12> hex_edges = {{
     {0, 4}, {1, 5}, {2, 6}, {3, 7},
 }};
 
+// Axis (0 = x, 1 = y, 2 = z) of the edge between two edge-neighbour nodes.
+constexpr int hex_edge_axis(int a, int b) {
+    constexpr int x[8] = {0, 1, 1, 0, 0, 1, 1, 0}, y[8] = {0, 0, 1, 1, 0, 0, 1, 1};
+    return x[a] != x[b] ? 0 : y[a] != y[b] ? 1 : 2;
+}
+
 }  // namespace hexmesh

@@ -10,26 +10,11 @@
 namespace hexmesh {
 namespace {
 
-// Axis (0 = i, 1 = j, 2 = k) of the edge between two nodes of the reference hex.
-constexpr int edge_axis(int a, int b) {
-    constexpr int x[8] = {0, 1, 1, 0, 0, 1, 1, 0}, y[8] = {0, 0, 1, 1, 0, 0, 1, 1};
-    return x[a] != x[b] ? 0 : y[a] != y[b] ? 1 : 2;
-}
-
-// Target of corner tet c of a cell whose edges along i, j, k have the given lengths: the
-// right-angle corner with the tet's three edges in the tet's column order.
-untangle::TetTarget corner_target(int c, const Vec3& lengths) {
-    const auto& t = hex_corner_tets[c];
-    return untangle::box_corner_target(Vec3(lengths[edge_axis(t[0], t[1])],
-                                            lengths[edge_axis(t[0], t[2])],
-                                            lengths[edge_axis(t[0], t[3])]));
-}
-
 // Mean length of the 4 edges of the cell along each of i, j, k.
 Vec3 edge_lengths(const std::vector<Vec3>& points, const std::array<Id, 8>& nodes) {
     Vec3 sum = Vec3::Zero();
     for (const auto& e : hex_edges)
-        sum[edge_axis(e[0], e[1])] += (points[nodes[e[0]]] - points[nodes[e[1]]]).norm();
+        sum[hex_edge_axis(e[0], e[1])] += (points[nodes[e[0]]] - points[nodes[e[1]]]).norm();
     return sum / 4;
 }
 
@@ -42,8 +27,8 @@ untangle::Problem make_problem(const BlockGrid& grid, const ImplicitFunction& bo
     for (size_t v = 0; v < held.size(); ++v)
         if (held[v]) p.kinds[v] = VertexKind::fixed;
     const Id cells = grid.num_cells();
-    p.tets.reserve(8 * cells);
-    p.targets.reserve(8 * cells);
+    p.hexes.reserve(cells);
+    p.hex_edges.reserve(cells);
     double total = 0;
     for (const Block& block : grid.blocks)
         for_each_cell(block, [&](int, int, int, const std::array<Id, 8>& nodes) {
@@ -52,13 +37,9 @@ untangle::Problem make_problem(const BlockGrid& grid, const ImplicitFunction& bo
                 return;
             const Vec3 lengths = edge_lengths(grid.points, nodes);
             total += lengths.sum();
-            for (int c = 0; c < 8; ++c) {
-                const auto& t = hex_corner_tets[c];
-                p.tets.push_back({nodes[t[0]], nodes[t[1]], nodes[t[2]], nodes[t[3]]});
-                p.targets.push_back(corner_target(c, lengths));
-            }
+            p.add_hex(nodes, lengths);
         });
-    const double used = double(p.tets.size() / 8);
+    const double used = double(p.hexes.size());
     p.length_scale = used > 0 ? total / (3.0 * used) : 1.0;
     const double h = p.length_scale;
     p.surface_normal = [&body](Id, const Vec3& x) { return body.gradient(x); };

@@ -67,12 +67,9 @@ void add_elements(const VolumeMesh& mesh, bool uniform, untangle::Problem& p, do
     }
     const double mean = edges ? total_edge / edges : 1;
     for (Id c = 0; c < mesh.num_hexes(); ++c) {
-        const untangle::TetTarget target = untangle::box_corner_target(Vec3::Constant(uniform ? mean : size[c]));
-        for (const auto& t : hex_corner_tets) {
-            p.tets.push_back({mesh.hexes[8 * c + t[0]], mesh.hexes[8 * c + t[1]], mesh.hexes[8 * c + t[2]],
-                              mesh.hexes[8 * c + t[3]]});
-            p.targets.push_back(target);
-        }
+        std::array<Id, 8> nodes;
+        std::copy_n(mesh.hexes.begin() + 8 * c, 8, nodes.begin());
+        p.add_hex(nodes, Vec3::Constant(uniform ? mean : size[c]));
     }
     for (Id c = 0; c < mesh.num_tets(); ++c) {
         Mat34 y;
@@ -87,17 +84,18 @@ void add_elements(const VolumeMesh& mesh, bool uniform, untangle::Problem& p, do
 
 std::vector<BlockedElement> find_blocked(const VolumeMesh& mesh, const untangle::Problem& p) {
     std::vector<BlockedElement> blocked;
-    for (size_t e = 0; e < p.tets.size(); ++e) {
+    for (Id e = 0; e < p.num_elements(); ++e) {
+        const std::array<Id, 4> t = p.element(e);
         bool all_fixed = true;
         Mat34 y;
         for (int a = 0; a < 4; ++a) {
-            all_fixed = all_fixed && degrees_of_freedom(p.kinds[p.tets[e][a]]) == 0;
-            y.col(a) = p.points[p.tets[e][a]];
+            all_fixed = all_fixed && degrees_of_freedom(p.kinds[t[a]]) == 0;
+            y.col(a) = p.points[t[a]];
         }
-        if (!all_fixed || untangle::tet_det(y, p.targets[e]) > 0) continue;
-        const bool hex = Id(e) < 8 * mesh.num_hexes();
-        const Id cell = hex ? Id(e) / 8 : Id(e) - 8 * mesh.num_hexes();
-        blocked.push_back({cell, hex ? int(e % 8) : 0, p.points[p.tets[e][0]]});
+        if (!all_fixed || untangle::tet_det(y, p.target(e)) > 0) continue;
+        const bool hex = p.is_hex_corner(e);
+        const Id cell = hex ? e / 8 : e - 8 * mesh.num_hexes();
+        blocked.push_back({cell, hex ? int(e % 8) : 0, p.points[t[0]]});
     }
     return blocked;
 }

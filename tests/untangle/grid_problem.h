@@ -25,7 +25,6 @@ inline untangle::Problem displaced_grid_problem(int n, double amplitude, unsigne
                 p.points.push_back(x);
                 p.kinds.push_back(boundary ? VertexKind::fixed : VertexKind::interior);
             }
-    const untangle::TetTarget target = untangle::box_corner_target(Vec3::Ones());
     for (int k = 0; k < n; ++k)
         for (int j = 0; j < n; ++j)
             for (int i = 0; i < n; ++i) {
@@ -33,10 +32,7 @@ inline untangle::Problem displaced_grid_problem(int n, double amplitude, unsigne
                                              id(i + 1, j + 1, k), id(i, j + 1, k),
                                              id(i, j, k + 1),     id(i + 1, j, k + 1),
                                              id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)};
-                for (const auto& c : hex_corner_tets) {
-                    p.tets.push_back({h[c[0]], h[c[1]], h[c[2]], h[c[3]]});
-                    p.targets.push_back(target);
-                }
+                p.add_hex(h, Vec3::Ones());
             }
     p.length_scale = 1;
     return p;

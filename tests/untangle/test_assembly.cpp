@@ -40,11 +40,12 @@ TEST(Assembly, ParallelSumsEqualTheSerialSumAndHessianIsSymmetric) {
     // Chunks of one colour share no vertex: no update is lost, the sums are the serial ones.
     double serial_f = 0;
     std::vector<Vec3> serial_g(p.points.size(), Vec3::Zero());
-    for (size_t e = 0; e < p.tets.size(); ++e) {
+    for (Id e = 0; e < p.num_elements(); ++e) {
+        const std::array<Id, 4> t = p.element(e);
         Mat34 y, ge;
-        for (int c = 0; c < 4; ++c) y.col(c) = p.points[p.tets[e][c]];
-        serial_f += tet_energy_gradient(y, p.targets[e], params, ge);
-        for (int c = 0; c < 4; ++c) serial_g[p.tets[e][c]] += ge.col(c);
+        for (int c = 0; c < 4; ++c) y.col(c) = p.points[t[c]];
+        serial_f += tet_energy_gradient(y, p.target(e), params, ge);
+        for (int c = 0; c < 4; ++c) serial_g[t[c]] += ge.col(c);
     }
     EXPECT_NEAR(f, serial_f, 1e-12 * std::abs(serial_f));
     for (size_t v = 0; v < g.size(); ++v) EXPECT_LT((g[v] - serial_g[v]).norm(), 1e-10 * (1 + serial_g[v].norm()));
@@ -52,14 +53,15 @@ TEST(Assembly, ParallelSumsEqualTheSerialSumAndHessianIsSymmetric) {
         for (Id m = h.row_start[r]; m < h.row_start[r + 1]; ++m) {
             const Id t = h.find(h.col[m], r);
             ASSERT_GE(t, 0);
-            EXPECT_LT((h.block[m] - h.block[t].transpose()).norm(), 1e-12 * (1 + h.block[m].norm()));
+            // Blocks are stored in single precision: symmetric to its rounding.
+            EXPECT_LT((h.block[m] - h.block[t].transpose()).norm(), 1e-6 * (1 + h.block[m].norm()));
         }
-    // The Hessian product without a matrix equals the assembled one.
+    // The Hessian product without a matrix equals the assembled one (to single precision).
     std::vector<Vec3> v(p.points.size()), hv, hv_free;
     for (size_t i = 0; i < v.size(); ++i) v[i] = Vec3(std::sin(i), std::cos(3.0 * i), 0.5);
     h.multiply(v, hv);
     a.hessian_product(p.points, params, v, hv_free);
-    for (size_t i = 0; i < v.size(); ++i) EXPECT_LT((hv[i] - hv_free[i]).norm(), 1e-10 * (1 + hv[i].norm()));
+    for (size_t i = 0; i < v.size(); ++i) EXPECT_LT((hv[i] - hv_free[i]).norm(), 1e-5 * (1 + hv[i].norm()));
 }
 
 TEST(Assembly, ResultsAreBitwiseIdenticalForOneAndTwoThreads) {

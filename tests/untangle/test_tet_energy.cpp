@@ -5,6 +5,8 @@
 #include <cmath>
 #include <random>
 
+#include "hexmesh/core/reference_hex.h"
+#include "untangle/problem.h"
 #include "untangle/tet_energy.h"
 
 using namespace hexmesh;
@@ -164,4 +166,44 @@ TEST(TetEnergy, BarrierIsInfiniteOnInvertedElementsAndFiniteWithEps) {
     EXPECT_LT(tet_det(y, t), 0);
     EXPECT_TRUE(std::isinf(tet_energy(y, t, {0.8, 0})));
     EXPECT_TRUE(std::isfinite(tet_energy(y, t, {0.8, 1e-3})));
+}
+
+TEST(TetEnergy, HexEnergyIsTheSumOverItsCornerTets) {
+    // A box of edges (1.0, 0.5, 2.0) with its nodes displaced, some corners inverted.
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-0.3, 0.3);
+    const Vec3 edges(1.0, 0.5, 2.0);
+    const std::array<Vec3, 8> unit = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0),
+                                      Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(1, 1, 1), Vec3(0, 1, 1)};
+    int finite = 0, infinite = 0;
+    for (int k = 0; k < 100; ++k) {
+        Mat38 y;
+        for (int a = 0; a < 8; ++a) y.col(a) = unit[a].cwiseProduct(edges) + Vec3(u(rng), u(rng), u(rng));
+        for (double eps : {0.0, 0.05}) {
+            const EnergyParams p{0.8, eps};
+            double sum = 0;
+            Mat38 sum_grad = Mat38::Zero();
+            for (int c = 0; c < 8; ++c) {
+                const auto& t = hex_corner_tets[c];
+                Mat34 yc, gc;
+                for (int a = 0; a < 4; ++a) yc.col(a) = y.col(t[a]);
+                sum += tet_energy_gradient(yc, hex_corner_target(c, edges), p, gc);
+                if (std::isfinite(sum))
+                    for (int a = 0; a < 4; ++a) sum_grad.col(t[a]) += gc.col(a);
+            }
+            Mat38 grad;
+            const double e = hex_energy(y, edges, p, &grad);
+            EXPECT_EQ(hex_energy(y, edges, p), e);
+            if (!std::isfinite(sum)) {
+                EXPECT_FALSE(std::isfinite(e)) << "case " << k;
+                ++infinite;
+                continue;
+            }
+            ++finite;
+            EXPECT_NEAR(e, sum, 1e-12 * std::abs(sum)) << "case " << k << " eps " << eps;
+            EXPECT_LT((grad - sum_grad).norm(), 1e-12 * (1 + sum_grad.norm())) << "case " << k << " eps " << eps;
+        }
+    }
+    EXPECT_GT(finite, 50);
+    EXPECT_GT(infinite, 0);  // the barrier case was met
 }

@@ -68,5 +68,5 @@ TEST(Untangle, ValidInputIsOptimizedTowardsTheTarget) {
     EXPECT_EQ(r.inverted_after, 0);
     EXPECT_LT(r.energy_after, before);
     // The perfect grid (unit cubes) has energy #tets / 6; the optimum is close to it.
-    EXPECT_LT(r.energy_after, 1.02 * p.tets.size() / 6.0);
+    EXPECT_LT(r.energy_after, 1.02 * p.num_elements() / 6.0);
 }
