@@ -191,10 +191,11 @@ double tet_energy_hessian(const Mat34& y, const TetTarget& t, const EnergyParams
     // h9 = sum over the kept modes of lambda w w^T: its upper triangle by rank-one updates,
     // then mirrored.
     Eigen::Matrix<double, 9, 9> h9 = Eigen::Matrix<double, 9, 9>::Zero();
+    // The element weight is applied to the eigenvalues (and to a) rather than to the result.
     const auto add_mode = [&](const Vec9& w, double l) {
         if (project_psd && l <= 0) return;
         for (int j = 0; j < 9; ++j) {
-            const double lw = l * w[j];
+            const double lw = t.weight * l * w[j];
             for (int i = 0; i <= j; ++i) h9(i, j) += lw * w[i];
         }
     };
@@ -205,7 +206,7 @@ double tet_energy_hessian(const Mat34& y, const TetTarget& t, const EnergyParams
     for (int m = 0; m < 3; ++m) diagonal_modes.col(m) = outer(m, m);
     const bool definite = a(0, 0) > 0 && a(0, 0) * a(1, 1) - a(0, 1) * a(0, 1) > 0 && a.determinant() > 0;
     if (definite || !project_psd) {
-        const Eigen::Matrix<double, 9, 3> wa = diagonal_modes * a;
+        const Eigen::Matrix<double, 9, 3> wa = diagonal_modes * (t.weight * a);
         for (int j = 0; j < 9; ++j)
             for (int i = 0; i <= j; ++i) h9(i, j) += wa.row(i).dot(diagonal_modes.row(j));
     } else {
@@ -232,7 +233,6 @@ double tet_energy_hessian(const Mat34& y, const TetTarget& t, const EnergyParams
     Mat3 corner = Mat3::Zero();
     for (int b = 0; b < 3; ++b) corner -= hess.block<3, 3>(0, 3 + 3 * b);
     hess.topLeftCorner<3, 3>() = corner;
-    hess *= t.weight;
     return t.weight * f.value;
 }
 
