@@ -18,9 +18,10 @@ Vec3 edge_lengths(const std::vector<Vec3>& points, const std::array<Id, 8>& node
     return sum / 4;
 }
 
-// The corner tets of every cell that has a node free to move (`held` empty: every cell).
-untangle::Problem make_problem(const BlockGrid& grid, const ImplicitFunction& body,
-                               const std::vector<bool>& held) {
+// The corner tets of every cell that has a node free to move (`held` empty: every cell),
+// with box targets of the cell's edge lengths in `target_points` (node positions of the grid).
+untangle::Problem make_problem(const BlockGrid& grid, const std::vector<Vec3>& target_points,
+                               const ImplicitFunction& body, const std::vector<bool>& held) {
     untangle::Problem p;
     p.points = grid.points;
     p.kinds = grid.kinds;
@@ -35,7 +36,7 @@ untangle::Problem make_problem(const BlockGrid& grid, const ImplicitFunction& bo
             if (!held.empty() && std::all_of(nodes.begin(), nodes.end(),
                                              [&](Id v) { return bool(held[v]); }))
                 return;
-            const Vec3 lengths = edge_lengths(grid.points, nodes);
+            const Vec3 lengths = edge_lengths(target_points, nodes);
             total += lengths.sum();
             p.add_hex(nodes, lengths);
         });
@@ -57,22 +58,26 @@ untangle::Problem make_problem(const BlockGrid& grid, const ImplicitFunction& bo
 
 GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& body,
                                      const GridOptimizationOptions& options) {
-    untangle::Problem problem = make_problem(grid, body, options.held);
     GridOptimizationResult result;
-    result.solve = untangle::untangle_and_optimize(problem, options.untangle);
-    grid.points = problem.points;
-    const std::vector<Vec3> joint = problem.points;
+    const std::vector<Vec3> initial = grid.points;  // the targets of both passes
+    {
+        untangle::Problem problem = make_problem(grid, initial, body, options.held);
+        result.solve = untangle::untangle_and_optimize(problem, options.untangle);
+        grid.points = problem.points;
+    }
     if (options.wall_layers.layers > 0) {
+        const std::vector<Vec3> joint = grid.points;
         const std::vector<bool> placed = extrude_wall_layers(grid, body, options.wall_layers);
-        problem.points = grid.points;
+        // Every cell stays in, those between laid nodes too: the result must be judged on all
+        // of them. Laid layers that cross the grid are rarely repaired by the rest alone: a
+        // short untangling budget, then the joint result is kept.
+        untangle::Problem problem = make_problem(grid, initial, body, options.held);
         for (size_t v = 0; v < placed.size(); ++v)
             if (placed[v]) problem.kinds[v] = VertexKind::fixed;
-        // Laid layers that cross the grid are rarely repaired by the rest alone: a short
-        // untangling budget, then the joint result is kept.
-        untangle::UntangleOptions held = options.untangle;
-        held.max_untangle_iterations = std::min(held.max_untangle_iterations, 30);
-        held.stall_iterations = std::min(held.stall_iterations, 10);
-        result.layers_held = untangle::untangle_and_optimize(problem, held);
+        untangle::UntangleOptions short_budget = options.untangle;
+        short_budget.max_untangle_iterations = std::min(short_budget.max_untangle_iterations, 30);
+        short_budget.stall_iterations = std::min(short_budget.stall_iterations, 10);
+        result.layers_held = untangle::untangle_and_optimize(problem, short_budget);
         result.layers_laid = result.layers_held.inverted_after == 0;
         if (result.layers_laid) grid.points = problem.points;
         else grid.points = joint;  // the laid layers cross the rest of the grid: keep the joint result
