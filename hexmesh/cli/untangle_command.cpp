@@ -40,8 +40,10 @@ void print_quality(const QualityReport& before, const QualityReport& after) {
 int run(const Args& args) {
     UntangleMeshOptions options;
     options.untangle.untangle_solver.method = untangle::method_from_name(args.solver);
-    options.untangle.untangle_solver.preconditioner = untangle::preconditioner_from_name(args.preconditioner);
-    options.untangle.untangle_solver.matrix_free = args.matrix_free;
+    for (untangle::SolverOptions* solver : {&options.untangle.untangle_solver, &options.untangle.optimize_solver}) {
+        solver->preconditioner = untangle::preconditioner_from_name(args.preconditioner);
+        solver->matrix_free = args.matrix_free;
+    }
     options.untangle.optimize_solver.method = untangle::method_from_name(args.optimize_solver);
     options.untangle.theta = args.theta;
     options.untangle.untangle_theta = args.untangle_theta;
@@ -103,8 +105,8 @@ void add_untangle_command(CLI::App& app, int& exit_code) {
     cmd->add_option("--optimize-solver", args->optimize_solver, "method once the mesh is valid")
         ->capture_default_str();
     cmd->add_option("--preconditioner", args->preconditioner,
-                    "newton-cg: none, jacobi, block-jacobi, incomplete-cholesky")->capture_default_str();
-    cmd->add_flag("--matrix-free", args->matrix_free, "newton-cg: Hessian products without a matrix");
+                    "newton-cg, both phases: none, jacobi, block-jacobi, incomplete-cholesky")->capture_default_str();
+    cmd->add_flag("--matrix-free", args->matrix_free, "newton-cg, both phases: Hessian products without a matrix");
     cmd->add_option("--boundary", args->boundary, "boundary vertices: fixed or slip")
         ->check(CLI::IsMember({"fixed", "slip"}))->capture_default_str();
     cmd->add_option("--surface", args->surface, "surface to slip on (.stl .obj .off .ply), or a case file (.json) whose geometry it is");

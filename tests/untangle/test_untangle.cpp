@@ -70,3 +70,23 @@ TEST(Untangle, ValidInputIsOptimizedTowardsTheTarget) {
     // The perfect grid (unit cubes) has energy #tets / 6; the optimum is close to it.
     EXPECT_LT(r.energy_after, 1.02 * p.num_elements() / 6.0);
 }
+
+// The matrix-free Newton-CG (Hessian products element by element) takes the same steps as
+// the assembled one, up to the single precision of the stored blocks: same result, both
+// phases.
+TEST(Untangle, MatrixFreeNewtonMatchesTheAssembledOne) {
+    auto solve = [](bool matrix_free) {
+        Problem p = test_support::displaced_grid_problem(6, 1.0, 17);
+        UntangleOptions o;
+        for (SolverOptions* s : {&o.untangle_solver, &o.optimize_solver}) {
+            s->method = Method::newton_cg;
+            s->matrix_free = matrix_free;
+        }
+        return untangle_and_optimize(p, o);
+    };
+    const UntangleResult free = solve(true), assembled = solve(false);
+    EXPECT_GT(free.inverted_before, 50);
+    EXPECT_EQ(free.inverted_after, 0);
+    EXPECT_EQ(assembled.inverted_after, 0);
+    EXPECT_NEAR(free.energy_after, assembled.energy_after, 1e-4 * assembled.energy_after);
+}
