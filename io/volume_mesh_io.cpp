@@ -125,7 +125,7 @@ void write_volume_mesh(const VolumeMesh& mesh, const std::string& path) {
         vtkNew<vtkXMLUnstructuredGridWriter> writer;
         writer->SetFileName(temporary.c_str());
         writer->SetInputData(to_vtk(mesh));
-        writer->SetDataModeToAppended();
+        vtk_support::configure_xml_writer(*writer);
         status = writer->Write();
     } else {
         vtkNew<vtkUnstructuredGridWriter> writer;

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <fmt/format.h>
+#include <tbb/parallel_for.h>
 #include <unordered_map>
 
 #include <vtkCellArray.h>
@@ -44,17 +45,22 @@ namespace fs = std::filesystem;
 vtkSmartPointer<vtkStructuredGrid> to_vtk_block(const BlockGrid& grid, const Block& block) {
     auto out = vtkSmartPointer<vtkStructuredGrid>::New();
     out->SetDimensions(block.nodes.ni, block.nodes.nj, block.nodes.nk);
-    vtkNew<vtkPoints> points;
-    points->SetDataTypeToDouble();
-    points->SetNumberOfPoints(block.nodes.count());
+    // Filled in parallel through the arrays' own storage.
+    vtkNew<vtkDoubleArray> coordinates;
+    coordinates->SetNumberOfComponents(3);
+    coordinates->SetNumberOfTuples(block.nodes.count());
+    double* xyz = coordinates->GetPointer(0);
     vtkNew<vtkUnsignedCharArray> kinds;
     kinds->SetName("vertex_kind");
     kinds->SetNumberOfValues(block.nodes.count());
-    for (Id m = 0; m < block.nodes.count(); ++m) {
+    unsigned char* kind = kinds->GetPointer(0);
+    tbb::parallel_for(Id(0), block.nodes.count(), [&](Id m) {
         const Vec3& p = grid.points[block.node_ids[m]];
-        points->SetPoint(m, p.x(), p.y(), p.z());
-        kinds->SetValue(m, grid.kinds.empty() ? 0 : uint8_t(grid.kinds[block.node_ids[m]]));
-    }
+        for (int a = 0; a < 3; ++a) xyz[3 * m + a] = p[a];
+        kind[m] = grid.kinds.empty() ? 0 : uint8_t(grid.kinds[block.node_ids[m]]);
+    });
+    vtkNew<vtkPoints> points;
+    points->SetData(coordinates);
     out->SetPoints(points);
     out->GetPointData()->AddArray(kinds);
 
@@ -62,10 +68,15 @@ vtkSmartPointer<vtkStructuredGrid> to_vtk_block(const BlockGrid& grid, const Blo
     vtkNew<vtkDoubleArray> sj;
     sj->SetName("scaled_jacobian");
     sj->SetNumberOfValues(c.count());
-    for_each_cell(block, [&](int i, int j, int k, const std::array<Id, 8>& ids) {
-        std::array<Vec3, 8> p;
-        for (int v = 0; v < 8; ++v) p[v] = grid.points[ids[v]];
-        sj->SetValue(c.flat(i, j, k), hex_scaled_jacobian(p));
+    double* sj_values = sj->GetPointer(0);
+    tbb::parallel_for(0, c.nk, [&](int k) {
+        for (int j = 0; j < c.nj; ++j)
+            for (int i = 0; i < c.ni; ++i) {
+                std::array<Vec3, 8> p;
+                const std::array<Id, 8> ids = cell_nodes(block, i, j, k);
+                for (int v = 0; v < 8; ++v) p[v] = grid.points[ids[v]];
+                sj_values[c.flat(i, j, k)] = hex_scaled_jacobian(p);
+            }
     });
     out->GetCellData()->AddArray(sj);
 
@@ -162,7 +173,7 @@ void write_vtk_grid(const BlockGrid& grid, const std::string& path) {
         vtkNew<vtkXMLStructuredGridWriter> writer;
         writer->SetFileName(path.c_str());
         writer->SetInputData(to_vtk_block(grid, grid.blocks[0]));
-        writer->SetDataModeToAppended();
+        vtk_support::configure_xml_writer(*writer);
         vtk_support::check_written(writer->Write(), path);
         return;
     }
@@ -180,7 +191,7 @@ void write_vtk_grid(const BlockGrid& grid, const std::string& path) {
     vtkNew<vtkXMLMultiBlockDataWriter> writer;
     writer->SetFileName(path.c_str());
     writer->SetInputData(blocks);
-    writer->SetDataModeToAppended();
+    vtk_support::configure_xml_writer(*writer);
     vtk_support::check_written(writer->Write(), path);
 }
 

@@ -68,6 +68,13 @@ void check_written(int status, const std::string& path) {
         throw std::runtime_error(fmt::format("{}: VTK cannot write it: {}", path, why));
 }
 
+void configure_xml_writer(vtkXMLWriterBase& writer) {
+    writer.SetDataModeToAppended();
+    writer.EncodeAppendedDataOff();
+    writer.SetCompressorTypeToLZ4();
+    writer.SetHeaderTypeToUInt64();  // arrays over 4 GB
+}
+
 void require_file(const std::string& path) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))

@@ -5,6 +5,7 @@
 #include <vtkDataObject.h>
 #include <vtkNew.h>
 #include <vtkSmartPointer.h>
+#include <vtkXMLWriterBase.h>
 
 namespace hexmesh::vtk_support {
 
@@ -22,6 +23,11 @@ vtkSmartPointer<vtkDataObject> read_with(const std::string& path);
 
 // Throws std::runtime_error naming the file when a VTK writer's Write() failed or complained.
 void check_written(int status, const std::string& path);
+
+// Sets an XML writer up for speed: appended raw binary data (no base64) compressed with LZ4
+// (coordinates in double precision hardly compress; LZ4 costs little and still shrinks the
+// integer and flag arrays). ParaView and VTK readers read it as any other XML file.
+void configure_xml_writer(vtkXMLWriterBase& writer);
 
 void require_file(const std::string& path);
 [[noreturn]] void throw_read_error(const std::string& path, const std::string& why);
