@@ -5,7 +5,7 @@
 # What it runs.
 #   1. Unless --grid is given, the grid: `hexmesh run CASE -o WORK/grid` on the sphere interior
 #      O-H case below, without optimization (4 n^3 cells; n = 136 -> 10 061 824 cells, the
-#      issue's "10 M-cell grid"; grid.vtm + 7 .vts, 209 MB; ~70 s and 2.3 GB on 2 cores):
+#      "10 M-cell grid"; grid.vtm + 7 .vts, 339 MB, uncompressed; ~30 s on 2 cores):
 #        {"geometry": {"sphere": {"radius": 1}},
 #         "grid": {"cells_per_edge": n, "wall_cells": n/2, "core_size": 0.45},
 #         "boundary_layer": {"first_height": 0.001, "growth_ratio": 1.1, "layers": 8},
