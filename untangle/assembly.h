@@ -11,7 +11,7 @@
 namespace hexmesh::untangle {
 
 // One 3 x 3 block of the Hessian, in single precision: the matrix only shapes the Newton
-// direction (its linear solve stops at a relative residual of about 1e-2) while energies,
+// direction (its linear solve stops at a relative residual of 1e-2 or 1e-1) while energies,
 // gradients and the line search stay in double; half the memory and half the traffic of
 // every CG product.
 using HessianBlock = Eigen::Matrix3f;
@@ -77,7 +77,8 @@ private:
     // Cuts the elements into chunks of `size` consecutive ones and colours them; false if
     // that needs more colours than the colouring can hold.
     bool colour_chunks(Id size);
-    // F(x) and its gradient in g; each finite element's PSD Hessian goes to scatter(e, he).
+    // F(x) and its gradient in g; each finite element's PSD Hessian goes to
+    // scatter(e, its 4 vertex ids, he).
     template <class Scatter>
     double assemble_hessian(const std::vector<Vec3>& x, const EnergyParams& p,
                             std::vector<Vec3>& g, Scatter&& scatter) const;

@@ -39,7 +39,7 @@ struct UntangleOptions {
     int local_rings = 2;
     int max_optimize_iterations = 20;
     int inner_steps = 30;               // descent steps per outer iteration
-    double inner_tolerance = 1e-6;      // relative decrease that ends an inner solve
+    double inner_tolerance = 1e-6;      // relative decrease that ends an inner untangling solve
     // Relative energy change that ends optimization: a barrier step (and so an outer
     // iteration) that lowers F by less ends it.
     double optimize_tolerance = 1e-5;
