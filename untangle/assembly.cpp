@@ -132,12 +132,6 @@ BlockMatrix Assembly::empty_hessian() const {
     return h;
 }
 
-Mat34 Assembly::corners(const std::vector<Vec3>& x, const std::array<Id, 4>& nodes) const {
-    Mat34 y;
-    for (int a = 0; a < 4; ++a) y.col(a) = x[nodes[a]];
-    return y;
-}
-
 ElementStats Assembly::stats(const std::vector<Vec3>& x) const {
     // Minimum and count do not depend on the order of the terms: any split is deterministic.
     const Id ne = problem_.num_elements();
@@ -146,7 +140,7 @@ ElementStats Assembly::stats(const std::vector<Vec3>& x) const {
         tbb::blocked_range<Id>(0, ne, grain), ElementStats{std::numeric_limits<double>::infinity(), 0},
         [&](const tbb::blocked_range<Id>& r, ElementStats s) {
             for (Id e = r.begin(); e != r.end(); ++e) {
-                const double d = tet_det(corners(x, problem_.element(e)), problem_.target(e));
+                const double d = problem_.det(x, e);
                 if (!(d >= s.min_det)) s.min_det = d;  // a NaN wins: it must not go unseen
                 s.inverted += !(d > 0);
             }
@@ -171,7 +165,7 @@ double Assembly::energy(const std::vector<Vec3>& x, const EnergyParams& p) const
     return deterministic_sum(size_t(hexes) + problem_.tets.size(), [&](size_t u) {
         if (Id(u) < hexes) return hex_energy(hex_corners(x, Id(u)), problem_.hex_edges[u], p);
         const Id e = 8 * hexes + Id(u) - hexes;
-        return tet_energy(corners(x, problem_.element(e)), problem_.target(e), p);
+        return tet_energy(Problem::corners(x, problem_.element(e)), problem_.target(e), p);
     });
 }
 
@@ -204,7 +198,7 @@ double Assembly::assemble_hessian(const std::vector<Vec3>& x, const EnergyParams
         const std::array<Id, 4> t = problem_.element(e);
         Mat34 ge;
         Mat12 he;
-        const double value = tet_energy_hessian(corners(x, t), problem_.target(e), p, ge, he);
+        const double value = tet_energy_hessian(Problem::corners(x, t), problem_.target(e), p, ge, he);
         if (!std::isfinite(value)) return value;
         for (int a = 0; a < 4; ++a) g[t[a]] += ge.col(a);
         scatter(e, t, he);
@@ -227,7 +221,7 @@ void Assembly::hessian_product(const std::vector<Vec3>& x, const EnergyParams& p
         const std::array<Id, 4> t = problem_.element(e);
         Mat34 ge;
         Mat12 he;
-        if (!std::isfinite(tet_energy_hessian(corners(x, t), problem_.target(e), p, ge, he))) return 0.0;
+        if (!std::isfinite(tet_energy_hessian(Problem::corners(x, t), problem_.target(e), p, ge, he))) return 0.0;
         Eigen::Matrix<double, 12, 1> ve;
         for (int a = 0; a < 4; ++a) ve.segment<3>(3 * a) = v[t[a]];
         const Eigen::Matrix<double, 12, 1> he_v = he * ve;
@@ -253,7 +247,7 @@ double Assembly::gradient(const std::vector<Vec3>& x, const EnergyParams& p, std
             }
             const std::array<Id, 4> t = problem_.element(e);
             Mat34 ge;
-            const double value = tet_energy_gradient(corners(x, t), problem_.target(e), p, ge);
+            const double value = tet_energy_gradient(Problem::corners(x, t), problem_.target(e), p, ge);
             if (std::isfinite(value))
                 for (int a = 0; a < 4; ++a) g[t[a]] += ge.col(a);
             s += value;

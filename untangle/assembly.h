@@ -64,7 +64,6 @@ public:
     Id chunks() const { return Id(chunk_order_.size()); }
 
 private:
-    Mat34 corners(const std::vector<Vec3>& x, const std::array<Id, 4>& nodes) const;
     Mat38 hex_corners(const std::vector<Vec3>& x, Id h) const;
     // Runs kernel(first, last) on the elements [first, last) of every chunk, colour after
     // colour, the chunks of a colour in parallel, and returns the sum of what it returned

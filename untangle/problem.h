@@ -55,6 +55,14 @@ struct Problem {
     TetTarget target(Id e) const {
         return is_hex_corner(e) ? hex_corner_target(int(e % 8), hex_edges[e / 8]) : targets[e - 8 * Id(hexes.size())];
     }
+    // The positions in x of the given vertices, as columns.
+    static Mat34 corners(const std::vector<Vec3>& x, const std::array<Id, 4>& nodes) {
+        Mat34 y;
+        for (int a = 0; a < 4; ++a) y.col(a) = x[nodes[a]];
+        return y;
+    }
+    // det S of element e at positions x (<= 0: inverted).
+    double det(const std::vector<Vec3>& x, Id e) const { return tet_det(corners(x, element(e)), target(e)); }
     // Adds a hex (its corner tets' targets are those of a box with the given edge lengths).
     void add_hex(const std::array<Id, 8>& nodes, const Vec3& edges) {
         hexes.push_back(nodes);

@@ -105,13 +105,9 @@ bool local_part(const Problem& problem, const std::vector<std::vector<Id>>& elem
     const size_t nv = problem.points.size();
     const Id ne = problem.num_elements();
     std::vector<char> in(nv, 0);
-    for (Id e = 0; e < ne; ++e) {
-        const std::array<Id, 4> t = problem.element(e);
-        Mat34 y;
-        for (int a = 0; a < 4; ++a) y.col(a) = problem.points[t[a]];
-        if (!(tet_det(y, problem.target(e)) > 0))
-            for (Id v : t) in[v] = 1;
-    }
+    for (Id e = 0; e < ne; ++e)
+        if (!(problem.det(problem.points, e) > 0))
+            for (Id v : problem.element(e)) in[v] = 1;
     for (int r = 0; r < rings; ++r) {
         std::vector<char> grown = in;
         for (size_t v = 0; v < nv; ++v)

@@ -206,8 +206,7 @@ TetOptimization optimize_tet_mesh(TetMesh& mesh, const std::vector<VertexKind>& 
     for (int round = 0; round < reweighting.rounds && result.solve.inverted_after == 0; ++round) {
         const untangle::EnergyParams params{options.theta, 0};
         for (Id t = 0; t < cells; ++t) {
-            untangle::Mat34 y;
-            for (int a = 0; a < 4; ++a) y.col(a) = p.points[p.tets[t][a]];
+            const untangle::Mat34 y = untangle::Problem::corners(p.points, p.tets[t]);
             const double phi = untangle::tet_energy(y, base[t], params) / base[t].weight;
             p.targets[t].weight = base[t].weight * std::pow(phi, reweighting.power - 1);
         }

@@ -86,13 +86,9 @@ std::vector<BlockedElement> find_blocked(const VolumeMesh& mesh, const untangle:
     std::vector<BlockedElement> blocked;
     for (Id e = 0; e < p.num_elements(); ++e) {
         const std::array<Id, 4> t = p.element(e);
-        bool all_fixed = true;
-        Mat34 y;
-        for (int a = 0; a < 4; ++a) {
-            all_fixed = all_fixed && degrees_of_freedom(p.kinds[t[a]]) == 0;
-            y.col(a) = p.points[t[a]];
-        }
-        if (!all_fixed || untangle::tet_det(y, p.target(e)) > 0) continue;
+        const bool all_fixed =
+            std::all_of(t.begin(), t.end(), [&](Id v) { return degrees_of_freedom(p.kinds[v]) == 0; });
+        if (!all_fixed || p.det(p.points, e) > 0) continue;
         const bool hex = p.is_hex_corner(e);
         const Id cell = hex ? e / 8 : e - 8 * mesh.num_hexes();
         blocked.push_back({cell, hex ? int(e % 8) : 0, p.points[t[0]]});
