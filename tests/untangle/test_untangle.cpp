@@ -60,6 +60,23 @@ TEST(Untangle, NeverReturnsWorseThanItsInput) {
     EXPECT_LE(r.inverted_after, r.inverted_before);
 }
 
+// Inverted cells whose nodes are all fixed, one free node near them but not theirs: the local repair's
+// neighbourhoods stop growing at that node's cells, and the untangler must still end (it
+// once doubled its ring count forever) and report the cells it could not repair.
+TEST(Untangle, EndsWhenNoFreeNodeCanRepairTheInvertedCells) {
+    Problem p = test_support::displaced_grid_problem(8, 0.0, 1);
+    const int m = 9;
+    auto id = [m](int i, int j, int k) { return Id(i) + Id(m) * (j + Id(m) * k); };
+    for (VertexKind& kind : p.kinds) kind = VertexKind::fixed;
+    p.points[id(5, 5, 5)] += Vec3(1.6, 0, 0);  // inverts the cells on its -x side
+    p.kinds[id(3, 5, 5)] = VertexKind::interior;
+    UntangleOptions o = options_for(Method::newton_cg);
+    o.max_untangle_iterations = 20;
+    const UntangleResult r = untangle_and_optimize(p, o);
+    EXPECT_GT(r.inverted_before, 0);
+    EXPECT_EQ(r.inverted_after, r.inverted_before);
+}
+
 TEST(Untangle, ValidInputIsOptimizedTowardsTheTarget) {
     Problem p = test_support::displaced_grid_problem(5, 0.15, 4);
     const double before = Assembly(p).energy(p.points, {0.8, 0});
