@@ -39,6 +39,26 @@ std::optional<Vec3> unit_offset(const ImplicitFunction& body, const Vec3& x0, do
     return t;
 }
 
+// Nodes that lines starting at different wall nodes would both move (a single block walled
+// on several sides: lines from opposite faces run through the same nodes, lines from
+// neighbouring faces cross near the edges). Lines through them are left as they are.
+std::vector<bool> crossed_lines(const BlockGrid& grid, const std::vector<WallFace>& faces) {
+    constexpr Id nobody = -1;
+    std::vector<Id> start(grid.points.size(), nobody);
+    std::vector<bool> crossed(grid.points.size(), false);
+    for (const WallFace& f : faces)
+        for (int q = 0; q < f.nq; ++q)
+            for (int p = 0; p < f.np; ++p) {
+                const Id s = f.node(p, q, 0);
+                for (int m = 1; m < f.depth - 1; ++m) {
+                    Id& owner = start[f.node(p, q, m)];
+                    if (owner == nobody) owner = s;
+                    else if (owner != s) crossed[f.node(p, q, m)] = true;
+                }
+            }
+    return crossed;
+}
+
 }  // namespace
 
 std::vector<bool> extrude_wall_layers(BlockGrid& grid, const ImplicitFunction& body,
@@ -49,14 +69,18 @@ std::vector<bool> extrude_wall_layers(BlockGrid& grid, const ImplicitFunction& b
     for (int m = 1; m <= law.layers; ++m)
         d[m] = d[m - 1] + law.first_height * std::pow(law.growth_ratio, m - 1);
 
-    for (const WallFace& f : wall_faces(grid)) {
+    const std::vector<WallFace> faces = wall_faces(grid);
+    const std::vector<bool> crossed = crossed_lines(grid, faces);
+    for (const WallFace& f : faces) {
         const double side = grid_side(f, grid.points, body);
         const int last = f.depth - 1, layers = std::min(law.layers, last - 1);
-        // Lines of different faces share nodes only where they coincide (block interfaces),
-        // and then they compute the same positions: the parallel writes agree.
+        // Lines left after crossed_lines share nodes only where they coincide (block
+        // interfaces), and then they compute the same positions: the parallel writes agree.
         std::vector<char> laid(f.lines(), 0);
         tbb::parallel_for(Id(0), f.lines(), [&](Id l) {
             const int p = int(l % f.np), q = int(l / f.np);
+            for (int m = 1; m < last; ++m)
+                if (crossed[f.node(p, q, m)]) return;
             const Vec3 x0 = grid.points[f.node(p, q, 0)];
             const std::optional<Vec3> n = unit_offset(body, x0, side, 1e-3 * law.first_height);
             if (!n) return;

@@ -68,6 +68,8 @@ GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& bo
     if (options.wall_layers.layers > 0) {
         const std::vector<Vec3> joint = grid.points;
         const std::vector<bool> placed = extrude_wall_layers(grid, body, options.wall_layers);
+        result.laid_nodes = Id(std::count(placed.begin(), placed.end(), true));
+        if (result.laid_nodes == 0) return result;  // no line could be laid: nothing changed
         // Every cell stays in, those between laid nodes too: the result must be judged on all
         // of them. Laid layers that cross the grid are rarely repaired by the rest alone: a
         // short untangling budget, then the joint result is kept.

@@ -27,6 +27,9 @@ struct GridOptimizationResult {
     // Whether the grid keeps the laid layers: false when that pass could not make every cell
     // valid, and the joint optimization's grid was kept instead.
     bool layers_laid = false;
+    // Wall and layer nodes the law placed; 0 when no wall-normal line could be laid alone
+    // (volume/wall_extrusion.h) and the second pass was skipped.
+    Id laid_nodes = 0;
 };
 
 // Splits every hex of `grid` into its 8 corner tets and minimizes the functional of DESIGN §4

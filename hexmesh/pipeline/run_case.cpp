@@ -199,7 +199,9 @@ RunResult run_case(const Case& c, const std::string& outdir, const RunOptions& o
         o.wall_layers = wall_layers(c);
         const GridOptimizationResult r = optimize_grid(result.grid, *body, o);
         log << untangle::format_untangle_summary(r.solve);
-        if (o.wall_layers.layers > 0) {
+        if (o.wall_layers.layers > 0 && r.laid_nodes == 0) {
+            log << "  boundary layer kept as built (no wall-normal line can be laid alone)\n";
+        } else if (o.wall_layers.layers > 0) {
             log << "  boundary layer laid along the wall normals, rest optimized again:\n"
                 << untangle::format_untangle_summary(r.layers_held);
             if (!r.layers_laid)

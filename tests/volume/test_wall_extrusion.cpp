@@ -3,6 +3,7 @@
 #include "surface/analytic.h"
 #include "volume/feature_snapping.h"
 #include "volume/o_h_grid.h"
+#include "volume/single_block_grid.h"
 #include "volume/wall_extrusion.h"
 #include "volume/wall_lines.h"
 
@@ -37,4 +38,18 @@ TEST(WallExtrusion, LayersLieOnTheOffsetsOfEveryFaceAtEdgesAndCorners) {
             }
     EXPECT_GT(crease_lines, 0);
     EXPECT_EQ(lines, 6 * 9 * 9);
+}
+
+// In a single block walled on all six sides every wall-normal line runs into lines from the
+// opposite and the neighbouring faces: none is laid, the layers stay as the block was built.
+TEST(WallExtrusion, CrossingLinesOfASingleBlockAreLeftAsBuilt) {
+    const Box body(Vec3::Zero(), Vec3(1, 0.75, 0.5));
+    SingleBlockOptions o;
+    o.cells = {8, 6, 6};
+    o.wall_layers = {0.02, 1.2, 2};
+    BlockGrid grid = make_single_block_grid(body, o);
+    const std::vector<Vec3> built = grid.points;
+    const std::vector<bool> placed = extrude_wall_layers(grid, body, o.wall_layers);
+    EXPECT_EQ(std::count(placed.begin(), placed.end(), true), 0);
+    EXPECT_EQ(grid.points, built);
 }
