@@ -6,48 +6,61 @@
 #include <cstdint>
 #include <limits>
 #include <stdexcept>
-#include <unordered_map>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include "surface/surface_diagnostics.h"
 
 namespace hexmesh {
 namespace {
 
+// One side of an edge: the edge (lower point id in the high half), the triangle using it and
+// whether that triangle runs it from its lower to its higher point id.
 struct EdgeUse {
+    std::uint64_t key;
     int triangle;
-    bool forward;  // the triangle runs the edge from its lower to its higher point id
+    bool forward;
+    bool operator<(const EdgeUse& o) const {
+        return key != o.key ? key < o.key : triangle < o.triangle;
+    }
 };
 
 std::uint64_t edge_key(int a, int b) {
     return (std::uint64_t(std::min(a, b)) << 32) | std::uint32_t(std::max(a, b));
 }
 
+// The uses of every edge, sorted so that those of one edge are adjacent (a parallel sort:
+// faster than hashing for the million-triangle surfaces this runs on).
 std::vector<std::pair<int, int>> feature_edges(const TriangleSurface& s, const FeatureOptions& o) {
-    std::vector<Vec3> normals(s.triangles.size(), Vec3::Zero());
-    std::unordered_map<std::uint64_t, std::vector<EdgeUse>> uses;
-    uses.reserve(2 * s.triangles.size());
-    for (int t = 0; t < (int)s.triangles.size(); ++t) {
-        if (is_degenerate_triangle(s, t)) continue;
+    const int nt = int(s.triangles.size());
+    std::vector<Vec3> normals(nt, Vec3::Zero());
+    std::vector<EdgeUse> uses(3 * size_t(nt));
+    tbb::parallel_for(0, nt, [&](int t) {
         const auto& tri = s.triangles[t];
-        normals[t] = (s.points[tri[1]] - s.points[tri[0]])
-                         .cross(s.points[tri[2]] - s.points[tri[0]])
-                         .normalized();
+        const bool degenerate = is_degenerate_triangle(s, t);
+        if (!degenerate)
+            normals[t] = (s.points[tri[1]] - s.points[tri[0]])
+                             .cross(s.points[tri[2]] - s.points[tri[0]])
+                             .normalized();
         for (int e = 0; e < 3; ++e) {
             const int a = tri[e], b = tri[(e + 1) % 3];
-            uses[edge_key(a, b)].push_back({t, a < b});
+            // Degenerate triangles are left out: their uses sort last and are dropped.
+            uses[3 * size_t(t) + e] = {degenerate ? ~std::uint64_t(0) : edge_key(a, b), t, a < b};
         }
-    }
+    });
+    tbb::parallel_sort(uses.begin(), uses.end());
     const double cos_limit = std::cos(o.angle_degrees * 3.14159265358979323846 / 180);
     std::vector<std::pair<int, int>> edges;
-    for (const auto& [key, u] : uses) {
+    for (size_t i = 0, j; i < uses.size() && uses[i].key != ~std::uint64_t(0); i = j) {
+        for (j = i + 1; j < uses.size() && uses[j].key == uses[i].key;) ++j;
         bool feature = false;
-        if (u.size() == 2) {
-            const double flip = u[0].forward == u[1].forward ? -1 : 1;
-            feature = flip * normals[u[0].triangle].dot(normals[u[1].triangle]) < cos_limit;
+        if (j - i == 2) {
+            const double flip = uses[i].forward == uses[i + 1].forward ? -1 : 1;
+            feature = flip * normals[uses[i].triangle].dot(normals[uses[i + 1].triangle]) < cos_limit;
         } else {
             feature = o.include_boundary;
         }
-        if (feature) edges.emplace_back(int(key >> 32), int(key & 0xffffffffu));
+        if (feature) edges.emplace_back(int(uses[i].key >> 32), int(uses[i].key & 0xffffffffu));
     }
     return edges;
 }
