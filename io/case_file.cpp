@@ -64,8 +64,8 @@ void parse_primitive(const JsonFields& p, GeometrySpec& s) {
     s.center = p.vec3("center", zero);
 }
 
-// {"file": "part.stl", "voxel_size": 0.01}, {"points": "cloud.ply"}, {"sections": "stack.txt"}:
-// a path relative to the case file's folder, under the key s.kind.
+// {"file": "part.stl", "voxel_size": 0.01, "feature_angle": 30}, {"points": "cloud.ply"},
+// {"sections": "stack.txt"}: a path relative to the case file's folder, under the key s.kind.
 void parse_surface_file(const JsonFields& g, const std::string& file, GeometrySpec& s) {
     const json& name = g.at(s.kind.c_str());
     if (!name.is_string() || name.get<std::string>().empty())
@@ -77,6 +77,9 @@ void parse_surface_file(const JsonFields& g, const std::string& file, GeometrySp
                  ? relative.string()
                  : (std::filesystem::path(file).parent_path() / relative).lexically_normal().string();
     s.voxel_size = g.positive_number("voxel_size", 0);
+    s.feature_angle = g.number("feature_angle", s.feature_angle);
+    if (!(s.feature_angle > 0 && s.feature_angle <= 180))
+        g.fail("feature_angle", "an angle in (0, 180] degrees (180: no sharp creases)");
 }
 
 GeometrySpec parse_geometry(const json& value, const std::string& file, const std::string& path) {
@@ -85,7 +88,7 @@ GeometrySpec parse_geometry(const json& value, const std::string& file, const st
                                        "file", "points", "sections"};
     static const char* operations[] = {"union", "intersection", "difference"};
     g.allow_only({"sphere", "ellipsoid", "box", "cylinder", "torus", "cone", "file", "points",
-                  "sections", "voxel_size", "union", "intersection", "difference", "translate",
+                  "sections", "voxel_size", "feature_angle", "union", "intersection", "difference", "translate",
                   "rotate", "scale"});
     GeometrySpec s;
     int shapes = 0;
@@ -101,6 +104,8 @@ GeometrySpec parse_geometry(const json& value, const std::string& file, const st
     }
     if (g.has("voxel_size") && s.kind != "file")
         g.fail("voxel_size", "no voxel size: it goes with \"file\"");
+    if (g.has("feature_angle") && s.kind != "file")
+        g.fail("feature_angle", "no feature angle: it goes with \"file\"");
     if (s.kind == "union" || s.kind == "intersection" || s.kind == "difference")
         s.children = parse_operands(g, s.kind.c_str(), file);
     else if (s.kind == "file" || s.kind == "points" || s.kind == "sections")
@@ -253,6 +258,7 @@ json geometry_json(const GeometrySpec& s) {
     } else if (s.kind == "file" || s.kind == "points" || s.kind == "sections") {
         g[s.kind] = std::filesystem::absolute(s.file).lexically_normal().string();
         if (s.voxel_size > 0) g["voxel_size"] = s.voxel_size;
+        if (s.kind == "file") g["feature_angle"] = s.feature_angle;
     } else {
         json p = {{"center", vec3_json(s.center)}};
         if (s.kind == "sphere") p["radius"] = s.radius;

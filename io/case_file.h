@@ -33,6 +33,7 @@ struct GeometrySpec {
     // cross-section stack (io/sample_readers.h). Resolved against the case's folder.
     std::string file;
     double voxel_size = 0;   // file: voxel of its signed distance field (0: longest side / 256)
+    double feature_angle = 30;  // file: edges turning more than this are sharp creases (degrees)
     Vec3 translate = Vec3::Zero();
     Vec3 rotate_axis = Vec3::UnitZ();
     double rotate_degrees = 0;

@@ -107,6 +107,8 @@ struct MeshSdf::Grid {
 MeshSdf::MeshSdf(const TriangleSurface& surface, const MeshSdfOptions& options)
     : grid_(std::make_unique<Grid>()) {
     if (surface.triangles.empty()) throw std::invalid_argument("MeshSdf: empty surface");
+    if (!(options.feature_angle >= 0 && options.feature_angle <= 180))
+        throw std::invalid_argument("MeshSdf: feature angle must lie in [0, 180] degrees");
     if (!(options.exterior_band >= 1 && options.interior_band >= 1))
         throw std::invalid_argument("MeshSdf: band half-widths must be at least 1 voxel");
     static std::once_flag init;
@@ -146,11 +148,17 @@ MeshSdf::MeshSdf(const TriangleSurface& surface, const MeshSdfOptions& options)
         g.band_box.lo[a] = g.origin[a] + voxel * box.min()[a];
         g.band_box.hi[a] = g.origin[a] + voxel * box.max()[a];
     }
+    creases_ = std::make_unique<MeshCreases>(surface, options.feature_angle, *this, 0.5 * voxel);
 }
 
 MeshSdf::~MeshSdf() = default;
 
-Box3 MeshSdf::bounds() const { return bounds_; }
+Box3 MeshSdf::bounds() const {
+    // The interpolated zero level of a face lying on the box may sit a few 1e-5 voxel outside
+    // it (single-precision distances): a margin keeps u > 0 just beyond the returned box.
+    const Vec3 margin = Vec3::Constant(1e-2 * grid_->voxel);
+    return {bounds_.lo - margin, bounds_.hi + margin};
+}
 double MeshSdf::voxel_size() const { return grid_->voxel; }
 long long MeshSdf::active_voxels() const { return (long long)grid_->grid->activeVoxelCount(); }
 size_t MeshSdf::memory_bytes() const { return grid_->grid->memUsage(); }
@@ -198,6 +206,10 @@ Vec3 MeshSdf::gradient(const Vec3& p) const {
     grad /= g.voxel;
     // Off the band the eight values are all the same clamped constant: no direction there.
     return grad.norm() > 1e-3 ? grad : fallback;
+}
+
+void MeshSdf::active_pieces(const Vec3& p, double tolerance, std::vector<Piece>& out) const {
+    if (!creases_->add_pieces(p, tolerance, out)) ImplicitFunction::active_pieces(p, tolerance, out);
 }
 
 void MeshSdf::write_vdb(const std::string& path) const {

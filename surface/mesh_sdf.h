@@ -6,6 +6,7 @@
 
 #include "hexmesh/core/implicit_function.h"
 #include "hexmesh/core/triangle_surface.h"
+#include "surface/mesh_creases.h"
 
 namespace hexmesh {
 
@@ -25,6 +26,9 @@ struct MeshSdfOptions {
     double exterior_band = 3;
     double interior_band = 3;
     SdfSign sign = SdfSign::automatic;
+    // Edges whose two triangles turn by more than this (degrees) are sharp creases, exposed
+    // through active_pieces() (surface/mesh_creases.h); 180: none, the body is smooth.
+    double feature_angle = 30;
 };
 
 // u(x): the distance to the surface, negative inside, computed by OpenVDB's mesh-to-volume
@@ -35,7 +39,9 @@ struct MeshSdfOptions {
 // projection V stay safe: outside the band it is +-(band width), and outside the box of
 // the band the distance to the surface's bounding box when larger; the gradient there is
 // the direction from the box centre (outward), so projection steps walk towards the band.
-// Thread safe for concurrent value()/gradient() calls.
+// Near the surface's sharp creases and corners active_pieces() gives the planes of the
+// triangles meeting there (surface/mesh_creases.h), elsewhere the one smooth piece.
+// Thread safe for concurrent value()/gradient()/active_pieces() calls.
 class MeshSdf : public ImplicitFunction {
 public:
     // Throws std::invalid_argument for an empty surface or bad options.
@@ -46,12 +52,14 @@ public:
 
     double value(const Vec3& p) const override;
     Vec3 gradient(const Vec3& p) const override;
-    Box3 bounds() const override;  // the surface's bounding box
+    void active_pieces(const Vec3& p, double tolerance, std::vector<Piece>& out) const override;
+    Box3 bounds() const override;  // the surface's bounding box, 0.01 voxel wider
 
     double voxel_size() const;
     long long active_voxels() const;
     size_t memory_bytes() const;  // of the OpenVDB tree
     bool signed_by_winding_number() const;
+    const MeshCreases& creases() const { return *creases_; }
 
     // Writes the grid (named "sdf", a level set) to an OpenVDB .vdb file.
     void write_vdb(const std::string& path) const;
@@ -59,6 +67,7 @@ public:
 private:
     struct Grid;
     std::unique_ptr<Grid> grid_;
+    std::unique_ptr<MeshCreases> creases_;
     Box3 bounds_;
 };
 

@@ -17,6 +17,7 @@ void add_sdf_command(CLI::App& app, int& exit_code) {
         double voxel_size = 0;
         int resolution = 256;
         std::string sign = "auto";
+        double feature_angle = 30;
     };
     auto args = std::make_shared<Args>();
     CLI::App* cmd = app.add_subcommand("sdf", "write the signed distance field of a surface");
@@ -30,6 +31,10 @@ void add_sdf_command(CLI::App& app, int& exit_code) {
     cmd->add_option("--sign", args->sign, "inside test: auto, flood-fill or winding-number")
         ->capture_default_str()
         ->check(CLI::IsMember({"auto", "flood-fill", "winding-number"}));
+    cmd->add_option("--feature-angle", args->feature_angle,
+                    "edges turning more than this are sharp creases (degrees; 180: none)")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 180.0));
     cmd->callback([args, &exit_code] {
         if (args->voxel_size < 0) throw InputError("--voxel-size: expected a positive number");
         const auto start = std::chrono::steady_clock::now();
@@ -37,6 +42,7 @@ void add_sdf_command(CLI::App& app, int& exit_code) {
         MeshSdfOptions options;
         options.voxel_size = args->voxel_size;
         options.resolution = args->resolution;
+        options.feature_angle = args->feature_angle;
         options.sign = args->sign == "flood-fill"       ? SdfSign::flood_fill
                        : args->sign == "winding-number" ? SdfSign::winding_number
                                                         : SdfSign::automatic;
@@ -52,6 +58,8 @@ void add_sdf_command(CLI::App& app, int& exit_code) {
                   << fmt::format("  sign              {}\n", sdf.signed_by_winding_number()
                                                                   ? "winding number"
                                                                   : "flood fill")
+                  << fmt::format("  sharp creases     {} edges, {} corners\n",
+                                 sdf.creases().crease_edges(), sdf.creases().corners())
                   << fmt::format("  active voxels     {}\n", sdf.active_voxels())
                   << fmt::format("  memory            {:.1f} MB\n", sdf.memory_bytes() / 1e6)
                   << fmt::format("  read + build      {:.2f} s\n", seconds)

@@ -26,6 +26,7 @@ Body make_shape(const GeometrySpec& s) {
     if (s.kind == "file") {
         MeshSdfOptions options;
         options.voxel_size = s.voxel_size;
+        options.feature_angle = s.feature_angle;
         return std::make_shared<MeshSdf>(read_surface(s.file), options);
     }
     if (s.kind == "points") return std::make_shared<PointCloudSdf>(read_point_cloud(s.file));

@@ -4,8 +4,13 @@
 #include <filesystem>
 #include <fstream>
 
-#include "cli.h"
+#include <nlohmann/json.hpp>
 
+#include "cli.h"
+#include "io/vtk_mesh.h"
+#include "tests/surface/sample_surfaces.h"
+
+using namespace hexmesh;
 using namespace hexmesh::test_support;
 namespace fs = std::filesystem;
 
@@ -45,6 +50,76 @@ TEST(CliGeometry, FileInsideCsg) {
     fs::remove_all(dir);
 }
 
+// A box STL made here (coordinates exact in single precision): its 12 edges and 8 corners
+// become grid lines and grid nodes, in a single block and in the O-H grid, and the grid's
+// wall lies on the surface up to rounding. With "feature_angle": 180 the same O-H grid has
+// no crease to follow and cuts the edges.
+TEST(CliGeometry, StlBoxEdgesAndCornersBecomeGridLines) {
+    const fs::path dir = scratch("stl_box");
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const Vec3 lo(-1, -0.5, -0.75), hi(1, 0.5, 0.75);
+    test::write_stl_binary((dir / "box.stl").string(), test::box_surface(lo, hi, 4));
+    auto edge_distance = [&](const Vec3& p) {
+        double best = INFINITY;
+        for (int a = 0; a < 3; ++a)
+            for (int corner = 0; corner < 4; ++corner) {
+                const int b = (a + 1) % 3, c = (a + 2) % 3;
+                Vec3 q;
+                q[a] = std::clamp(p[a], lo[a], hi[a]);
+                q[b] = corner & 1 ? hi[b] : lo[b];
+                q[c] = corner & 2 ? hi[c] : lo[c];
+                best = std::min(best, (p - q).norm());
+            }
+        return best;
+    };
+    auto run = [&](const std::string& name, const std::string& grid, const std::string& extra) {
+        std::ofstream(dir / (name + ".json"))
+            << R"({"geometry": {"file": "box.stl", "voxel_size": 0.02)" << extra << "}, \"grid\": "
+            << grid << R"(, "boundary_layer": {"first_height": 0.01, "growth_ratio": 1.2, "layers": 3}})";
+        return run_hexmesh("run '" + (dir / (name + ".json")).string() + "' -o '" +
+                           (dir / name).string() + "'");
+    };
+    struct Expect {
+        std::string name, grid;
+        Id edge_nodes;  // grid nodes on the box's edges, corners included
+    };
+    for (const Expect& e : {Expect{"single", R"({"topology": "single-block", "cells": [12, 8, 10]})",
+                                   4 * (11 + 7 + 9) + 8},
+                            Expect{"o_h", R"({"cells_per_edge": 12, "wall_cells": 6})", 4 * 3 * 11 + 8}}) {
+        SCOPED_TRACE(e.name);
+        const CommandResult r = run(e.name, e.grid, "");
+        ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+        EXPECT_NE(r.out.find(", 8 on corners"), std::string::npos) << r.out;
+        const auto q = nlohmann::json::parse(read_text(dir / e.name / "quality.json"));
+        EXPECT_TRUE(q.at("valid").get<bool>());
+        EXPECT_LT(q.at("wall").at("hausdorff_distance").get<double>(), 1e-6);
+        const HexMesh mesh =
+            read_vtk_mesh((dir / e.name / (e.name == "single" ? "grid.vts" : "grid.vtm")).string());
+        std::vector<Vec3> on_edges;  // distinct points: block interfaces repeat nodes in a .vtm
+        for (const Vec3& p : mesh.points)
+            if (edge_distance(p) < 1e-7 && std::none_of(on_edges.begin(), on_edges.end(), [&](const Vec3& o) {
+                    return (o - p).norm() < 1e-9;
+                }))
+                on_edges.push_back(p);
+        EXPECT_EQ(Id(on_edges.size()), e.edge_nodes);
+        for (int corner = 0; corner < 8; ++corner) {
+            const Vec3 c(corner & 1 ? hi.x() : lo.x(), corner & 2 ? hi.y() : lo.y(),
+                         corner & 4 ? hi.z() : lo.z());
+            EXPECT_TRUE(std::any_of(on_edges.begin(), on_edges.end(),
+                                    [&](const Vec3& p) { return (p - c).norm() < 1e-7; }))
+                << c.transpose();
+        }
+    }
+    const CommandResult smooth = run("smooth", R"({"cells_per_edge": 12, "wall_cells": 6})",
+                                     R"(, "feature_angle": 180)");
+    ASSERT_EQ(smooth.exit_code, 0) << smooth.out << smooth.err;
+    EXPECT_EQ(smooth.out.find("sharp features"), std::string::npos) << smooth.out;
+    const auto q = nlohmann::json::parse(read_text(dir / "smooth" / "quality.json"));
+    EXPECT_GT(q.at("wall").at("hausdorff_distance").get<double>(), 1e-3);
+    fs::remove_all(dir);
+}
+
 TEST(CliGeometry, InspectPrintsTheDiagnostics) {
     const CommandResult r = run_hexmesh("inspect cases/stl_capsule/part.obj");
     EXPECT_EQ(r.exit_code, 0) << r.err;
@@ -61,6 +136,7 @@ TEST(CliGeometry, SdfWritesAVdbFile) {
         run_hexmesh("sdf cases/stl_capsule/part.obj -o '" + vdb.string() + "' --resolution 64");
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("voxel size        0.03125"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("sharp creases     0 edges, 0 corners"), std::string::npos) << r.out;
     ASSERT_TRUE(fs::exists(vdb));
     EXPECT_GT(fs::file_size(vdb), 1000u);
     std::ifstream in(vdb, std::ios::binary);
