@@ -167,4 +167,22 @@ OrientedPoints read_point_cloud(const std::string& path) {
     return cloud;
 }
 
+GeometryFileKind geometry_file_kind(const std::string& path) {
+    const std::string extension = surface_io::file_extension(path);
+    if (extension == "stl" || extension == "obj" || extension == "off") return GeometryFileKind::surface;
+    if (extension == "xyz") return GeometryFileKind::points;
+    if (extension != "ply") return GeometryFileKind::sections;
+    const ply::Header header = ply::read_header(path, surface_io::read_file(path), true);
+    // Points need normals; a PLY with neither faces nor normals is read as a surface, whose
+    // reader names what is missing.
+    bool faces = false, normals = false;
+    for (const ply::Element& e : header.elements) {
+        faces |= e.name == "face" && e.count > 0;
+        if (e.name == "vertex")
+            normals = std::any_of(e.properties.begin(), e.properties.end(),
+                                  [](const ply::Property& p) { return p.name == "nx"; });
+    }
+    return !faces && normals ? GeometryFileKind::points : GeometryFileKind::surface;
+}
+
 }  // namespace hexmesh

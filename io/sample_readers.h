@@ -38,4 +38,11 @@ OrientedPoints read_point_cloud(const std::string& path);
 // fewer than 2 sections.
 SectionStack read_sections(const std::string& path);
 
+// What a geometry file holds, by its extension (any case) and, for .ply, its header: a
+// triangle surface (.stl .obj .off, .ply with faces or without normals), an oriented point
+// cloud (.xyz, .ply with vertex normals and no faces) or a cross-section stack (any other
+// extension). Throws InputError for a .ply that cannot be opened or has a bad header.
+enum class GeometryFileKind { surface, points, sections };
+GeometryFileKind geometry_file_kind(const std::string& path);
+
 }  // namespace hexmesh

@@ -1,5 +1,8 @@
 #include "surface/cross_sections.h"
 
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_2.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -125,6 +128,62 @@ void CrossSectionSdf::active_pieces(const Vec3& p, double tolerance,
 
 Box3 CrossSectionSdf::bounds() const {
     return bounds_;
+}
+
+namespace {
+
+using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+CGAL::Polygon_2<Epick> polygon_of(const std::vector<Eigen::Vector2d>& loop) {
+    CGAL::Polygon_2<Epick> polygon;
+    for (const Eigen::Vector2d& q : loop) polygon.push_back(Epick::Point_2(q.x(), q.y()));
+    return polygon;
+}
+
+// Whether the closed polylines a and b cross or touch (exact segment tests after a box test).
+bool loops_cross(const CGAL::Polygon_2<Epick>& a, const CGAL::Polygon_2<Epick>& b) {
+    if (!CGAL::do_overlap(a.bbox(), b.bbox())) return false;
+    for (auto ea = a.edges_begin(); ea != a.edges_end(); ++ea) {
+        if (!CGAL::do_overlap(ea->bbox(), b.bbox())) continue;
+        for (auto eb = b.edges_begin(); eb != b.edges_end(); ++eb)
+            if (CGAL::do_intersect(*ea, *eb)) return true;
+    }
+    return false;
+}
+
+}  // namespace
+
+SectionDiagnostics diagnose_sections(const SectionStack& stack) {
+    SectionDiagnostics d;
+    d.sections = (long long)stack.sections.size();
+    bool first = true;
+    d.smallest_loop_area = std::numeric_limits<double>::infinity();
+    for (size_t s = 0; s < stack.sections.size(); ++s) {
+        const Section& section = stack.sections[s];
+        if (s > 0) {
+            const double gap = section.z - stack.sections[s - 1].z;
+            d.min_spacing = s == 1 ? gap : std::min(d.min_spacing, gap);
+            d.max_spacing = std::max(d.max_spacing, gap);
+        }
+        std::vector<CGAL::Polygon_2<Epick>> polygons;
+        for (const auto& loop : section.loops) {
+            ++d.loops;
+            d.points += (long long)loop.size();
+            for (const Eigen::Vector2d& q : loop) {
+                const Vec3 p(q.x(), q.y(), section.z);
+                d.bounds.lo = first ? p : Vec3(d.bounds.lo.cwiseMin(p));
+                d.bounds.hi = first ? p : Vec3(d.bounds.hi.cwiseMax(p));
+                first = false;
+            }
+            polygons.push_back(polygon_of(loop));
+            d.smallest_loop_area = std::min(d.smallest_loop_area, std::abs(polygons.back().area()));
+            d.self_intersecting_loops += !polygons.back().is_simple();
+        }
+        for (size_t a = 0; a < polygons.size(); ++a)
+            for (size_t b = a + 1; b < polygons.size(); ++b) d.crossing_loops += loops_cross(polygons[a], polygons[b]);
+    }
+    if (d.loops == 0) d.smallest_loop_area = 0;
+    return d;
 }
 
 }  // namespace hexmesh

@@ -45,4 +45,18 @@ private:
 double section_distance(const Section& section, const Eigen::Vector2d& q,
                         Eigen::Vector2d* gradient = nullptr);
 
+// Health report of a cross-section stack, for `hexmesh inspect`.
+struct SectionDiagnostics {
+    long long sections = 0, loops = 0, points = 0;
+    Box3 bounds;                                // the sections' xy box from bottom to top z
+    double min_spacing = 0, max_spacing = 0;    // between consecutive sections along z
+    double smallest_loop_area = 0;              // |area| of the smallest polyline
+    long long self_intersecting_loops = 0;      // polylines crossing themselves (not simple)
+    long long crossing_loops = 0;               // pairs of polylines of a section that cross
+};
+
+// Simplicity and crossings with CGAL's exact predicates. Expects what read_sections
+// returns (at least 3 points per polyline).
+SectionDiagnostics diagnose_sections(const SectionStack& stack);
+
 }  // namespace hexmesh

@@ -155,4 +155,47 @@ Box3 PointCloudSdf::bounds() const {
     return bounds_;
 }
 
+PointCloudDiagnostics diagnose_point_cloud(const OrientedPoints& cloud, int neighbours) {
+    const size_t n = cloud.points.size();
+    if (cloud.normals.size() != n)
+        throw std::invalid_argument("diagnose_point_cloud: " + std::to_string(n) + " points but " +
+                                    std::to_string(cloud.normals.size()) + " normals");
+    PointCloudDiagnostics d;
+    d.points = (long long)n;
+    if (n == 0) return d;
+    d.bounds = {cloud.points[0], cloud.points[0]};
+    std::vector<Point> points;
+    points.reserve(n);
+    for (const Vec3& p : cloud.points) {
+        points.emplace_back(p.x(), p.y(), p.z());
+        d.bounds.lo = d.bounds.lo.cwiseMin(p);
+        d.bounds.hi = d.bounds.hi.cwiseMax(p);
+    }
+    if (n == 1) return d;
+    const PointMap map{&points};
+    Search::Tree tree(boost::counting_iterator<std::size_t>(0), boost::counting_iterator<std::size_t>(n),
+                      Search::Tree::Splitter(), Traits(map));
+    tree.build();
+    const Search::Distance distance(map);
+    const double same = 1e-12 * std::max(d.bounds.diagonal(), 1e-300);
+    double sum = 0;
+    for (size_t i = 0; i < n; ++i) {
+        const Search search(tree, points[i], unsigned(neighbours) + 1, 0, true, distance);
+        double nearest = -1;
+        Vec3 summed = Vec3::Zero();
+        for (auto it = search.begin(); it != search.end(); ++it) {
+            if (it->first == i) continue;
+            if (nearest < 0) nearest = std::sqrt(it->second);
+            const Vec3& normal = cloud.normals[it->first];
+            if (normal.norm() > 0) summed += normal.normalized();
+        }
+        sum += nearest;
+        d.largest_gap = std::max(d.largest_gap, nearest);
+        d.duplicates += nearest <= same;
+        d.inconsistent_normals += summed.dot(cloud.normals[i]) < 0;
+    }
+    d.mean_spacing = sum / double(n);
+    return d;
+}
+
 }  // namespace hexmesh

@@ -52,4 +52,19 @@ private:
     Box3 bounds_;
 };
 
+// Health report of an oriented point cloud, for `hexmesh inspect`.
+struct PointCloudDiagnostics {
+    long long points = 0;
+    Box3 bounds;
+    double mean_spacing = 0;      // mean distance from a point to its nearest other point
+    double largest_gap = 0;       // the largest such distance (an undersampled region)
+    long long duplicates = 0;     // points with another at the same place (1e-12 of the box)
+    // Points whose normal points against the summed normals of their `neighbours` nearest
+    // points: flipped normals, or sheets closer than the spacing (thin walls).
+    long long inconsistent_normals = 0;
+};
+
+// Throws std::invalid_argument for points and normals of different counts.
+PointCloudDiagnostics diagnose_point_cloud(const OrientedPoints& cloud, int neighbours = 12);
+
 }  // namespace hexmesh
