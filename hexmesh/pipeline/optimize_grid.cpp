@@ -18,30 +18,70 @@ Vec3 edge_lengths(const std::vector<Vec3>& points, const std::array<Id, 8>& node
     return sum / 4;
 }
 
-// The corner tets of every cell that has a node free to move (`held` empty: every cell),
-// with box targets of the cell's edge lengths in `target_points` (node positions of the grid).
-untangle::Problem make_problem(const BlockGrid& grid, const std::vector<Vec3>& target_points,
-                               const ImplicitFunction& body, const std::vector<bool>& held) {
-    untangle::Problem p;
-    p.points = grid.points;
-    p.kinds = grid.kinds;
-    for (size_t v = 0; v < held.size(); ++v)
-        if (held[v]) p.kinds[v] = VertexKind::fixed;
-    const Id cells = grid.num_cells();
+// The functional over the cells that have a node free to move (`held` empty: every cell):
+// its points are the grid nodes `nodes` (local -> grid id; empty: all grid nodes, same ids),
+// the nodes of those cells only, so a refined grid whose new wall nodes alone are free
+// costs memory for them, not for the whole grid.
+struct GridProblem {
+    untangle::Problem problem;
+    std::vector<Id> nodes;
+    Id grid_id(Id local) const { return nodes.empty() ? local : nodes[local]; }
+    // The solved positions back into the grid.
+    void scatter(std::vector<Vec3>& points) const {
+        if (nodes.empty()) points = problem.points;
+        else
+            for (size_t i = 0; i < nodes.size(); ++i) points[nodes[i]] = problem.points[i];
+    }
+};
+
+// Box targets of the cell's edge lengths in `target_points` (node positions of the grid).
+GridProblem make_problem(const BlockGrid& grid, const std::vector<Vec3>& target_points,
+                         const ImplicitFunction& body, const std::vector<bool>& held) {
+    GridProblem g;
+    untangle::Problem& p = g.problem;
+    const auto used = [&](const std::array<Id, 8>& nodes) {
+        return held.empty() || !std::all_of(nodes.begin(), nodes.end(), [&](Id v) { return bool(held[v]); });
+    };
+    std::vector<Id> local;  // grid id -> problem id (-1: not in the problem); only with `held`
+    Id cells = 0;
+    if (held.empty()) {
+        p.points = grid.points;
+        p.kinds = grid.kinds;
+        cells = grid.num_cells();
+    } else {
+        local.assign(grid.points.size(), -1);
+        for (const Block& block : grid.blocks)
+            for_each_cell(block, [&](int, int, int, const std::array<Id, 8>& nodes) {
+                if (!used(nodes)) return;
+                ++cells;
+                for (Id v : nodes)
+                    if (local[v] < 0) {
+                        local[v] = Id(g.nodes.size());
+                        g.nodes.push_back(v);
+                    }
+            });
+        p.points.reserve(g.nodes.size());
+        p.kinds.reserve(g.nodes.size());
+        for (Id v : g.nodes) {
+            p.points.push_back(grid.points[v]);
+            p.kinds.push_back(held[v] ? VertexKind::fixed : grid.kinds[v]);
+        }
+    }
     p.hexes.reserve(cells);
     p.hex_edges.reserve(cells);
     double total = 0;
     for (const Block& block : grid.blocks)
         for_each_cell(block, [&](int, int, int, const std::array<Id, 8>& nodes) {
-            if (!held.empty() && std::all_of(nodes.begin(), nodes.end(),
-                                             [&](Id v) { return bool(held[v]); }))
-                return;
+            if (!used(nodes)) return;
             const Vec3 lengths = edge_lengths(target_points, nodes);
             total += lengths.sum();
-            p.add_hex(nodes, lengths);
+            std::array<Id, 8> ids = nodes;
+            if (!local.empty())
+                for (Id& v : ids) v = local[v];
+            p.add_hex(ids, lengths);
         });
-    const double used = double(p.hexes.size());
-    p.length_scale = used > 0 ? total / (3.0 * used) : 1.0;
+    const double count = double(p.hexes.size());
+    p.length_scale = count > 0 ? total / (3.0 * count) : 1.0;
     const double h = p.length_scale;
     p.surface_normal = [&body](Id, const Vec3& x) { return body.gradient(x); };
     p.project_to_surface = [&body, h](Id, const Vec3& x) {
@@ -51,7 +91,7 @@ untangle::Problem make_problem(const BlockGrid& grid, const std::vector<Vec3>& t
     };
     p.edge_tangent = [&body, h](Id, const Vec3& x) { return crease_tangent(body, x, 1e-3 * h); };
     p.project_to_edge = [&body, h](Id, const Vec3& x) { return project_to_crease(body, x, h); };
-    return p;
+    return g;
 }
 
 }  // namespace
@@ -61,9 +101,9 @@ GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& bo
     GridOptimizationResult result;
     const std::vector<Vec3> initial = grid.points;  // the targets of both passes
     {
-        untangle::Problem problem = make_problem(grid, initial, body, options.held);
-        result.solve = untangle::untangle_and_optimize(problem, options.untangle);
-        grid.points = problem.points;
+        GridProblem g = make_problem(grid, initial, body, options.held);
+        result.solve = untangle::untangle_and_optimize(g.problem, options.untangle);
+        g.scatter(grid.points);
     }
     if (options.wall_layers.layers > 0) {
         const std::vector<Vec3> joint = grid.points;
@@ -73,15 +113,16 @@ GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& bo
         // Every cell stays in, those between laid nodes too: the result must be judged on all
         // of them. Laid layers that cross the grid are rarely repaired by the rest alone: a
         // short untangling budget, then the joint result is kept.
-        untangle::Problem problem = make_problem(grid, initial, body, options.held);
-        for (size_t v = 0; v < placed.size(); ++v)
-            if (placed[v]) problem.kinds[v] = VertexKind::fixed;
+        GridProblem g = make_problem(grid, initial, body, options.held);
+        untangle::Problem& problem = g.problem;
+        for (Id i = 0; i < Id(problem.points.size()); ++i)
+            if (placed[g.grid_id(i)]) problem.kinds[i] = VertexKind::fixed;
         untangle::UntangleOptions short_budget = options.untangle;
         short_budget.max_untangle_iterations = std::min(short_budget.max_untangle_iterations, 30);
         short_budget.stall_iterations = std::min(short_budget.stall_iterations, 10);
         result.layers_held = untangle::untangle_and_optimize(problem, short_budget);
         result.layers_laid = result.layers_held.inverted_after == 0;
-        if (result.layers_laid) grid.points = problem.points;
+        if (result.layers_laid) g.scatter(grid.points);
         else grid.points = joint;  // the laid layers cross the rest of the grid: keep the joint result
     }
     return result;
