@@ -4,6 +4,7 @@
 #include <array>
 #include <vector>
 
+#include "hexmesh/core/block_grid.h"
 #include "hexmesh/core/hex_mesh.h"
 
 namespace hexmesh {
@@ -19,6 +20,10 @@ std::array<double, 8> corner_determinants(const std::array<Vec3, 8>& p);
 
 // Per-cell scaled Jacobian, #cells (parallel, deterministic).
 std::vector<double> scaled_jacobians(const HexMesh& mesh);
+
+// The same for the cells of a block grid, in to_hex_mesh order (block by block, i fastest),
+// without building the unstructured mesh.
+std::vector<double> scaled_jacobians(const BlockGrid& grid);
 
 // Exact sign (+1, 0, -1) of det[a-c, b-c, d-c], by CGAL's exact orientation predicate.
 int exact_orientation(const Vec3& c, const Vec3& a, const Vec3& b, const Vec3& d);

@@ -39,19 +39,18 @@ void keep_no_worse_than(BlockGrid& grid, const std::vector<Vec3>& projected,
     const double floor = *std::min_element(before.begin(), before.end());
     if (!(floor > 0)) return;
     for (int round = 0; round < 100; ++round) {
-        const HexMesh mesh = to_hex_mesh(grid);
-        const std::vector<double> after = scaled_jacobians(mesh);
+        const std::vector<double> after = scaled_jacobians(grid);
         bool reverted = false;
-        for (Id c = 0; c < mesh.num_cells(); ++c) {
-            if (after[c] >= floor) continue;
-            for (int k = 0; k < 8; ++k) {
-                const Id v = mesh.node(c, k);
-                if (v >= first_new && grid.points[v] != projected[v]) {
-                    grid.points[v] = projected[v];
-                    reverted = true;
-                }
-            }
-        }
+        size_t cell = 0;
+        for (const Block& block : grid.blocks)
+            for_each_cell(block, [&](int, int, int, const std::array<Id, 8>& nodes) {
+                if (after[cell++] >= floor) return;
+                for (Id v : nodes)
+                    if (v >= first_new && grid.points[v] != projected[v]) {
+                        grid.points[v] = projected[v];
+                        reverted = true;
+                    }
+            });
         if (!reverted) return;
     }
 }
@@ -91,13 +90,12 @@ RefinementResult refine_on_body(const BlockGrid& coarse, const ImplicitFunction&
     // Free: the new nodes of the cells that touch a new wall node (the interpolated interior
     // is as smooth as the coarse grid and stays as it is); held: everything else.
     std::vector<bool> held(count, true);
-    const HexMesh mesh = to_hex_mesh(grid);
-    for (Id c = 0; c < mesh.num_cells(); ++c) {
-        const Id* nodes = &mesh.hexes[8 * c];
-        if (std::none_of(nodes, nodes + 8, [&](Id v) { return moved[v] >= 0; })) continue;
-        for (int k = 0; k < 8; ++k)
-            if (nodes[k] >= first_new) held[nodes[k]] = false;
-    }
+    for (const Block& block : grid.blocks)
+        for_each_cell(block, [&](int, int, int, const std::array<Id, 8>& nodes) {
+            if (std::none_of(nodes.begin(), nodes.end(), [&](Id v) { return moved[v] >= 0; })) return;
+            for (Id v : nodes)
+                if (v >= first_new) held[v] = false;
+        });
     if (options.sweeps <= 0) return result;
 
     GridOptimizationOptions o;
@@ -110,7 +108,7 @@ RefinementResult refine_on_body(const BlockGrid& coarse, const ImplicitFunction&
     o.untangle.log = options.log;
     o.held = held;
     const std::vector<Vec3> projected = grid.points;
-    const std::vector<double> before = scaled_jacobians(to_hex_mesh(grid));
+    const std::vector<double> before = scaled_jacobians(grid);
     result.solve = optimize_grid(grid, body, o).solve;
     keep_no_worse_than(grid, projected, before, first_new);
     return result;
