@@ -8,6 +8,7 @@
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -45,18 +46,21 @@ std::array<Vec3, 4> face_points(const HexMesh& mesh, Id face) {
 // partner[face] = the same face seen from the other cell, or no_partner on the boundary.
 // Faces are bucketed by their smallest node id (a counting sort, linear time), then matched
 // by their sorted node quadruple inside each bucket; buckets hold a handful of faces.
-std::vector<Id> match_faces(const HexMesh& mesh) {
+// Face f = 6 cell + local face -> the face it meets (no_partner on the boundary). FaceId: a
+// 32-bit id when 6 #cells fits (half the memory of these per-face arrays), else Id.
+template <class FaceId>
+std::vector<FaceId> match_faces(const HexMesh& mesh) {
     const Id num_faces = 6 * mesh.num_cells();
     std::vector<Id> start(static_cast<size_t>(mesh.num_points()) + 1, 0);
     for (Id f = 0; f < num_faces; ++f) ++start[sorted_key(mesh, f)[0] + 1];
     for (size_t n = 1; n < start.size(); ++n) start[n] += start[n - 1];
-    std::vector<Id> bucketed(static_cast<size_t>(num_faces));
+    std::vector<FaceId> bucketed(static_cast<size_t>(num_faces));
     {
         std::vector<Id> fill(start.begin(), start.end() - 1);
-        for (Id f = 0; f < num_faces; ++f) bucketed[fill[sorted_key(mesh, f)[0]]++] = f;
+        for (Id f = 0; f < num_faces; ++f) bucketed[fill[sorted_key(mesh, f)[0]]++] = FaceId(f);
     }
 
-    std::vector<Id> partner(static_cast<size_t>(num_faces), no_partner);
+    std::vector<FaceId> partner(static_cast<size_t>(num_faces), FaceId(no_partner));
     tbb::parallel_for(tbb::blocked_range<Id>(0, mesh.num_points(), 1024), [&](const auto& r) {
         std::vector<std::pair<std::array<Id, 4>, Id>> bucket;
         for (Id n = r.begin(); n != r.end(); ++n) {
@@ -75,8 +79,8 @@ std::vector<Id> match_faces(const HexMesh& mesh) {
                     throw std::invalid_argument(msg.str());
                 }
                 if (j - i == 2) {
-                    partner[bucket[i].second] = bucket[i + 1].second;
-                    partner[bucket[i + 1].second] = bucket[i].second;
+                    partner[bucket[i].second] = FaceId(bucket[i + 1].second);
+                    partner[bucket[i + 1].second] = FaceId(bucket[i].second);
                 }
                 i = j;
             }
@@ -91,7 +95,8 @@ bool is_owner_side(Id face, Id other) {
 
 // Geometry of a face as seen from its own cell: computed from the owner's point order, the
 // area negated on the neighbour side.
-FaceGeometry oriented_face(const HexMesh& mesh, const std::vector<Id>& partner, Id face) {
+template <class FaceId>
+FaceGeometry oriented_face(const HexMesh& mesh, const std::vector<FaceId>& partner, Id face) {
     const Id other = partner[face];
     if (is_owner_side(face, other)) return detail::quad_geometry(face_points(mesh, face));
     FaceGeometry g = detail::quad_geometry(face_points(mesh, other));
@@ -135,12 +140,15 @@ constexpr double pi = 3.14159265358979323846;
 
 }  // namespace
 
-QualityReport measure_quality(const HexMesh& mesh) {
+namespace {
+
+template <class FaceId>
+QualityReport measure(const HexMesh& mesh) {
     QualityReport report;
     report.cells = mesh.num_cells();
     if (report.cells == 0) return report;
 
-    const std::vector<Id> partner = match_faces(mesh);
+    const std::vector<FaceId> partner = match_faces<FaceId>(mesh);
     std::vector<Vec3> centres(static_cast<size_t>(report.cells));
     std::vector<double> volumes(static_cast<size_t>(report.cells));
 
@@ -219,6 +227,14 @@ QualityReport measure_quality(const HexMesh& mesh) {
         std::acos(std::clamp(faces.min_ortho, -1.0, 1.0)) * 180.0 / pi;
     report.max_volume_ratio = faces.max_volume_ratio;
     return report;
+}
+
+}  // namespace
+
+QualityReport measure_quality(const HexMesh& mesh) {
+    if (6 * mesh.num_cells() <= Id(std::numeric_limits<std::int32_t>::max()))
+        return measure<std::int32_t>(mesh);
+    return measure<Id>(mesh);
 }
 
 }  // namespace hexmesh
