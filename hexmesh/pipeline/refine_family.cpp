@@ -30,21 +30,22 @@ double cell_length_scale(const BlockGrid& grid) {
 
 // The functional's box targets can pull a cell below the quality interpolation gave it (at
 // the irregular corners of the O-H core, where the coarse cell is no box). Where the polish
-// leaves a cell below the worst scaled Jacobian of the interpolated grid, its new nodes go
-// back to their interpolated (and projected) positions, until no cell is below it. The
-// projected grid itself meets the floor, so this ends. Skipped when interpolation left
-// inverted cells: then the polish is the untangling.
-void keep_no_worse_than(BlockGrid& grid, const std::vector<Vec3>& projected,
-                        const std::vector<double>& before, Id first_new) {
-    const double floor = *std::min_element(before.begin(), before.end());
+// leaves a cell below `floor`, the worst scaled Jacobian of the interpolated grid, its new
+// nodes go back to their interpolated (and projected) positions, until no cell is below it.
+// Only cells with a node the polish could move (not `held`) are checked: the others are as
+// they were. The projected grid itself meets the floor, so this ends. Skipped when
+// interpolation left inverted cells (floor <= 0): then the polish is the untangling.
+void keep_no_worse_than(BlockGrid& grid, const std::vector<Vec3>& projected, double floor,
+                        const std::vector<bool>& held, Id first_new) {
     if (!(floor > 0)) return;
     for (int round = 0; round < 100; ++round) {
-        const std::vector<double> after = scaled_jacobians(grid);
         bool reverted = false;
-        size_t cell = 0;
         for (const Block& block : grid.blocks)
             for_each_cell(block, [&](int, int, int, const std::array<Id, 8>& nodes) {
-                if (after[cell++] >= floor) return;
+                if (std::all_of(nodes.begin(), nodes.end(), [&](Id v) { return bool(held[v]); })) return;
+                std::array<Vec3, 8> p;
+                for (int k = 0; k < 8; ++k) p[k] = grid.points[nodes[k]];
+                if (hex_scaled_jacobian(p) >= floor) return;
                 for (Id v : nodes)
                     if (v >= first_new && grid.points[v] != projected[v]) {
                         grid.points[v] = projected[v];
@@ -109,8 +110,9 @@ RefinementResult refine_on_body(const BlockGrid& coarse, const ImplicitFunction&
     o.held = held;
     const std::vector<Vec3> projected = grid.points;
     const std::vector<double> before = scaled_jacobians(grid);
+    const double floor = *std::min_element(before.begin(), before.end());
     result.solve = optimize_grid(grid, body, o).solve;
-    keep_no_worse_than(grid, projected, before, first_new);
+    keep_no_worse_than(grid, projected, floor, held, first_new);
     return result;
 }
 
