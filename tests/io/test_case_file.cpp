@@ -84,19 +84,6 @@ TEST(CaseFile, NegativeSizesAreRefused) {
               std::string::npos);
 }
 
-TEST(CaseFile, FeatureAngleGoesWithASurfaceFile) {
-    const Case c = parse_case(R"({"geometry": {"file": "part.stl", "feature_angle": 45}})", "/d/c.json");
-    EXPECT_EQ(c.geometry.feature_angle, 45);
-    EXPECT_EQ(parse_case(case_to_json(c), "g.json").geometry.feature_angle, 45);
-    EXPECT_EQ(parse_case(R"({"geometry": {"file": "part.stl"}})", "c.json").geometry.feature_angle, 30);
-    EXPECT_NE(error_of(R"({"geometry": {"file": "part.stl", "feature_angle": 0}})")
-                  .find("geometry.feature_angle: expected an angle in (0, 180] degrees"),
-              std::string::npos);
-    EXPECT_NE(error_of(R"({"geometry": {"sphere": {"radius": 1}, "feature_angle": 30}})")
-                  .find("geometry.feature_angle: expected no feature angle: it goes with \"file\""),
-              std::string::npos);
-}
-
 TEST(CaseFile, AbsurdSizesAreRefused) {
     const std::string e = error_of(
         R"({"geometry": {"sphere": {"radius": 1}}, "grid": {"cells_per_edge": 4000, "wall_cells": 4000}})");
