@@ -124,7 +124,7 @@ int MeshCreases::corners() const {
                              [](const auto& c) { return !c.second.empty(); }));
 }
 
-bool MeshCreases::add_pieces(const Vec3& p, double tolerance,
+bool MeshCreases::add_pieces(const Vec3& p, double tolerance, double value, double slack,
                              std::vector<ImplicitFunction::Piece>& out) const {
     const Index& x = *index_;
     if (x.segments.empty()) return false;
@@ -134,11 +134,15 @@ bool MeshCreases::add_pieces(const Vec3& p, double tolerance,
     if ((p - q).norm() > reach) return false;
     const int edge = int(hit.second - x.segments.begin());
 
-    const std::vector<int>* planes = nullptr;
+    const std::vector<int>* planes = nullptr;  // of the nearer corner end within reach
+    double corner_distance = reach;
     for (int end : x.ends[edge]) {
         const auto it = x.corner_planes.find(end);
-        if (it != x.corner_planes.end() && !it->second.empty() && (x.points[end] - p).norm() <= reach)
+        const double d = (x.points[end] - p).norm();
+        if (it != x.corner_planes.end() && !it->second.empty() && d <= corner_distance) {
             planes = &it->second;
+            corner_distance = d;
+        }
     }
     ImplicitFunction::Piece candidates[64];
     int count = 0;
@@ -151,6 +155,8 @@ bool MeshCreases::add_pieces(const Vec3& p, double tolerance,
     double nearest = std::numeric_limits<double>::infinity();
     for (int i = 0; i < count; ++i)
         if (std::abs(candidates[i].value) < std::abs(nearest)) nearest = candidates[i].value;
+    // Planes of a crease elsewhere (across a thin wall, under a groove) are not this place's.
+    if (!(std::abs(nearest - value) <= tol + slack)) return false;
     const size_t first = out.size();
     for (int i = 0; i < count; ++i)
         if (std::abs(candidates[i].value - nearest) <= tol) out.push_back(candidates[i]);

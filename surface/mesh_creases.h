@@ -32,12 +32,15 @@ public:
     int corners() const;
 
     // The pieces at p, appended to `out`, when p is near a crease or a corner: the planes of
-    // the nearest crease edge, or of the corner at its end when p is nearer than
-    // tolerance / sin(angle) to that corner, keeping those whose value at p is within
-    // `tolerance` of the value nearest to zero. Returns false, appending nothing, when fewer
-    // than two planes are kept or no crease edge lies within tolerance / sin(angle) of p:
-    // there the surface is smooth and the caller supplies its own piece.
-    bool add_pieces(const Vec3& p, double tolerance, std::vector<ImplicitFunction::Piece>& out) const;
+    // the nearest crease edge, or of the nearer corner at its ends when p is nearer than
+    // tolerance / sin(angle) to it, keeping those whose value at p is within `tolerance` of
+    // the value nearest to zero. Returns false, appending nothing, when no crease edge lies
+    // within tolerance / sin(angle) of p, when that nearest plane value is more than
+    // tolerance + slack from `value` (the body's value at p; slack covers its sampling
+    // error: the planes belong to a crease elsewhere), or when fewer than two planes are
+    // kept: there the surface is smooth and the caller supplies its own piece.
+    bool add_pieces(const Vec3& p, double tolerance, double value, double slack,
+                    std::vector<ImplicitFunction::Piece>& out) const;
 
 private:
     struct Index;

@@ -209,7 +209,8 @@ Vec3 MeshSdf::gradient(const Vec3& p) const {
 }
 
 void MeshSdf::active_pieces(const Vec3& p, double tolerance, std::vector<Piece>& out) const {
-    if (!creases_->add_pieces(p, tolerance, out)) ImplicitFunction::active_pieces(p, tolerance, out);
+    const double u = value(p);
+    if (!creases_->add_pieces(p, tolerance, u, 0.5 * grid_->voxel, out)) out.push_back({u, gradient(p)});
 }
 
 void MeshSdf::write_vdb(const std::string& path) const {

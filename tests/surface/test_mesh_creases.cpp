@@ -88,6 +88,28 @@ TEST_P(BoxStlCreases, ProjectsOntoEdgesAndSnapsToCorners) {
 INSTANTIATE_TEST_SUITE_P(Orientation, BoxStlCreases, ::testing::Values(false, true),
                          [](const auto& info) { return info.param ? "Reversed" : "Outward"; });
 
+// A tent: a prism of length 4 whose cross-section is the triangle (-1, 0), (1, 0), (0, 0.4)
+// in (y, z). Its ridge (a 44-degree crease) passes 0.4 above the middle of the bottom face;
+// there, with a tolerance that reaches the ridge, the ridge's planes are about -0.37, far
+// from the body's value 0: the bottom stays smooth, the ridge is a crease.
+TEST(MeshCreases, ACreaseElsewhereDoesNotMakeAFaceSharp) {
+    TriangleSurface tent;
+    for (double x : {-2.0, 2.0})
+        for (const Vec3& q : {Vec3(0, -1, 0), Vec3(0, 1, 0), Vec3(0, 0, 0.4)})
+            tent.points.push_back(Vec3(x, q.y(), q.z()));
+    // Points: 0..2 at x = -2 (left foot, right foot, apex), 3..5 at x = 2.
+    tent.triangles = {{0, 2, 1}, {3, 4, 5},            // end caps
+                      {0, 1, 4}, {0, 4, 3},            // bottom
+                      {1, 2, 5}, {1, 5, 4},            // roof y > 0
+                      {0, 3, 5}, {0, 5, 2}};           // roof y < 0
+    MeshSdfOptions o;
+    o.voxel_size = 0.02;
+    const MeshSdf sdf(tent, o);
+    EXPECT_EQ(classify_surface_point(sdf, Vec3(0, 0, 0), 0.25), FeatureKind::smooth);
+    EXPECT_EQ(classify_surface_point(sdf, Vec3(0, 0, 0.4), 1e-6), FeatureKind::crease);
+    EXPECT_EQ(classify_surface_point(sdf, Vec3(0, 0.95, 0.02), 0.06), FeatureKind::crease);
+}
+
 TEST(MeshCreases, AngleOf180MeansASmoothBody) {
     const MeshSdf sdf = box_sdf(false, 180);
     EXPECT_EQ(sdf.creases().crease_edges(), 0);
