@@ -167,11 +167,16 @@ UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& op
         std::vector<std::vector<Id>> elements_of(x.size());
         for (Id e = 0; e < problem.num_elements(); ++e)
             for (Id v : problem.element(e)) elements_of[v].push_back(e);
-        Id previous = 0;  // elements of the last part: a part that stops growing ends this
-        for (int rings = options.local_rings; best.inverted > options.unrepairable; rings *= 2) {
+        // A part no larger than the last one, after a round that repaired nothing, ends this:
+        // more rings add no freedom (few free nodes around cells that cannot be repaired).
+        Id previous = 0, inverted_then = std::numeric_limits<Id>::max();
+        for (int rings = options.local_rings; best.inverted > options.unrepairable && rings < (1 << 20);
+             rings *= 2) {
             Problem part;
-            if (!local_part(problem, elements_of, rings, part) || part.num_elements() <= previous) break;
+            if (!local_part(problem, elements_of, rings, part)) break;
+            if (part.num_elements() <= previous && best.inverted >= inverted_then) break;
             previous = part.num_elements();
+            inverted_then = best.inverted;
             UntangleOptions local = options;
             local.max_untangle_iterations = std::min(options.max_untangle_iterations, 50);
             local.stall_iterations = std::min(options.stall_iterations, 10);  // the global pass follows
