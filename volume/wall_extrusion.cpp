@@ -39,9 +39,10 @@ std::optional<Vec3> unit_offset(const ImplicitFunction& body, const Vec3& x0, do
     return t;
 }
 
-// Nodes that lines starting at different wall nodes would both move (a single block walled
-// on several sides: lines from opposite faces run through the same nodes, lines from
-// neighbouring faces cross near the edges). Lines through them are left as they are.
+// Nodes that lines starting at different wall nodes would both move, or that are one line's
+// wall node and another's inner node (a single block walled on several sides: lines from
+// opposite faces run through the same nodes, lines from neighbouring faces cross near the
+// edges and run along each other's walls). Lines through them are left as they are.
 std::vector<bool> crossed_lines(const BlockGrid& grid, const std::vector<WallFace>& faces) {
     constexpr Id nobody = -1;
     std::vector<Id> start(grid.points.size(), nobody);
@@ -50,7 +51,7 @@ std::vector<bool> crossed_lines(const BlockGrid& grid, const std::vector<WallFac
         for (int q = 0; q < f.nq; ++q)
             for (int p = 0; p < f.np; ++p) {
                 const Id s = f.node(p, q, 0);
-                for (int m = 1; m < f.depth - 1; ++m) {
+                for (int m = 0; m < f.depth - 1; ++m) {  // from the wall node: it must not move
                     Id& owner = start[f.node(p, q, m)];
                     if (owner == nobody) owner = s;
                     else if (owner != s) crossed[f.node(p, q, m)] = true;

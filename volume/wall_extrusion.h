@@ -20,9 +20,9 @@ namespace hexmesh {
 // edges (faces meeting at less than about 30 degrees) are left as they are. Returns, per
 // node, whether it is a wall or a layer node (the ones the law now fixes). Lines shorter than
 // law.layers + 1 edges keep their last node. Lines that would move a node another line
-// (from a different wall node) moves too are left as they are: in a single block walled on
-// all sides that is every line, and its layers stay as the grid was built. law.layers == 0
-// leaves the grid as it is.
+// (from a different wall node) moves too, or another line's wall node, are left as they are:
+// in a single block walled on all sides that is every line, and its layers stay as the grid
+// was built. law.layers == 0 leaves the grid as it is.
 std::vector<bool> extrude_wall_layers(BlockGrid& grid, const ImplicitFunction& body,
                                       const WallLayers& law);
 
