@@ -160,6 +160,8 @@ PointCloudDiagnostics diagnose_point_cloud(const OrientedPoints& cloud, int neig
     if (cloud.normals.size() != n)
         throw std::invalid_argument("diagnose_point_cloud: " + std::to_string(n) + " points but " +
                                     std::to_string(cloud.normals.size()) + " normals");
+    if (neighbours < 1 || neighbours > 64)
+        throw std::invalid_argument("diagnose_point_cloud: neighbours must be in 1..64");
     PointCloudDiagnostics d;
     d.points = (long long)n;
     if (n == 0) return d;

@@ -64,7 +64,8 @@ struct PointCloudDiagnostics {
     long long inconsistent_normals = 0;
 };
 
-// Throws std::invalid_argument for points and normals of different counts.
+// Throws std::invalid_argument for points and normals of different counts or neighbours
+// outside 1..64.
 PointCloudDiagnostics diagnose_point_cloud(const OrientedPoints& cloud, int neighbours = 12);
 
 }  // namespace hexmesh
