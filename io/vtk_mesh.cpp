@@ -64,20 +64,10 @@ vtkSmartPointer<vtkStructuredGrid> to_vtk_block(const BlockGrid& grid, const Blo
     out->SetPoints(points);
     out->GetPointData()->AddArray(kinds);
 
-    const Dims c = block.cells();
     vtkNew<vtkDoubleArray> sj;
     sj->SetName("scaled_jacobian");
-    sj->SetNumberOfValues(c.count());
-    double* sj_values = sj->GetPointer(0);
-    tbb::parallel_for(0, c.nk, [&](int k) {
-        for (int j = 0; j < c.nj; ++j)
-            for (int i = 0; i < c.ni; ++i) {
-                std::array<Vec3, 8> p;
-                const std::array<Id, 8> ids = cell_nodes(block, i, j, k);
-                for (int v = 0; v < 8; ++v) p[v] = grid.points[ids[v]];
-                sj_values[c.flat(i, j, k)] = hex_scaled_jacobian(p);
-            }
-    });
+    sj->SetNumberOfValues(block.cells().count());
+    scaled_jacobians(grid, block, sj->GetPointer(0));
     out->GetCellData()->AddArray(sj);
 
     // Field data keeps what a structured grid cannot say: the block's name and face patches.

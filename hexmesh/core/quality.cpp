@@ -91,21 +91,25 @@ std::vector<double> scaled_jacobians(const HexMesh& mesh) {
     return sj;
 }
 
+void scaled_jacobians(const BlockGrid& grid, const Block& block, double* out) {
+    const Dims c = block.cells();
+    tbb::parallel_for(0, c.nk, [&](int k) {
+        for (int j = 0; j < c.nj; ++j)
+            for (int i = 0; i < c.ni; ++i) {
+                const std::array<Id, 8> nodes = cell_nodes(block, i, j, k);
+                std::array<Vec3, 8> p;
+                for (int v = 0; v < 8; ++v) p[v] = grid.points[nodes[v]];
+                out[c.flat(i, j, k)] = hex_scaled_jacobian(p);
+            }
+    });
+}
+
 std::vector<double> scaled_jacobians(const BlockGrid& grid) {
     std::vector<double> sj(static_cast<size_t>(grid.num_cells()));
     size_t first = 0;  // of the block's cells
     for (const Block& block : grid.blocks) {
-        const Dims c = block.cells();
-        tbb::parallel_for(0, c.nk, [&](int k) {
-            for (int j = 0; j < c.nj; ++j)
-                for (int i = 0; i < c.ni; ++i) {
-                    const std::array<Id, 8> nodes = cell_nodes(block, i, j, k);
-                    std::array<Vec3, 8> p;
-                    for (int v = 0; v < 8; ++v) p[v] = grid.points[nodes[v]];
-                    sj[first + size_t(c.flat(i, j, k))] = hex_scaled_jacobian(p);
-                }
-        });
-        first += size_t(c.count());
+        scaled_jacobians(grid, block, sj.data() + first);
+        first += size_t(block.cells().count());
     }
     return sj;
 }

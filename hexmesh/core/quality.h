@@ -25,6 +25,9 @@ std::vector<double> scaled_jacobians(const HexMesh& mesh);
 // without building the unstructured mesh.
 std::vector<double> scaled_jacobians(const BlockGrid& grid);
 
+// The cells of one block of `grid` into out[0 .. block.cells().count()), i fastest.
+void scaled_jacobians(const BlockGrid& grid, const Block& block, double* out);
+
 // Exact sign (+1, 0, -1) of det[a-c, b-c, d-c], by CGAL's exact orientation predicate.
 int exact_orientation(const Vec3& c, const Vec3& a, const Vec3& b, const Vec3& d);
 
