@@ -24,10 +24,6 @@ using AabbTree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
 
 Kernel::Point_3 to_cgal(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
 
-std::uint64_t edge_key(int a, int b) {
-    return (std::uint64_t(std::min(a, b)) << 32) | std::uint32_t(std::max(a, b));
-}
-
 // A triangle's plane: n . x = offset, n the unit normal out of the body.
 struct Plane {
     Vec3 normal;

@@ -44,7 +44,7 @@ bool has_boundary_edges(const TriangleSurface& s) {
     for (const auto& t : s.triangles)
         for (int e = 0; e < 3; ++e) {
             const int a = t[e], b = t[(e + 1) % 3];
-            ++uses[(std::uint64_t(std::min(a, b)) << 32) | std::uint32_t(std::max(a, b))];
+            ++uses[edge_key(a, b)];
         }
     for (const auto& [edge, n] : uses)
         if (n == 1) return true;

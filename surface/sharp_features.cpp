@@ -25,10 +25,6 @@ struct EdgeUse {
     }
 };
 
-std::uint64_t edge_key(int a, int b) {
-    return (std::uint64_t(std::min(a, b)) << 32) | std::uint32_t(std::max(a, b));
-}
-
 // The uses of every edge, sorted so that those of one edge are adjacent (a parallel sort:
 // faster than hashing for the million-triangle surfaces this runs on).
 std::vector<std::pair<int, int>> feature_edges(const TriangleSurface& s, const FeatureOptions& o) {

@@ -82,7 +82,7 @@ SurfaceDiagnostics diagnose_surface(const TriangleSurface& s) {
     for (int t : kept)
         for (int e = 0; e < 3; ++e) {
             const int a = s.triangles[t][e], b = s.triangles[t][(e + 1) % 3];
-            auto& u = uses[(std::uint64_t(std::min(a, b)) << 32) | std::uint32_t(std::max(a, b))];
+            auto& u = uses[edge_key(a, b)];
             (a < b ? u.first : u.second)++;
         }
     d.edges = (long long)uses.size();
