@@ -38,9 +38,12 @@ struct MeshCreases::Index {
     // Per crease edge (the order of `segments`): its end point ids and its two planes.
     std::vector<std::array<int, 2>> ends;
     std::vector<std::array<int, 2>> edge_planes;
-    // Per surface point that is a corner: the planes along its creases (empty elsewhere).
-    std::unordered_map<int, std::vector<int>> corner_planes;
-    std::vector<Vec3> points;
+    // Per surface point that is a corner: where it is and the planes along its creases.
+    struct Corner {
+        Vec3 point;
+        std::vector<int> planes;
+    };
+    std::unordered_map<int, Corner> corners;
     Segments segments;  // must outlive the tree, which holds iterators into it
     AabbTree tree;
     double reach_per_tolerance = 1;  // 1 / sin(angle): how far a crease's planes are used
@@ -55,15 +58,15 @@ MeshCreases::MeshCreases(const TriangleSurface& surface, double angle_degrees,
     if (features.chains.empty()) return;
     constexpr double degree = 3.14159265358979323846 / 180;
     x.reach_per_tolerance = 1 / std::sin(std::clamp(angle_degrees, 1.0, 90.0) * degree);
-    x.points = surface.points;
 
     // Crease edges and their triangles.
     std::unordered_map<std::uint64_t, int> edge_of;
+    std::vector<std::array<int, 2>> ends;
     for (const auto& chain : features.chains)
         for (size_t k = 0; k + 1 < chain.size(); ++k)
-            if (edge_of.try_emplace(edge_key(chain[k], chain[k + 1]), int(x.ends.size())).second)
-                x.ends.push_back({chain[k], chain[k + 1]});
-    x.edge_planes.assign(x.ends.size(), {-1, -1});
+            if (edge_of.try_emplace(edge_key(chain[k], chain[k + 1]), int(ends.size())).second)
+                ends.push_back({chain[k], chain[k + 1]});
+    std::vector<std::array<int, 2>> edge_planes(ends.size(), {-1, -1});
     for (int t = 0; t < int(surface.triangles.size()); ++t) {
         const auto& tri = surface.triangles[t];
         int plane = -1;
@@ -79,32 +82,23 @@ MeshCreases::MeshCreases(const TriangleSurface& surface, double angle_degrees,
                 plane = int(x.planes.size());
                 x.planes.push_back({n, n.dot(a)});
             }
-            auto& slots = x.edge_planes[it->second];
+            auto& slots = edge_planes[it->second];
             (slots[0] < 0 ? slots[0] : slots[1]) = plane;
         }
     }
-    for (int c : features.corners) x.corner_planes[c];
-    for (size_t e = 0; e < x.ends.size(); ++e) {
-        if (x.edge_planes[e][1] < 0) continue;  // not two triangles: no crease after all
-        for (int end : x.ends[e]) {
-            auto it = x.corner_planes.find(end);
-            if (it == x.corner_planes.end()) continue;
-            it->second.push_back(x.edge_planes[e][0]);
-            it->second.push_back(x.edge_planes[e][1]);
+    for (int c : features.corners) x.corners[c].point = surface.points[c];
+    for (size_t e = 0; e < ends.size(); ++e) {
+        if (edge_planes[e][1] < 0) continue;  // not two triangles: no crease after all
+        for (int end : ends[e]) {
+            auto it = x.corners.find(end);
+            if (it == x.corners.end()) continue;
+            it->second.planes.push_back(edge_planes[e][0]);
+            it->second.planes.push_back(edge_planes[e][1]);
         }
-        x.segments.emplace_back(to_cgal(surface.points[x.ends[e][0]]),
-                                to_cgal(surface.points[x.ends[e][1]]));
+        x.ends.push_back(ends[e]);
+        x.edge_planes.push_back(edge_planes[e]);
+        x.segments.emplace_back(to_cgal(surface.points[ends[e][0]]), to_cgal(surface.points[ends[e][1]]));
     }
-    // Keep only the edges with two planes, in the order of `segments`.
-    size_t kept = 0;
-    for (size_t e = 0; e < x.ends.size(); ++e)
-        if (x.edge_planes[e][1] >= 0) {
-            x.ends[kept] = x.ends[e];
-            x.edge_planes[kept] = x.edge_planes[e];
-            ++kept;
-        }
-    x.ends.resize(kept);
-    x.edge_planes.resize(kept);
     if (x.segments.empty()) return;
     x.tree.insert(x.segments.begin(), x.segments.end());
     x.tree.build();
@@ -116,8 +110,8 @@ MeshCreases::~MeshCreases() = default;
 int MeshCreases::crease_edges() const { return int(index_->segments.size()); }
 
 int MeshCreases::corners() const {
-    return int(std::count_if(index_->corner_planes.begin(), index_->corner_planes.end(),
-                             [](const auto& c) { return !c.second.empty(); }));
+    return int(std::count_if(index_->corners.begin(), index_->corners.end(),
+                             [](const auto& c) { return !c.second.planes.empty(); }));
 }
 
 bool MeshCreases::add_pieces(const Vec3& p, double tolerance, double value, double slack,
@@ -133,10 +127,11 @@ bool MeshCreases::add_pieces(const Vec3& p, double tolerance, double value, doub
     const std::vector<int>* planes = nullptr;  // of the nearer corner end within reach
     double corner_distance = reach;
     for (int end : x.ends[edge]) {
-        const auto it = x.corner_planes.find(end);
-        const double d = (x.points[end] - p).norm();
-        if (it != x.corner_planes.end() && !it->second.empty() && d <= corner_distance) {
-            planes = &it->second;
+        const auto it = x.corners.find(end);
+        if (it == x.corners.end() || it->second.planes.empty()) continue;
+        const double d = (it->second.point - p).norm();
+        if (d <= corner_distance) {
+            planes = &it->second.planes;
             corner_distance = d;
         }
     }
