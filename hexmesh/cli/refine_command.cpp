@@ -7,6 +7,7 @@
 
 #include "hexmesh/cli/commands.h"
 #include "hexmesh/pipeline/make_body.h"
+#include "hexmesh/pipeline/phase_timer.h"
 #include "hexmesh/pipeline/refine_family.h"
 #include "hexmesh/pipeline/run_case.h"
 #include "io/case_file.h"
@@ -51,20 +52,23 @@ void add_refine_command(CLI::App& app, int& exit_code) {
         if (!std::filesystem::exists(args->grid_path))
             throw InputError(fmt::format("{}: no such grid file", args->grid_path));
         const Case c = case_of_grid(args->grid_path, args->case_path);
+        std::cout << fmt::format("hexmesh refine {}\n", args->grid_path);
+        PhaseTimer timer(std::cout);
         BlockGrid grid = read_vtk_block_grid(args->grid_path);
+        timer.done("read", fmt::format("({} blocks, {} cells)", grid.blocks.size(),
+                                       grid.num_cells()));
         const Body body = make_body(c.geometry);
-        std::cout << fmt::format("hexmesh refine {} ({} blocks, {} cells)\n", args->grid_path,
-                                 grid.blocks.size(), grid.num_cells());
+        timer.done("geometry");
         for (int level = 1; level <= args->levels; ++level) {
             RefinementResult r = refine_on_body(grid, *body);
-            std::cout << fmt::format(
-                "  refined: {} cells, {} new wall nodes projected (max move "
-                "{:.3g}), min det after {:.3g}\n",
-                r.grid.num_cells(), r.projected, r.max_projection, r.solve.min_det_after);
             grid = std::move(r.grid);
+            timer.done("refine",
+                       fmt::format("({} cells, {} wall nodes projected, max move {:.3g})",
+                                   grid.num_cells(), r.projected, r.max_projection));
         }
         const std::optional<TriangleSurface> surface = reference_surface(c.geometry);
         const GridReport report = measure_grid(grid, *body, {}, surface ? &*surface : nullptr);
+        timer.done("quality");
         std::cout << "\n" << format_quality_table(report) << "\n";
         if (report.quality.inverted_cells > 0)
             throw std::runtime_error(
@@ -75,7 +79,9 @@ void add_refine_command(CLI::App& app, int& exit_code) {
         write_vtk_grid(grid, out.path(grid.blocks.size() == 1 ? "grid.vts" : "grid.vtm"));
         out.write_text("quality.json", quality_json(report));
         out.write_text("grid.case.json", case_to_json(c));
-        for (const std::string& f : out.commit()) std::cout << "written: " << f << "\n";
+        const std::vector<std::string> written = out.commit();
+        timer.done("write");
+        for (const std::string& f : written) std::cout << "written: " << f << "\n";
         exit_code = 0;
     });
 }

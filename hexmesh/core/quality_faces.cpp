@@ -25,81 +25,226 @@ using detail::FaceGeometry;
 
 constexpr Id no_partner = -1;
 
-std::array<Id, 4> face_nodes(const HexMesh& mesh, Id face) {
-    const Id cell = face / 6;
-    const auto& local = hex_faces[face % 6];
-    return {mesh.node(cell, local[0]), mesh.node(cell, local[1]), mesh.node(cell, local[2]),
-            mesh.node(cell, local[3])};
+// One cell as the measuring passes see it: its nodes and, per local face, the face id
+// (6 cell + local face) of the same face seen from the other cell, or no_partner.
+// Bit f of `lower_neighbour` says that the other cell is its structured neighbour one
+// step down that axis (f = imin, jmin or kmin of a block), so the other side's point
+// order follows from this cell's nodes (see seen_from_lower).
+struct CellView {
+    std::array<Id, 8> nodes;
+    std::array<Id, 6> partner;
+    unsigned lower_neighbour = 0;
+};
+
+// For an imin / jmin / kmin face f: the local nodes of this cell that the cell below lists
+// on its face f + 1, in its order (its node n is our node n with the axis bit flipped).
+constexpr std::array<std::array<int, 4>, 6> seen_from_lower = {{
+    {0, 3, 7, 4},  // below's imax face {1, 2, 6, 5}, x flipped
+    {},
+    {1, 0, 4, 5},  // below's jmax face {2, 3, 7, 6}, y flipped
+    {},
+    {0, 1, 2, 3},  // below's kmax face {4, 5, 6, 7}, z flipped
+    {},
+}};
+
+std::array<Vec3, 4> points_of(const std::vector<Vec3>& points, const std::array<Id, 8>& nodes,
+                              const std::array<int, 4>& local) {
+    return {points[nodes[local[0]]], points[nodes[local[1]]], points[nodes[local[2]]],
+            points[nodes[local[3]]]};
 }
 
-std::array<Id, 4> sorted_key(const HexMesh& mesh, Id face) {
-    std::array<Id, 4> key = face_nodes(mesh, face);
+std::array<Id, 4> sorted_face(const std::array<Id, 8>& nodes, int f) {
+    const auto& local = hex_faces[f];
+    std::array<Id, 4> key = {nodes[local[0]], nodes[local[1]], nodes[local[2]], nodes[local[3]]};
     std::sort(key.begin(), key.end());
     return key;
 }
 
-std::array<Vec3, 4> face_points(const HexMesh& mesh, Id face) {
-    const std::array<Id, 4> n = face_nodes(mesh, face);
-    return {mesh.points[n[0]], mesh.points[n[1]], mesh.points[n[2]], mesh.points[n[3]]};
+// Pairs up faces that list the same four nodes: faces[i] = (sorted nodes, face id).
+// Calls pair(a, b) for each matched pair; a face listed by three or more cells throws.
+template <class Key, class F>
+void pair_equal_faces(std::vector<std::pair<Key, Id>>& faces, F&& pair) {
+    std::sort(faces.begin(), faces.end());
+    for (size_t i = 0; i < faces.size();) {
+        size_t j = i + 1;
+        while (j < faces.size() && faces[j].first == faces[i].first) ++j;
+        if (j - i > 2) {
+            std::ostringstream msg;
+            msg << "measure_quality: a face is shared by more than two cells (cells "
+                << faces[i].second / 6 << ", " << faces[i + 1].second / 6 << ", "
+                << faces[i + 2].second / 6 << "); the mesh is not a valid hex mesh";
+            throw std::invalid_argument(msg.str());
+        }
+        if (j - i == 2) pair(faces[i].second, faces[i + 1].second);
+        i = j;
+    }
 }
 
-// partner[face] = the same face seen from the other cell, or no_partner on the boundary.
-// Faces are bucketed by their smallest node id (a counting sort, linear time), then matched
-// by their sorted node quadruple inside each bucket; buckets hold a handful of faces.
-// Face f = 6 cell + local face -> the face it meets (no_partner on the boundary). FaceId: a
-// 32-bit id when 6 #cells fits (half the memory of these per-face arrays), else Id.
+// The cells of an unstructured mesh; faces matched by their node ids. FaceId: a 32-bit id
+// when 6 #cells fits (half the memory of the per-face array), else Id.
 template <class FaceId>
-std::vector<FaceId> match_faces(const HexMesh& mesh) {
-    const Id num_faces = 6 * mesh.num_cells();
-    std::vector<Id> start(static_cast<size_t>(mesh.num_points()) + 1, 0);
-    for (Id f = 0; f < num_faces; ++f) ++start[sorted_key(mesh, f)[0] + 1];
-    for (size_t n = 1; n < start.size(); ++n) start[n] += start[n - 1];
-    std::vector<FaceId> bucketed(static_cast<size_t>(num_faces));
-    {
-        std::vector<Id> fill(start.begin(), start.end() - 1);
-        for (Id f = 0; f < num_faces; ++f) bucketed[fill[sorted_key(mesh, f)[0]]++] = FaceId(f);
+class MeshCells {
+public:
+    explicit MeshCells(const HexMesh& mesh) : mesh_(mesh) { match_faces(); }
+
+    Id num_cells() const { return mesh_.num_cells(); }
+    const std::vector<Vec3>& points() const { return mesh_.points; }
+    CellView cell(Id c) const {
+        CellView v;
+        for (int k = 0; k < 8; ++k) v.nodes[k] = mesh_.node(c, k);
+        for (int f = 0; f < 6; ++f) {
+            const FaceId other = partner_[6 * c + f];
+            v.partner[f] = other == FaceId(no_partner) ? no_partner : Id(other);
+        }
+        return v;
+    }
+    std::array<Vec3, 4> face_points(Id face) const {
+        return points_of(mesh_.points, cell(face / 6).nodes, hex_faces[face % 6]);
     }
 
-    std::vector<FaceId> partner(static_cast<size_t>(num_faces), FaceId(no_partner));
-    tbb::parallel_for(tbb::blocked_range<Id>(0, mesh.num_points(), 1024), [&](const auto& r) {
-        std::vector<std::pair<std::array<Id, 4>, Id>> bucket;
-        for (Id n = r.begin(); n != r.end(); ++n) {
-            bucket.clear();
-            for (Id s = start[n]; s < start[n + 1]; ++s)
-                bucket.emplace_back(sorted_key(mesh, bucketed[s]), bucketed[s]);
-            std::sort(bucket.begin(), bucket.end());
-            for (size_t i = 0; i < bucket.size();) {
-                size_t j = i + 1;
-                while (j < bucket.size() && bucket[j].first == bucket[i].first) ++j;
-                if (j - i > 2) {
-                    std::ostringstream msg;
-                    msg << "measure_quality: a face is shared by more than two cells (cells "
-                        << bucket[i].second / 6 << ", " << bucket[i + 1].second / 6 << ", "
-                        << bucket[i + 2].second / 6 << "); the mesh is not a valid hex mesh";
-                    throw std::invalid_argument(msg.str());
+private:
+    // Faces are bucketed by their smallest node id (a counting sort, linear time), then
+    // matched by their sorted node quadruple inside each bucket; buckets hold a handful.
+    void match_faces() {
+        const Id num_faces = 6 * mesh_.num_cells();
+        auto smallest = [&](Id f) {
+            Id n = mesh_.node(f / 6, hex_faces[f % 6][0]);
+            for (int k = 1; k < 4; ++k) n = std::min(n, mesh_.node(f / 6, hex_faces[f % 6][k]));
+            return n;
+        };
+        std::vector<Id> start(static_cast<size_t>(mesh_.num_points()) + 1, 0);
+        for (Id f = 0; f < num_faces; ++f) ++start[smallest(f) + 1];
+        for (size_t n = 1; n < start.size(); ++n) start[n] += start[n - 1];
+        std::vector<FaceId> bucketed(static_cast<size_t>(num_faces));
+        {
+            std::vector<Id> fill(start.begin(), start.end() - 1);
+            for (Id f = 0; f < num_faces; ++f) bucketed[fill[smallest(f)]++] = FaceId(f);
+        }
+        partner_.assign(static_cast<size_t>(num_faces), FaceId(no_partner));
+        tbb::parallel_for(tbb::blocked_range<Id>(0, mesh_.num_points(), 1024), [&](const auto& r) {
+            std::vector<std::pair<std::array<Id, 4>, Id>> bucket;
+            for (Id n = r.begin(); n != r.end(); ++n) {
+                bucket.clear();
+                for (Id s = start[n]; s < start[n + 1]; ++s) {
+                    const Id f = bucketed[s];
+                    std::array<Id, 8> nodes;
+                    for (int k = 0; k < 8; ++k) nodes[k] = mesh_.node(f / 6, k);
+                    bucket.emplace_back(sorted_face(nodes, int(f % 6)), f);
                 }
-                if (j - i == 2) {
-                    partner[bucket[i].second] = FaceId(bucket[i + 1].second);
-                    partner[bucket[i + 1].second] = FaceId(bucket[i].second);
-                }
-                i = j;
+                pair_equal_faces(bucket, [&](Id a, Id b) {
+                    partner_[a] = FaceId(b);
+                    partner_[b] = FaceId(a);
+                });
+            }
+        });
+    }
+
+    const HexMesh& mesh_;
+    std::vector<FaceId> partner_;  // per face id
+};
+
+// The cells of a block grid in to_hex_mesh order (block by block, i fastest), read from the
+// blocks: a face inside a block meets the structured neighbour across it; only the faces on
+// block boundaries are matched by node ids, so the pass costs no unstructured copy.
+class GridCells {
+public:
+    explicit GridCells(const BlockGrid& grid) : grid_(grid) {
+        first_.push_back(0);
+        for (const Block& b : grid.blocks) first_.push_back(first_.back() + b.cells().count());
+        match_block_faces();
+    }
+
+    Id num_cells() const { return first_.back(); }
+    const std::vector<Vec3>& points() const { return grid_.points; }
+    CellView cell(Id c) const {
+        const size_t b = size_t(std::upper_bound(first_.begin(), first_.end(), c) - first_.begin()) - 1;
+        const Block& block = grid_.blocks[b];
+        const Dims d = block.cells();
+        const Id r = c - first_[b];
+        const std::array<int, 3> at = {int(r % d.ni), int((r / d.ni) % d.nj), int(r / (Id(d.ni) * d.nj))};
+        const std::array<Id, 3> stride = {1, d.ni, Id(d.ni) * d.nj};
+        CellView v;
+        v.nodes = cell_nodes(block, at[0], at[1], at[2]);
+        for (int f = 0; f < 6; ++f) {
+            const int axis = f / 2;
+            if (f % 2 == 0 && at[axis] > 0) {
+                v.partner[f] = 6 * (c - stride[axis]) + f + 1;
+                v.lower_neighbour |= 1u << f;
+            } else if (f % 2 == 1 && at[axis] < d[axis] - 1) {
+                v.partner[f] = 6 * (c + stride[axis]) + f - 1;
+            } else {
+                v.partner[f] = boundary_partner_[b][f][face_index(d, axis, at)];
             }
         }
-    });
-    return partner;
-}
+        return v;
+    }
+    std::array<Vec3, 4> face_points(Id face) const {
+        return points_of(grid_.points, cell(face / 6).nodes, hex_faces[face % 6]);
+    }
+
+private:
+    // Position of a cell's face in the list of a block face's cells (the two other axes, the
+    // lower one fastest).
+    static Id face_index(const Dims& d, int axis, const std::array<int, 3>& at) {
+        const int u = axis == 0 ? 1 : 0, w = axis == 2 ? 1 : 2;
+        return at[u] + Id(d[u]) * at[w];
+    }
+
+    void match_block_faces() {
+        boundary_partner_.resize(grid_.blocks.size());
+        std::vector<std::pair<std::array<Id, 4>, Id>> faces;
+        for (size_t b = 0; b < grid_.blocks.size(); ++b) {
+            const Block& block = grid_.blocks[b];
+            const Dims d = block.cells();
+            if (d.count() == 0) continue;
+            for (int f = 0; f < 6; ++f) {
+                const int axis = f / 2, u = axis == 0 ? 1 : 0, w = axis == 2 ? 1 : 2;
+                boundary_partner_[b][f].assign(size_t(Id(d[u]) * d[w]), no_partner);
+                std::array<int, 3> at{};
+                at[axis] = f % 2 == 0 ? 0 : d[axis] - 1;
+                for (at[w] = 0; at[w] < d[w]; ++at[w])
+                    for (at[u] = 0; at[u] < d[u]; ++at[u]) {
+                        const Id c = first_[b] + at[0] + Id(d.ni) * (at[1] + Id(d.nj) * at[2]);
+                        faces.emplace_back(sorted_face(cell_nodes(block, at[0], at[1], at[2]), f),
+                                           6 * c + f);
+                    }
+            }
+        }
+        pair_equal_faces(faces, [&](Id a, Id b) {
+            boundary_slot(a) = b;
+            boundary_slot(b) = a;
+        });
+    }
+
+    Id& boundary_slot(Id face) {
+        const Id c = face / 6;
+        const int f = int(face % 6);
+        const size_t b = size_t(std::upper_bound(first_.begin(), first_.end(), c) - first_.begin()) - 1;
+        const Dims d = grid_.blocks[b].cells();
+        const Id r = c - first_[b];
+        const std::array<int, 3> at = {int(r % d.ni), int((r / d.ni) % d.nj), int(r / (Id(d.ni) * d.nj))};
+        return boundary_partner_[b][f][face_index(d, f / 2, at)];
+    }
+
+    const BlockGrid& grid_;
+    std::vector<Id> first_;  // first cell of each block, then the total
+    std::vector<std::array<std::vector<Id>, 6>> boundary_partner_;  // per block face and cell
+};
 
 bool is_owner_side(Id face, Id other) {
     return other == no_partner || other / 6 > face / 6;
 }
 
-// Geometry of a face as seen from its own cell: computed from the owner's point order, the
-// area negated on the neighbour side.
-template <class FaceId>
-FaceGeometry oriented_face(const HexMesh& mesh, const std::vector<FaceId>& partner, Id face) {
-    const Id other = partner[face];
-    if (is_owner_side(face, other)) return detail::quad_geometry(face_points(mesh, face));
-    FaceGeometry g = detail::quad_geometry(face_points(mesh, other));
+// Geometry of local face f of a cell as seen from it: computed from the owner's point
+// order, the area negated on the neighbour side.
+template <class Cells>
+FaceGeometry oriented_face(const Cells& cells, Id c, const CellView& v, int f) {
+    const Id other = v.partner[f];
+    if (is_owner_side(6 * c + f, other))
+        return detail::quad_geometry(points_of(cells.points(), v.nodes, hex_faces[f]));
+    FaceGeometry g = detail::quad_geometry(
+        v.lower_neighbour >> f & 1u ? points_of(cells.points(), v.nodes, seen_from_lower[f])
+                                    : cells.face_points(other));
     g.area = -g.area;
     return g;
 }
@@ -138,28 +283,25 @@ struct FaceStats {
 constexpr Id cells_per_task = 2048;
 constexpr double pi = 3.14159265358979323846;
 
-}  // namespace
-
-namespace {
-
-template <class FaceId>
-QualityReport measure(const HexMesh& mesh) {
+template <class Cells>
+QualityReport measure(const Cells& cells) {
     QualityReport report;
-    report.cells = mesh.num_cells();
+    report.cells = cells.num_cells();
     if (report.cells == 0) return report;
 
-    const std::vector<FaceId> partner = match_faces<FaceId>(mesh);
+    const std::vector<Vec3>& points = cells.points();
     std::vector<Vec3> centres(static_cast<size_t>(report.cells));
     std::vector<double> volumes(static_cast<size_t>(report.cells));
 
     // Pass 1, per cell: OpenFOAM centre and volume, aspect ratio, scaled Jacobian, validity.
     // The deterministic reduce splits the range the same way every run, so the sum is stable.
-    const CellStats cells = tbb::parallel_deterministic_reduce(
+    const CellStats per_cell = tbb::parallel_deterministic_reduce(
         tbb::blocked_range<Id>(0, report.cells, cells_per_task), CellStats{},
         [&](const tbb::blocked_range<Id>& r, CellStats acc) {
             for (Id c = r.begin(); c != r.end(); ++c) {
+                const CellView v = cells.cell(c);
                 std::array<FaceGeometry, 6> faces;
-                for (int f = 0; f < 6; ++f) faces[f] = oriented_face(mesh, partner, 6 * c + f);
+                for (int f = 0; f < 6; ++f) faces[f] = oriented_face(cells, c, v, f);
                 const CellGeometry g = detail::cell_geometry(faces);
                 centres[c] = g.centre;
                 volumes[c] = g.volume;
@@ -167,7 +309,8 @@ QualityReport measure(const HexMesh& mesh) {
                     std::max(acc.max_aspect, detail::cell_aspect_ratio(faces, g.volume));
                 acc.min_volume = std::min(acc.min_volume, g.volume);
 
-                const std::array<Vec3, 8> p = mesh.corners(c);
+                std::array<Vec3, 8> p;
+                for (int k = 0; k < 8; ++k) p[k] = points[v.nodes[k]];
                 const double sj = hex_scaled_jacobian(p);
                 acc.min_sj = std::min(acc.min_sj, sj);
                 acc.sum_sj += sj;
@@ -183,14 +326,15 @@ QualityReport measure(const HexMesh& mesh) {
         });
 
     // Pass 2, per face on its owner side: non-orthogonality, skewness, volume ratio.
-    const FaceStats faces = tbb::parallel_reduce(
+    const FaceStats per_face = tbb::parallel_reduce(
         tbb::blocked_range<Id>(0, report.cells, cells_per_task), FaceStats{},
         [&](const tbb::blocked_range<Id>& r, FaceStats acc) {
             for (Id c = r.begin(); c != r.end(); ++c) {
-                for (Id face = 6 * c; face < 6 * c + 6; ++face) {
-                    const Id other = partner[face];
-                    if (!is_owner_side(face, other)) continue;
-                    const std::array<Vec3, 4> p = face_points(mesh, face);
+                const CellView v = cells.cell(c);
+                for (int f = 0; f < 6; ++f) {
+                    const Id other = v.partner[f];
+                    if (!is_owner_side(6 * c + f, other)) continue;
+                    const std::array<Vec3, 4> p = points_of(points, v.nodes, hex_faces[f]);
                     const FaceGeometry g = detail::quad_geometry(p);
                     if (other == no_partner) {
                         acc.max_skew = std::max(acc.max_skew,
@@ -215,17 +359,17 @@ QualityReport measure(const HexMesh& mesh) {
             return x;
         });
 
-    report.inverted_corner_tets = cells.inverted_tets;
-    report.inverted_cells = cells.inverted_cells;
-    report.min_scaled_jacobian = cells.min_sj;
-    report.mean_scaled_jacobian = cells.sum_sj / static_cast<double>(report.cells);
-    report.max_aspect_ratio = cells.max_aspect;
-    report.min_volume = cells.min_volume;
-    report.max_skewness = faces.max_skew;
+    report.inverted_corner_tets = per_cell.inverted_tets;
+    report.inverted_cells = per_cell.inverted_cells;
+    report.min_scaled_jacobian = per_cell.min_sj;
+    report.mean_scaled_jacobian = per_cell.sum_sj / static_cast<double>(report.cells);
+    report.max_aspect_ratio = per_cell.max_aspect;
+    report.min_volume = per_cell.min_volume;
+    report.max_skewness = per_face.max_skew;
     // checkMesh: acos of the smallest cosine, clamped to [-1, 1], in degrees.
     report.max_non_orthogonality_deg =
-        std::acos(std::clamp(faces.min_ortho, -1.0, 1.0)) * 180.0 / pi;
-    report.max_volume_ratio = faces.max_volume_ratio;
+        std::acos(std::clamp(per_face.min_ortho, -1.0, 1.0)) * 180.0 / pi;
+    report.max_volume_ratio = per_face.max_volume_ratio;
     return report;
 }
 
@@ -233,8 +377,12 @@ QualityReport measure(const HexMesh& mesh) {
 
 QualityReport measure_quality(const HexMesh& mesh) {
     if (6 * mesh.num_cells() <= Id(std::numeric_limits<std::int32_t>::max()))
-        return measure<std::int32_t>(mesh);
-    return measure<Id>(mesh);
+        return measure(MeshCells<std::int32_t>(mesh));
+    return measure(MeshCells<Id>(mesh));
+}
+
+QualityReport measure_quality(const BlockGrid& grid) {
+    return measure(GridCells(grid));
 }
 
 }  // namespace hexmesh

@@ -1,7 +1,9 @@
 #include "hexmesh/pipeline/run_case.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
@@ -9,6 +11,7 @@
 #include "hexmesh/core/reference_hex.h"
 #include "hexmesh/pipeline/make_body.h"
 #include "hexmesh/pipeline/optimize_grid.h"
+#include "hexmesh/pipeline/phase_timer.h"
 #include "hexmesh/pipeline/refine_family.h"
 #include "io/export_grid.h"
 #include "io/staged_output.h"
@@ -21,27 +24,6 @@
 
 namespace hexmesh {
 namespace {
-
-// Logs one line per finished phase and keeps (phase, seconds) for the report.
-class PhaseTimer {
-public:
-    explicit PhaseTimer(std::ostream& log) : log_(log) {}
-    void done(const std::string& phase, const std::string& detail = "") {
-        const auto now = std::chrono::steady_clock::now();
-        const double seconds = std::chrono::duration<double>(now - start_).count();
-        log_ << fmt::format("  {:<48}{:8.2f} s\n", detail.empty() ? phase : phase + " " + detail,
-                            seconds);
-        log_.flush();
-        phases_.emplace_back(phase, seconds);
-        start_ = now;
-    }
-    const std::vector<std::pair<std::string, double>>& phases() const { return phases_; }
-
-private:
-    std::ostream& log_;
-    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-    std::vector<std::pair<std::string, double>> phases_;
-};
 
 untangle::UntangleOptions untangle_options(const SolverSpec& s, std::ostream& log) {
     untangle::UntangleOptions o;
@@ -139,11 +121,46 @@ BlockGrid build_grid(const Case& c, const ImplicitFunction& body) {
     return make_o_h_grid(body, o);
 }
 
+namespace {
+
+// Sum of the lengths of the cell edges whose two ends are wall (slip) nodes, and their count;
+// an edge counts once per cell it bounds. Deterministic: blocks in order, each split alike.
+std::pair<double, Id> wall_edge_lengths(const BlockGrid& grid) {
+    using Sum = std::pair<double, Id>;
+    Sum total{0, 0};
+    for (const Block& block : grid.blocks) {
+        const Dims d = block.cells();
+        const Sum s = tbb::parallel_deterministic_reduce(
+            tbb::blocked_range<int>(0, d.nk, 1), Sum{0, 0},
+            [&](const tbb::blocked_range<int>& r, Sum acc) {
+                for (int k = r.begin(); k != r.end(); ++k)
+                    for (int j = 0; j < d.nj; ++j)
+                        for (int i = 0; i < d.ni; ++i) {
+                            const std::array<Id, 8> nodes = cell_nodes(block, i, j, k);
+                            for (const auto& e : hex_edges) {
+                                const Id a = nodes[e[0]], b = nodes[e[1]];
+                                if (grid.kinds[a] != VertexKind::slip ||
+                                    grid.kinds[b] != VertexKind::slip)
+                                    continue;
+                                acc.first += (grid.points[a] - grid.points[b]).norm();
+                                ++acc.second;
+                            }
+                        }
+                return acc;
+            },
+            [](Sum x, const Sum& y) { return Sum{x.first + y.first, x.second + y.second}; });
+        total.first += s.first;
+        total.second += s.second;
+    }
+    return total;
+}
+
+}  // namespace
+
 GridReport measure_grid(const BlockGrid& grid, const ImplicitFunction& body,
                         const WallLayers& law, const TriangleSurface* surface) {
-    const HexMesh mesh = to_hex_mesh(grid);
     GridReport report;
-    report.quality = measure_quality(mesh);
+    report.quality = measure_quality(grid);
     const bool has_wall = std::any_of(grid.blocks.begin(), grid.blocks.end(), [](const Block& b) {
         return std::find(b.face_patch.begin(), b.face_patch.end(), "wall") != b.face_patch.end();
     });
@@ -157,17 +174,8 @@ GridReport measure_grid(const BlockGrid& grid, const ImplicitFunction& body,
         }
     }
 
-    // h: mean length of the hex edges whose two ends lie on the wall.
-    double length = 0;
-    Id edges = 0;
-    for (Id cell = 0; cell < mesh.num_cells(); ++cell)
-        for (const auto& e : hex_edges) {
-            const Id a = mesh.node(cell, e[0]), b = mesh.node(cell, e[1]);
-            if (grid.kinds[a] == VertexKind::slip && grid.kinds[b] == VertexKind::slip) {
-                length += (mesh.points[a] - mesh.points[b]).norm();
-                ++edges;
-            }
-        }
+    // h: mean length of the hex edges whose two ends lie on the wall (counted once per cell).
+    const auto [length, edges] = wall_edge_lengths(grid);
     if (edges == 0) return report;
     const double h = length / edges;
     double worst = 0;
@@ -189,7 +197,7 @@ RunResult run_case(const Case& c, const std::string& outdir, const RunOptions& o
     timer.done("grid", fmt::format("({}, {} blocks, {} cells)",
                                    c.domain == "exterior" ? "o-grid" : c.grid.topology,
                                    result.grid.blocks.size(), result.grid.num_cells()));
-    if (c.solver.optimize_iterations > 0 || measure_quality(to_hex_mesh(result.grid)).inverted_cells > 0) {
+    if (c.solver.optimize_iterations > 0 || measure_quality(result.grid).inverted_cells > 0) {
         const FeatureSnapping snapped = snap_to_features(result.grid, *body);
         if (snapped.crease_nodes + snapped.corner_nodes > 0)
             log << fmt::format("  sharp features: {} wall nodes on creases, {} on corners\n",
