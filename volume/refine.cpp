@@ -104,6 +104,14 @@ VertexKind new_node_kind(const BlockGrid& coarse, const Block& block, const Dims
 
 BlockGrid refine_grid(const BlockGrid& coarse) {
     BlockGrid fine;
+    // At most every fine node of every block is new (shared block-face nodes count twice).
+    size_t bound = coarse.points.size();
+    for (const Block& block : coarse.blocks) {
+        const Dims& c = block.nodes;
+        bound += size_t(Dims{2 * c.ni - 1, 2 * c.nj - 1, 2 * c.nk - 1}.count() - c.count());
+    }
+    fine.points.reserve(bound);
+    fine.kinds.reserve(bound);
     fine.points = coarse.points;
     fine.kinds = coarse.kinds;
     std::unordered_map<EntityKey, Id, ArrayHash<Id, 4>> shared;  // new nodes on block faces

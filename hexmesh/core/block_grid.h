@@ -64,6 +64,10 @@ void for_each_cell(const Block& block, F&& f) {
             for (int i = 0; i < c.ni; ++i) f(i, j, k, cell_nodes(block, i, j, k));
 }
 
+// The 8 node ids (cell_nodes order) of every cell with at least one node v where !held[v],
+// in to_hex_mesh order (block by block, i fastest); held is sized like grid.points. Parallel.
+std::vector<std::array<Id, 8>> cells_not_held(const BlockGrid& grid, const std::vector<bool>& held);
+
 // All cells of all blocks as one unstructured mesh sharing the grid's points (block by block,
 // i fastest within a block).
 HexMesh to_hex_mesh(const BlockGrid& grid);

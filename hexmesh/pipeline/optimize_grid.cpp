@@ -39,27 +39,29 @@ GridProblem make_problem(const BlockGrid& grid, const std::vector<Vec3>& target_
                          const ImplicitFunction& body, const std::vector<bool>& held) {
     GridProblem g;
     untangle::Problem& p = g.problem;
-    const auto used = [&](const std::array<Id, 8>& nodes) {
-        return held.empty() || !std::all_of(nodes.begin(), nodes.end(), [&](Id v) { return bool(held[v]); });
+    // The cells in the functional: all, or those with a node not held (listed once, so the
+    // scans below do not visit the held part of a large grid).
+    const std::vector<std::array<Id, 8>> listed =
+        held.empty() ? std::vector<std::array<Id, 8>>{} : cells_not_held(grid, held);
+    const auto each_cell = [&](auto&& f) {
+        if (held.empty())
+            for (const Block& block : grid.blocks)
+                for_each_cell(block, [&](int, int, int, const std::array<Id, 8>& nodes) { f(nodes); });
+        else
+            for (const std::array<Id, 8>& nodes : listed) f(nodes);
     };
     std::vector<Id> local;  // grid id -> problem id (-1: not in the problem); only with `held`
-    Id cells = 0;
     if (held.empty()) {
         p.points = grid.points;
         p.kinds = grid.kinds;
-        cells = grid.num_cells();
     } else {
         local.assign(grid.points.size(), -1);
-        for (const Block& block : grid.blocks)
-            for_each_cell(block, [&](int, int, int, const std::array<Id, 8>& nodes) {
-                if (!used(nodes)) return;
-                ++cells;
-                for (Id v : nodes)
-                    if (local[v] < 0) {
-                        local[v] = Id(g.nodes.size());
-                        g.nodes.push_back(v);
-                    }
-            });
+        for (const std::array<Id, 8>& nodes : listed)
+            for (Id v : nodes)
+                if (local[v] < 0) {
+                    local[v] = Id(g.nodes.size());
+                    g.nodes.push_back(v);
+                }
         p.points.reserve(g.nodes.size());
         p.kinds.reserve(g.nodes.size());
         for (Id v : g.nodes) {
@@ -67,19 +69,18 @@ GridProblem make_problem(const BlockGrid& grid, const std::vector<Vec3>& target_
             p.kinds.push_back(held[v] ? VertexKind::fixed : grid.kinds[v]);
         }
     }
+    const Id cells = held.empty() ? grid.num_cells() : Id(listed.size());
     p.hexes.reserve(cells);
     p.hex_edges.reserve(cells);
     double total = 0;
-    for (const Block& block : grid.blocks)
-        for_each_cell(block, [&](int, int, int, const std::array<Id, 8>& nodes) {
-            if (!used(nodes)) return;
-            const Vec3 lengths = edge_lengths(target_points, nodes);
-            total += lengths.sum();
-            std::array<Id, 8> ids = nodes;
-            if (!local.empty())
-                for (Id& v : ids) v = local[v];
-            p.add_hex(ids, lengths);
-        });
+    each_cell([&](const std::array<Id, 8>& nodes) {
+        const Vec3 lengths = edge_lengths(target_points, nodes);
+        total += lengths.sum();
+        std::array<Id, 8> ids = nodes;
+        if (!local.empty())
+            for (Id& v : ids) v = local[v];
+        p.add_hex(ids, lengths);
+    });
     const double count = double(p.hexes.size());
     p.length_scale = count > 0 ? total / (3.0 * count) : 1.0;
     const double h = p.length_scale;
@@ -99,9 +100,11 @@ GridProblem make_problem(const BlockGrid& grid, const std::vector<Vec3>& target_
 GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& body,
                                      const GridOptimizationOptions& options) {
     GridOptimizationResult result;
-    const std::vector<Vec3> initial = grid.points;  // the targets of both passes
+    // The targets of both passes: the grid as given (kept aside only when a second pass needs it).
+    const std::vector<Vec3> initial =
+        options.wall_layers.layers > 0 ? grid.points : std::vector<Vec3>{};
     {
-        GridProblem g = make_problem(grid, initial, body, options.held);
+        GridProblem g = make_problem(grid, grid.points, body, options.held);
         result.solve = untangle::untangle_and_optimize(g.problem, options.untangle);
         g.scatter(grid.points);
     }

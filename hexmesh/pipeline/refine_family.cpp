@@ -1,10 +1,13 @@
 #include "hexmesh/pipeline/refine_family.h"
 
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "hexmesh/core/quality.h"
@@ -28,30 +31,76 @@ double cell_length_scale(const BlockGrid& grid) {
     return box.diagonal() / std::cbrt(cells);
 }
 
+double min_scaled_jacobian(const BlockGrid& grid, const std::vector<std::array<Id, 8>>& cells) {
+    return tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, cells.size(), 4096), std::numeric_limits<double>::infinity(),
+        [&](const tbb::blocked_range<size_t>& r, double worst) {
+            for (size_t c = r.begin(); c != r.end(); ++c) {
+                std::array<Vec3, 8> p;
+                for (int k = 0; k < 8; ++k) p[k] = grid.points[cells[c][k]];
+                worst = std::min(worst, hex_scaled_jacobian(p));
+            }
+            return worst;
+        },
+        [](double a, double b) { return std::min(a, b); });
+}
+
+// The smallest scaled Jacobian of the cells whose 8 nodes are all held.
+double min_scaled_jacobian_held(const BlockGrid& grid, const std::vector<bool>& held) {
+    double worst = std::numeric_limits<double>::infinity();
+    for (const Block& block : grid.blocks) {
+        const Dims d = block.cells();
+        worst = std::min(worst, tbb::parallel_reduce(
+            tbb::blocked_range<int>(0, d.nk), worst,
+            [&](const tbb::blocked_range<int>& r, double w) {
+                for (int k = r.begin(); k != r.end(); ++k)
+                    for (int j = 0; j < d.nj; ++j)
+                        for (int i = 0; i < d.ni; ++i) {
+                            const std::array<Id, 8> nodes = cell_nodes(block, i, j, k);
+                            if (!std::all_of(nodes.begin(), nodes.end(), [&](Id v) { return bool(held[v]); }))
+                                continue;
+                            std::array<Vec3, 8> p;
+                            for (int n = 0; n < 8; ++n) p[n] = grid.points[nodes[n]];
+                            w = std::min(w, hex_scaled_jacobian(p));
+                        }
+                return w;
+            },
+            [](double a, double b) { return std::min(a, b); }));
+    }
+    return worst;
+}
+
 // The functional's box targets can pull a cell below the quality interpolation gave it (at
 // the irregular corners of the O-H core, where the coarse cell is no box). Where the polish
-// leaves a cell below `floor`, the worst scaled Jacobian of the interpolated grid, its new
-// nodes go back to their interpolated (and projected) positions, until no cell is below it.
-// Only cells with a node the polish could move (not `held`) are checked: the others are as
-// they were. The projected grid itself meets the floor, so this ends. Skipped when
-// interpolation left inverted cells (floor <= 0): then the polish is the untangling.
-void keep_no_worse_than(BlockGrid& grid, const std::vector<Vec3>& projected, double floor,
-                        const std::vector<bool>& held, Id first_new) {
+// leaves one of the optimized `cells` below the worst scaled Jacobian of the interpolated
+// grid, its free nodes go back to their interpolated (and projected) positions `saved`
+// (free node ids `free` ascending, positions alike), until no cell is below it. The floor
+// costs a pass over the whole grid, so it is only computed when some optimized cell ends
+// below `cells_floor`, their worst before the polish (the grid's worst is at most that).
+// The other cells did not move; the projected grid itself meets the floor, so this ends.
+// Skipped when interpolation left inverted cells (floor <= 0): then the polish is the
+// untangling.
+void keep_no_worse_than(BlockGrid& grid, const std::vector<std::array<Id, 8>>& cells,
+                        double cells_floor, const std::vector<bool>& held,
+                        const std::vector<Id>& free, const std::vector<Vec3>& saved) {
+    if (!(cells_floor > 0) || !(min_scaled_jacobian(grid, cells) < cells_floor)) return;
+    const double floor = std::min(cells_floor, min_scaled_jacobian_held(grid, held));
     if (!(floor > 0)) return;
     for (int round = 0; round < 100; ++round) {
         bool reverted = false;
-        for (const Block& block : grid.blocks)
-            for_each_cell(block, [&](int, int, int, const std::array<Id, 8>& nodes) {
-                if (std::all_of(nodes.begin(), nodes.end(), [&](Id v) { return bool(held[v]); })) return;
-                std::array<Vec3, 8> p;
-                for (int k = 0; k < 8; ++k) p[k] = grid.points[nodes[k]];
-                if (hex_scaled_jacobian(p) >= floor) return;
-                for (Id v : nodes)
-                    if (v >= first_new && grid.points[v] != projected[v]) {
-                        grid.points[v] = projected[v];
-                        reverted = true;
-                    }
-            });
+        for (const std::array<Id, 8>& nodes : cells) {
+            std::array<Vec3, 8> p;
+            for (int k = 0; k < 8; ++k) p[k] = grid.points[nodes[k]];
+            if (hex_scaled_jacobian(p) >= floor) continue;
+            for (Id v : nodes) {
+                if (held[v]) continue;
+                const Vec3& back = saved[size_t(std::lower_bound(free.begin(), free.end(), v) - free.begin())];
+                if (grid.points[v] != back) {
+                    grid.points[v] = back;
+                    reverted = true;
+                }
+            }
+        }
         if (!reverted) return;
     }
 }
@@ -91,12 +140,13 @@ RefinementResult refine_on_body(const BlockGrid& coarse, const ImplicitFunction&
     // Free: the new nodes of the cells that touch a new wall node (the interpolated interior
     // is as smooth as the coarse grid and stays as it is); held: everything else.
     std::vector<bool> held(count, true);
-    for (const Block& block : grid.blocks)
-        for_each_cell(block, [&](int, int, int, const std::array<Id, 8>& nodes) {
-            if (std::none_of(nodes.begin(), nodes.end(), [&](Id v) { return moved[v] >= 0; })) return;
+    {
+        std::vector<bool> unmoved(count);
+        for (Id v = 0; v < count; ++v) unmoved[v] = moved[v] < 0;
+        for (const std::array<Id, 8>& nodes : cells_not_held(grid, unmoved))
             for (Id v : nodes)
                 if (v >= first_new) held[v] = false;
-        });
+    }
     if (options.sweeps <= 0) return result;
 
     GridOptimizationOptions o;
@@ -108,11 +158,17 @@ RefinementResult refine_on_body(const BlockGrid& coarse, const ImplicitFunction&
     o.untangle.max_untangle_iterations = 50;
     o.untangle.log = options.log;
     o.held = held;
-    const std::vector<Vec3> projected = grid.points;
-    const std::vector<double> before = scaled_jacobians(grid);
-    const double floor = *std::min_element(before.begin(), before.end());
+    const std::vector<std::array<Id, 8>> cells = cells_not_held(grid, held);
+    std::vector<Id> free;
+    std::vector<Vec3> saved;
+    for (Id v = first_new; v < count; ++v)
+        if (!held[v]) {
+            free.push_back(v);
+            saved.push_back(grid.points[v]);
+        }
+    const double cells_floor = min_scaled_jacobian(grid, cells);
     result.solve = optimize_grid(grid, body, o).solve;
-    keep_no_worse_than(grid, projected, floor, held, first_new);
+    keep_no_worse_than(grid, cells, cells_floor, held, free, saved);
     return result;
 }
 

@@ -99,6 +99,24 @@ TEST(BlockGrid, BlocksShareInterfaceNodes) {
     EXPECT_EQ(mesh.node(0, 6), mesh.node(1, 7));  // shared node (1,1,1)
     // The shared face is found from the node ids: it is the only internal face.
     EXPECT_DOUBLE_EQ(measure_quality(mesh).max_volume_ratio, 2.0);
+    EXPECT_DOUBLE_EQ(measure_quality(grid).max_volume_ratio, 2.0);
+}
+
+TEST(BlockGrid, CellsNotHeldAreTheCellsAroundAFreeNode) {
+    const BlockGrid grid = small_box();
+    const HexMesh mesh = to_hex_mesh(grid);
+    std::vector<bool> held(grid.points.size(), true);
+    EXPECT_TRUE(cells_not_held(grid, held).empty());
+    // Node (1, 1, 1) is a corner of the 8 cells with i, j, k in {0, 1}: ids i + 3 j + 6 k in
+    // to_hex_mesh order (3 x 2 x 2 cells, i fastest).
+    held[grid.blocks[0].node(1, 1, 1)] = false;
+    const std::vector<std::array<Id, 8>> cells = cells_not_held(grid, held);
+    ASSERT_EQ(cells.size(), 8u);
+    const Id expected[] = {0, 1, 3, 4, 6, 7, 9, 10};
+    for (size_t c = 0; c < cells.size(); ++c)
+        for (int n = 0; n < 8; ++n) EXPECT_EQ(cells[c][n], mesh.node(expected[c], n));
+    held.assign(grid.points.size(), false);
+    EXPECT_EQ(Id(cells_not_held(grid, held).size()), mesh.num_cells());
 }
 
 }  // namespace
