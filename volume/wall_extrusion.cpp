@@ -63,7 +63,7 @@ std::vector<bool> crossed_lines(const BlockGrid& grid, const std::vector<WallFac
 }  // namespace
 
 std::vector<bool> extrude_wall_layers(BlockGrid& grid, const ImplicitFunction& body,
-                                      const WallLayers& law) {
+                                      const WallLayers& law, int blend) {
     std::vector<bool> placed(grid.points.size(), false);
     if (law.layers <= 0) return placed;
     std::vector<double> d(law.layers + 1, 0.0);
@@ -87,8 +87,9 @@ std::vector<bool> extrude_wall_layers(BlockGrid& grid, const ImplicitFunction& b
             if (!n) return;
             const Vec3 shift = x0 + d[layers] * *n - grid.points[f.node(p, q, layers)];
             for (int m = 1; m <= layers; ++m) grid.points[f.node(p, q, m)] = x0 + d[m] * *n;
-            for (int m = layers + 1; m < last; ++m)
-                grid.points[f.node(p, q, m)] += shift * (double(last - m) / (last - layers));
+            const int end = blend > 0 ? std::min(last, layers + blend + 1) : last;  // shift 0 there
+            for (int m = layers + 1; m < end; ++m)
+                grid.points[f.node(p, q, m)] += shift * (double(end - m) / (end - layers));
             laid[l] = 1;
         });
         for (Id l = 0; l < f.lines(); ++l)

@@ -95,6 +95,19 @@ GridProblem make_problem(const BlockGrid& grid, const std::vector<Vec3>& target_
     return g;
 }
 
+// `marked` grown by `rings` rings of cells: every node of a cell with a marked node is marked,
+// `rings` times over.
+std::vector<bool> grow_by_cells(const BlockGrid& grid, std::vector<bool> marked, int rings) {
+    for (int r = 0; r < rings; ++r) {
+        std::vector<bool> next = marked, unmarked = marked;
+        unmarked.flip();
+        for (const std::array<Id, 8>& nodes : cells_not_held(grid, unmarked))
+            for (Id v : nodes) next[v] = true;
+        marked = std::move(next);
+    }
+    return marked;
+}
+
 }  // namespace
 
 GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& body,
@@ -110,13 +123,18 @@ GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& bo
     }
     if (options.wall_layers.layers > 0) {
         const std::vector<Vec3> joint = grid.points;
-        const std::vector<bool> placed = extrude_wall_layers(grid, body, options.wall_layers);
+        const std::vector<bool> placed = extrude_wall_layers(grid, body, options.wall_layers, options.relax_rings);
         result.laid_nodes = Id(std::count(placed.begin(), placed.end(), true));
         if (result.laid_nodes == 0) return result;  // no line could be laid: nothing changed
-        // Every cell stays in, those between laid nodes too: the result must be judged on all
-        // of them. Laid layers that cross the grid are rarely repaired by the rest alone: a
-        // short untangling budget, then the joint result is kept.
-        GridProblem g = make_problem(grid, initial, body, options.held);
+        // The layers and the cells up to `relax_rings` rings beyond them are optimized again,
+        // the rest of the grid (already optimized by the joint pass, and no closer to the
+        // moved nodes) is held. Laid layers that cross the grid are rarely repaired by the
+        // rest alone: a short untangling budget, then the joint result is kept.
+        std::vector<bool> held = grow_by_cells(grid, placed, options.relax_rings);
+        held.flip();
+        if (!options.held.empty())
+            for (size_t v = 0; v < held.size(); ++v) held[v] = held[v] || options.held[v];
+        GridProblem g = make_problem(grid, initial, body, held);
         untangle::Problem& problem = g.problem;
         for (Id i = 0; i < Id(problem.points.size()); ++i)
             if (placed[g.grid_id(i)]) problem.kinds[i] = VertexKind::fixed;

@@ -12,9 +12,13 @@ struct GridOptimizationOptions {
     untangle::UntangleOptions untangle;  // solvers per phase, theta, iteration budgets, log
     // The boundary layer the grid must keep. With layers > 0, after the joint optimization the
     // layer nodes are laid again along the optimized wall's normals (volume/wall_extrusion.h)
-    // and the rest of the grid is optimized once more around them, wall and layers held (kept
+    // and the grid around them (relax_rings) is optimized once more, wall and layers held (kept
     // only if every cell is then valid).
     WallLayers wall_layers;
+    // The nodes beyond the laid layers follow them over this many nodes along each line, and
+    // the pass after the layers are laid again optimizes the cells within this many cell
+    // rings of the laid nodes; the rest of the grid keeps the joint pass's positions.
+    int relax_rings = 8;
     // Nodes that must not move whatever their kind (sized like grid.points, or empty for
     // none), e.g. the coarse nodes of a refined grid, which keep a family nested. Cells whose
     // 8 nodes are all held are left out of the functional.

@@ -53,3 +53,34 @@ TEST(WallExtrusion, CrossingLinesOfASingleBlockAreLeftAsBuilt) {
     EXPECT_EQ(std::count(placed.begin(), placed.end(), true), 0);
     EXPECT_EQ(grid.points, built);
 }
+
+// With blend = B the nodes beyond the layers follow them over B nodes only: nodes
+// layers + 1 .. layers + B move (by less and less), the rest of each line stays put.
+TEST(WallExtrusion, BlendLimitsTheShiftedNodesBeyondTheLayers) {
+    const Ellipsoid body(Vec3::Zero(), Vec3(1.0, 0.8, 0.6));
+    OHGridOptions o;
+    o.cells_per_edge = 8;
+    o.wall_cells = 12;
+    BlockGrid grid = make_o_h_grid(body, o);
+    const std::vector<Vec3> built = grid.points;
+    const WallLayers law{0.01, 1.2, 3};
+    const int blend = 4;
+    extrude_wall_layers(grid, body, law, blend);
+    Id moved_beyond = 0;
+    for (const WallFace& f : wall_faces(grid))
+        for (int q = 0; q < f.nq; ++q)
+            for (int p = 0; p < f.np; ++p) {
+                double previous = (grid.points[f.node(p, q, 3)] - built[f.node(p, q, 3)]).norm();
+                for (int m = 4; m < f.depth; ++m) {
+                    const double move = (grid.points[f.node(p, q, m)] - built[f.node(p, q, m)]).norm();
+                    if (m > 3 + blend) {
+                        EXPECT_EQ(move, 0.0) << p << " " << q << " " << m;
+                    } else {
+                        EXPECT_LE(move, previous + 1e-15);
+                        moved_beyond += move > 0;
+                    }
+                    previous = move;
+                }
+            }
+    EXPECT_GT(moved_beyond, 0);
+}
