@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "hexmesh/core/quality.h"
 #include "hexmesh/core/reference_hex.h"
 #include "surface/implicit_features.h"
 #include "surface/projection.h"
@@ -126,11 +127,22 @@ GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& bo
         const std::vector<bool> placed = extrude_wall_layers(grid, body, options.wall_layers, options.relax_rings);
         result.laid_nodes = Id(std::count(placed.begin(), placed.end(), true));
         if (result.laid_nodes == 0) return result;  // no line could be laid: nothing changed
-        // The layers and the cells up to `relax_rings` rings beyond them are optimized again,
-        // the rest of the grid (already optimized by the joint pass, and no closer to the
-        // moved nodes) is held. Laid layers that cross the grid are rarely repaired by the
-        // rest alone: a short untangling budget, then the joint result is kept.
-        std::vector<bool> held = grow_by_cells(grid, placed, options.relax_rings);
+        // The layers, the cells the joint pass left below relax_below (scaled Jacobian), and
+        // the cells up to `relax_rings` rings around both are optimized again; the rest of
+        // the grid (already optimized by the joint pass, and unmoved) is held. Laid layers
+        // that cross the grid are rarely repaired by the rest alone: a short untangling
+        // budget, then the joint result is kept.
+        std::vector<bool> marked = placed;
+        {
+            const std::vector<double> sj = scaled_jacobians(grid);
+            size_t c = 0;
+            for (const Block& block : grid.blocks)
+                for_each_cell(block, [&](int, int, int, const std::array<Id, 8>& nodes) {
+                    if (sj[c++] < options.relax_below)
+                        for (Id v : nodes) marked[v] = true;
+                });
+        }
+        std::vector<bool> held = grow_by_cells(grid, marked, options.relax_rings);
         held.flip();
         if (!options.held.empty())
             for (size_t v = 0; v < held.size(); ++v) held[v] = held[v] || options.held[v];
