@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
@@ -25,10 +26,31 @@ inline std::string read_text(const std::filesystem::path& file) {
 }
 
 // Runs `command` through the shell in the source tree, stdout and stderr captured apart.
-// A scratch path private to this test process (ctest runs tests in parallel processes).
+// The scratch paths handed out in this test process, removed (files or folders) when it exits.
+class ScratchRegistry {
+public:
+    void add(const std::filesystem::path& path) { paths_.insert(path); }
+    ~ScratchRegistry() {
+        std::error_code ignored;
+        for (const std::filesystem::path& path : paths_) std::filesystem::remove_all(path, ignored);
+    }
+
+private:
+    std::set<std::filesystem::path> paths_;
+};
+
+inline ScratchRegistry& scratch_registry() {
+    static ScratchRegistry registry;
+    return registry;
+}
+
+// A scratch path private to this test process (ctest runs tests in parallel processes),
+// removed with whatever it holds when the process exits.
 inline std::filesystem::path scratch(const std::string& name) {
-    return std::filesystem::temp_directory_path() /
-           ("hexmesh_e2e_" + std::to_string(::getpid()) + "_" + name);
+    const std::filesystem::path path = std::filesystem::temp_directory_path() /
+                                       ("hexmesh_e2e_" + std::to_string(::getpid()) + "_" + name);
+    scratch_registry().add(path);
+    return path;
 }
 
 inline CommandResult run_command(const std::string& command) {

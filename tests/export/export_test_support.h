@@ -3,6 +3,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <set>
 #include <string>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -15,12 +16,31 @@ namespace hexmesh::test_export {
 
 namespace fs = std::filesystem;
 
-// A fresh scratch folder private to this test process.
+// The scratch folders of this test process, removed when it exits.
+class ScratchRegistry {
+public:
+    void add(const fs::path& dir) { dirs_.insert(dir); }
+    ~ScratchRegistry() {
+        std::error_code ignored;
+        for (const fs::path& dir : dirs_) fs::remove_all(dir, ignored);
+    }
+
+private:
+    std::set<fs::path> dirs_;
+};
+
+inline ScratchRegistry& scratch_registry() {
+    static ScratchRegistry registry;
+    return registry;
+}
+
+// A fresh scratch folder private to this test process (removed when the process exits).
 inline fs::path scratch(const std::string& name) {
     const fs::path dir = fs::temp_directory_path() /
                          ("hexmesh_test_export_" + std::to_string(::getpid()) + "_" + name);
     fs::remove_all(dir);
     fs::create_directories(dir);
+    scratch_registry().add(dir);
     return dir;
 }
 

@@ -38,10 +38,12 @@ TEST(StagedOutput, CommitMovesFilesAndReplacesOldOutputs) {
     std::string text;
     in >> text;
     EXPECT_EQ(text, "new");
+    in.close();
     EXPECT_TRUE(fs::exists(dir / "notes.txt"));
     int entries = 0;
     for (const auto& e : fs::directory_iterator(dir)) entries += e.is_regular_file();
     EXPECT_EQ(entries, 2);  // no staging leftovers
+    fs::remove_all(dir);
 }
 
 TEST(StagedOutput, UnwritableDirectoryIsAClearError) {

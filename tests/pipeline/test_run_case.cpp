@@ -37,6 +37,7 @@ TEST(RunCase, WritesGridAndReportThatReadBack) {
     EXPECT_TRUE(fs::exists(dir / "grid.case.json"));
     EXPECT_EQ(read_vtk_mesh((dir / "grid.vtm").string()).num_cells(), 8 * 8 * 8 + 6 * 8 * 8 * 4);
     EXPECT_NE(log.str().find("grid (o-h, 7 blocks, 2048 cells)"), std::string::npos) << log.str();
+    fs::remove_all(dir);
 }
 
 TEST(RunCase, FailedRunLeavesNoOutput) {
