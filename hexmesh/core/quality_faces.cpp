@@ -1,4 +1,5 @@
-// measure_quality: face matching, OpenFOAM's face metrics, scaled Jacobian and validity.
+// measure_quality: face matching, OpenFOAM's face metrics, scaled Jacobian and validity, for
+// unstructured meshes (two passes over cells) and block grids (one pass, slab by slab).
 //
 // Face (cell c, local face f) has id 6c + f; its nodes follow hex_faces (outward from c).
 // An internal face is owned by the lower cell id and, as in a polyMesh, its geometry is
@@ -6,6 +7,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
+#include <tbb/partitioner.h>
 
 #include <algorithm>
 #include <cstdint>
@@ -155,6 +157,7 @@ public:
     }
 
     Id num_cells() const { return first_.back(); }
+    Id first_cell(size_t block) const { return first_[block]; }
     const std::vector<Vec3>& points() const { return grid_.points; }
     CellView cell(Id c) const {
         const size_t b = size_t(std::upper_bound(first_.begin(), first_.end(), c) - first_.begin()) - 1;
@@ -283,6 +286,47 @@ struct FaceStats {
 constexpr Id cells_per_task = 2048;
 constexpr double pi = 3.14159265358979323846;
 
+QualityReport make_report(Id cells, const CellStats& per_cell, const FaceStats& per_face) {
+    QualityReport report;
+    report.cells = cells;
+    report.inverted_corner_tets = per_cell.inverted_tets;
+    report.inverted_cells = per_cell.inverted_cells;
+    report.min_scaled_jacobian = per_cell.min_sj;
+    report.mean_scaled_jacobian = per_cell.sum_sj / static_cast<double>(cells);
+    report.max_aspect_ratio = per_cell.max_aspect;
+    report.min_volume = per_cell.min_volume;
+    report.max_skewness = per_face.max_skew;
+    // checkMesh: acos of the smallest cosine, clamped to [-1, 1], in degrees.
+    report.max_non_orthogonality_deg =
+        std::acos(std::clamp(per_face.min_ortho, -1.0, 1.0)) * 180.0 / pi;
+    report.max_volume_ratio = per_face.max_volume_ratio;
+    return report;
+}
+
+// The per-cell part of the first pass: aspect ratio, volume, scaled Jacobian, validity.
+void add_cell(CellStats& acc, const std::array<FaceGeometry, 6>& faces, const CellGeometry& g,
+              const std::array<Vec3, 8>& p) {
+    acc.max_aspect = std::max(acc.max_aspect, detail::cell_aspect_ratio(faces, g.volume));
+    acc.min_volume = std::min(acc.min_volume, g.volume);
+    const double sj = hex_scaled_jacobian(p);
+    acc.min_sj = std::min(acc.min_sj, sj);
+    acc.sum_sj += sj;
+    const int inverted = count_inverted_corner_tets(p);
+    acc.inverted_tets += inverted;
+    acc.inverted_cells += inverted > 0;
+}
+
+// The second pass's measures of an internal face: p, g as its owner sees it.
+void add_internal_face(FaceStats& acc, const std::array<Vec3, 4>& p, const FaceGeometry& g,
+                       const Vec3& own_cc, const Vec3& nei_cc, double own_volume,
+                       double nei_volume) {
+    acc.min_ortho = std::min(acc.min_ortho, detail::face_orthogonality(own_cc, nei_cc, g.area));
+    acc.max_skew = std::max(acc.max_skew, detail::face_skewness(p, g, own_cc, nei_cc));
+    const double vo = std::abs(own_volume), vn = std::abs(nei_volume);
+    const double ratio = std::max(vo, vn) / std::max(std::min(vo, vn), detail::foam_rootvsmall);
+    acc.max_volume_ratio = std::max(acc.max_volume_ratio, ratio);
+}
+
 template <class Cells>
 QualityReport measure(const Cells& cells) {
     QualityReport report;
@@ -305,18 +349,9 @@ QualityReport measure(const Cells& cells) {
                 const CellGeometry g = detail::cell_geometry(faces);
                 centres[c] = g.centre;
                 volumes[c] = g.volume;
-                acc.max_aspect =
-                    std::max(acc.max_aspect, detail::cell_aspect_ratio(faces, g.volume));
-                acc.min_volume = std::min(acc.min_volume, g.volume);
-
                 std::array<Vec3, 8> p;
                 for (int k = 0; k < 8; ++k) p[k] = points[v.nodes[k]];
-                const double sj = hex_scaled_jacobian(p);
-                acc.min_sj = std::min(acc.min_sj, sj);
-                acc.sum_sj += sj;
-                const int inverted = count_inverted_corner_tets(p);
-                acc.inverted_tets += inverted;
-                acc.inverted_cells += inverted > 0;
+                add_cell(acc, faces, g, p);
             }
             return acc;
         },
@@ -342,14 +377,7 @@ QualityReport measure(const Cells& cells) {
                         continue;
                     }
                     const Id n = other / 6;
-                    acc.min_ortho = std::min(
-                        acc.min_ortho, detail::face_orthogonality(centres[c], centres[n], g.area));
-                    acc.max_skew =
-                        std::max(acc.max_skew, detail::face_skewness(p, g, centres[c], centres[n]));
-                    const double vo = std::abs(volumes[c]), vn = std::abs(volumes[n]);
-                    const double ratio =
-                        std::max(vo, vn) / std::max(std::min(vo, vn), detail::foam_rootvsmall);
-                    acc.max_volume_ratio = std::max(acc.max_volume_ratio, ratio);
+                    add_internal_face(acc, p, g, centres[c], centres[n], volumes[c], volumes[n]);
                 }
             }
             return acc;
@@ -359,18 +387,154 @@ QualityReport measure(const Cells& cells) {
             return x;
         });
 
-    report.inverted_corner_tets = per_cell.inverted_tets;
-    report.inverted_cells = per_cell.inverted_cells;
-    report.min_scaled_jacobian = per_cell.min_sj;
-    report.mean_scaled_jacobian = per_cell.sum_sj / static_cast<double>(report.cells);
-    report.max_aspect_ratio = per_cell.max_aspect;
-    report.min_volume = per_cell.min_volume;
-    report.max_skewness = per_face.max_skew;
-    // checkMesh: acos of the smallest cosine, clamped to [-1, 1], in degrees.
-    report.max_non_orthogonality_deg =
-        std::acos(std::clamp(per_face.min_ortho, -1.0, 1.0)) * 180.0 / pi;
-    report.max_volume_ratio = per_face.max_volume_ratio;
-    return report;
+    return make_report(report.cells, per_cell, per_face);
+}
+
+
+// Centre and volume of one cell of any cell source, as the first pass computes them.
+template <class Cells>
+CellGeometry geometry_of(const Cells& cells, Id c) {
+    const CellView v = cells.cell(c);
+    std::array<FaceGeometry, 6> faces;
+    for (int f = 0; f < 6; ++f) faces[f] = oriented_face(cells, c, v, f);
+    return detail::cell_geometry(faces);
+}
+
+// One k-slab of a block as the block pass keeps it: per cell (i + ni j) its centre, volume
+// and kmax face as its owner sees it (the kmin face of the cell above).
+struct Slab {
+    std::vector<Vec3> centre;
+    std::vector<double> volume;
+    std::vector<FaceGeometry> kmax;
+    void resize(size_t n) {
+        centre.resize(n);
+        volume.resize(n);
+        kmax.resize(n);
+    }
+};
+
+// measure() for a block grid in one pass: slab by slab (k), row by row (j), cell by cell
+// (i), every internal face is computed once, by its owner (the lower cell: the one below
+// along i, j or k), and reused by the cell above it; its face measures are taken as soon as
+// both centres are known. Faces on block boundaries go through the generic path (interface
+// partners matched by node ids). Slab ranges run in parallel, each one computing the slab
+// below its first for the faces in between; the scaled-Jacobian sum is added slab by slab
+// in order, so the result does not depend on the split.
+QualityReport measure_blocks(const BlockGrid& grid) {
+    const GridCells cells(grid);
+    const Id total = cells.num_cells();
+    if (total == 0) return QualityReport{};
+    const std::vector<Vec3>& points = grid.points;
+    CellStats per_cell;
+    FaceStats per_face;
+    for (size_t b = 0; b < grid.blocks.size(); ++b) {
+        const Block& block = grid.blocks[b];
+        const Dims d = block.cells();
+        if (d.count() == 0) continue;
+        const size_t plane = size_t(d.ni) * size_t(d.nj);
+        const Id first = cells.first_cell(b);
+        std::vector<CellStats> slab_stats(size_t(d.nk));
+
+        // Slab k into `out`; with `stats`, its cells' measures too, and with `below` (slab
+        // k - 1) the measures of every internal face whose upper cell is in slab k.
+        const auto run_slab = [&](int k, Slab& out, const Slab* below, CellStats* stats,
+                                  FaceStats* faces_acc) {
+            std::vector<FaceGeometry> jmax(size_t(d.ni));  // of the row below
+            for (int j = 0; j < d.nj; ++j) {
+                FaceGeometry imax;  // of the cell to the left
+                for (int i = 0; i < d.ni; ++i) {
+                    const size_t at = size_t(i) + size_t(d.ni) * size_t(j);
+                    const Id c = first + Id(at) + Id(plane) * k;
+                    const std::array<Id, 8> nodes = cell_nodes(block, i, j, k);
+                    std::array<Vec3, 8> p;
+                    for (int n = 0; n < 8; ++n) p[n] = points[nodes[n]];
+                    const bool on_boundary = i == 0 || j == 0 || k == 0 || i == d.ni - 1 ||
+                                             j == d.nj - 1 || k == d.nk - 1;
+                    CellView v;
+                    if (on_boundary) v = cells.cell(c);
+                    const std::array<bool, 6> inside = {i > 0, i < d.ni - 1, j > 0,
+                                                        j < d.nj - 1, k > 0, k < d.nk - 1};
+                    std::array<FaceGeometry, 6> faces;
+                    for (int f = 0; f < 6; ++f) {
+                        if (!inside[f]) {
+                            faces[f] = oriented_face(cells, c, v, f);
+                        } else if (f % 2 == 1) {  // owned: from this cell's points
+                            faces[f] = detail::quad_geometry(
+                                {p[hex_faces[f][0]], p[hex_faces[f][1]], p[hex_faces[f][2]], p[hex_faces[f][3]]});
+                        } else {  // the owner below computed it (or, for a slab computed
+                                  // without the one below, its points in the owner's order)
+                            const std::array<int, 4>& o = seen_from_lower[f];
+                            faces[f] = f == 0   ? imax
+                                       : f == 2 ? jmax[size_t(i)]
+                                       : below  ? below->kmax[at]
+                                                : detail::quad_geometry({p[o[0]], p[o[1]], p[o[2]], p[o[3]]});
+                            faces[f].area = -faces[f].area;
+                        }
+                    }
+                    const CellGeometry g = detail::cell_geometry(faces);
+                    out.centre[at] = g.centre;
+                    out.volume[at] = g.volume;
+                    out.kmax[at] = faces[5];
+                    imax = faces[1];
+                    jmax[size_t(i)] = faces[3];
+                    if (!stats) continue;
+                    add_cell(*stats, faces, g, p);
+
+                    // Faces: internal ones from below (i, j, k), then block-boundary ones.
+                    FaceStats& acc = *faces_acc;
+                    for (int f = 0; f < 6; f += 2) {
+                        if (!inside[f]) continue;
+                        const std::array<int, 4>& order = seen_from_lower[f];
+                        const std::array<Vec3, 4> q = {p[order[0]], p[order[1]], p[order[2]], p[order[3]]};
+                        FaceGeometry owner_face = faces[f];
+                        owner_face.area = -owner_face.area;
+                        const size_t lower = f == 0 ? at - 1 : f == 2 ? at - size_t(d.ni) : at;
+                        const Slab& s = f == 4 ? *below : out;
+                        add_internal_face(acc, q, owner_face, s.centre[lower], g.centre, s.volume[lower],
+                                          g.volume);
+                    }
+                    if (!on_boundary) continue;
+                    for (int f = 0; f < 6; ++f) {
+                        if (inside[f]) continue;
+                        const Id other = v.partner[f];
+                        if (!is_owner_side(6 * c + f, other)) continue;  // its owner measures it
+                        const auto& local = hex_faces[f];
+                        const std::array<Vec3, 4> q = {p[local[0]], p[local[1]], p[local[2]], p[local[3]]};
+                        if (other == no_partner) {
+                            acc.max_skew = std::max(acc.max_skew,
+                                                    detail::boundary_face_skewness(q, faces[f], g.centre));
+                            continue;
+                        }
+                        const CellGeometry n = geometry_of(cells, other / 6);
+                        add_internal_face(acc, q, faces[f], g.centre, n.centre, g.volume, n.volume);
+                    }
+                }
+            }
+        };
+
+        const int grain = std::max(2, d.nk / 16);  // each range also computes the slab below it
+        const FaceStats block_faces = tbb::parallel_reduce(
+            tbb::blocked_range<int>(0, d.nk, grain), FaceStats{},
+            [&](const tbb::blocked_range<int>& r, FaceStats acc) {
+                Slab below, current;
+                below.resize(plane);
+                current.resize(plane);
+                if (r.begin() > 0) run_slab(r.begin() - 1, below, nullptr, nullptr, nullptr);
+                for (int k = r.begin(); k != r.end(); ++k) {
+                    run_slab(k, current, k > 0 ? &below : nullptr, &slab_stats[size_t(k)], &acc);
+                    std::swap(below, current);
+                }
+                return acc;
+            },
+            [](FaceStats x, const FaceStats& y) {
+                x.join(y);
+                return x;
+            },
+            tbb::simple_partitioner{});  // ranges of at most `grain` slabs, whatever the load
+        per_face.join(block_faces);
+        for (const CellStats& s : slab_stats) per_cell.join(s);
+    }
+    return make_report(total, per_cell, per_face);
 }
 
 }  // namespace
@@ -382,7 +546,7 @@ QualityReport measure_quality(const HexMesh& mesh) {
 }
 
 QualityReport measure_quality(const BlockGrid& grid) {
-    return measure(GridCells(grid));
+    return measure_blocks(grid);
 }
 
 }  // namespace hexmesh

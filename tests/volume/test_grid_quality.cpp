@@ -1,5 +1,6 @@
-// measure_quality(BlockGrid) reads the blocks directly; it must give exactly the numbers of the
-// unstructured path, measure_quality(to_hex_mesh(grid)), on every topology the toolkit builds.
+// measure_quality(BlockGrid) reads the blocks directly, each face computed once; it must give
+// the numbers of the unstructured path, measure_quality(to_hex_mesh(grid)), on every topology
+// the toolkit builds.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -21,9 +22,10 @@ void expect_same_report(const BlockGrid& grid) {
     EXPECT_EQ(a.cells, b.cells);
     EXPECT_EQ(a.inverted_corner_tets, b.inverted_corner_tets);
     EXPECT_EQ(a.inverted_cells, b.inverted_cells);
-    // Same cells, same face owners, same point orders, same reduction split: bitwise equal.
+    // Same cells, same face owners, same point orders: bitwise equal, but for the mean, whose
+    // sum runs slab by slab here and in chunks of cells there.
     EXPECT_EQ(a.min_scaled_jacobian, b.min_scaled_jacobian);
-    EXPECT_EQ(a.mean_scaled_jacobian, b.mean_scaled_jacobian);
+    EXPECT_NEAR(a.mean_scaled_jacobian, b.mean_scaled_jacobian, 1e-14);
     EXPECT_EQ(a.max_skewness, b.max_skewness);
     EXPECT_EQ(a.max_non_orthogonality_deg, b.max_non_orthogonality_deg);
     EXPECT_EQ(a.max_aspect_ratio, b.max_aspect_ratio);
