@@ -163,6 +163,7 @@ UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& op
 
     // Untangling. Few inverted elements are first repaired locally, in growing
     // neighbourhoods; what is left (or a widespread tangle) is untangled globally.
+    bool local_stalled = false;  // the last local round repaired nothing
     if (stats.inverted > options.unrepairable && options.local_rings > 0) {
         std::vector<std::vector<Id>> elements_of(x.size());
         for (Id e = 0; e < problem.num_elements(); ++e)
@@ -181,10 +182,18 @@ UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& op
             local.max_untangle_iterations = std::min(options.max_untangle_iterations, 50);
             local.stall_iterations = std::min(options.stall_iterations, 10);  // the global pass follows
             continuation(part, assembly, local, seconds, best, result);
+            local_stalled = best.inverted >= inverted_then;
             x = best.points;
         }
     }
-    if (best.inverted > options.unrepairable) continuation(problem, assembly, options, seconds, best, result);
+    if (best.inverted > options.unrepairable) {
+        // When the largest neighbourhood the local repair tried repaired nothing, the global
+        // pass gets the local stall budget too: what is left is then almost always blocked
+        // (an element held by fixed vertices, or by such a neighbour).
+        UntangleOptions global = options;
+        if (local_stalled) global.stall_iterations = std::min(options.stall_iterations, 10);
+        continuation(problem, assembly, global, seconds, best, result);
+    }
     x = best.points;
 
     // Optimization with the pure barrier, from the best untangled state.
