@@ -17,7 +17,8 @@ namespace hexmesh {
 struct Dims {
     int ni = 0, nj = 0, nk = 0;
 
-    Id count() const { return Id(ni) * nj * nk; }
+    // 0 when any extent is 0 or less (e.g. the cells of a block without nodes).
+    Id count() const { return ni > 0 && nj > 0 && nk > 0 ? Id(ni) * nj * nk : 0; }
     // Flat index, i fastest, computed in 64 bits.
     Id flat(int i, int j, int k) const {
         assert(i >= 0 && i < ni && j >= 0 && j < nj && k >= 0 && k < nk);

@@ -127,25 +127,26 @@ GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& bo
         const std::vector<bool> placed = extrude_wall_layers(grid, body, options.wall_layers, options.relax_rings);
         result.laid_nodes = Id(std::count(placed.begin(), placed.end(), true));
         if (result.laid_nodes == 0) return result;  // no line could be laid: nothing changed
-        // The layers, the cells the joint pass left below relax_below (scaled Jacobian), and
-        // the cells up to `relax_rings` rings around both are optimized again; the rest of
-        // the grid (already optimized by the joint pass, and unmoved) is held. Laid layers
-        // that cross the grid are rarely repaired by the rest alone: a short untangling
-        // budget, then the joint result is kept.
-        std::vector<bool> marked = placed;
-        {
+        // The layers, the cells below relax_below (scaled Jacobian, once the layers are
+        // laid), and the cells up to `relax_rings` rings around both are optimized again; the
+        // rest of the grid (already optimized by the joint pass, and unmoved) is held. With
+        // relax_rings <= 0 the whole grid is. Laid layers that cross the grid are rarely
+        // repaired by the rest alone: a short untangling budget, then the joint result is kept.
+        std::vector<bool> held = options.held;
+        if (options.relax_rings > 0) {
+            std::vector<bool> marked = placed;
             const std::vector<double> sj = scaled_jacobians(grid);
             size_t c = 0;
             for (const Block& block : grid.blocks)
                 for_each_cell(block, [&](int, int, int, const std::array<Id, 8>& nodes) {
-                    if (sj[c++] < options.relax_below)
+                    if (!(sj[c++] >= options.relax_below))
                         for (Id v : nodes) marked[v] = true;
                 });
+            held = grow_by_cells(grid, marked, options.relax_rings);
+            held.flip();
+            if (!options.held.empty())
+                for (size_t v = 0; v < held.size(); ++v) held[v] = held[v] || options.held[v];
         }
-        std::vector<bool> held = grow_by_cells(grid, marked, options.relax_rings);
-        held.flip();
-        if (!options.held.empty())
-            for (size_t v = 0; v < held.size(); ++v) held[v] = held[v] || options.held[v];
         GridProblem g = make_problem(grid, initial, body, held);
         untangle::Problem& problem = g.problem;
         for (Id i = 0; i < Id(problem.points.size()); ++i)

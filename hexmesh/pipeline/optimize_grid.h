@@ -17,8 +17,9 @@ struct GridOptimizationOptions {
     WallLayers wall_layers;
     // The nodes beyond the laid layers follow them over this many nodes along each line, and
     // the pass after the layers are laid again optimizes the cells within this many cell
-    // rings of the laid nodes and of the cells the joint pass left with a scaled Jacobian
-    // below relax_below; the rest of the grid keeps the joint pass's positions.
+    // rings of the laid nodes and of the cells with a scaled Jacobian below relax_below once
+    // the layers are laid; the rest of the grid keeps the joint pass's positions. 0: the nodes
+    // beyond follow to the line's far end and the whole grid is optimized again.
     int relax_rings = 8;
     double relax_below = 0.5;
     // Nodes that must not move whatever their kind (sized like grid.points, or empty for

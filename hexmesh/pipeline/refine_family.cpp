@@ -31,6 +31,12 @@ double cell_length_scale(const BlockGrid& grid) {
     return box.diagonal() / std::cbrt(cells);
 }
 
+// The smaller of a and b, NaN if either is (std::min would drop a NaN in second place).
+double lower(double a, double b) {
+    return std::isnan(a) || std::isnan(b) ? std::numeric_limits<double>::quiet_NaN() : std::min(a, b);
+}
+
+// The smallest scaled Jacobian of `cells` (NaN if one is NaN).
 double min_scaled_jacobian(const BlockGrid& grid, const std::vector<std::array<Id, 8>>& cells) {
     return tbb::parallel_reduce(
         tbb::blocked_range<size_t>(0, cells.size(), 4096), std::numeric_limits<double>::infinity(),
@@ -38,11 +44,11 @@ double min_scaled_jacobian(const BlockGrid& grid, const std::vector<std::array<I
             for (size_t c = r.begin(); c != r.end(); ++c) {
                 std::array<Vec3, 8> p;
                 for (int k = 0; k < 8; ++k) p[k] = grid.points[cells[c][k]];
-                worst = std::min(worst, hex_scaled_jacobian(p));
+                worst = lower(worst, hex_scaled_jacobian(p));
             }
             return worst;
         },
-        [](double a, double b) { return std::min(a, b); });
+        lower);
 }
 
 // The smallest scaled Jacobian of the cells whose 8 nodes are all held.
@@ -50,7 +56,7 @@ double min_scaled_jacobian_held(const BlockGrid& grid, const std::vector<bool>& 
     double worst = std::numeric_limits<double>::infinity();
     for (const Block& block : grid.blocks) {
         const Dims d = block.cells();
-        worst = std::min(worst, tbb::parallel_reduce(
+        worst = lower(worst, tbb::parallel_reduce(
             tbb::blocked_range<int>(0, d.nk), worst,
             [&](const tbb::blocked_range<int>& r, double w) {
                 for (int k = r.begin(); k != r.end(); ++k)
@@ -61,11 +67,11 @@ double min_scaled_jacobian_held(const BlockGrid& grid, const std::vector<bool>& 
                                 continue;
                             std::array<Vec3, 8> p;
                             for (int n = 0; n < 8; ++n) p[n] = grid.points[nodes[n]];
-                            w = std::min(w, hex_scaled_jacobian(p));
+                            w = lower(w, hex_scaled_jacobian(p));
                         }
                 return w;
             },
-            [](double a, double b) { return std::min(a, b); }));
+            lower));
     }
     return worst;
 }
@@ -83,7 +89,7 @@ double min_scaled_jacobian_held(const BlockGrid& grid, const std::vector<bool>& 
 void keep_no_worse_than(BlockGrid& grid, const std::vector<std::array<Id, 8>>& cells,
                         double cells_floor, const std::vector<bool>& held,
                         const std::vector<Id>& free, const std::vector<Vec3>& saved) {
-    if (!(cells_floor > 0) || !(min_scaled_jacobian(grid, cells) < cells_floor)) return;
+    if (!(cells_floor > 0) || min_scaled_jacobian(grid, cells) >= cells_floor) return;
     const double floor = std::min(cells_floor, min_scaled_jacobian_held(grid, held));
     if (!(floor > 0)) return;
     for (int round = 0; round < 100; ++round) {

@@ -1,6 +1,8 @@
 // Runs the hexmesh executable (or any command) and captures its exit code and output.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -26,11 +28,16 @@ inline std::string read_text(const std::filesystem::path& file) {
 }
 
 // Runs `command` through the shell in the source tree, stdout and stderr captured apart.
-// The scratch paths handed out in this test process, removed (files or folders) when it exits.
+// The scratch paths handed out in this test process, removed (files or folders) when it exits
+// unless a test failed.
 class ScratchRegistry {
 public:
+    // gtest's UnitTest is made first so that it outlives this registry (asked at exit).
+    ScratchRegistry() { ::testing::UnitTest::GetInstance(); }
     void add(const std::filesystem::path& path) { paths_.insert(path); }
     ~ScratchRegistry() {
+        // A failed test's files stay for a look (their paths are in its messages).
+        if (::testing::UnitTest::GetInstance()->Failed()) return;
         std::error_code ignored;
         for (const std::filesystem::path& path : paths_) std::filesystem::remove_all(path, ignored);
     }

@@ -1,6 +1,8 @@
 // Shared helpers of the exporter tests: small grids, scratch folders, running tools.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <set>
@@ -16,11 +18,15 @@ namespace hexmesh::test_export {
 
 namespace fs = std::filesystem;
 
-// The scratch folders of this test process, removed when it exits.
+// The scratch folders of this test process, removed when it exits unless a test failed.
 class ScratchRegistry {
 public:
+    // gtest's UnitTest is made first so that it outlives this registry (asked at exit).
+    ScratchRegistry() { ::testing::UnitTest::GetInstance(); }
     void add(const fs::path& dir) { dirs_.insert(dir); }
     ~ScratchRegistry() {
+        // A failed test's files stay for a look (their paths are in its messages).
+        if (::testing::UnitTest::GetInstance()->Failed()) return;
         std::error_code ignored;
         for (const fs::path& dir : dirs_) fs::remove_all(dir, ignored);
     }

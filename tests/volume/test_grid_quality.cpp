@@ -83,6 +83,29 @@ TEST(GridQuality, SingleBlockAndRefinedGridsMatchTheUnstructuredReport) {
     expect_same_report(refine_grid(make_o_h_grid(Sphere(Vec3::Zero(), 1.0), o_h_options())));
 }
 
+// A block one cell thick (every cell on both k faces), and an empty block (no nodes, as a
+// reader may hand over) before a real one: ids of the later block's cells must not shift.
+TEST(GridQuality, ThinAndEmptyBlocksMatchTheUnstructuredReport) {
+    BlockGrid grid;
+    Block thin;
+    thin.nodes = {6, 5, 2};
+    thin.face_patch = {"a", "b", "c", "d", "e", "f"};
+    for (int k = 0; k < 2; ++k)
+        for (int j = 0; j < 5; ++j)
+            for (int i = 0; i < 6; ++i) {
+                thin.node_ids.push_back(Id(grid.points.size()));
+                grid.points.push_back(Vec3(0.2 * i, 0.15 * j, 0.1 * k));
+            }
+    grid.kinds.assign(grid.points.size(), VertexKind::interior);
+    grid.blocks.push_back(thin);
+    shake(grid, 0.01, 5);
+    expect_same_report(grid);
+    grid.blocks.insert(grid.blocks.begin(), Block{});
+    EXPECT_EQ(grid.num_cells(), 5 * 4 * 1);
+    EXPECT_EQ(measure_quality(grid).cells, 5 * 4 * 1);
+    expect_same_report(grid);
+}
+
 // Three one-cell blocks over the same eight nodes: every face is listed by three cells.
 TEST(GridQuality, FaceSharedByThreeBlocksIsRejected) {
     BlockGrid grid;
