@@ -14,6 +14,7 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "hexmesh/core/face_geometry.h"
 #include "hexmesh/core/quality.h"
@@ -53,6 +54,11 @@ std::array<Vec3, 4> points_of(const std::vector<Vec3>& points, const std::array<
                               const std::array<int, 4>& local) {
     return {points[nodes[local[0]]], points[nodes[local[1]]], points[nodes[local[2]]],
             points[nodes[local[3]]]};
+}
+
+// The 4 of a cell's 8 corner points p listed by `local`.
+std::array<Vec3, 4> face_of(const std::array<Vec3, 8>& p, const std::array<int, 4>& local) {
+    return {p[local[0]], p[local[1]], p[local[2]], p[local[3]]};
 }
 
 std::array<Id, 4> sorted_face(const std::array<Id, 8>& nodes, int f) {
@@ -160,11 +166,9 @@ public:
     Id first_cell(size_t block) const { return first_[block]; }
     const std::vector<Vec3>& points() const { return grid_.points; }
     CellView cell(Id c) const {
-        const size_t b = size_t(std::upper_bound(first_.begin(), first_.end(), c) - first_.begin()) - 1;
+        const auto [b, at] = locate(c);
         const Block& block = grid_.blocks[b];
         const Dims d = block.cells();
-        const Id r = c - first_[b];
-        const std::array<int, 3> at = {int(r % d.ni), int((r / d.ni) % d.nj), int(r / (Id(d.ni) * d.nj))};
         const std::array<Id, 3> stride = {1, d.ni, Id(d.ni) * d.nj};
         CellView v;
         v.nodes = cell_nodes(block, at[0], at[1], at[2]);
@@ -186,6 +190,14 @@ public:
     }
 
 private:
+    // The block of cell c and its (i, j, k) there.
+    std::pair<size_t, std::array<int, 3>> locate(Id c) const {
+        const size_t b = size_t(std::upper_bound(first_.begin(), first_.end(), c) - first_.begin()) - 1;
+        const Dims d = grid_.blocks[b].cells();
+        const Id r = c - first_[b];
+        return {b, {int(r % d.ni), int((r / d.ni) % d.nj), int(r / (Id(d.ni) * d.nj))}};
+    }
+
     // Position of a cell's face in the list of a block face's cells (the two other axes, the
     // lower one fastest).
     static Id face_index(const Dims& d, int axis, const std::array<int, 3>& at) {
@@ -220,13 +232,9 @@ private:
     }
 
     Id& boundary_slot(Id face) {
-        const Id c = face / 6;
+        const auto [b, at] = locate(face / 6);
         const int f = int(face % 6);
-        const size_t b = size_t(std::upper_bound(first_.begin(), first_.end(), c) - first_.begin()) - 1;
-        const Dims d = grid_.blocks[b].cells();
-        const Id r = c - first_[b];
-        const std::array<int, 3> at = {int(r % d.ni), int((r / d.ni) % d.nj), int(r / (Id(d.ni) * d.nj))};
-        return boundary_partner_[b][f][face_index(d, f / 2, at)];
+        return boundary_partner_[b][f][face_index(grid_.blocks[b].cells(), f / 2, at)];
     }
 
     const BlockGrid& grid_;
@@ -459,15 +467,13 @@ QualityReport measure_blocks(const BlockGrid& grid) {
                         if (!inside[f]) {
                             faces[f] = oriented_face(cells, c, v, f);
                         } else if (f % 2 == 1) {  // owned: from this cell's points
-                            faces[f] = detail::quad_geometry(
-                                {p[hex_faces[f][0]], p[hex_faces[f][1]], p[hex_faces[f][2]], p[hex_faces[f][3]]});
+                            faces[f] = detail::quad_geometry(face_of(p, hex_faces[f]));
                         } else {  // the owner below computed it (or, for a slab computed
                                   // without the one below, its points in the owner's order)
-                            const std::array<int, 4>& o = seen_from_lower[f];
                             faces[f] = f == 0   ? imax
                                        : f == 2 ? jmax[size_t(i)]
                                        : below  ? below->kmax[at]
-                                                : detail::quad_geometry({p[o[0]], p[o[1]], p[o[2]], p[o[3]]});
+                                                : detail::quad_geometry(face_of(p, seen_from_lower[f]));
                             faces[f].area = -faces[f].area;
                         }
                     }
@@ -484,8 +490,7 @@ QualityReport measure_blocks(const BlockGrid& grid) {
                     FaceStats& acc = *faces_acc;
                     for (int f = 0; f < 6; f += 2) {
                         if (!inside[f]) continue;
-                        const std::array<int, 4>& order = seen_from_lower[f];
-                        const std::array<Vec3, 4> q = {p[order[0]], p[order[1]], p[order[2]], p[order[3]]};
+                        const std::array<Vec3, 4> q = face_of(p, seen_from_lower[f]);
                         FaceGeometry owner_face = faces[f];
                         owner_face.area = -owner_face.area;
                         const size_t lower = f == 0 ? at - 1 : f == 2 ? at - size_t(d.ni) : at;
@@ -498,8 +503,7 @@ QualityReport measure_blocks(const BlockGrid& grid) {
                         if (inside[f]) continue;
                         const Id other = v.partner[f];
                         if (!is_owner_side(6 * c + f, other)) continue;  // its owner measures it
-                        const auto& local = hex_faces[f];
-                        const std::array<Vec3, 4> q = {p[local[0]], p[local[1]], p[local[2]], p[local[3]]};
+                        const std::array<Vec3, 4> q = face_of(p, hex_faces[f]);
                         if (other == no_partner) {
                             acc.max_skew = std::max(acc.max_skew,
                                                     detail::boundary_face_skewness(q, faces[f], g.centre));
