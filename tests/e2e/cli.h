@@ -1,17 +1,16 @@
 // Runs the hexmesh executable (or any command) and captures its exit code and output.
 #pragma once
 
-#include <gtest/gtest.h>
-
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <optional>
-#include <set>
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
 #include <unistd.h>
+
+#include "tests/scratch_registry.h"
 
 namespace hexmesh::test_support {
 
@@ -27,39 +26,15 @@ inline std::string read_text(const std::filesystem::path& file) {
     return s.str();
 }
 
-// Runs `command` through the shell in the source tree, stdout and stderr captured apart.
-// The scratch paths handed out in this test process, removed (files or folders) when it exits
-// unless a test failed.
-class ScratchRegistry {
-public:
-    // gtest's UnitTest is made first so that it outlives this registry (asked at exit).
-    ScratchRegistry() { ::testing::UnitTest::GetInstance(); }
-    void add(const std::filesystem::path& path) { paths_.insert(path); }
-    ~ScratchRegistry() {
-        // A failed test's files stay for a look (their paths are in its messages).
-        if (::testing::UnitTest::GetInstance()->Failed()) return;
-        std::error_code ignored;
-        for (const std::filesystem::path& path : paths_) std::filesystem::remove_all(path, ignored);
-    }
-
-private:
-    std::set<std::filesystem::path> paths_;
-};
-
-inline ScratchRegistry& scratch_registry() {
-    static ScratchRegistry registry;
-    return registry;
-}
-
 // A scratch path private to this test process (ctest runs tests in parallel processes),
 // removed with whatever it holds when the process exits.
 inline std::filesystem::path scratch(const std::string& name) {
     const std::filesystem::path path = std::filesystem::temp_directory_path() /
                                        ("hexmesh_e2e_" + std::to_string(::getpid()) + "_" + name);
-    scratch_registry().add(path);
-    return path;
+    return test::remove_at_exit(path);
 }
 
+// Runs `command` through the shell in the source tree, stdout and stderr captured apart.
 inline CommandResult run_command(const std::string& command) {
     const auto out = scratch("stdout.txt"), err = scratch("stderr.txt");
     const std::string full = "cd '" HEXMESH_SOURCE_DIR "' && " + command + " > '" + out.string() +

@@ -1,44 +1,20 @@
 // Shared helpers of the exporter tests: small grids, scratch folders, running tools.
 #pragma once
 
-#include <gtest/gtest.h>
-
 #include <cstdio>
 #include <filesystem>
-#include <set>
 #include <string>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include "hexmesh/core/block_grid.h"
 #include "surface/analytic.h"
+#include "tests/scratch_registry.h"
 #include "volume/o_h_grid.h"
 
 namespace hexmesh::test_export {
 
 namespace fs = std::filesystem;
-
-// The scratch folders of this test process, removed when it exits unless a test failed.
-class ScratchRegistry {
-public:
-    // gtest's UnitTest is made first so that it outlives this registry (asked at exit).
-    ScratchRegistry() { ::testing::UnitTest::GetInstance(); }
-    void add(const fs::path& dir) { dirs_.insert(dir); }
-    ~ScratchRegistry() {
-        // A failed test's files stay for a look (their paths are in its messages).
-        if (::testing::UnitTest::GetInstance()->Failed()) return;
-        std::error_code ignored;
-        for (const fs::path& dir : dirs_) fs::remove_all(dir, ignored);
-    }
-
-private:
-    std::set<fs::path> dirs_;
-};
-
-inline ScratchRegistry& scratch_registry() {
-    static ScratchRegistry registry;
-    return registry;
-}
 
 // A fresh scratch folder private to this test process (removed when the process exits).
 inline fs::path scratch(const std::string& name) {
@@ -46,8 +22,7 @@ inline fs::path scratch(const std::string& name) {
                          ("hexmesh_test_export_" + std::to_string(::getpid()) + "_" + name);
     fs::remove_all(dir);
     fs::create_directories(dir);
-    scratch_registry().add(dir);
-    return dir;
+    return test::remove_at_exit(dir);
 }
 
 // The O-H grid of the unit sphere: 7 blocks, wall patch on the 6 outer blocks' kmax faces.

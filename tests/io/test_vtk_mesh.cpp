@@ -2,11 +2,11 @@
 
 #include <filesystem>
 #include <fstream>
-#include <vector>
 
 #include "io/case_file.h"
 #include "io/vtk_mesh.h"
 #include "surface/analytic.h"
+#include "tests/scratch_registry.h"
 #include "volume/o_h_grid.h"
 #include "volume/single_block_grid.h"
 
@@ -15,21 +15,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The folders made by temp_dir, removed when the test program exits.
-struct TempDirs {
-    std::vector<fs::path> dirs;
-    ~TempDirs() {
-        std::error_code ignored;
-        for (const fs::path& dir : dirs) fs::remove_all(dir, ignored);
-    }
-} temp_dirs;
-
 fs::path temp_dir(const std::string& name) {
     const fs::path dir = fs::temp_directory_path() / ("hexmesh_test_io_" + name);
     fs::remove_all(dir);
     fs::create_directories(dir);
-    temp_dirs.dirs.push_back(dir);
-    return dir;
+    return hexmesh::test::remove_at_exit(dir);
 }
 
 }  // namespace
