@@ -181,80 +181,101 @@ double Assembly::sum_by_colour(Kernel&& kernel) const {
     return deterministic_sum(chunk_value.size(), [&](size_t k) { return chunk_value[k]; });
 }
 
-template <class Kernel>
-double Assembly::sum_by_colour_each(Kernel&& kernel) const {
+template <class HexKernel, class TetKernel>
+double Assembly::sum_by_colour_hexes(HexKernel&& hex_kernel, TetKernel&& tet_kernel) const {
     return sum_by_colour([&](Id first, Id last) {
         double s = 0;
-        for (Id e = first; e < last; ++e) s += kernel(e);
+        for (Id e = first; e < last;) {
+            if (problem_.is_hex_corner(e) && e % 8 == 0 && e + 8 <= last) {
+                s += hex_kernel(e / 8);
+                e += 8;
+            } else {
+                s += tet_kernel(e);
+                ++e;
+            }
+        }
         return s;
     });
 }
 
-template <class Scatter>
+template <class ScatterHex, class ScatterTet>
 double Assembly::assemble_hessian(const std::vector<Vec3>& x, const EnergyParams& p, std::vector<Vec3>& g,
-                                  Scatter&& scatter) const {
+                                  ScatterHex&& scatter_hex, ScatterTet&& scatter_tet) const {
     g.assign(x.size(), Vec3::Zero());
-    return sum_by_colour_each([&](Id e) {
-        const std::array<Id, 4> t = problem_.element(e);
-        Mat34 ge;
-        Mat12 he;
-        const double value = tet_energy_hessian(Problem::corners(x, t), problem_.target(e), p, ge, he);
-        if (!std::isfinite(value)) return value;
-        for (int a = 0; a < 4; ++a) g[t[a]] += ge.col(a);
-        scatter(e, t, he);
-        return value;
-    });
+    return sum_by_colour_hexes(
+        [&](Id h) {
+            Mat38 gh;
+            HexHessian hh;
+            const double value = hex_energy_hessian(hex_corners(x, h), problem_.hex_edges[h], p, gh, hh);
+            if (!std::isfinite(value)) return value;
+            for (int a = 0; a < 8; ++a) g[problem_.hexes[h][a]] += gh.col(a);
+            scatter_hex(h, hh);
+            return value;
+        },
+        [&](Id e) {
+            const std::array<Id, 4> t = problem_.element(e);
+            Mat34 ge;
+            Mat12 he;
+            const double value = tet_energy_hessian(Problem::corners(x, t), problem_.target(e), p, ge, he);
+            if (!std::isfinite(value)) return value;
+            for (int a = 0; a < 4; ++a) g[t[a]] += ge.col(a);
+            scatter_tet(e, t, he);
+            return value;
+        });
 }
 
 double Assembly::diagonal_hessian(const std::vector<Vec3>& x, const EnergyParams& p,
                                   std::vector<Vec3>& g, std::vector<Mat3>& diagonal) const {
     diagonal.assign(x.size(), Mat3::Zero());
-    return assemble_hessian(x, p, g, [&](Id, const std::array<Id, 4>& t, const Mat12& he) {
-        for (int a = 0; a < 4; ++a) diagonal[t[a]] += he.block<3, 3>(3 * a, 3 * a);
-    });
+    return assemble_hessian(
+        x, p, g,
+        [&](Id h, const HexHessian& hh) {
+            for (int a = 0; a < 8; ++a) diagonal[problem_.hexes[h][a]] += hh.block[a][a];
+        },
+        [&](Id, const std::array<Id, 4>& t, const Mat12& he) {
+            for (int a = 0; a < 4; ++a) diagonal[t[a]] += he.block<3, 3>(3 * a, 3 * a);
+        });
 }
 
 void Assembly::hessian_product(const std::vector<Vec3>& x, const EnergyParams& p,
                                const std::vector<Vec3>& v, std::vector<Vec3>& out) const {
     out.assign(x.size(), Vec3::Zero());
-    sum_by_colour_each([&](Id e) {
-        const std::array<Id, 4> t = problem_.element(e);
-        Mat34 ge;
-        Mat12 he;
-        if (!std::isfinite(tet_energy_hessian(Problem::corners(x, t), problem_.target(e), p, ge, he))) return 0.0;
-        Eigen::Matrix<double, 12, 1> ve;
-        for (int a = 0; a < 4; ++a) ve.segment<3>(3 * a) = v[t[a]];
-        const Eigen::Matrix<double, 12, 1> he_v = he * ve;
-        for (int a = 0; a < 4; ++a) out[t[a]] += he_v.segment<3>(3 * a);
-        return 0.0;
-    });
+    std::vector<Vec3> g;
+    assemble_hessian(
+        x, p, g,
+        [&](Id h, const HexHessian& hh) {
+            const auto& n = problem_.hexes[h];
+            for (const auto& [a, b] : hex_hessian_pairs) {
+                out[n[a]] += hh.block[a][b] * v[n[b]];
+                if (a != b) out[n[b]] += hh.block[a][b].transpose() * v[n[a]];
+            }
+        },
+        [&](Id, const std::array<Id, 4>& t, const Mat12& he) {
+            Eigen::Matrix<double, 12, 1> ve;
+            for (int a = 0; a < 4; ++a) ve.segment<3>(3 * a) = v[t[a]];
+            const Eigen::Matrix<double, 12, 1> he_v = he * ve;
+            for (int a = 0; a < 4; ++a) out[t[a]] += he_v.segment<3>(3 * a);
+        });
 }
 
 double Assembly::gradient(const std::vector<Vec3>& x, const EnergyParams& p, std::vector<Vec3>& g) const {
     g.assign(x.size(), Vec3::Zero());
-    return sum_by_colour([&](Id first, Id last) {
-        double s = 0;
-        for (Id e = first; e < last;) {
-            if (problem_.is_hex_corner(e) && e % 8 == 0 && e + 8 <= last) {  // a whole hex
-                const Id h = e / 8;
-                Mat38 gh;
-                const double value = hex_energy(hex_corners(x, h), problem_.hex_edges[h], p, &gh);
-                if (std::isfinite(value))
-                    for (int a = 0; a < 8; ++a) g[problem_.hexes[h][a]] += gh.col(a);
-                s += value;
-                e += 8;
-                continue;
-            }
+    return sum_by_colour_hexes(
+        [&](Id h) {
+            Mat38 gh;
+            const double value = hex_energy(hex_corners(x, h), problem_.hex_edges[h], p, &gh);
+            if (std::isfinite(value))
+                for (int a = 0; a < 8; ++a) g[problem_.hexes[h][a]] += gh.col(a);
+            return value;
+        },
+        [&](Id e) {
             const std::array<Id, 4> t = problem_.element(e);
             Mat34 ge;
             const double value = tet_energy_gradient(Problem::corners(x, t), problem_.target(e), p, ge);
             if (std::isfinite(value))
                 for (int a = 0; a < 4; ++a) g[t[a]] += ge.col(a);
-            s += value;
-            ++e;
-        }
-        return s;
-    });
+            return value;
+        });
 }
 
 const Assembly::Slots& Assembly::hessian_slots() const {
@@ -283,17 +304,28 @@ double Assembly::hessian(const std::vector<Vec3>& x, const EnergyParams& p, std:
     const Slots& slots = hessian_slots();
     const Id hex_elements = 8 * Id(problem_.hexes.size());
     std::fill(h.block.begin(), h.block.end(), HessianBlock::Zero());
-    return assemble_hessian(x, p, g, [&](Id e, const std::array<Id, 4>& t, const Mat12& he) {
-        for (int a = 0; a < 4; ++a) {
-            HessianBlock* row = h.block.data() + h.row_start[t[a]];
-            for (int b = 0; b < 4; ++b) {
-                const uint16_t slot =
-                    e < hex_elements ? slots.hex[e / 8][8 * hex_corner_tets[e % 8][a] + hex_corner_tets[e % 8][b]]
-                                     : slots.tet[e - hex_elements][4 * a + b];
-                row[slot] += he.block<3, 3>(3 * a, 3 * b).cast<float>();
+    return assemble_hessian(
+        x, p, g,
+        [&](Id hex, const HexHessian& hh) {
+            const auto& n = problem_.hexes[hex];
+            const auto& slot = slots.hex[hex];
+            for (const auto& [a, b] : hex_hessian_pairs) {
+                const HessianBlock block = hh.block[a][b].cast<float>();
+                h.block[h.row_start[n[a]] + slot[8 * a + b]] += block;
+                if (a != b) h.block[h.row_start[n[b]] + slot[8 * b + a]] += block.transpose();
             }
-        }
-    });
+        },
+        [&](Id e, const std::array<Id, 4>& t, const Mat12& he) {
+            for (int a = 0; a < 4; ++a) {
+                HessianBlock* row = h.block.data() + h.row_start[t[a]];
+                for (int b = 0; b < 4; ++b) {
+                    const uint16_t slot =
+                        e < hex_elements ? slots.hex[e / 8][8 * hex_corner_tets[e % 8][a] + hex_corner_tets[e % 8][b]]
+                                         : slots.tet[e - hex_elements][4 * a + b];
+                    row[slot] += he.block<3, 3>(3 * a, 3 * b).cast<float>();
+                }
+            }
+        });
 }
 
 }  // namespace hexmesh::untangle

@@ -70,17 +70,19 @@ private:
     // (over the chunks in a fixed order).
     template <class Kernel>
     double sum_by_colour(Kernel&& kernel) const;
-    // The same with kernel(e) called on each element in order.
-    template <class Kernel>
-    double sum_by_colour_each(Kernel&& kernel) const;
+    // The same with hex_kernel(h) on each hex whose 8 corner tets lie in one chunk and
+    // tet_kernel(e) on every other element, in element order.
+    template <class HexKernel, class TetKernel>
+    double sum_by_colour_hexes(HexKernel&& hex_kernel, TetKernel&& tet_kernel) const;
     // Cuts the elements into chunks of `size` consecutive ones and colours them; false if
     // that needs more colours than the colouring can hold.
     bool colour_chunks(Id size);
-    // F(x) and its gradient in g; each finite element's PSD Hessian goes to
-    // scatter(e, its 4 vertex ids, he).
-    template <class Scatter>
-    double assemble_hessian(const std::vector<Vec3>& x, const EnergyParams& p,
-                            std::vector<Vec3>& g, Scatter&& scatter) const;
+    // F(x) and its gradient in g; the PSD Hessian of each finite hex goes to
+    // scatter_hex(h, its blocks), that of each other finite element (plain tets, and the
+    // corner tets of a hex split between chunks) to scatter_tet(e, its 4 vertex ids, he).
+    template <class ScatterHex, class ScatterTet>
+    double assemble_hessian(const std::vector<Vec3>& x, const EnergyParams& p, std::vector<Vec3>& g,
+                            ScatterHex&& scatter_hex, ScatterTet&& scatter_tet) const;
 
     // Where the element Hessians' blocks go, as offsets in the block row of their first
     // vertex: per hex for the node pairs (a, b) of its corner tets (8 a + b), per plain tet

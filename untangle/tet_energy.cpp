@@ -129,6 +129,67 @@ bool evaluate(const Mat34& y, const TetTarget& t, const EnergyParams& p, Mat3& s
     return true;
 }
 
+// The 16 vertex blocks (block (a, b) = d2E / dy_a dy_b) of the Hessian of
+// E = weight phi(S), S = [y1 - y0, y2 - y0, y3 - y0] H^-1, with g = H^-T; its negative
+// eigenvalues clamped to zero unless project_psd is false.
+//
+// The Hessian in S of an isotropic f(I, det S) has a closed-form eigensystem (Smith, de Goes,
+// Kim 2019): with the signed SVD S = U diag(sigma) V^T, its modes are U C V^T with C = E_ij -
+// E_ji (twists, eigenvalue 2 f_I + f_d sigma_k, k the third index), C = E_ij + E_ji (flips,
+// 2 f_I - f_d sigma_k), both over sqrt 2, and C diagonal (scalings: the eigenvectors of
+// the 3 x 3 Hessian `a` of f(sum sigma^2, prod sigma) in sigma). Vertex a >= 1 moves S by
+// e_c g_a^T, so a mode moves it by U C x_a with x_a = V^T g_a, and summing
+// lambda (U C x_a)(U C x_b)^T over the modes gives block (a, b) = U K_ab U^T with
+//   K_ab = a+ o (x_a x_b^T) + B o (x_b x_a^T) + diag(A (x_a o x_b))
+// (o: entrywise product), a+ = `a` clamped, and for i != j with k = 3 - i - j:
+// B_ij = (lambda_flip - lambda_twist) / 2, A_ij = (lambda_flip + lambda_twist) / 2 (clamped).
+// Vertex 0 moves S by minus the sum of the others: its blocks are minus sums.
+void hessian_blocks(const Mat3& s, const Invariants& f, const Mat3& g, double weight, bool project_psd,
+                    TetBlocks& blocks) {
+    Mat3 u, v;
+    Vec3 sigma;
+    signed_svd(s, u, sigma, v);
+    const Vec3 d_i(sigma[1] * sigma[2], sigma[0] * sigma[2], sigma[0] * sigma[1]);
+    Mat3 a;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            a(i, j) = 2 * f.f_id * (sigma[i] * d_i[j] + sigma[j] * d_i[i]) + f.f_dd * d_i[i] * d_i[j] +
+                      (i == j ? 2 * f.f_i : f.f_d * sigma[3 - i - j]);
+    const bool definite = a(0, 0) > 0 && a(0, 0) * a(1, 1) - a(0, 1) * a(0, 1) > 0 && a.determinant() > 0;
+    Mat3 scaling;  // weight a+
+    if (definite || !project_psd) {
+        scaling = weight * a;
+    } else {
+        Eigen::SelfAdjointEigenSolver<Mat3> eigen;
+        eigen.computeDirect(a);
+        scaling = eigen.eigenvectors() * (weight * eigen.eigenvalues().cwiseMax(0.0)).asDiagonal() *
+                  eigen.eigenvectors().transpose();
+    }
+    Mat3 pair = Mat3::Zero(), twist_flip = Mat3::Zero();  // weight A and weight B, zero diagonals
+    for (int k = 0; k < 3; ++k) {
+        double twist = 2 * f.f_i + f.f_d * sigma[k], flip = 2 * f.f_i - f.f_d * sigma[k];
+        if (project_psd) twist = std::max(twist, 0.0), flip = std::max(flip, 0.0);
+        const int i = (k + 1) % 3, j = (k + 2) % 3;
+        pair(i, j) = pair(j, i) = 0.5 * weight * (flip + twist);
+        twist_flip(i, j) = twist_flip(j, i) = 0.5 * weight * (flip - twist);
+    }
+    const Mat3 x = v.transpose() * g;  // column a - 1: x_a
+    for (int a1 = 0; a1 < 3; ++a1)
+        for (int b1 = a1; b1 < 3; ++b1) {
+            const Vec3 xa = x.col(a1), xb = x.col(b1);
+            Mat3 k = scaling.cwiseProduct(xa * xb.transpose()) + twist_flip.cwiseProduct(xb * xa.transpose());
+            k.diagonal() += pair * xa.cwiseProduct(xb);
+            blocks[a1 + 1][b1 + 1] = u * k * u.transpose();
+            blocks[b1 + 1][a1 + 1] = blocks[a1 + 1][b1 + 1].transpose();
+        }
+    blocks[0][0].setZero();
+    for (int b = 1; b < 4; ++b) {
+        blocks[0][b] = -(blocks[1][b] + blocks[2][b] + blocks[3][b]);
+        blocks[b][0] = blocks[0][b].transpose();
+        blocks[0][0] -= blocks[0][b];
+    }
+}
+
 // Per corner tet c of a hex, the axis of each of its three edges (its target's diagonal).
 constexpr std::array<std::array<int, 3>, 8> corner_axes = [] {
     std::array<std::array<int, 3>, 8> axes{};
@@ -161,78 +222,10 @@ double tet_energy_hessian(const Mat34& y, const TetTarget& t, const EnergyParams
     Mat3 s;
     Invariants f;
     if (!evaluate<true>(y, t, p, s, f, grad)) return infinity;
-
-    // Analytic eigensystem of the 9 x 9 Hessian in S of an isotropic energy f(I, det S)
-    // (Smith, de Goes, Kim 2019): with the signed SVD S = U diag(sigma) V^T, the twists
-    // U T_ij V^T and flips U F_ij V^T are eigenvectors with eigenvalues 2 f_I +- f_d sigma_k,
-    // and the scalings U diag(v) V^T span the rest, where v are the eigenvectors of the 3 x 3
-    // Hessian of f(sum sigma^2, prod sigma) in sigma. Each mode q contributes
-    // lambda (D^T q)(D^T q)^T to the 12 x 12 Hessian, with (D^T q)_a = U M V^T g_a.
-    Mat3 u, v;
-    Vec3 sigma;
-    signed_svd(s, u, sigma, v);
-    const Vec3 d_i(sigma[1] * sigma[2], sigma[0] * sigma[2], sigma[0] * sigma[1]);
-    Mat3 a;
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-            a(i, j) = 2 * f.f_id * (sigma[i] * d_i[j] + sigma[j] * d_i[i]) + f.f_dd * d_i[i] * d_i[j] +
-                      (i == j ? 2 * f.f_i : f.f_d * sigma[3 - i - j]);
-    // The modes act on vertices 1..3 through the rows of H^-1; vertex 0 moves by minus their
-    // sum, so its blocks follow from the 9 x 9 part. With g_a the columns of H^-T, the mode
-    // U M V^T has the vertex vector (U M V^T g_a)_a, and U E_ij V^T g_a = u_i (V^T g_a)_j:
-    // every mode is a combination of the outer products p_ij = u_i (row j of V^T H^-T).
-    const Mat3 vg = v.transpose() * t.inverse.transpose();  // column a - 1: V^T g_a
-    using Vec9 = Eigen::Matrix<double, 9, 1>;
-    const auto outer = [&](int i, int j) {
-        Vec9 w;
-        for (int a = 0; a < 3; ++a) w.segment<3>(3 * a) = u.col(i) * vg(j, a);
-        return w;
-    };
-    // h9 = sum over the kept modes of lambda w w^T: its upper triangle by rank-one updates,
-    // then mirrored.
-    Eigen::Matrix<double, 9, 9> h9 = Eigen::Matrix<double, 9, 9>::Zero();
-    // The element weight is applied to the eigenvalues (and to a) rather than to the result.
-    const auto add_mode = [&](const Vec9& w, double l) {
-        if (project_psd && l <= 0) return;
-        for (int j = 0; j < 9; ++j) {
-            const double lw = t.weight * l * w[j];
-            for (int i = 0; i <= j; ++i) h9(i, j) += lw * w[i];
-        }
-    };
-    // Scalings: w = sum_m e_m p_mm over an eigenvector e of a; when a is positive definite
-    // nothing is clamped and the three of them sum to sum_mn a_mn p_mm p_nn^T, with no
-    // eigensystem to compute.
-    Eigen::Matrix<double, 9, 3> diagonal_modes;
-    for (int m = 0; m < 3; ++m) diagonal_modes.col(m) = outer(m, m);
-    const bool definite = a(0, 0) > 0 && a(0, 0) * a(1, 1) - a(0, 1) * a(0, 1) > 0 && a.determinant() > 0;
-    if (definite || !project_psd) {
-        const Eigen::Matrix<double, 9, 3> wa = diagonal_modes * (t.weight * a);
-        for (int j = 0; j < 9; ++j)
-            for (int i = 0; i <= j; ++i) h9(i, j) += wa.row(i).dot(diagonal_modes.row(j));
-    } else {
-        Eigen::SelfAdjointEigenSolver<Mat3> scaling;
-        scaling.computeDirect(a);
-        for (int m = 0; m < 3; ++m) add_mode(diagonal_modes * scaling.eigenvectors().col(m), scaling.eigenvalues()[m]);
-    }
-    // Twists (u_i v_j^T - u_j v_i^T) / sqrt 2 and flips (the same with +).
-    const double r = std::sqrt(0.5);
-    for (int k = 0; k < 3; ++k) {
-        const int i = (k + 1) % 3, j = (k + 2) % 3;
-        const Vec9 pij = outer(i, j), pji = outer(j, i);
-        add_mode(r * (pij - pji), 2 * f.f_i + f.f_d * sigma[k]);
-        add_mode(r * (pij + pji), 2 * f.f_i - f.f_d * sigma[k]);
-    }
-    h9.triangularView<Eigen::StrictlyLower>() = h9.transpose();
-    hess.bottomRightCorner<9, 9>() = h9;
-    for (int b = 0; b < 3; ++b) {
-        Mat3 column = Mat3::Zero();  // block (0, b + 1) = -sum_a block (a + 1, b + 1)
-        for (int a = 0; a < 3; ++a) column -= h9.block<3, 3>(3 * a, 3 * b);
-        hess.block<3, 3>(0, 3 + 3 * b) = column;
-        hess.block<3, 3>(3 + 3 * b, 0) = column.transpose();
-    }
-    Mat3 corner = Mat3::Zero();
-    for (int b = 0; b < 3; ++b) corner -= hess.block<3, 3>(0, 3 + 3 * b);
-    hess.topLeftCorner<3, 3>() = corner;
+    TetBlocks blocks;
+    hessian_blocks(s, f, t.inverse.transpose(), t.weight, project_psd, blocks);
+    for (int a = 0; a < 4; ++a)
+        for (int b = 0; b < 4; ++b) hess.block<3, 3>(3 * a, 3 * b) = blocks[a][b];
     return t.weight * f.value;
 }
 
@@ -258,6 +251,36 @@ double hex_energy(const Mat38& y, const Vec3& edges, const EnergyParams& p, Mat3
         const Mat3 dq = weight * phi_gradient(s, f) * scale.asDiagonal();
         for (int k = 0; k < 3; ++k) grad->col(t[k + 1]) += dq.col(k);
         grad->col(t[0]) -= dq.rowwise().sum();
+    }
+    return weight * total;
+}
+
+double hex_energy_hessian(const Mat38& y, const Vec3& edges, const EnergyParams& p, Mat38& grad,
+                          HexHessian& hess) {
+    const Vec3 inverse = edges.cwiseInverse();
+    const double weight = edges.prod() / 6;
+    grad.setZero();
+    for (const auto& [a, b] : hex_hessian_pairs) hess.block[a][b].setZero();
+    double total = 0;
+    TetBlocks blocks;
+    for (int c = 0; c < 8; ++c) {
+        const auto& t = hex_corner_tets[c];
+        Mat3 s;
+        Vec3 scale;
+        for (int k = 0; k < 3; ++k) {
+            scale[k] = inverse[corner_axes[c][k]];
+            s.col(k) = (y.col(t[k + 1]) - y.col(t[0])) * scale[k];
+        }
+        Invariants f;
+        if (!phi_at<true>(s, 1, p, f)) return infinity;
+        total += f.value;
+        const Mat3 dq = weight * phi_gradient(s, f) * scale.asDiagonal();
+        for (int k = 0; k < 3; ++k) grad.col(t[k + 1]) += dq.col(k);
+        grad.col(t[0]) -= dq.rowwise().sum();
+        hessian_blocks(s, f, Mat3(scale.asDiagonal()), weight, true, blocks);
+        for (int i = 0; i < 4; ++i)
+            for (int j = 0; j < 4; ++j)
+                if (t[i] <= t[j]) hess.block[t[i]][t[j]] += blocks[i][j];
     }
     return weight * total;
 }

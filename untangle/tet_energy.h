@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <array>
 
+#include "hexmesh/core/reference_hex.h"
 #include "hexmesh/core/types.h"
 
 namespace hexmesh::untangle {
@@ -11,6 +12,8 @@ namespace hexmesh::untangle {
 using Mat34 = Eigen::Matrix<double, 3, 4>;
 using Mat12 = Eigen::Matrix<double, 12, 12>;
 using Mat38 = Eigen::Matrix<double, 3, 8>;
+// A tet's Hessian as 4 x 4 blocks: block[a][b] = d2E / dy_a dy_b.
+using TetBlocks = std::array<std::array<Mat3, 4>, 4>;
 
 // Parameters of one element: target inverse H^-1 (H = [z1-z0, z2-z0, z3-z0] of the target
 // tet), weight w = det H / 6 and target volume ratio v0 (DESIGN §4).
@@ -51,6 +54,33 @@ double tet_energy_hessian(const Mat34& y, const TetTarget& t, const EnergyParams
 // the same values as tet_energy_gradient on each corner, computed without matrix products
 // and with each node loaded once. +infinity when eps = 0 and a corner has det S <= 0.
 double hex_energy(const Mat38& y, const Vec3& edges, const EnergyParams& p, Mat38* grad = nullptr);
+
+// The node pairs (a <= b) of a hex that share one of its corner tets: the 8 diagonals, the
+// 12 edges and the 12 face diagonals are there, the 4 body diagonals are not.
+inline constexpr std::array<std::array<int, 2>, 32> hex_hessian_pairs = [] {
+    std::array<std::array<int, 2>, 32> pairs{};
+    bool used[8][8] = {};
+    int n = 0;
+    for (const auto& t : hex_corner_tets)
+        for (int a : t)
+            for (int b : t) {
+                const int lo = a < b ? a : b, hi = a < b ? b : a;
+                if (!used[lo][hi]) used[lo][hi] = true, pairs[n++] = {lo, hi};
+            }
+    return pairs;
+}();
+
+// The Hessian of a hex's corner-tet energy between its nodes: block[a][b] (3 x 3) for the
+// pairs of hex_hessian_pairs (a <= b); the other blocks are left unset.
+struct HexHessian {
+    std::array<std::array<Mat3, 8>, 8> block;
+};
+
+// hex_energy with the PSD-projected Hessian of every corner tet summed into `hess`: the
+// same blocks as tet_energy_hessian on each corner. `grad` and `hess` are left unspecified
+// when the value is infinite.
+double hex_energy_hessian(const Mat38& y, const Vec3& edges, const EnergyParams& p, Mat38& grad,
+                          HexHessian& hess);
 
 // The target of a regular tet of edge `edge`, and of the right-angle corner of an axis-aligned
 // box with edges (a, b, c) (hex corner tets), each with v0 = 1.
