@@ -17,6 +17,21 @@ namespace {
 constexpr int max_colours = 512;
 constexpr size_t grain = 2048;
 constexpr Id chunk_elements = 256;  // elements per chunk (fewer if colouring needs it)
+constexpr Id product_range_rows = 2048;  // rows per range of a Hessian product
+constexpr int max_range_colours = 128;
+
+// Position in hex_hessian_pairs of the pair of hex nodes (a, b), in either order; -1 for
+// the body diagonals.
+constexpr std::array<std::array<int, 8>, 8> hex_pair_index = [] {
+    std::array<std::array<int, 8>, 8> index{};
+    for (auto& row : index)
+        for (int& i : row) i = -1;
+    for (int q = 0; q < int(hex_hessian_pairs.size()); ++q) {
+        const auto& [a, b] = hex_hessian_pairs[q];
+        index[a][b] = index[b][a] = q;
+    }
+    return index;
+}();
 
 // Deterministic sum of term(i) for i in [0, n): the split depends on n and the grain only,
 // never on the threads. Nothing is stored per term.
@@ -39,15 +54,103 @@ Id BlockMatrix::find(Id row, Id column) const {
     return it != last && *it == column ? Id(it - col.begin()) : -1;
 }
 
-void BlockMatrix::multiply(const std::vector<Vec3>& x, std::vector<Vec3>& y) const {
+void BlockMatrix::multiply(const std::vector<Vec3>& x, std::vector<Vec3>& y, int component) const {
     y.resize(x.size());
-    tbb::parallel_for(tbb::blocked_range<Id>(0, rows(), 1024), [&](const tbb::blocked_range<Id>& r) {
-        for (Id a = r.begin(); a != r.end(); ++a) {
-            Vec3 s = Vec3::Zero();
-            for (Id m = row_start[a]; m < row_start[a + 1]; ++m) s += block[m].cast<double>() * x[col[m]];
-            y[a] = s;
-        }
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, y.size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
+        std::fill(y.begin() + r.begin(), y.begin() + r.end(), Vec3::Zero());
     });
+    const Id n = rows();
+    // Rows [first, last): each stored block adds its product to its row and, transposed
+    // (a < b), to its column's row. In single precision, as the blocks are.
+    std::vector<Eigen::Vector3f>& xf = product_x_, & yf = product_y_;
+    if (component < 0) {
+        xf.resize(x.size());
+        yf.resize(x.size());
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, x.size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t i = r.begin(); i != r.end(); ++i) xf[i] = x[i].cast<float>(), yf[i].setZero();
+        });
+    }
+    const auto rows_product = [&](Id first, Id last) {
+        for (Id a = first; a < last; ++a) {
+            Id m = row_start[a];
+            const float* d = block[m].data();
+            const float xa0 = xf[a][0], xa1 = xf[a][1], xa2 = xf[a][2];
+            float s0 = d[0] * xa0 + d[3] * xa1 + d[6] * xa2;
+            float s1 = d[1] * xa0 + d[4] * xa1 + d[7] * xa2;
+            float s2 = d[2] * xa0 + d[5] * xa1 + d[8] * xa2;
+            for (++m; m < row_start[a + 1]; ++m) {
+                const float* b = block[m].data();
+                float* yb = yf[col[m]].data();
+                const float* xb = xf[col[m]].data();
+                s0 += b[0] * xb[0] + b[3] * xb[1] + b[6] * xb[2];
+                s1 += b[1] * xb[0] + b[4] * xb[1] + b[7] * xb[2];
+                s2 += b[2] * xb[0] + b[5] * xb[1] + b[8] * xb[2];
+                yb[0] += b[0] * xa0 + b[1] * xa1 + b[2] * xa2;
+                yb[1] += b[3] * xa0 + b[4] * xa1 + b[5] * xa2;
+                yb[2] += b[6] * xa0 + b[7] * xa1 + b[8] * xa2;
+            }
+            yf[a][0] += s0, yf[a][1] += s1, yf[a][2] += s2;
+        }
+    };
+    const auto rows_component_product = [&](Id first, Id last) {
+        const int c = component;
+        for (Id a = first; a < last; ++a) {
+            Id m = row_start[a];
+            const double xa = x[a][c];
+            double s = double(block[m](c, c)) * xa;
+            for (++m; m < row_start[a + 1]; ++m) {
+                const double b = block[m](c, c);
+                s += b * x[col[m]][c];
+                y[col[m]][c] += b * xa;
+            }
+            y[a][c] += s;
+        }
+    };
+    for (size_t c = 0; c + 1 < colour_start.size(); ++c)
+        tbb::parallel_for(colour_start[c], colour_start[c + 1], [&](Id m) {
+            const Id first = range_order[m] * range_rows, last = std::min(n, first + range_rows);
+            if (component < 0)
+                rows_product(first, last);
+            else
+                rows_component_product(first, last);
+        });
+    if (component < 0)
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, y.size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t i = r.begin(); i != r.end(); ++i) y[i] = yf[i].cast<double>();
+        });
+}
+
+void BlockMatrix::schedule_products() {
+    const Id n = rows();
+    range_rows = product_range_rows;
+    const Id ranges = (n + range_rows - 1) / range_rows;
+    // Greedy colouring: a range takes the first colour that no range writing one of its
+    // rows has taken.
+    std::vector<std::bitset<max_range_colours>> used(n);
+    std::vector<int> colour(ranges);
+    int colours = 0;
+    for (Id k = 0; k < ranges; ++k) {
+        const Id first = k * range_rows, last = std::min(n, first + range_rows);
+        std::bitset<max_range_colours> taken;
+        for (Id m = row_start[first]; m < row_start[last]; ++m) taken |= used[col[m]];
+        int c = 0;
+        while (c < max_range_colours && taken[c]) ++c;
+        if (c == max_range_colours) {  // too scattered a numbering: one range, serial
+            range_rows = std::max<Id>(n, 1);
+            range_order.assign(n > 0 ? 1 : 0, 0);
+            colour_start = n > 0 ? std::vector<Id>{0, 1} : std::vector<Id>{0};
+            return;
+        }
+        colour[k] = c;
+        colours = std::max(colours, c + 1);
+        for (Id m = row_start[first]; m < row_start[last]; ++m) used[col[m]].set(c);
+    }
+    colour_start.assign(colours + 1, 0);
+    for (Id k = 0; k < ranges; ++k) ++colour_start[colour[k] + 1];
+    for (int c = 0; c < colours; ++c) colour_start[c + 1] += colour_start[c];
+    std::vector<Id> next(colour_start.begin(), colour_start.end() - 1);
+    range_order.resize(ranges);
+    for (Id k = 0; k < ranges; ++k) range_order[next[colour[k]]++] = k;
 }
 
 Assembly::Assembly(const Problem& problem) : problem_(problem) {
@@ -71,7 +174,7 @@ Assembly::Assembly(const Problem& problem) : problem_(problem) {
         size /= 2;
     }
 
-    // Block pattern: vertex pairs sharing an element, plus every diagonal.
+    // Block pattern: vertex pairs (a, b), a <= b, sharing an element, plus every diagonal.
     std::vector<std::vector<int32_t>> adjacent(nv);
     for (Id v = 0; v < nv; ++v) adjacent[v].push_back(int32_t(v));
     // Rows are short (about 20 blocks for hex corner tets): a linear search keeps each row
@@ -80,7 +183,7 @@ Assembly::Assembly(const Problem& problem) : problem_(problem) {
         const std::array<Id, 4> t = problem.element(e);
         for (Id a : t)
             for (Id b : t)
-                if (std::find(adjacent[a].begin(), adjacent[a].end(), int32_t(b)) == adjacent[a].end())
+                if (a < b && std::find(adjacent[a].begin(), adjacent[a].end(), int32_t(b)) == adjacent[a].end())
                     adjacent[a].push_back(int32_t(b));
     }
     pattern_.row_start.assign(nv + 1, 0);
@@ -95,6 +198,7 @@ Assembly::Assembly(const Problem& problem) : problem_(problem) {
         pattern_.col.insert(pattern_.col.end(), adjacent[v].begin(), adjacent[v].end());
         std::vector<int32_t>().swap(adjacent[v]);
     }
+    pattern_.schedule_products();
 }
 
 bool Assembly::colour_chunks(Id size) {
@@ -280,14 +384,15 @@ double Assembly::gradient(const std::vector<Vec3>& x, const EnergyParams& p, std
 
 const Assembly::Slots& Assembly::hessian_slots() const {
     std::call_once(slots_once_, [this] {
-        const auto offset = [this](Id a, Id b) { return uint16_t(pattern_.find(a, b) - pattern_.row_start[a]); };
+        const auto offset = [this](Id a, Id b) {
+            const Id row = std::min(a, b);
+            return uint16_t(pattern_.find(row, std::max(a, b)) - pattern_.row_start[row]);
+        };
         slots_.hex.resize(problem_.hexes.size());
         tbb::parallel_for(size_t(0), problem_.hexes.size(), [&](size_t h) {
             const auto& n = problem_.hexes[h];
-            slots_.hex[h].fill(0);
-            for (const auto& c : hex_corner_tets)
-                for (int a : c)
-                    for (int b : c) slots_.hex[h][8 * a + b] = offset(n[a], n[b]);
+            for (size_t q = 0; q < hex_hessian_pairs.size(); ++q)
+                slots_.hex[h][q] = offset(n[hex_hessian_pairs[q][0]], n[hex_hessian_pairs[q][1]]);
         });
         slots_.tet.resize(problem_.tets.size());
         tbb::parallel_for(size_t(0), problem_.tets.size(), [&](size_t e) {
@@ -303,24 +408,34 @@ double Assembly::hessian(const std::vector<Vec3>& x, const EnergyParams& p, std:
                          BlockMatrix& h) const {
     const Slots& slots = hessian_slots();
     const Id hex_elements = 8 * Id(problem_.hexes.size());
-    std::fill(h.block.begin(), h.block.end(), HessianBlock::Zero());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, h.block.size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
+        std::fill(h.block.begin() + r.begin(), h.block.begin() + r.end(), HessianBlock::Zero());
+    });
+    // Block (a, b) of the element goes to the row of the lower vertex id, transposed if that
+    // is b's.
     return assemble_hessian(
         x, p, g,
         [&](Id hex, const HexHessian& hh) {
             const auto& n = problem_.hexes[hex];
-            const auto& slot = slots.hex[hex];
-            for (const auto& [a, b] : hex_hessian_pairs) {
+            for (size_t q = 0; q < hex_hessian_pairs.size(); ++q) {
+                const auto& [a, b] = hex_hessian_pairs[q];
                 const HessianBlock block = hh.block[a][b].cast<float>();
-                h.block[h.row_start[n[a]] + slot[8 * a + b]] += block;
-                if (a != b) h.block[h.row_start[n[b]] + slot[8 * b + a]] += block.transpose();
+                HessianBlock& target = h.block[h.row_start[std::min(n[a], n[b])] + slots.hex[hex][q]];
+                if (a == b || n[a] < n[b])
+                    target += block;
+                else if (n[a] > n[b])
+                    target += block.transpose();
+                else  // two nodes of the hex coincide: both blocks land on the diagonal
+                    target += block + block.transpose();
             }
         },
         [&](Id e, const std::array<Id, 4>& t, const Mat12& he) {
             for (int a = 0; a < 4; ++a) {
                 HessianBlock* row = h.block.data() + h.row_start[t[a]];
                 for (int b = 0; b < 4; ++b) {
+                    if (t[a] > t[b]) continue;  // stored from t[b]'s row as (b, a)
                     const uint16_t slot =
-                        e < hex_elements ? slots.hex[e / 8][8 * hex_corner_tets[e % 8][a] + hex_corner_tets[e % 8][b]]
+                        e < hex_elements ? slots.hex[e / 8][hex_pair_index[hex_corner_tets[e % 8][a]][hex_corner_tets[e % 8][b]]]
                                          : slots.tet[e - hex_elements][4 * a + b];
                     row[slot] += he.block<3, 3>(3 * a, 3 * b).cast<float>();
                 }

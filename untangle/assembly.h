@@ -16,16 +16,33 @@ namespace hexmesh::untangle {
 // every CG product.
 using HessianBlock = Eigen::Matrix3f;
 
-// Symmetric sparse matrix of 3 x 3 blocks, one block row per vertex (CSR over vertices,
-// columns sorted, the diagonal block always present).
+// Symmetric sparse matrix of 3 x 3 blocks stored by its upper triangle: block row a holds
+// the blocks (a, b) with b >= a, columns sorted, the diagonal block (always present) first.
+// Half the memory and half the traffic of a product; each stored block (a, b), a < b, acts
+// as (a, b) and, transposed, as (b, a).
 struct BlockMatrix {
     std::vector<Id> row_start;        // #V + 1
     std::vector<int32_t> col;         // column vertex of each block
     std::vector<HessianBlock> block;  // values, same length as col
+    // Products run over ranges of consecutive rows: range k holds rows [k range_rows,
+    // (k + 1) range_rows), and ranges are coloured so that two of one colour write no common
+    // row of the result (their own rows and their columns): colours one after the other,
+    // the ranges of a colour in parallel. The result does not depend on the thread count.
+    Id range_rows = 0;
+    std::vector<Id> range_order;   // range numbers, by colour
+    std::vector<Id> colour_start;  // offsets into range_order
+    mutable std::vector<Eigen::Vector3f> product_x_, product_y_;  // multiply()'s x and y in float
 
     Id rows() const { return Id(row_start.size()) - 1; }
-    Id find(Id row, Id column) const;  // index into col/block, or -1
-    void multiply(const std::vector<Vec3>& x, std::vector<Vec3>& y) const;  // y = A x
+    // Index into col/block of the block (row, column), row <= column, or -1.
+    Id find(Id row, Id column) const;
+    // y = A x, computed in single precision like the blocks (x is rounded to float, the sums
+    // are float); with component c in 0..2, only the couplings between coordinate c of the
+    // vertices (the diagonal entries (c, c) of the blocks), summed in double, and y is zero
+    // in the others. Uses scratch space in the matrix: not for concurrent calls.
+    void multiply(const std::vector<Vec3>& x, std::vector<Vec3>& y, int component = -1) const;
+    // Sets range_rows, range_order and colour_start from row_start and col.
+    void schedule_products();
 };
 
 // Element statistics in target units (det S = 1 for a perfect element).
@@ -84,11 +101,11 @@ private:
     double assemble_hessian(const std::vector<Vec3>& x, const EnergyParams& p, std::vector<Vec3>& g,
                             ScatterHex&& scatter_hex, ScatterTet&& scatter_tet) const;
 
-    // Where the element Hessians' blocks go, as offsets in the block row of their first
-    // vertex: per hex for the node pairs (a, b) of its corner tets (8 a + b), per plain tet
-    // for (a, b) (4 a + b). Computed on first use: only the assembled Hessian needs them.
+    // Where the element Hessians' blocks go, as offsets in the block row of the pair's lower
+    // vertex id: per hex for its node pairs in hex_hessian_pairs order, per plain tet for
+    // (a, b) (4 a + b). Computed on first use: only the assembled Hessian needs them.
     struct Slots {
-        std::vector<std::array<uint16_t, 64>> hex;
+        std::vector<std::array<uint16_t, 32>> hex;
         std::vector<std::array<uint16_t, 16>> tet;
     };
     const Slots& hessian_slots() const;

@@ -60,7 +60,8 @@ LinearOperator diagonal_preconditioner(Preconditioner kind, const std::vector<Ma
     };
 }
 
-// Incomplete Cholesky of the whole reduced matrix, through Eigen.
+// Incomplete Cholesky of the whole reduced matrix (both triangles from the stored upper
+// one), through Eigen.
 LinearOperator incomplete_cholesky(const BlockMatrix& r) {
     const Id n = 3 * r.rows();
     std::vector<Eigen::Triplet<double>> entries;
@@ -69,7 +70,10 @@ LinearOperator incomplete_cholesky(const BlockMatrix& r) {
         for (Id m = r.row_start[a]; m < r.row_start[a + 1]; ++m)
             for (int i = 0; i < 3; ++i)
                 for (int j = 0; j < 3; ++j)
-                    if (r.block[m](i, j) != 0) entries.emplace_back(3 * a + i, 3 * r.col[m] + j, r.block[m](i, j));
+                    if (r.block[m](i, j) != 0) {
+                        entries.emplace_back(3 * a + i, 3 * r.col[m] + j, r.block[m](i, j));
+                        if (r.col[m] != a) entries.emplace_back(3 * r.col[m] + j, 3 * a + i, r.block[m](i, j));
+                    }
     Eigen::SparseMatrix<double> a(n, n);
     a.setFromTriplets(entries.begin(), entries.end());
     auto ic = std::make_shared<Eigen::IncompleteCholesky<double>>(a);
@@ -109,7 +113,7 @@ double Minimizer::newton_direction(const std::vector<Vec3>& x, const EnergyParam
             }
         });
         diagonal.resize(n);
-        for (size_t a = 0; a < n; ++a) diagonal[a] = hessian_.block[hessian_.find(Id(a), Id(a))].cast<double>();
+        for (size_t a = 0; a < n; ++a) diagonal[a] = hessian_.block[hessian_.row_start[a]].cast<double>();
     }
     if (!std::isfinite(f)) return f;
     if (matrix_free)
@@ -117,7 +121,7 @@ double Minimizer::newton_direction(const std::vector<Vec3>& x, const EnergyParam
     const DiagonalShift shift(basis, diagonal);
     for (size_t a = 0; a < n; ++a) diagonal[a] += shift.shift[a].asDiagonal();
     if (!matrix_free)
-        for (size_t a = 0; a < n; ++a) hessian_.block[hessian_.find(Id(a), Id(a))] = diagonal[a].cast<float>();
+        for (size_t a = 0; a < n; ++a) hessian_.block[hessian_.row_start[a]] = diagonal[a].cast<float>();
 
     std::vector<Vec3> rhs(n), reduced(n);
     for (size_t a = 0; a < n; ++a) rhs[a] = -(basis[a].transpose() * g[a]);
@@ -128,13 +132,7 @@ double Minimizer::newton_direction(const std::vector<Vec3>& x, const EnergyParam
             std::vector<Vec3> b(n, Vec3::Zero()), xc;
             for (size_t a = 0; a < n; ++a) b[a][c] = rhs[a][c];
             const LinearOperator apply = [&, c](const VertexVector& v, VertexVector& out) {
-                out.assign(v.size(), Vec3::Zero());
-                tbb::parallel_for(Id(0), hessian_.rows(), [&](Id a) {
-                    double s = 0;
-                    for (Id m = hessian_.row_start[a]; m < hessian_.row_start[a + 1]; ++m)
-                        s += hessian_.block[m](c, c) * v[hessian_.col[m]][c];
-                    out[a][c] = s;
-                });
+                hessian_.multiply(v, out, c);
             };
             const LinearOperator jacobi = [&, c](const VertexVector& r, VertexVector& z) {
                 z.assign(r.size(), Vec3::Zero());
