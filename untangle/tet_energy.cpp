@@ -6,6 +6,9 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "hexmesh/core/reference_hex.h"
 
@@ -31,15 +34,23 @@ Mat3 cofactor(const Mat3& s) {
     return c;
 }
 
-// x^(-1/3) for x > 0, to about one ulp, without a library call or a division: a first
-// guess from the bits of x (within 3.5 %), then three steps y <- y (1 + r/3 + 2 r^2/9),
-// r = 1 - x y^3 (the series of (1 - r)^(-1/3), cubically convergent). Outside the normal
-// range (or NaN) it falls back on the library.
+// The first guess of x^(-1/3) (within 3.5 %) from the bits of x > 0: the exponent and the
+// leading mantissa bits divided by -3, i.e. 0x553eeeeeeeeef000 - bits / 3, with only the
+// high 32 bits divided (hi / 3 = (hi * 0xAAAAAAAB) >> 33 exactly, hi < 2^31) so that the
+// same integer arithmetic runs in vector lanes.
+inline int64_t inverse_cbrt_guess(int64_t bits) {
+    return 0x553eeeeeeeeef000LL - ((((bits >> 32) * 0xAAAAAAABLL) >> 33) << 32);
+}
+
+// x^(-1/3) for x > 0, to about one ulp, without a library call or a division: the guess
+// above, then three steps y <- y (1 + r/3 + 2 r^2/9), r = 1 - x y^3 (the series of
+// (1 - r)^(-1/3), cubically convergent). Outside the normal range (or NaN) it falls back on
+// the library.
 double inverse_cbrt(double x) {
     if (!(x > 1e-300 && x < 1e300)) return 1 / std::cbrt(x);
-    uint64_t bits;
+    int64_t bits;
     std::memcpy(&bits, &x, sizeof bits);
-    bits = 0x553eeeeeeeeef000ull - bits / 3;
+    bits = inverse_cbrt_guess(bits);
     double y;
     std::memcpy(&y, &bits, sizeof y);
     for (int k = 0; k < 3; ++k) {
@@ -190,6 +201,75 @@ void hessian_blocks(const Mat3& s, const Invariants& f, const Mat3& g, double we
     }
 }
 
+// Four corner tets at a time, one per lane of a vector of doubles (GCC vector extensions:
+// two SSE2 registers on baseline x86-64), with the same operations as the scalar code.
+// These vectors never cross the library's interface: the ABI note about passing them
+// without AVX does not apply (GCC reports it at the end of the file: ignored from here on).
+#pragma GCC diagnostic ignored "-Wpsabi"
+using Lanes = double __attribute__((vector_size(32)));
+using LaneInts = int64_t __attribute__((vector_size(32)));
+constexpr int lane_count = 4;
+
+Lanes lane_sqrt(Lanes x) {
+#if defined(__SSE2__)
+    __m128d half[2];
+    std::memcpy(half, &x, sizeof x);
+    half[0] = _mm_sqrt_pd(half[0]);
+    half[1] = _mm_sqrt_pd(half[1]);
+    std::memcpy(&x, half, sizeof x);
+#else
+    for (int l = 0; l < lane_count; ++l) x[l] = std::sqrt(x[l]);
+#endif
+    return x;
+}
+
+bool any_lane(LaneInts mask) {
+    for (int l = 0; l < lane_count; ++l)
+        if (mask[l]) return true;
+    return false;
+}
+
+// inverse_cbrt in every lane.
+Lanes inverse_cbrt(Lanes x) {
+    LaneInts bits;
+    std::memcpy(&bits, &x, sizeof x);
+    bits = 0x553eeeeeeeeef000LL - ((((bits >> 32) * 0xAAAAAAABLL) >> 33) << 32);
+    Lanes y;
+    std::memcpy(&y, &bits, sizeof y);
+    for (int k = 0; k < 3; ++k) {
+        const Lanes r = 1 - x * y * y * y;
+        y *= 1 + r * (1.0 / 3 + r * (2.0 / 9));
+    }
+    const LaneInts normal = (x > 1e-300) & (x < 1e300);
+    if (!any_lane(~normal)) return y;
+    for (int l = 0; l < lane_count; ++l)
+        if (!normal[l]) y[l] = 1 / std::cbrt(x[l]);
+    return y;
+}
+
+// phi (v0 = 1) and, with derivatives, f_I and f_d, in every lane: phi() above.
+template <bool derivatives>
+void phi_lanes(Lanes i, Lanes d, const EnergyParams& p, Lanes& value, Lanes& f_i, Lanes& f_d) {
+    const double eps = p.eps, theta = p.theta;
+    Lanes x = d, x1 = d * 0 + 1;
+    if (eps > 0) {
+        Lanes r = lane_sqrt(eps * eps + d * d);
+        const LaneInts huge = (d >= 1e100) | (d <= -1e100);
+        if (any_lane(huge))
+            for (int l = 0; l < lane_count; ++l) r[l] = regularization_radius(d[l], eps);
+        const LaneInts positive = d > 0;
+        x = positive ? 0.5 * (d + r) : eps * eps / (2 * (r - d));
+        if (derivatives) x1 = x / r;  // 0.5 (1 + d / r), and eps^2 / (2 r (r - d)) for d <= 0
+    }
+    const Lanes y = inverse_cbrt(x), y2 = y * y, y3 = y2 * y;
+    value = theta * (0.5 * (y3 + x)) + (1 - theta) / 3 * (i * y2);
+    if (derivatives) {
+        const Lanes y5 = y3 * y2;
+        f_i = (1 - theta) / 3 * y2;
+        f_d = (theta * (0.5 * (1 - y3 * y3)) + (1 - theta) * (-2.0 / 9 * i * y5)) * x1;
+    }
+}
+
 // Per corner tet c of a hex, the axis of each of its three edges (its target's diagonal).
 constexpr std::array<std::array<int, 3>, 8> corner_axes = [] {
     std::array<std::array<int, 3>, 8> axes{};
@@ -229,28 +309,73 @@ double tet_energy_hessian(const Mat34& y, const TetTarget& t, const EnergyParams
     return t.weight * f.value;
 }
 
+namespace {
+
+// hex_energy with the corners 4 g .. 4 g + 3 in the lanes.
+template <bool with_gradient>
+bool hex_corner_lanes(int g, const Mat38& y, const Vec3& inverse, double weight, const EnergyParams& p,
+                      double& total, Mat38* grad) {
+    // s[3 k + c]: component c of column k of S (edge k of the corner, scaled).
+    Lanes s[9], scale[3];
+    for (int l = 0; l < lane_count; ++l) {
+        const int corner = 4 * g + l;
+        const auto& t = hex_corner_tets[corner];
+        for (int k = 0; k < 3; ++k) {
+            scale[k][l] = inverse[corner_axes[corner][k]];
+            for (int c = 0; c < 3; ++c) s[3 * k + c][l] = (y(c, t[k + 1]) - y(c, t[0])) * scale[k][l];
+        }
+    }
+    // Cofactor columns: s1 x s2, s2 x s0, s0 x s1.
+    Lanes cof[9];
+    for (int k = 0; k < 3; ++k) {
+        const Lanes* a = s + 3 * ((k + 1) % 3);
+        const Lanes* b = s + 3 * ((k + 2) % 3);
+        cof[3 * k + 0] = a[1] * b[2] - a[2] * b[1];
+        cof[3 * k + 1] = a[2] * b[0] - a[0] * b[2];
+        cof[3 * k + 2] = a[0] * b[1] - a[1] * b[0];
+    }
+    const Lanes d = s[0] * cof[0] + s[1] * cof[1] + s[2] * cof[2];
+    if (p.eps <= 0 && any_lane(d <= 0)) return false;
+    Lanes i = s[0] * s[0];
+    for (int m = 1; m < 9; ++m) i += s[m] * s[m];
+    Lanes value, f_i, f_d;
+    phi_lanes<with_gradient>(i, d, p, value, f_i, f_d);
+    for (int l = 0; l < lane_count; ++l) total += value[l];
+    if (!with_gradient) return true;
+    // d phi / d S = 2 f_I S + f_d cof S, scaled back per column.
+    Lanes dq[9];
+    for (int k = 0; k < 3; ++k) {
+        const Lanes w = weight * scale[k];
+        for (int c = 0; c < 3; ++c) dq[3 * k + c] = w * (2 * f_i * s[3 * k + c] + f_d * cof[3 * k + c]);
+    }
+    for (int l = 0; l < lane_count; ++l) {
+        const auto& t = hex_corner_tets[4 * g + l];
+        for (int c = 0; c < 3; ++c) {
+            double sum = 0;
+            for (int k = 0; k < 3; ++k) {
+                (*grad)(c, t[k + 1]) += dq[3 * k + c][l];
+                sum += dq[3 * k + c][l];
+            }
+            (*grad)(c, t[0]) -= sum;
+        }
+    }
+    return true;
+}
+
+}  // namespace
+
 double hex_energy(const Mat38& y, const Vec3& edges, const EnergyParams& p, Mat38* grad) {
     // Corner tet c has S = [y_a - y_c, y_b - y_c, y_d - y_c] diag(1 / edges along its axes):
-    // scaled edge vectors, no matrix product; its gradient is d phi / d S scaled back.
+    // scaled edge vectors, no matrix product; its gradient is d phi / d S scaled back. The
+    // corners run four at a time, one per vector lane.
     const Vec3 inverse = edges.cwiseInverse();
     const double weight = edges.prod() / 6;
-    if (grad) grad->setZero();
     double total = 0;
-    for (int c = 0; c < 8; ++c) {
-        const auto& t = hex_corner_tets[c];
-        Mat3 s;
-        Vec3 scale;
-        for (int k = 0; k < 3; ++k) {
-            scale[k] = inverse[corner_axes[c][k]];
-            s.col(k) = (y.col(t[k + 1]) - y.col(t[0])) * scale[k];
-        }
-        Invariants f;
-        if (!phi_at<false>(s, 1, p, f)) return infinity;
-        total += f.value;
-        if (!grad) continue;
-        const Mat3 dq = weight * phi_gradient(s, f) * scale.asDiagonal();
-        for (int k = 0; k < 3; ++k) grad->col(t[k + 1]) += dq.col(k);
-        grad->col(t[0]) -= dq.rowwise().sum();
+    if (grad) grad->setZero();
+    for (int g = 0; g < 2; ++g) {
+        const bool finite = grad ? hex_corner_lanes<true>(g, y, inverse, weight, p, total, grad)
+                                 : hex_corner_lanes<false>(g, y, inverse, weight, p, total, nullptr);
+        if (!finite) return infinity;
     }
     return weight * total;
 }
