@@ -41,23 +41,16 @@ struct DiagonalShift {
     }
 };
 
-// Preconditioner M^-1 from the reduced diagonal blocks (already shifted).
-LinearOperator diagonal_preconditioner(Preconditioner kind, const std::vector<Mat3>& diagonal) {
-    if (kind == Preconditioner::none) return {};
-    if (kind == Preconditioner::jacobi) {
-        auto inv = std::make_shared<std::vector<Vec3>>(diagonal.size());
-        for (size_t a = 0; a < diagonal.size(); ++a) (*inv)[a] = diagonal[a].diagonal().cwiseInverse();
-        return [inv](const VertexVector& r, VertexVector& z) {
-            z.resize(r.size());
-            tbb::parallel_for(size_t(0), r.size(), [&](size_t a) { z[a] = (*inv)[a].cwiseProduct(r[a]); });
-        };
-    }
-    auto inv = std::make_shared<std::vector<Mat3>>(diagonal.size());
-    for (size_t a = 0; a < diagonal.size(); ++a) (*inv)[a] = diagonal[a].inverse();
-    return [inv](const VertexVector& r, VertexVector& z) {
-        z.resize(r.size());
-        tbb::parallel_for(size_t(0), r.size(), [&](size_t a) { z[a] = (*inv)[a] * r[a]; });
-    };
+// M^-1 per vertex from the reduced diagonal blocks (already shifted): their inverses (block
+// Jacobi) or the inverses of their diagonals (Jacobi).
+BlockInverse diagonal_preconditioner(Preconditioner kind, const std::vector<Mat3>& diagonal) {
+    BlockInverse inverse(diagonal.size());
+    tbb::parallel_for(size_t(0), diagonal.size(), [&](size_t a) {
+        const Mat3 m = kind == Preconditioner::jacobi ? Mat3(diagonal[a].diagonal().cwiseInverse().asDiagonal())
+                                                      : Mat3(diagonal[a].inverse());
+        inverse[a] = m.cast<float>();
+    });
+    return inverse;
 }
 
 // Incomplete Cholesky of the whole reduced matrix (both triangles from the stored upper
@@ -157,15 +150,19 @@ double Minimizer::newton_direction(const std::vector<Vec3>& x, const EnergyParam
         } else {
             apply = [&](const VertexVector& v, VertexVector& out) { hessian_.multiply(v, out); };
         }
-        const LinearOperator precondition =
-            options_.preconditioner == Preconditioner::incomplete_cholesky && !matrix_free
-                ? incomplete_cholesky(hessian_)
-                : diagonal_preconditioner(options_.preconditioner == Preconditioner::incomplete_cholesky
-                                              ? Preconditioner::block_jacobi
-                                              : options_.preconditioner,
-                                          diagonal);
-        iterations += solve_pcg(apply, precondition, rhs, reduced, options_.cg_tolerance,
-                                options_.cg_max_iterations).iterations;
+        const Preconditioner kind = options_.preconditioner;
+        PcgResult solved;
+        if (kind == Preconditioner::incomplete_cholesky && !matrix_free)
+            solved = solve_pcg(apply, incomplete_cholesky(hessian_), rhs, reduced, options_.cg_tolerance,
+                               options_.cg_max_iterations);
+        else if (kind == Preconditioner::none)
+            solved = solve_pcg(apply, LinearOperator{}, rhs, reduced, options_.cg_tolerance, options_.cg_max_iterations);
+        else  // incomplete Cholesky needs the matrix: block Jacobi without one
+            solved = solve_pcg(apply,
+                               diagonal_preconditioner(kind == Preconditioner::jacobi ? kind : Preconditioner::block_jacobi,
+                                                       diagonal),
+                               rhs, reduced, options_.cg_tolerance, options_.cg_max_iterations);
+        iterations += solved.iterations;
     }
     d.resize(n);
     for (size_t a = 0; a < n; ++a) d[a] = basis[a] * reduced[a];

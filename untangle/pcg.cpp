@@ -7,53 +7,93 @@
 
 namespace hexmesh::untangle {
 
-double dot(const VertexVector& a, const VertexVector& b) {
-    return tbb::parallel_deterministic_reduce(
-        tbb::blocked_range<size_t>(0, a.size(), 2048), 0.0,
-        [&](const tbb::blocked_range<size_t>& r, double s) {
-            for (size_t i = r.begin(); i != r.end(); ++i) s += a[i].dot(b[i]);
-            return s;
-        },
-        [](double x, double y) { return x + y; }, tbb::simple_partitioner());
-}
-
 namespace {
 
-// y += alpha x, in parallel.
-void axpy(double alpha, const VertexVector& x, VertexVector& y) {
-    tbb::parallel_for(size_t(0), x.size(), [&](size_t i) { y[i] += alpha * x[i]; });
+constexpr size_t grain = 2048;
+
+// Deterministic sum of term(i) over [0, n) (the split depends on n only); term may write
+// element i of vectors as it goes.
+template <class Term>
+double fused_sum(size_t n, Term&& term) {
+    return tbb::parallel_deterministic_reduce(
+        tbb::blocked_range<size_t>(0, n, grain), 0.0,
+        [&](const tbb::blocked_range<size_t>& r, double s) {
+            for (size_t i = r.begin(); i != r.end(); ++i) s += term(i);
+            return s;
+        },
+        [](double a, double b) { return a + b; }, tbb::simple_partitioner());
 }
 
 }  // namespace
 
-PcgResult solve_pcg(const LinearOperator& apply_a, const LinearOperator& precondition,
-                    const VertexVector& b, VertexVector& x, double tolerance, int max_iterations) {
+double dot(const VertexVector& a, const VertexVector& b) {
+    return fused_sum(a.size(), [&](size_t i) { return a[i].dot(b[i]); });
+}
+
+namespace {
+
+// The CG loop; precondition(r, z) sets z = M^-1 r and returns r . z. Per iteration, besides
+// the product and the preconditioner: one pass for p . Ap, one that updates x and r and
+// sums r . r, one for p.
+template <class Precondition>
+PcgResult pcg(const LinearOperator& apply_a, Precondition&& precondition, const VertexVector& b,
+              VertexVector& x, double tolerance, int max_iterations) {
     const size_t n = b.size();
     x.assign(n, Vec3::Zero());
     VertexVector r = b, z(n), p(n), ap(n);
     const double b_norm = std::sqrt(dot(b, b));
     PcgResult result;
     if (b_norm == 0) return result;
-    if (precondition) precondition(r, z); else z = r;
+    double rz = precondition(r, z);
     p = z;
-    double rz = dot(r, z);
     for (int it = 0; it < max_iterations; ++it) {
         apply_a(p, ap);
         const double curvature = dot(p, ap);
         if (!(curvature > 0)) break;
         const double alpha = rz / curvature;
-        axpy(alpha, p, x);
-        axpy(-alpha, ap, r);
+        const double rr = fused_sum(n, [&](size_t i) {
+            x[i] += alpha * p[i];
+            r[i] -= alpha * ap[i];
+            return r[i].squaredNorm();
+        });
         result.iterations = it + 1;
-        result.relative_residual = std::sqrt(dot(r, r)) / b_norm;
+        result.relative_residual = std::sqrt(rr) / b_norm;
         if (result.relative_residual <= tolerance) break;
-        if (precondition) precondition(r, z); else z = r;
-        const double rz_next = dot(r, z);
+        const double rz_next = precondition(r, z);
         const double beta = rz_next / rz;
         rz = rz_next;
-        tbb::parallel_for(size_t(0), n, [&](size_t i) { p[i] = z[i] + beta * p[i]; });
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, grain), [&](const tbb::blocked_range<size_t>& range) {
+            for (size_t i = range.begin(); i != range.end(); ++i) p[i] = z[i] + beta * p[i];
+        });
     }
     return result;
+}
+
+}  // namespace
+
+PcgResult solve_pcg(const LinearOperator& apply_a, const LinearOperator& precondition,
+                    const VertexVector& b, VertexVector& x, double tolerance, int max_iterations) {
+    return pcg(
+        apply_a,
+        [&](const VertexVector& r, VertexVector& z) {
+            if (precondition) precondition(r, z); else z = r;
+            return dot(r, z);
+        },
+        b, x, tolerance, max_iterations);
+}
+
+PcgResult solve_pcg(const LinearOperator& apply_a, const BlockInverse& precondition,
+                    const VertexVector& b, VertexVector& x, double tolerance, int max_iterations) {
+    return pcg(
+        apply_a,
+        [&](const VertexVector& r, VertexVector& z) {
+            z.resize(r.size());
+            return fused_sum(r.size(), [&](size_t i) {
+                z[i] = (precondition[i] * r[i].cast<float>()).cast<double>();
+                return r[i].dot(z[i]);
+            });
+        },
+        b, x, tolerance, max_iterations);
 }
 
 }  // namespace hexmesh::untangle
