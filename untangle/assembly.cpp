@@ -46,6 +46,17 @@ double deterministic_sum(size_t n, Term&& term) {
         [](double a, double b) { return a + b; }, tbb::simple_partitioner());
 }
 
+// Items 0..n-1 grouped by colour, in item order within a colour: order lists them, the
+// items of colour c at [start[c], start[c + 1]).
+void group_by_colour(const std::vector<int>& colour, int colours, std::vector<Id>& start, std::vector<Id>& order) {
+    start.assign(colours + 1, 0);
+    for (int c : colour) ++start[c + 1];
+    for (int c = 0; c < colours; ++c) start[c + 1] += start[c];
+    std::vector<Id> next(start.begin(), start.end() - 1);
+    order.resize(colour.size());
+    for (size_t k = 0; k < colour.size(); ++k) order[next[colour[k]]++] = Id(k);
+}
+
 }  // namespace
 
 Id BlockMatrix::find(Id row, Id column) const {
@@ -145,12 +156,7 @@ void BlockMatrix::schedule_products() {
         colours = std::max(colours, c + 1);
         for (Id m = row_start[first]; m < row_start[last]; ++m) used[col[m]].set(c);
     }
-    colour_start.assign(colours + 1, 0);
-    for (Id k = 0; k < ranges; ++k) ++colour_start[colour[k] + 1];
-    for (int c = 0; c < colours; ++c) colour_start[c + 1] += colour_start[c];
-    std::vector<Id> next(colour_start.begin(), colour_start.end() - 1);
-    range_order.resize(ranges);
-    for (Id k = 0; k < ranges; ++k) range_order[next[colour[k]]++] = k;
+    group_by_colour(colour, colours, colour_start, range_order);
 }
 
 Assembly::Assembly(const Problem& problem) : problem_(problem) {
@@ -219,13 +225,7 @@ bool Assembly::colour_chunks(Id size) {
         for (Id e = first; e < last; ++e)
             for (Id v : problem_.element(e)) used[v].set(c);
     }
-    // Chunks grouped by colour, in element order within a colour.
-    colour_start_.assign(n_colours + 1, 0);
-    for (Id k = 0; k < n_chunks; ++k) ++colour_start_[colour[k] + 1];
-    for (int c = 0; c < n_colours; ++c) colour_start_[c + 1] += colour_start_[c];
-    std::vector<Id> next(colour_start_.begin(), colour_start_.end() - 1);
-    chunk_order_.resize(n_chunks);
-    for (Id k = 0; k < n_chunks; ++k) chunk_order_[next[colour[k]]++] = k;
+    group_by_colour(colour, n_colours, colour_start_, chunk_order_);
     chunk_size_ = size;
     return true;
 }
