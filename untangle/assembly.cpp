@@ -16,7 +16,6 @@ namespace {
 
 constexpr int max_colours = 512;
 constexpr size_t grain = 2048;
-constexpr Id chunk_elements = 256;  // elements per chunk (fewer if colouring needs it)
 constexpr Id product_range_rows = 2048;  // rows per range of a Hessian product
 constexpr int max_range_colours = 128;
 
@@ -71,6 +70,7 @@ void BlockMatrix::multiply(const std::vector<Vec3>& x, std::vector<Vec3>& y, int
         std::fill(y.begin() + r.begin(), y.begin() + r.end(), Vec3::Zero());
     });
     const Id n = rows();
+    if (n > 0 && colour_start.empty()) throw std::logic_error("BlockMatrix::multiply before schedule_products()");
     // Rows [first, last): each stored block adds its product to its row and, transposed
     // (a < b), to its column's row. In single precision, as the blocks are.
     std::vector<Eigen::Vector3f>& xf = product_x_, & yf = product_y_;
@@ -159,7 +159,7 @@ void BlockMatrix::schedule_products() {
     group_by_colour(colour, colours, colour_start, range_order);
 }
 
-Assembly::Assembly(const Problem& problem) : problem_(problem) {
+Assembly::Assembly(const Problem& problem, Id chunk_elements) : problem_(problem) {
     const Id nv = Id(problem.points.size()), ne = problem.num_elements();
     if (nv > std::numeric_limits<int32_t>::max())
         throw std::invalid_argument("too many vertices for 32-bit Hessian columns");
@@ -174,7 +174,7 @@ Assembly::Assembly(const Problem& problem) : problem_(problem) {
     // Chunks of consecutive elements (a hex's corner tets together, targets streaming from
     // memory in order; the mesh's own order usually keeps neighbours close), coloured; chunks
     // shrink if a colouring needs too many colours.
-    Id size = chunk_elements;
+    Id size = std::max<Id>(chunk_elements, 1);
     while (!colour_chunks(size)) {
         if (size == 1) throw std::runtime_error("element colouring needs too many colours");
         size /= 2;

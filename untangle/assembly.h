@@ -58,7 +58,9 @@ struct ElementStats {
 // of a chunk in order: few synchronizations, and neighbouring elements share the cache.
 class Assembly {
 public:
-    explicit Assembly(const Problem& problem);
+    // Elements go in chunks of chunk_elements (fewer if the colouring needs it); a hex whose
+    // corner tets a chunk boundary splits is assembled tet by tet.
+    explicit Assembly(const Problem& problem, Id chunk_elements = 256);
 
     ElementStats stats(const std::vector<Vec3>& x) const;
     // F(x); +infinity when eps = 0 and an element is inverted.

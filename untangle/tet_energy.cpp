@@ -38,8 +38,8 @@ Mat3 cofactor(const Mat3& s) {
 // leading mantissa bits divided by -3, i.e. 0x553eeeeeeeeef000 - bits / 3, with only the
 // high 32 bits divided (hi / 3 = (hi * 0xAAAAAAAB) >> 33 exactly, hi < 2^31) so that the
 // same integer arithmetic runs in vector lanes.
-inline int64_t inverse_cbrt_guess(int64_t bits) {
-    return 0x553eeeeeeeeef000LL - ((((bits >> 32) * 0xAAAAAAABLL) >> 33) << 32);
+inline uint64_t inverse_cbrt_guess(uint64_t bits) {
+    return 0x553eeeeeeeeef000ULL - ((((bits >> 32) * 0xAAAAAAABULL) >> 33) << 32);
 }
 
 // x^(-1/3) for x > 0, to about one ulp, without a library call or a division: the guess
@@ -48,7 +48,7 @@ inline int64_t inverse_cbrt_guess(int64_t bits) {
 // the library.
 double inverse_cbrt(double x) {
     if (!(x > 1e-300 && x < 1e300)) return 1 / std::cbrt(x);
-    int64_t bits;
+    uint64_t bits;
     std::memcpy(&bits, &x, sizeof bits);
     bits = inverse_cbrt_guess(bits);
     double y;
@@ -191,7 +191,7 @@ void hessian_blocks(const Mat3& s, const Invariants& f, const Mat3& g, double we
             Mat3 k = scaling.cwiseProduct(xa * xb.transpose()) + twist_flip.cwiseProduct(xb * xa.transpose());
             k.diagonal() += pair * xa.cwiseProduct(xb);
             blocks[a1 + 1][b1 + 1] = u * k * u.transpose();
-            blocks[b1 + 1][a1 + 1] = blocks[a1 + 1][b1 + 1].transpose();
+            if (b1 != a1) blocks[b1 + 1][a1 + 1] = blocks[a1 + 1][b1 + 1].transpose();
         }
     blocks[0][0].setZero();
     for (int b = 1; b < 4; ++b) {
@@ -207,7 +207,8 @@ void hessian_blocks(const Mat3& s, const Invariants& f, const Mat3& g, double we
 // without AVX does not apply (GCC reports it at the end of the file: ignored from here on).
 #pragma GCC diagnostic ignored "-Wpsabi"
 using Lanes = double __attribute__((vector_size(32)));
-using LaneInts = int64_t __attribute__((vector_size(32)));
+using LaneInts = int64_t __attribute__((vector_size(32)));  // comparison results
+using LaneBits = uint64_t __attribute__((vector_size(32)));
 constexpr int lane_count = 4;
 
 Lanes lane_sqrt(Lanes x) {
@@ -231,9 +232,9 @@ bool any_lane(LaneInts mask) {
 
 // inverse_cbrt in every lane.
 Lanes inverse_cbrt(Lanes x) {
-    LaneInts bits;
+    LaneBits bits;  // unsigned: the shifts are logical, also in NaN lanes
     std::memcpy(&bits, &x, sizeof x);
-    bits = 0x553eeeeeeeeef000LL - ((((bits >> 32) * 0xAAAAAAABLL) >> 33) << 32);
+    bits = 0x553eeeeeeeeef000ULL - ((((bits >> 32) * 0xAAAAAAABULL) >> 33) << 32);
     Lanes y;
     std::memcpy(&y, &bits, sizeof y);
     for (int k = 0; k < 3; ++k) {

@@ -207,3 +207,74 @@ TEST(TetEnergy, HexEnergyIsTheSumOverItsCornerTets) {
     EXPECT_GT(finite, 50);
     EXPECT_GT(infinite, 0);  // the barrier case was met
 }
+
+namespace {
+
+// A box of edges `edges` with its nodes displaced by up to `spread` (some corners inverted).
+Mat38 displaced_box(std::mt19937& rng, const Vec3& edges, double spread) {
+    std::uniform_real_distribution<double> u(-spread, spread);
+    const std::array<Vec3, 8> unit = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0),
+                                      Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(1, 1, 1), Vec3(0, 1, 1)};
+    Mat38 y;
+    for (int a = 0; a < 8; ++a) y.col(a) = unit[a].cwiseProduct(edges) + Vec3(u(rng), u(rng), u(rng));
+    return y;
+}
+
+}  // namespace
+
+TEST(TetEnergy, HexHessianIsTheSumOverItsCornerTets) {
+    std::mt19937 rng(11);
+    const Vec3 edges(1.0, 0.5, 2.0);
+    int checked = 0;
+    for (int k = 0; k < 100; ++k) {
+        const Mat38 y = displaced_box(rng, edges, 0.3);
+        for (double eps : {0.0, 0.05}) {
+            const EnergyParams p{0.8, eps};
+            Mat38 grad;
+            HexHessian hess;
+            const double e = hex_energy_hessian(y, edges, p, grad, hess);
+            EXPECT_EQ(bool(std::isfinite(e)), bool(std::isfinite(hex_energy(y, edges, p)))) << "case " << k;
+            if (!std::isfinite(e)) continue;
+            // The corner tets' Hessians summed into an 8 x 8 block matrix.
+            Eigen::Matrix<double, 24, 24> sum = Eigen::Matrix<double, 24, 24>::Zero();
+            Mat38 sum_grad = Mat38::Zero();
+            double sum_e = 0;
+            for (int c = 0; c < 8; ++c) {
+                const auto& t = hex_corner_tets[c];
+                Mat34 yc, gc;
+                Mat12 hc;
+                for (int a = 0; a < 4; ++a) yc.col(a) = y.col(t[a]);
+                sum_e += tet_energy_hessian(yc, hex_corner_target(c, edges), p, gc, hc);
+                for (int a = 0; a < 4; ++a) {
+                    sum_grad.col(t[a]) += gc.col(a);
+                    for (int b = 0; b < 4; ++b) sum.block<3, 3>(3 * t[a], 3 * t[b]) += hc.block<3, 3>(3 * a, 3 * b);
+                }
+            }
+            EXPECT_NEAR(e, sum_e, 1e-12 * std::abs(sum_e));
+            EXPECT_LT((grad - sum_grad).norm(), 1e-12 * (1 + sum_grad.norm()));
+            for (const auto& [a, b] : hex_hessian_pairs) {
+                const Mat3 want = sum.block<3, 3>(3 * a, 3 * b);
+                EXPECT_LT((hess.block[a][b] - want).norm(), 1e-12 * (1 + sum.norm()));
+            }
+            // The pairs not listed (the body diagonals, e.g. nodes 0 and 6) are not coupled.
+            const Mat3 body_diagonal = sum.block<3, 3>(0, 18);
+            EXPECT_EQ(body_diagonal.norm(), 0.0);
+            ++checked;
+        }
+    }
+    EXPECT_GT(checked, 100);
+}
+
+TEST(TetEnergy, HexEnergyIsNotFiniteWithANanOrInfiniteNode) {
+    std::mt19937 rng(3);
+    for (double bad : {std::nan(""), std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()})
+        for (int node = 0; node < 8; ++node)
+            for (double eps : {0.0, 0.05}) {
+                Mat38 y = displaced_box(rng, Vec3::Ones(), 0.1);
+                y(node % 3, node) = bad;
+                Mat38 grad;
+                const EnergyParams p{0.8, eps};
+                EXPECT_FALSE(std::isfinite(hex_energy(y, Vec3::Ones(), p)));
+                EXPECT_FALSE(std::isfinite(hex_energy(y, Vec3::Ones(), p, &grad)));
+            }
+}
