@@ -248,11 +248,15 @@ Lanes inverse_cbrt(Lanes x) {
     return y;
 }
 
-// phi (v0 = 1) and, with derivatives, f_I and f_d, in every lane: phi() above.
-template <bool derivatives>
-void phi_lanes(Lanes i, Lanes d, const EnergyParams& p, Lanes& value, Lanes& f_i, Lanes& f_d) {
+// phi (v0 = 1) in every lane and, from order 1, f_I and f_d, from order 2 f_dd and f_id:
+// phi() above.
+struct LanePhi {
+    Lanes value, f_i, f_d, f_dd, f_id;
+};
+template <int order>
+LanePhi phi_lanes(Lanes i, Lanes d, const EnergyParams& p) {
     const double eps = p.eps, theta = p.theta;
-    Lanes x = d, x1 = d * 0 + 1;
+    Lanes x = d, x1 = d * 0 + 1, x2 = d * 0;
     if (eps > 0) {
         Lanes r = lane_sqrt(eps * eps + d * d);
         const LaneInts huge = (d >= 1e100) | (d <= -1e100);
@@ -260,15 +264,23 @@ void phi_lanes(Lanes i, Lanes d, const EnergyParams& p, Lanes& value, Lanes& f_i
             for (int l = 0; l < lane_count; ++l) r[l] = regularization_radius(d[l], eps);
         const LaneInts positive = d > 0;
         x = positive ? 0.5 * (d + r) : eps * eps / (2 * (r - d));
-        if (derivatives) x1 = x / r;  // 0.5 (1 + d / r), and eps^2 / (2 r (r - d)) for d <= 0
+        if (order >= 1) x1 = x / r;  // 0.5 (1 + d / r), and eps^2 / (2 r (r - d)) for d <= 0
+        if (order >= 2) x2 = 0.5 * eps * eps / (r * r * r);
     }
     const Lanes y = inverse_cbrt(x), y2 = y * y, y3 = y2 * y;
-    value = theta * (0.5 * (y3 + x)) + (1 - theta) / 3 * (i * y2);
-    if (derivatives) {
+    LanePhi f;
+    f.value = theta * (0.5 * (y3 + x)) + (1 - theta) / 3 * (i * y2);
+    if (order >= 1) {
         const Lanes y5 = y3 * y2;
-        f_i = (1 - theta) / 3 * y2;
-        f_d = (theta * (0.5 * (1 - y3 * y3)) + (1 - theta) * (-2.0 / 9 * i * y5)) * x1;
+        const Lanes first = theta * (0.5 * (1 - y3 * y3)) + (1 - theta) * (-2.0 / 9 * i * y5);
+        f.f_i = (1 - theta) / 3 * y2;
+        f.f_d = first * x1;
+        if (order >= 2) {
+            f.f_dd = (theta * (y3 * y3 * y3) + (1 - theta) * (10.0 / 27 * i * y5 * y3)) * x1 * x1 + first * x2;
+            f.f_id = (1 - theta) * (-2.0 / 9 * y5) * x1;
+        }
     }
+    return f;
 }
 
 // Per corner tet c of a hex, the axis of each of its three edges (its target's diagonal).
@@ -312,10 +324,115 @@ double tet_energy_hessian(const Mat34& y, const TetTarget& t, const EnergyParams
 
 namespace {
 
-// hex_energy with the corners 4 g .. 4 g + 3 in the lanes.
-template <bool with_gradient>
+// The PSD Hessian blocks of the corners of group g (hessian_blocks with g = diag(scale)),
+// added to hess.
+void corner_hessian_lanes(int g, const Lanes (&s)[9], const Lanes (&scale)[3], const LanePhi& f, double weight,
+                          HexHessian& hess) {
+    // Signed SVD S = U diag(sigma) V^T, lane by lane.
+    Lanes u[3][3], v[3][3], sigma[3];
+    for (int l = 0; l < lane_count; ++l) {
+        Mat3 sl, ul, vl;
+        Vec3 sigma_l;
+        for (int k = 0; k < 3; ++k)
+            for (int c = 0; c < 3; ++c) sl(c, k) = s[3 * k + c][l];
+        signed_svd(sl, ul, sigma_l, vl);
+        for (int r = 0; r < 3; ++r) {
+            sigma[r][l] = sigma_l[r];
+            for (int c = 0; c < 3; ++c) u[r][c][l] = ul(r, c), v[r][c][l] = vl(r, c);
+        }
+    }
+    // The scalings' 3 x 3 matrix `a`, weighted, clamped where it is not positive definite.
+    const Lanes d_i[3] = {sigma[1] * sigma[2], sigma[0] * sigma[2], sigma[0] * sigma[1]};
+    Lanes a[3][3];
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            a[i][j] = 2 * f.f_id * (sigma[i] * d_i[j] + sigma[j] * d_i[i]) + f.f_dd * d_i[i] * d_i[j] +
+                      (i == j ? 2 * f.f_i : f.f_d * sigma[3 - i - j]);
+    const Lanes minor = a[0][0] * a[1][1] - a[0][1] * a[0][1];
+    const Lanes det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+                      a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+    const LaneInts definite = (a[0][0] > 0) & (minor > 0) & (det > 0);
+    Lanes scaling[3][3];
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) scaling[i][j] = weight * a[i][j];
+    for (int l = 0; l < lane_count; ++l) {
+        if (definite[l]) continue;
+        Mat3 al;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) al(i, j) = a[i][j][l];
+        Eigen::SelfAdjointEigenSolver<Mat3> eigen;
+        eigen.computeDirect(al);
+        const Mat3 clamped = eigen.eigenvectors() * (weight * eigen.eigenvalues().cwiseMax(0.0)).asDiagonal() *
+                             eigen.eigenvectors().transpose();
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) scaling[i][j][l] = clamped(i, j);
+    }
+    // Twists and flips: pair[k] = weight (flip + twist) / 2, twist_flip[k] = weight (flip -
+    // twist) / 2, both clamped, for the pair (i, j) whose third index is k.
+    Lanes pair[3], twist_flip[3];
+    for (int k = 0; k < 3; ++k) {
+        Lanes twist = 2 * f.f_i + f.f_d * sigma[k], flip = 2 * f.f_i - f.f_d * sigma[k];
+        twist = twist > 0 ? twist : 0 * twist;
+        flip = flip > 0 ? flip : 0 * flip;
+        pair[k] = 0.5 * weight * (flip + twist);
+        twist_flip[k] = 0.5 * weight * (flip - twist);
+    }
+    // x_a = V^T g_a with g_a = scale_a e_a: x[j][a] = V(a, j) scale_a.
+    Lanes x[3][3];
+    for (int j = 0; j < 3; ++j)
+        for (int a1 = 0; a1 < 3; ++a1) x[j][a1] = v[a1][j] * scale[a1];
+    // Blocks (a, b), a, b >= 1: U K_ab U^T; vertex 0: minus sums.
+    Lanes block[4][4][3][3];
+    for (int a1 = 0; a1 < 3; ++a1)
+        for (int b1 = a1; b1 < 3; ++b1) {
+            Lanes k[3][3];
+            for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j) {
+                    k[i][j] = scaling[i][j] * x[i][a1] * x[j][b1];
+                    if (i != j) k[i][j] += twist_flip[3 - i - j] * x[i][b1] * x[j][a1];
+                }
+            for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j)
+                    if (j != i) k[i][i] += pair[3 - i - j] * x[j][a1] * x[j][b1];
+            Lanes uk[3][3];
+            for (int r = 0; r < 3; ++r)
+                for (int j = 0; j < 3; ++j) uk[r][j] = u[r][0] * k[0][j] + u[r][1] * k[1][j] + u[r][2] * k[2][j];
+            auto& out = block[a1 + 1][b1 + 1];
+            for (int r = 0; r < 3; ++r)
+                for (int c = 0; c < 3; ++c) out[r][c] = uk[r][0] * u[c][0] + uk[r][1] * u[c][1] + uk[r][2] * u[c][2];
+            if (b1 != a1)
+                for (int r = 0; r < 3; ++r)
+                    for (int c = 0; c < 3; ++c) block[b1 + 1][a1 + 1][c][r] = out[r][c];
+        }
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) {
+            block[0][0][r][c] = 0 * block[1][1][r][c];
+            for (int b = 1; b < 4; ++b) {
+                block[0][b][r][c] = -(block[1][b][r][c] + block[2][b][r][c] + block[3][b][r][c]);
+                block[0][0][r][c] -= block[0][b][r][c];
+            }
+        }
+    for (int b = 1; b < 4; ++b)
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) block[b][0][c][r] = block[0][b][r][c];
+    for (int l = 0; l < lane_count; ++l) {
+        const auto& t = hex_corner_tets[4 * g + l];
+        for (int i = 0; i < 4; ++i)
+            for (int j = 0; j < 4; ++j) {
+                if (t[i] > t[j]) continue;
+                Mat3& target = hess.block[t[i]][t[j]];
+                for (int r = 0; r < 3; ++r)
+                    for (int c = 0; c < 3; ++c) target(r, c) += block[i][j][r][c][l];
+            }
+    }
+}
+
+// hex_energy (order 0), with its gradient (1) and with its PSD Hessian too (2; hessian_blocks
+// above, the SVD per lane), for the corners 4 g .. 4 g + 3 in the lanes. The gradient and
+// the Hessian blocks are added to grad and hess.
+template <int order>
 bool hex_corner_lanes(int g, const Mat38& y, const Vec3& inverse, double weight, const EnergyParams& p,
-                      double& total, Mat38* grad) {
+                      double& total, Mat38* grad, HexHessian* hess = nullptr) {
     // s[3 k + c]: component c of column k of S (edge k of the corner, scaled).
     Lanes s[9], scale[3];
     for (int l = 0; l < lane_count; ++l) {
@@ -339,10 +456,10 @@ bool hex_corner_lanes(int g, const Mat38& y, const Vec3& inverse, double weight,
     if (p.eps <= 0 && any_lane(d <= 0)) return false;
     Lanes i = s[0] * s[0];
     for (int m = 1; m < 9; ++m) i += s[m] * s[m];
-    Lanes value, f_i, f_d;
-    phi_lanes<with_gradient>(i, d, p, value, f_i, f_d);
-    for (int l = 0; l < lane_count; ++l) total += value[l];
-    if (!with_gradient) return true;
+    const LanePhi f = phi_lanes<order>(i, d, p);
+    const Lanes f_i = f.f_i, f_d = f.f_d;
+    for (int l = 0; l < lane_count; ++l) total += f.value[l];
+    if (order == 0) return true;
     // d phi / d S = 2 f_I S + f_d cof S, scaled back per column.
     Lanes dq[9];
     for (int k = 0; k < 3; ++k) {
@@ -360,6 +477,7 @@ bool hex_corner_lanes(int g, const Mat38& y, const Vec3& inverse, double weight,
             (*grad)(c, t[0]) -= sum;
         }
     }
+    if (order == 2) corner_hessian_lanes(g, s, scale, f, weight, *hess);
     return true;
 }
 
@@ -374,8 +492,8 @@ double hex_energy(const Mat38& y, const Vec3& edges, const EnergyParams& p, Mat3
     double total = 0;
     if (grad) grad->setZero();
     for (int g = 0; g < 2; ++g) {
-        const bool finite = grad ? hex_corner_lanes<true>(g, y, inverse, weight, p, total, grad)
-                                 : hex_corner_lanes<false>(g, y, inverse, weight, p, total, nullptr);
+        const bool finite = grad ? hex_corner_lanes<1>(g, y, inverse, weight, p, total, grad)
+                                 : hex_corner_lanes<0>(g, y, inverse, weight, p, total, nullptr);
         if (!finite) return infinity;
     }
     return weight * total;
@@ -388,26 +506,8 @@ double hex_energy_hessian(const Mat38& y, const Vec3& edges, const EnergyParams&
     grad.setZero();
     for (const auto& [a, b] : hex_hessian_pairs) hess.block[a][b].setZero();
     double total = 0;
-    TetBlocks blocks;
-    for (int c = 0; c < 8; ++c) {
-        const auto& t = hex_corner_tets[c];
-        Mat3 s;
-        Vec3 scale;
-        for (int k = 0; k < 3; ++k) {
-            scale[k] = inverse[corner_axes[c][k]];
-            s.col(k) = (y.col(t[k + 1]) - y.col(t[0])) * scale[k];
-        }
-        Invariants f;
-        if (!phi_at<true>(s, 1, p, f)) return infinity;
-        total += f.value;
-        const Mat3 dq = weight * phi_gradient(s, f) * scale.asDiagonal();
-        for (int k = 0; k < 3; ++k) grad.col(t[k + 1]) += dq.col(k);
-        grad.col(t[0]) -= dq.rowwise().sum();
-        hessian_blocks(s, f, Mat3(scale.asDiagonal()), weight, true, blocks);
-        for (int i = 0; i < 4; ++i)
-            for (int j = 0; j < 4; ++j)
-                if (t[i] <= t[j]) hess.block[t[i]][t[j]] += blocks[i][j];
-    }
+    for (int g = 0; g < 2; ++g)
+        if (!hex_corner_lanes<2>(g, y, inverse, weight, p, total, &grad, &hess)) return infinity;
     return weight * total;
 }
 
