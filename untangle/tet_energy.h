@@ -51,8 +51,9 @@ double tet_energy_hessian(const Mat34& y, const TetTarget& t, const EnergyParams
 // The sum of the energies of the 8 corner tets of a hex (columns of y: its nodes in VTK
 // order) whose targets are the corners of a box with edge lengths `edges` along the hex's
 // local x, y, z (hex_corner_target), and with `grad` its gradient (column a = dE/dy_a):
-// the same values as tet_energy_gradient on each corner, computed without matrix products
-// and with each node loaded once. +infinity when eps = 0 and a corner has det S <= 0.
+// the same values as tet_energy_gradient on each corner (to rounding), computed without
+// matrix products, four corners at a time in vector lanes. +infinity when eps = 0 and a
+// corner has det S <= 0.
 double hex_energy(const Mat38& y, const Vec3& edges, const EnergyParams& p, Mat38* grad = nullptr);
 
 // The node pairs (a <= b) of a hex that share one of its corner tets: the 8 diagonals, the
