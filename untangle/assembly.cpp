@@ -4,6 +4,7 @@
 #include <bitset>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <mutex>
 #include <stdexcept>
@@ -73,34 +74,50 @@ void BlockMatrix::multiply(const std::vector<Vec3>& x, std::vector<Vec3>& y, int
     if (n > 0 && colour_start.empty()) throw std::logic_error("BlockMatrix::multiply before schedule_products()");
     // Rows [first, last): each stored block adds its product to its row and, transposed
     // (a < b), to its column's row. In single precision, as the blocks are.
-    std::vector<Eigen::Vector3f>& xf = product_x_, & yf = product_y_;
+    std::vector<Float4>& xf = product_x_, & yf = product_y_;
     if (component < 0) {
         xf.resize(x.size());
         yf.resize(x.size());
         tbb::parallel_for(tbb::blocked_range<size_t>(0, x.size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
-            for (size_t i = r.begin(); i != r.end(); ++i) xf[i] = x[i].cast<float>(), yf[i].setZero();
+            for (size_t i = r.begin(); i != r.end(); ++i) {
+                xf[i] = Float4{float(x[i][0]), float(x[i][1]), float(x[i][2]), 0.0f};
+                yf[i] = Float4{};
+            }
         });
     }
+    // A block's columns as 4 floats (the 4th is junk and meets x's zero 4th entry), from its
+    // 9 consecutive floats without reading past them.
+    using Lane4 = int32_t __attribute__((vector_size(16)));
+    const auto columns = [](const HessianBlock& b, Float4& c0, Float4& c1, Float4& c2) {
+        const float* p = b.data();
+        Float4 tail;
+        std::memcpy(&c0, p, sizeof c0);
+        std::memcpy(&c1, p + 3, sizeof c1);
+        std::memcpy(&tail, p + 5, sizeof tail);
+        c2 = __builtin_shuffle(tail, Lane4{1, 2, 3, 3});
+    };
+    const auto broadcast = [](Float4 v, int k) { return __builtin_shuffle(v, Lane4{k, k, k, k}); };
     const auto rows_product = [&](Id first, Id last) {
         for (Id a = first; a < last; ++a) {
             Id m = row_start[a];
-            const float* d = block[m].data();
-            const float xa0 = xf[a][0], xa1 = xf[a][1], xa2 = xf[a][2];
-            float s0 = d[0] * xa0 + d[3] * xa1 + d[6] * xa2;
-            float s1 = d[1] * xa0 + d[4] * xa1 + d[7] * xa2;
-            float s2 = d[2] * xa0 + d[5] * xa1 + d[8] * xa2;
+            const Float4 xa = xf[a], xa0 = broadcast(xa, 0), xa1 = broadcast(xa, 1), xa2 = broadcast(xa, 2);
+            Float4 c0, c1, c2;
+            columns(block[m], c0, c1, c2);
+            Float4 sum = c0 * xa0 + c1 * xa1 + c2 * xa2;
             for (++m; m < row_start[a + 1]; ++m) {
-                const float* b = block[m].data();
-                float* yb = yf[col[m]].data();
-                const float* xb = xf[col[m]].data();
-                s0 += b[0] * xb[0] + b[3] * xb[1] + b[6] * xb[2];
-                s1 += b[1] * xb[0] + b[4] * xb[1] + b[7] * xb[2];
-                s2 += b[2] * xb[0] + b[5] * xb[1] + b[8] * xb[2];
-                yb[0] += b[0] * xa0 + b[1] * xa1 + b[2] * xa2;
-                yb[1] += b[3] * xa0 + b[4] * xa1 + b[5] * xa2;
-                yb[2] += b[6] * xa0 + b[7] * xa1 + b[8] * xa2;
+                columns(block[m], c0, c1, c2);
+                const Float4 xb = xf[col[m]];
+                sum += c0 * broadcast(xb, 0) + c1 * broadcast(xb, 1) + c2 * broadcast(xb, 2);
+                // B^T xa: the three column dot products, by a transposition of their terms.
+                const Float4 m0 = c0 * xa, m1 = c1 * xa, m2 = c2 * xa, zero{};
+                const Float4 t0 = __builtin_shuffle(m0, m1, Lane4{0, 4, 1, 5});
+                const Float4 t1 = __builtin_shuffle(m0, m1, Lane4{2, 6, 3, 7});
+                const Float4 t2 = __builtin_shuffle(m2, zero, Lane4{0, 4, 1, 5});
+                const Float4 t3 = __builtin_shuffle(m2, zero, Lane4{2, 6, 3, 7});
+                yf[col[m]] += __builtin_shuffle(t0, t2, Lane4{0, 1, 4, 5}) + __builtin_shuffle(t0, t2, Lane4{2, 3, 6, 7}) +
+                              __builtin_shuffle(t1, t3, Lane4{0, 1, 4, 5});
             }
-            yf[a][0] += s0, yf[a][1] += s1, yf[a][2] += s2;
+            yf[a] += sum;
         }
     };
     const auto rows_component_product = [&](Id first, Id last) {
@@ -127,7 +144,7 @@ void BlockMatrix::multiply(const std::vector<Vec3>& x, std::vector<Vec3>& y, int
         });
     if (component < 0)
         tbb::parallel_for(tbb::blocked_range<size_t>(0, y.size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
-            for (size_t i = r.begin(); i != r.end(); ++i) y[i] = yf[i].cast<double>();
+            for (size_t i = r.begin(); i != r.end(); ++i) y[i] = Vec3(yf[i][0], yf[i][1], yf[i][2]);
         });
 }
 

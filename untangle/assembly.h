@@ -15,6 +15,8 @@ namespace hexmesh::untangle {
 // gradients and the line search stay in double; half the memory and half the traffic of
 // every CG product.
 using HessianBlock = Eigen::Matrix3f;
+// Four floats in one SSE register (GCC vector extension): a vertex's x, y, z and a zero.
+using Float4 = float __attribute__((vector_size(16)));
 
 // Symmetric sparse matrix of 3 x 3 blocks stored by its upper triangle: block row a holds
 // the blocks (a, b) with b >= a, columns sorted, the diagonal block (always present) first.
@@ -31,7 +33,7 @@ struct BlockMatrix {
     Id range_rows = 0;
     std::vector<Id> range_order;   // range numbers, by colour
     std::vector<Id> colour_start;  // offsets into range_order
-    mutable std::vector<Eigen::Vector3f> product_x_, product_y_;  // multiply()'s x and y in float
+    mutable std::vector<Float4> product_x_, product_y_;  // multiply()'s x and y in float
 
     Id rows() const { return Id(row_start.size()) - 1; }
     // Index into col/block of the block (row, column), row <= column, or -1.
