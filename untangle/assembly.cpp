@@ -67,9 +67,10 @@ Id BlockMatrix::find(Id row, Id column) const {
 
 void BlockMatrix::multiply(const std::vector<Vec3>& x, std::vector<Vec3>& y, int component) const {
     y.resize(x.size());
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, y.size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
-        std::fill(y.begin() + r.begin(), y.begin() + r.end(), Vec3::Zero());
-    });
+    if (component >= 0)  // summed into y; the whole product is summed in float and copied at the end
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, y.size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
+            std::fill(y.begin() + r.begin(), y.begin() + r.end(), Vec3::Zero());
+        });
     const Id n = rows();
     if (n > 0 && colour_start.empty()) throw std::logic_error("BlockMatrix::multiply before schedule_products()");
     // Rows [first, last): each stored block adds its product to its row and, transposed
