@@ -432,7 +432,7 @@ void corner_hessian_lanes(int g, const Lanes (&s)[9], const Lanes (&scale)[3], c
 // the Hessian blocks are added to grad and hess.
 template <int order>
 bool hex_corner_lanes(int g, const Mat38& y, const Vec3& inverse, double weight, const EnergyParams& p,
-                      double& total, Mat38* grad, HexHessian* hess = nullptr) {
+                      double& total, Mat38* grad, HexHessian* hess) {
     // s[3 k + c]: component c of column k of S (edge k of the corner, scaled).
     Lanes s[9], scale[3];
     for (int l = 0; l < lane_count; ++l) {
@@ -483,32 +483,34 @@ bool hex_corner_lanes(int g, const Mat38& y, const Vec3& inverse, double weight,
 
 }  // namespace
 
-double hex_energy(const Mat38& y, const Vec3& edges, const EnergyParams& p, Mat38* grad) {
-    // Corner tet c has S = [y_a - y_c, y_b - y_c, y_d - y_c] diag(1 / edges along its axes):
-    // scaled edge vectors, no matrix product; its gradient is d phi / d S scaled back. The
-    // corners run four at a time, one per vector lane.
+namespace {
+
+// Corner tet c has S = [y_a - y_c, y_b - y_c, y_d - y_c] diag(1 / edges along its axes):
+// scaled edge vectors, no matrix product; its gradient is d phi / d S scaled back. The
+// corners run four at a time, one per vector lane: the energy (order 0), with the gradient
+// (1), with the gradient and the PSD Hessian (2).
+template <int order>
+double hex_sum(const Mat38& y, const Vec3& edges, const EnergyParams& p, Mat38* grad, HexHessian* hess) {
     const Vec3 inverse = edges.cwiseInverse();
     const double weight = edges.prod() / 6;
+    if (order >= 1) grad->setZero();
+    if (order == 2)
+        for (const auto& [a, b] : hex_hessian_pairs) hess->block[a][b].setZero();
     double total = 0;
-    if (grad) grad->setZero();
-    for (int g = 0; g < 2; ++g) {
-        const bool finite = grad ? hex_corner_lanes<1>(g, y, inverse, weight, p, total, grad)
-                                 : hex_corner_lanes<0>(g, y, inverse, weight, p, total, nullptr);
-        if (!finite) return infinity;
-    }
+    for (int g = 0; g < 2; ++g)
+        if (!hex_corner_lanes<order>(g, y, inverse, weight, p, total, grad, hess)) return infinity;
     return weight * total;
+}
+
+}  // namespace
+
+double hex_energy(const Mat38& y, const Vec3& edges, const EnergyParams& p, Mat38* grad) {
+    return grad ? hex_sum<1>(y, edges, p, grad, nullptr) : hex_sum<0>(y, edges, p, nullptr, nullptr);
 }
 
 double hex_energy_hessian(const Mat38& y, const Vec3& edges, const EnergyParams& p, Mat38& grad,
                           HexHessian& hess) {
-    const Vec3 inverse = edges.cwiseInverse();
-    const double weight = edges.prod() / 6;
-    grad.setZero();
-    for (const auto& [a, b] : hex_hessian_pairs) hess.block[a][b].setZero();
-    double total = 0;
-    for (int g = 0; g < 2; ++g)
-        if (!hex_corner_lanes<2>(g, y, inverse, weight, p, total, &grad, &hess)) return infinity;
-    return weight * total;
+    return hex_sum<2>(y, edges, p, &grad, &hess);
 }
 
 TetTarget regular_tet_target(double edge) {
