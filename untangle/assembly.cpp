@@ -1,5 +1,7 @@
 #include "untangle/assembly.h"
 
+#include "untangle/triangle_energy.h"
+
 #include <algorithm>
 #include <bitset>
 #include <cmath>
@@ -181,13 +183,31 @@ Assembly::Assembly(const Problem& problem, Id chunk_elements) : problem_(problem
     const Id nv = Id(problem.points.size()), ne = problem.num_elements();
     if (nv > std::numeric_limits<int32_t>::max())
         throw std::invalid_argument("too many vertices for 32-bit Hessian columns");
-    if (problem.hex_edges.size() != problem.hexes.size() || problem.targets.size() != problem.tets.size())
+    if (problem.hex_edges.size() != problem.hexes.size() || problem.targets.size() != problem.tets.size() ||
+        problem.triangle_targets.size() != problem.triangles.size())
         throw std::invalid_argument("one target per element is required");
+    if (!problem.triangles.empty() && !problem.surface_normal)
+        throw std::invalid_argument("surface triangles need the normal of u = 0");
     const auto valid = [nv](Id v) { return v >= 0 && v < nv; };
     for (const auto& h : problem.hexes)
         if (!std::all_of(h.begin(), h.end(), valid)) throw std::invalid_argument("element refers to a missing vertex");
     for (const auto& t : problem.tets)
         if (!std::all_of(t.begin(), t.end(), valid)) throw std::invalid_argument("element refers to a missing vertex");
+    for (const auto& t : problem.triangles)
+        if (!std::all_of(t.begin(), t.end(), valid)) throw std::invalid_argument("element refers to a missing vertex");
+    if (!problem.triangles.empty()) {
+        std::vector<Id> place(nv, -1);
+        triangle_surface_.resize(problem.triangles.size());
+        for (size_t r = 0; r < problem.triangles.size(); ++r)
+            for (int a = 0; a < 3; ++a) {
+                const Id v = problem.triangles[r][a];
+                if (place[v] < 0) {
+                    place[v] = Id(surface_vertices_.size());
+                    surface_vertices_.push_back(v);
+                }
+                triangle_surface_[r][a] = place[v];
+            }
+    }
 
     // Chunks of consecutive elements (a hex's corner tets together, targets streaming from
     // memory in order; the mesh's own order usually keeps neighbours close), coloured; chunks
@@ -204,7 +224,7 @@ Assembly::Assembly(const Problem& problem, Id chunk_elements) : problem_(problem
     // Rows are short (about 20 blocks for hex corner tets): a linear search keeps each row
     // free of duplicates as it grows, so no row ever holds the 16 pairs of every element.
     for (Id e = 0; e < ne; ++e) {
-        const std::array<Id, 4> t = problem.element(e);
+        const ElementNodes t = problem.element(e);
         for (Id a : t)
             for (Id b : t)
                 if (a < b && std::find(adjacent[a].begin(), adjacent[a].end(), int32_t(b)) == adjacent[a].end())
@@ -256,13 +276,18 @@ BlockMatrix Assembly::empty_hessian() const {
 
 ElementStats Assembly::stats(const std::vector<Vec3>& x) const {
     // Minimum and count do not depend on the order of the terms: any split is deterministic.
-    const Id ne = problem_.num_elements();
+    const Id ne = problem_.num_elements(), first_triangle = problem_.first_triangle();
     if (ne == 0) return {};
+    const std::vector<Vec3> normals = triangle_normals(x);
     return tbb::parallel_reduce(
         tbb::blocked_range<Id>(0, ne, grain), ElementStats{std::numeric_limits<double>::infinity(), 0},
         [&](const tbb::blocked_range<Id>& r, ElementStats s) {
             for (Id e = r.begin(); e != r.end(); ++e) {
-                const double d = problem_.det(x, e);
+                const Id t = e - first_triangle;
+                const double d = e < first_triangle
+                                     ? problem_.det(x, e)
+                                     : triangle_det(Problem::corners(x, problem_.triangles[t]), normals[t],
+                                                    problem_.triangle_targets[t]);
                 if (!(d >= s.min_det)) s.min_det = d;  // a NaN wins: it must not go unseen
                 s.inverted += !(d > 0);
             }
@@ -275,6 +300,21 @@ ElementStats Assembly::stats(const std::vector<Vec3>& x) const {
         });
 }
 
+std::vector<Vec3> Assembly::triangle_normals(const std::vector<Vec3>& x) const {
+    std::vector<Vec3> vertex(surface_vertices_.size()), normals(problem_.triangles.size());
+    tbb::parallel_for(size_t(0), vertex.size(), [&](size_t k) {
+        const Id v = surface_vertices_[k];
+        vertex[k] = problem_.surface_normal(v, x[v]).normalized();
+    });
+    // The sum in Problem::triangle_normal's order, so both give the same bits.
+    tbb::parallel_for(size_t(0), normals.size(), [&](size_t r) {
+        const auto& k = triangle_surface_[r];
+        const Vec3 n = vertex[k[0]] + vertex[k[1]] + vertex[k[2]];
+        normals[r] = n / n.norm();
+    });
+    return normals;
+}
+
 Mat38 Assembly::hex_corners(const std::vector<Vec3>& x, Id h) const {
     Mat38 y;
     for (int a = 0; a < 8; ++a) y.col(a) = x[problem_.hexes[h][a]];
@@ -282,12 +322,14 @@ Mat38 Assembly::hex_corners(const std::vector<Vec3>& x, Id h) const {
 }
 
 double Assembly::energy(const std::vector<Vec3>& x, const EnergyParams& p) const {
-    // Summed by hex (8 corner tets at once) and plain tet.
-    const Id hexes = Id(problem_.hexes.size());
-    return deterministic_sum(size_t(hexes) + problem_.tets.size(), [&](size_t u) {
+    // Summed by hex (8 corner tets at once), plain tet and triangle.
+    const Id hexes = Id(problem_.hexes.size()), tets = Id(problem_.tets.size());
+    const std::vector<Vec3> normals = triangle_normals(x);
+    return deterministic_sum(size_t(hexes + tets) + problem_.triangles.size(), [&](size_t u) {
         if (Id(u) < hexes) return hex_energy(hex_corners(x, Id(u)), problem_.hex_edges[u], p);
-        const Id e = 8 * hexes + Id(u) - hexes;
-        return tet_energy(Problem::corners(x, problem_.element(e)), problem_.target(e), p);
+        if (Id(u) < hexes + tets) return tet_energy(Problem::corners(x, problem_.tets[u - hexes]), problem_.targets[u - hexes], p);
+        const Id r = Id(u) - hexes - tets;
+        return triangle_energy(Problem::corners(x, problem_.triangles[r]), normals[r], problem_.triangle_targets[r], p);
     });
 }
 
@@ -303,14 +345,19 @@ double Assembly::sum_by_colour(Kernel&& kernel) const {
     return deterministic_sum(chunk_value.size(), [&](size_t k) { return chunk_value[k]; });
 }
 
-template <class HexKernel, class TetKernel>
-double Assembly::sum_by_colour_hexes(HexKernel&& hex_kernel, TetKernel&& tet_kernel) const {
+template <class HexKernel, class TetKernel, class TriangleKernel>
+double Assembly::sum_by_colour_elements(HexKernel&& hex_kernel, TetKernel&& tet_kernel,
+                                        TriangleKernel&& triangle_kernel) const {
+    const Id first_triangle = problem_.first_triangle();
     return sum_by_colour([&](Id first, Id last) {
         double s = 0;
         for (Id e = first; e < last;) {
             if (problem_.is_hex_corner(e) && e % 8 == 0 && e + 8 <= last) {
                 s += hex_kernel(e / 8);
                 e += 8;
+            } else if (e >= first_triangle) {
+                s += triangle_kernel(e - first_triangle);
+                ++e;
             } else {
                 s += tet_kernel(e);
                 ++e;
@@ -320,11 +367,13 @@ double Assembly::sum_by_colour_hexes(HexKernel&& hex_kernel, TetKernel&& tet_ker
     });
 }
 
-template <class ScatterHex, class ScatterTet>
+template <class ScatterHex, class ScatterTet, class ScatterTriangle>
 double Assembly::assemble_hessian(const std::vector<Vec3>& x, const EnergyParams& p, std::vector<Vec3>& g,
-                                  ScatterHex&& scatter_hex, ScatterTet&& scatter_tet) const {
+                                  ScatterHex&& scatter_hex, ScatterTet&& scatter_tet,
+                                  ScatterTriangle&& scatter_triangle) const {
     g.assign(x.size(), Vec3::Zero());
-    return sum_by_colour_hexes(
+    const std::vector<Vec3> normals = triangle_normals(x);
+    return sum_by_colour_elements(
         [&](Id h) {
             Mat38 gh;
             HexHessian hh;
@@ -335,13 +384,24 @@ double Assembly::assemble_hessian(const std::vector<Vec3>& x, const EnergyParams
             return value;
         },
         [&](Id e) {
-            const std::array<Id, 4> t = problem_.element(e);
+            const std::array<Id, 4> t = problem_.element(e).id;
             Mat34 ge;
             Mat12 he;
             const double value = tet_energy_hessian(Problem::corners(x, t), problem_.target(e), p, ge, he);
             if (!std::isfinite(value)) return value;
             for (int a = 0; a < 4; ++a) g[t[a]] += ge.col(a);
             scatter_tet(e, t, he);
+            return value;
+        },
+        [&](Id r) {
+            const std::array<Id, 3>& t = problem_.triangles[r];
+            Mat3 gr;
+            Mat9 hr;
+            const double value = triangle_energy_hessian(Problem::corners(x, t), normals[r],
+                                                         problem_.triangle_targets[r], p, gr, hr);
+            if (!std::isfinite(value)) return value;
+            for (int a = 0; a < 3; ++a) g[t[a]] += gr.col(a);
+            scatter_triangle(r, t, hr);
             return value;
         });
 }
@@ -356,6 +416,9 @@ double Assembly::diagonal_hessian(const std::vector<Vec3>& x, const EnergyParams
         },
         [&](Id, const std::array<Id, 4>& t, const Mat12& he) {
             for (int a = 0; a < 4; ++a) diagonal[t[a]] += he.block<3, 3>(3 * a, 3 * a);
+        },
+        [&](Id, const std::array<Id, 3>& t, const Mat9& hr) {
+            for (int a = 0; a < 3; ++a) diagonal[t[a]] += hr.block<3, 3>(3 * a, 3 * a);
         });
 }
 
@@ -377,12 +440,19 @@ void Assembly::hessian_product(const std::vector<Vec3>& x, const EnergyParams& p
             for (int a = 0; a < 4; ++a) ve.segment<3>(3 * a) = v[t[a]];
             const Eigen::Matrix<double, 12, 1> he_v = he * ve;
             for (int a = 0; a < 4; ++a) out[t[a]] += he_v.segment<3>(3 * a);
+        },
+        [&](Id, const std::array<Id, 3>& t, const Mat9& hr) {
+            Eigen::Matrix<double, 9, 1> vr;
+            for (int a = 0; a < 3; ++a) vr.segment<3>(3 * a) = v[t[a]];
+            const Eigen::Matrix<double, 9, 1> hr_v = hr * vr;
+            for (int a = 0; a < 3; ++a) out[t[a]] += hr_v.segment<3>(3 * a);
         });
 }
 
 double Assembly::gradient(const std::vector<Vec3>& x, const EnergyParams& p, std::vector<Vec3>& g) const {
     g.assign(x.size(), Vec3::Zero());
-    return sum_by_colour_hexes(
+    const std::vector<Vec3> normals = triangle_normals(x);
+    return sum_by_colour_elements(
         [&](Id h) {
             Mat38 gh;
             const double value = hex_energy(hex_corners(x, h), problem_.hex_edges[h], p, &gh);
@@ -391,11 +461,20 @@ double Assembly::gradient(const std::vector<Vec3>& x, const EnergyParams& p, std
             return value;
         },
         [&](Id e) {
-            const std::array<Id, 4> t = problem_.element(e);
+            const std::array<Id, 4> t = problem_.element(e).id;
             Mat34 ge;
             const double value = tet_energy_gradient(Problem::corners(x, t), problem_.target(e), p, ge);
             if (std::isfinite(value))
                 for (int a = 0; a < 4; ++a) g[t[a]] += ge.col(a);
+            return value;
+        },
+        [&](Id r) {
+            const std::array<Id, 3>& t = problem_.triangles[r];
+            Mat3 gr;
+            const double value = triangle_energy_gradient(Problem::corners(x, t), normals[r],
+                                                          problem_.triangle_targets[r], p, gr);
+            if (std::isfinite(value))
+                for (int a = 0; a < 3; ++a) g[t[a]] += gr.col(a);
             return value;
         });
 }
@@ -417,6 +496,12 @@ const Assembly::Slots& Assembly::hessian_slots() const {
             const auto& t = problem_.tets[e];
             for (int a = 0; a < 4; ++a)
                 for (int b = 0; b < 4; ++b) slots_.tet[e][4 * a + b] = offset(t[a], t[b]);
+        });
+        slots_.triangle.resize(problem_.triangles.size());
+        tbb::parallel_for(size_t(0), problem_.triangles.size(), [&](size_t r) {
+            const auto& t = problem_.triangles[r];
+            for (int a = 0; a < 3; ++a)
+                for (int b = 0; b < 3; ++b) slots_.triangle[r][3 * a + b] = offset(t[a], t[b]);
         });
     });
     return slots_;
@@ -457,6 +542,13 @@ double Assembly::hessian(const std::vector<Vec3>& x, const EnergyParams& p, std:
                                          : slots.tet[e - hex_elements][4 * a + b];
                     row[slot] += he.block<3, 3>(3 * a, 3 * b).cast<float>();
                 }
+            }
+        },
+        [&](Id r, const std::array<Id, 3>& t, const Mat9& hr) {
+            for (int a = 0; a < 3; ++a) {
+                HessianBlock* row = h.block.data() + h.row_start[t[a]];
+                for (int b = 0; b < 3; ++b)
+                    if (t[a] <= t[b]) row[slots.triangle[r][3 * a + b]] += hr.block<3, 3>(3 * a, 3 * b).cast<float>();
             }
         });
 }

@@ -91,26 +91,36 @@ private:
     // (over the chunks in a fixed order).
     template <class Kernel>
     double sum_by_colour(Kernel&& kernel) const;
-    // The same with hex_kernel(h) on each hex whose 8 corner tets lie in one chunk and
-    // tet_kernel(e) on every other element, in element order.
-    template <class HexKernel, class TetKernel>
-    double sum_by_colour_hexes(HexKernel&& hex_kernel, TetKernel&& tet_kernel) const;
+    // The same with hex_kernel(h) on each hex whose 8 corner tets lie in one chunk,
+    // triangle_kernel(r) on surface triangle r and tet_kernel(e) on every other element, in
+    // element order.
+    template <class HexKernel, class TetKernel, class TriangleKernel>
+    double sum_by_colour_elements(HexKernel&& hex_kernel, TetKernel&& tet_kernel,
+                                  TriangleKernel&& triangle_kernel) const;
+    // Per surface triangle, the normal its energy is measured against at x
+    // (Problem::triangle_normal, each vertex's surface normal evaluated once).
+    std::vector<Vec3> triangle_normals(const std::vector<Vec3>& x) const;
     // Cuts the elements into chunks of `size` consecutive ones and colours them; false if
     // that needs more colours than the colouring can hold.
     bool colour_chunks(Id size);
     // F(x) and its gradient in g; the PSD Hessian of each finite hex goes to
-    // scatter_hex(h, its blocks), that of each other finite element (plain tets, and the
-    // corner tets of a hex split between chunks) to scatter_tet(e, its 4 vertex ids, he).
-    template <class ScatterHex, class ScatterTet>
+    // scatter_hex(h, its blocks), that of each finite surface triangle r to
+    // scatter_triangle(r, its 3 vertex ids, hr), that of each other finite element (plain
+    // tets, and the corner tets of a hex split between chunks) to scatter_tet(e, its 4 vertex
+    // ids, he).
+    template <class ScatterHex, class ScatterTet, class ScatterTriangle>
     double assemble_hessian(const std::vector<Vec3>& x, const EnergyParams& p, std::vector<Vec3>& g,
-                            ScatterHex&& scatter_hex, ScatterTet&& scatter_tet) const;
+                            ScatterHex&& scatter_hex, ScatterTet&& scatter_tet,
+                            ScatterTriangle&& scatter_triangle) const;
 
     // Where the element Hessians' blocks go, as offsets in the block row of the pair's lower
     // vertex id: per hex for its node pairs in hex_hessian_pairs order, per plain tet for
-    // (a, b) (4 a + b). Computed on first use: only the assembled Hessian needs them.
+    // (a, b) (4 a + b), per triangle (3 a + b). Computed on first use: only the assembled
+    // Hessian needs them.
     struct Slots {
         std::vector<std::array<uint16_t, 32>> hex;
         std::vector<std::array<uint16_t, 16>> tet;
+        std::vector<std::array<uint16_t, 9>> triangle;
     };
     const Slots& hessian_slots() const;
 
@@ -119,6 +129,8 @@ private:
     std::vector<Id> chunk_order_;    // chunk numbers (chunk k = elements from k chunk_size_), by colour
     std::vector<Id> colour_start_;   // offsets into chunk_order_
     BlockMatrix pattern_;  // row_start and col only
+    std::vector<Id> surface_vertices_;                  // the vertices of the triangles
+    std::vector<std::array<Id, 3>> triangle_surface_;  // per triangle, its vertices' places there
     mutable std::once_flag slots_once_;
     mutable Slots slots_;
 };

@@ -98,8 +98,8 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
 }
 
 // The part of `problem` around its inverted elements: vertices within `rings` element rings
-// of them stay free (if they were), all others are fixed, and only the hexes and tets with
-// a free vertex are kept. Returns false when that part is already the whole problem.
+// of them stay free (if they were), all others are fixed, and only the elements with a free
+// vertex are kept. Returns false when that part is already the whole problem.
 bool local_part(const Problem& problem, const std::vector<std::vector<Id>>& elements_of, int rings,
                 Problem& part) {
     const size_t nv = problem.points.size();
@@ -138,6 +138,11 @@ bool local_part(const Problem& problem, const std::vector<std::vector<Id>>& elem
         if (touches(problem.tets[t])) {
             part.tets.push_back(problem.tets[t]);
             part.targets.push_back(problem.targets[t]);
+        }
+    for (size_t t = 0; t < problem.triangles.size(); ++t)
+        if (touches(problem.triangles[t])) {
+            part.triangles.push_back(problem.triangles[t]);
+            part.triangle_targets.push_back(problem.triangle_targets[t]);
         }
     return free > 0 && part.num_elements() < ne / 2;
 }

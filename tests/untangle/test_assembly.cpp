@@ -47,19 +47,34 @@ void expect_assembly_matches_serial_sums(const Problem& p, const Assembly& a) {
     std::map<std::pair<Id, Id>, Mat3> serial_h;  // every block (a, b), both triangles
     std::map<std::pair<Id, Id>, double> magnitude;  // the sum of the norms of its terms
     for (Id e = 0; e < p.num_elements(); ++e) {
-        const std::array<Id, 4> t = p.element(e);
-        Mat34 y, ge;
-        Mat12 he;
-        for (int c = 0; c < 4; ++c) y.col(c) = p.points[t[c]];
-        serial_f += tet_energy_hessian(y, p.target(e), params, ge, he);
-        for (int c = 0; c < 4; ++c) serial_g[t[c]] += ge.col(c);
-        for (int c = 0; c < 4; ++c)
-            for (int d = 0; d < 4; ++d) {
+        const ElementNodes t = p.element(e);
+        Eigen::MatrixXd ge, he;  // 3 x size, 3 size x 3 size
+        if (p.is_triangle(e)) {
+            const Id r = e - p.first_triangle();
+            Mat3 gr;
+            Mat9 hr;
+            serial_f += triangle_energy_hessian(Problem::corners(p.points, p.triangles[r]),
+                                                p.triangle_normal(p.points, p.triangles[r]),
+                                                p.triangle_targets[r], params, gr, hr);
+            ge = gr, he = hr;
+        } else {
+            Mat34 gt;
+            Mat12 ht;
+            serial_f += tet_energy_hessian(Problem::corners(p.points, t.id), p.target(e), params, gt, ht);
+            ge = gt, he = ht;
+        }
+        for (int c = 0; c < t.size; ++c) serial_g[t[c]] += ge.col(c);
+        for (int c = 0; c < t.size; ++c)
+            for (int d = 0; d < t.size; ++d) {
                 auto [it, fresh] = serial_h.try_emplace({t[c], t[d]}, Mat3::Zero());
                 it->second += he.block<3, 3>(3 * c, 3 * d);
                 magnitude[{t[c], t[d]}] += he.block<3, 3>(3 * c, 3 * d).norm();
             }
     }
+    EXPECT_NEAR(a.energy(p.points, params), f, 1e-12 * std::abs(f));
+    std::vector<Vec3> g_only;
+    EXPECT_EQ(a.gradient(p.points, params, g_only), f);
+    EXPECT_EQ(g_only, g);
     ASSERT_TRUE(std::isfinite(serial_f));
     EXPECT_NEAR(f, serial_f, 1e-12 * std::abs(serial_f));
     for (size_t v = 0; v < g.size(); ++v) EXPECT_LT((g[v] - serial_g[v]).norm(), 1e-10 * (1 + serial_g[v].norm()));
@@ -127,6 +142,41 @@ TEST(Assembly, HexesSplitBetweenChunksPlainTetsAndCoincidingNodesAssembleAlike) 
     }
     const Assembly a(q, 12);
     expect_assembly_matches_serial_sums(q, a);
+}
+
+TEST(Assembly, SurfaceTrianglesAssembleLikeTheSerialSumsAndCountInTheStats) {
+    // The 4 corner triangles of every quad of the face z = 0 (seen from below: the normal
+    // field points to -z, tilted differently at every vertex), its nodes moved in the plane;
+    // chunks of 12 elements mix triangles with the hexes' corner tets.
+    Problem p = test_support::displaced_grid_problem(4, 0.3, 6);
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<double> u(-0.25, 0.25);
+    const auto id = [](int i, int j) { return Id(i + 5 * j); };
+    for (int j = 1; j < 4; ++j)
+        for (int i = 1; i < 4; ++i) p.points[id(i, j)] += Vec3(u(rng), u(rng), 0);
+    p.surface_normal = [](Id, const Vec3& x) { return Vec3(0.2 * std::sin(3 * x[0]), 0.2 * std::cos(2 * x[1]), -1); };
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) {
+            // Counter-clockwise from -z: (i, j) -> (i, j + 1) -> (i + 1, j + 1) -> (i + 1, j).
+            const std::array<Id, 4> quad = {id(i, j), id(i, j + 1), id(i + 1, j + 1), id(i + 1, j)};
+            for (int c = 0; c < 4; ++c) {
+                p.triangles.push_back({quad[c], quad[(c + 1) % 4], quad[(c + 3) % 4]});
+                p.triangle_targets.push_back(rectangle_corner_target(1, 1));
+            }
+        }
+    const Assembly a(p, 12);
+    expect_assembly_matches_serial_sums(p, a);
+    // A folded triangle counts as inverted, and only the triangles see it (fixed hexes' z = 0
+    // nodes do not move out of the plane).
+    const ElementStats before = a.stats(p.points);
+    EXPECT_EQ(before.inverted, 0);
+    std::swap(p.points[id(2, 2)], p.points[id(2, 3)]);
+    Id folded = 0;
+    for (Id r = 0; r < Id(p.triangles.size()); ++r) folded += !(p.det(p.points, p.first_triangle() + r) > 0);
+    EXPECT_GT(folded, 0);
+    Id folded_tets = 0;
+    for (Id e = 0; e < p.first_triangle(); ++e) folded_tets += !(p.det(p.points, e) > 0);
+    EXPECT_EQ(a.stats(p.points).inverted, folded + folded_tets);
 }
 
 TEST(Assembly, HessianProductsRunInParallelWhenTheRowsAreMany) {
