@@ -20,6 +20,10 @@ struct OGridOptions {
     // body's bounds with a margin of 0.1 bounds diagonal.
     double far_field_size = 10;
     std::optional<Vec3> centre;  // default: centre of the body's bounds; must be inside
+    // The points of a grid made with the same options (e.g. after its wall grid was
+    // optimized on u = 0): its wall nodes are taken as they are instead of the radial
+    // projections, and the lines built from them. nullptr: radial projection.
+    const std::vector<Vec3>* wall_from = nullptr;
 };
 
 // Grid of the shell between the body (u = 0) and a far-field sphere or box around `centre`.

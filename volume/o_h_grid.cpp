@@ -48,6 +48,8 @@ BlockGrid make_o_h_grid(const ImplicitFunction& body, const OHGridOptions& optio
 
     BlockGrid grid;
     grid.points.assign(lattice.count() + nk * ns, Vec3::Zero());
+    if (options.wall_from && options.wall_from->size() != grid.points.size())
+        throw std::invalid_argument("wall_from: the points of a grid made with other options");
     grid.kinds.assign(grid.points.size(), VertexKind::interior);
     for (const LatticePoint& abc : surface.points)
         grid.points[node_id(abc, 0)] = centre + options.core_size * ray(abc);
@@ -55,7 +57,8 @@ BlockGrid make_o_h_grid(const ImplicitFunction& body, const OHGridOptions& optio
     tbb::parallel_for(Id(0), ns, [&](Id s) {
         const LatticePoint& abc = surface.points[s];
         const Vec3 dir = ray(abc);
-        const Vec3 wall = place_on_surface(body, centre, dir, h);
+        const Vec3 wall = options.wall_from ? (*options.wall_from)[node_id(abc, nk)]
+                                            : place_on_surface(body, centre, dir, h);
         const Vec3 core = grid.points[node_id(abc, 0)];
         const double length = (wall - core).norm();
         if ((wall - core).dot(dir) <= 0) {

@@ -14,6 +14,10 @@ struct OHGridOptions {
     int wall_cells = 10;       // cells across each wall block, from the core to the wall
     double core_size = 0.45;   // core half-size as a fraction of the body's half extents
     WallLayers wall_layers;    // law of the cells next to the wall (layers = 0: uniform)
+    // The points of a grid made with the same options (e.g. after its wall grid was
+    // optimized on u = 0): its wall nodes are taken as they are instead of the radial
+    // projections, and the lines built from them. nullptr: radial projection.
+    const std::vector<Vec3>* wall_from = nullptr;
     std::optional<Vec3> centre;  // default: centre of the body's bounds
 };
 

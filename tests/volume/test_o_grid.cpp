@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -192,6 +194,31 @@ TEST(OGrid, SphereLinesFollowTheLawAndLeaveTheWallOrthogonally) {
     EXPECT_NEAR(w.max_growth, law.growth_ratio, 1e-9);
     EXPECT_LT(w.max_law_error, 1e-9);  // all 10 layers
     EXPECT_LT(w.max_angle_deg, 0.5);
+}
+
+TEST(OGrid, LinesAreBuiltFromAGivenWallGrid) {
+    // Wall nodes moved along the sphere (a rotation about the centre by 0.05 rad): the grid
+    // made from them keeps them exactly, and its lines follow the law and leave the wall
+    // orthogonally from their new places.
+    const Vec3 c(0.1, -0.2, 0.3);
+    const Sphere sphere(c, 0.5);
+    OGridOptions o = typical_options();
+    BlockGrid moved = make_o_grid(sphere, o);
+    const Mat3 turn = Eigen::AngleAxisd(0.05, Vec3(1, 2, 2).normalized()).toRotationMatrix();
+    for (size_t v = 0; v < moved.points.size(); ++v)
+        if (moved.kinds[v] == VertexKind::slip) moved.points[v] = c + turn * (moved.points[v] - c);
+    o.wall_from = &moved.points;
+    const BlockGrid grid = make_o_grid(sphere, o);
+    for (size_t v = 0; v < grid.points.size(); ++v)
+        if (grid.kinds[v] == VertexKind::slip) EXPECT_EQ(grid.points[v], moved.points[v]);
+    const WallLines w = measure_wall_lines(grid, sphere, o.wall_layers);
+    EXPECT_LT(w.max_law_error, 1e-9);
+    EXPECT_LT(w.max_angle_deg, 0.5);
+    EXPECT_EQ(count_inversions(to_hex_mesh(grid)).corner_tets, 0);
+    // Points of a grid made with other options are refused.
+    const std::vector<Vec3> fewer(moved.points.begin(), moved.points.end() - 1);
+    o.wall_from = &fewer;
+    expect_invalid_argument([&] { make_o_grid(sphere, o); }, "wall_from");
 }
 
 TEST(OGrid, SphereShellIsValid) {

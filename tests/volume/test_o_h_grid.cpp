@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 #include <stdexcept>
 
@@ -36,6 +38,34 @@ TEST(OHGrid, SphereTopologyIsSevenConformingBlocks) {
     const auto faces = test_support::count_faces(to_hex_mesh(grid));
     EXPECT_EQ(faces.boundary, 6 * Id(n) * n);
     EXPECT_EQ(faces.over_shared, 0);
+}
+
+TEST(OHGrid, LinesAreBuiltFromAGivenWallGrid) {
+    // Wall nodes moved along the sphere: kept exactly, each line a straight segment from its
+    // core node to its new wall node, the law's first height at the wall.
+    const Vec3 c(0.1, -0.2, 0.3);
+    const Sphere sphere(c, 1.0);
+    OHGridOptions o = sphere_options();
+    BlockGrid moved = make_o_h_grid(sphere, o);
+    const Mat3 turn = Eigen::AngleAxisd(0.04, Vec3(2, -1, 2).normalized()).toRotationMatrix();
+    for (size_t v = 0; v < moved.points.size(); ++v)
+        if (moved.kinds[v] == VertexKind::slip) moved.points[v] = c + turn * (moved.points[v] - c);
+    o.wall_from = &moved.points;
+    const BlockGrid grid = make_o_h_grid(sphere, o);
+    const Block& b = grid.blocks[1];
+    const int nk = o.wall_cells;
+    for (int j = 0; j <= o.cells_per_edge; ++j)
+        for (int i = 0; i <= o.cells_per_edge; ++i) {
+            const Vec3 wall = grid.points[b.node(i, j, nk)], core = grid.points[b.node(i, j, 0)];
+            EXPECT_EQ(wall, moved.points[b.node(i, j, nk)]);
+            const Vec3 first = grid.points[b.node(i, j, nk - 1)];
+            EXPECT_NEAR((first - wall).norm(), o.wall_layers.first_height, 1e-12);
+            EXPECT_LT((first - wall).normalized().cross((core - wall).normalized()).norm(), 1e-12);
+        }
+    EXPECT_EQ(measure_quality(to_hex_mesh(grid)).inverted_corner_tets, 0);
+    const std::vector<Vec3> fewer(moved.points.begin(), moved.points.end() - 1);
+    o.wall_from = &fewer;
+    EXPECT_THROW(make_o_h_grid(sphere, o), std::invalid_argument);
 }
 
 TEST(OHGrid, SphereGridIsValidWithWallNodesOnTheSphere) {
