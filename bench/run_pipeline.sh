@@ -27,7 +27,7 @@
 # --mem-limit-gb (default 16, prlimit --as) so that a run too big for the machine fails
 # (reported as OUT OF MEMORY) instead of pushing the machine into swap or the OOM killer.
 # For every run it records the per-phase times that `run` reports (quality.json "phases":
-# geometry, grid, optimization, quality, write), the wall and CPU (user+sys) time and the
+# geometry, grid, surface, optimization, quality, write), the wall and CPU (user+sys) time and the
 # peak RSS ("Maximum resident set size") from /usr/bin/time -v, and from quality.json the
 # min/mean scaled Jacobian, inverted cells and the fraction of wall cells whose first
 # layer is within 10 % of first_height. It prints a markdown table at the end (and a line
@@ -79,10 +79,10 @@ done
 
 # Markdown table of a results.tsv.
 print_table() {
-    echo "| case | n | wall cells | cells | status | geometry (s) | grid (s) | optimization (s) | quality (s) | write (s) | wall total (s) | CPU user+sys (s) | peak RSS (MB) | min SJ | mean SJ | inverted | first layer within 10 % | load avg start/end |"
-    echo "|---|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
-    tail -n +2 "$1" | while IFS=$'\t' read -r name n w cells status geo grid opt qual wr wall cpu rss minsj meansj inv fl load; do
-        echo "| $name | $n | $w | $cells | $status | $geo | $grid | $opt | $qual | $wr | $wall | $cpu | $rss | $minsj | $meansj | $inv | $fl | ${load:--} |"
+    echo "| case | n | wall cells | cells | status | geometry (s) | grid (s) | surface (s) | optimization (s) | quality (s) | write (s) | wall total (s) | CPU user+sys (s) | peak RSS (MB) | min SJ | mean SJ | inverted | first layer within 10 % | load avg start/end |"
+    echo "|---|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+    tail -n +2 "$1" | while IFS=$'\t' read -r name n w cells status geo grid surf opt qual wr wall cpu rss minsj meansj inv fl load; do
+        echo "| $name | $n | $w | $cells | $status | $geo | $grid | $surf | $opt | $qual | $wr | $wall | $cpu | $rss | $minsj | $meansj | $inv | $fl | ${load:--} |"
     done
 }
 if [[ -n "$table_only" ]]; then print_table "$table_only"; exit 0; fi
@@ -103,7 +103,7 @@ bin="$workdir/bin/hexmesh"
 stl="$repo/cases/bean/bean.stl"
 
 tsv="$workdir/results.tsv"
-[[ -f "$tsv" ]] || printf 'case\tn\twall_cells\tcells\tstatus\tgeometry\tgrid\toptimization\tquality\twrite\twall\tcpu\trss_mb\tmin_sj\tmean_sj\tinverted\tfirst_layer_10pct\tload\n' >"$tsv"
+[[ -f "$tsv" ]] || printf 'case\tn\twall_cells\tcells\tstatus\tgeometry\tgrid\tsurface\toptimization\tquality\twrite\twall\tcpu\trss_mb\tmin_sj\tmean_sj\tinverted\tfirst_layer_10pct\tload\n' >"$tsv"
 
 # n for a size label: interior 4 n^3 cells, exterior 12 n^3 cells.
 n_for() {  # domain size
@@ -181,11 +181,12 @@ run_one() {  # name size
     elif grep -qi 'bad_alloc\|cannot allocate' "$dir/run.log"; then status="OUT OF MEMORY (> ${mem_limit_gb} GB address space)"
     elif [[ $rc -ne 0 ]]; then status="FAILED (exit $rc)"
     else status="ok"; fi
-    local q="$dir/out/quality.json" geo=- grid=- opt=- qual=- wr=- minsj=- meansj=- inv=- fl=-
+    local q="$dir/out/quality.json" geo=- grid=- surf=- opt=- qual=- wr=- minsj=- meansj=- inv=- fl=-
     if [[ $rc -eq 0 && -f "$q" ]]; then
-        read -r geo grid opt qual wr minsj meansj inv fl < <(jq -r '[
+        read -r geo grid surf opt qual wr minsj meansj inv fl < <(jq -r '[
             (.phases.geometry // 0 | . * 100 | round / 100),
             (.phases.grid // 0 | . * 100 | round / 100),
+            (.phases.surface // 0 | . * 100 | round / 100),
             (.phases.optimization // 0 | . * 100 | round / 100),
             (.phases.quality // 0 | . * 100 | round / 100),
             (.phases.write // 0 | . * 100 | round / 100),
@@ -196,14 +197,14 @@ run_one() {  # name size
           ] | map(tostring) | join(" ")' "$q")
     else
         # Phases finished before the kill or failure, from the log lines "  PHASE ... N s".
-        grep -E '^  (geometry|grid|optimization|quality|write)\b.* s$' "$dir/run.log" >"$dir/phases.txt" || true
-        for p in geometry grid optimization quality write; do
+        grep -E '^  (geometry|grid|surface|optimization|quality|write)\b.* s$' "$dir/run.log" >"$dir/phases.txt" || true
+        for p in geometry grid surface optimization quality write; do
             local v; v="$(awk -v p="$p" '$1 == p {print $(NF-1)}' "$dir/phases.txt" | tail -1)"
-            [[ -n "$v" ]] && printf -v "$(case $p in geometry) echo geo;; grid) echo grid;; optimization) echo opt;; quality) echo qual;; write) echo wr;; esac)" '%s' "$v"
+            [[ -n "$v" ]] && printf -v "$(case $p in geometry) echo geo;; grid) echo grid;; surface) echo surf;; optimization) echo opt;; quality) echo qual;; write) echo wr;; esac)" '%s' "$v"
         done
     fi
-    printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' \
-        "$name${optimize_iterations:+ (optimize_iterations $optimize_iterations)}" "$n" "$w" "$cells" "$status" "$geo" "$grid" "$opt" "$qual" "$wr" "$wall" "$cpu" \
+    printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' \
+        "$name${optimize_iterations:+ (optimize_iterations $optimize_iterations)}" "$n" "$w" "$cells" "$status" "$geo" "$grid" "$surf" "$opt" "$qual" "$wr" "$wall" "$cpu" \
         "$rss" "$minsj" "$meansj" "$inv" "$fl" "$load0/$load1" >>"$tsv"
     echo "   $status: wall $wall s, CPU $cpu s, peak RSS $rss MB, optimization $opt s" >&2
 }

@@ -196,7 +196,7 @@ BoundaryLayerSpec parse_boundary_layer(const JsonFields& b, const GridSpec& grid
 }
 
 SolverSpec parse_solver(const JsonFields& s) {
-    s.allow_only({"untangle", "optimize", "theta", "max_iterations", "optimize_iterations"});
+    s.allow_only({"untangle", "optimize", "theta", "max_iterations", "optimize_iterations", "surface_iterations"});
     SolverSpec solver;
     const auto methods = {"explicit", "block-diagonal", "coordinate-split", "newton-cg", "lbfgs"};
     solver.untangle = s.choice("untangle", solver.untangle, methods);
@@ -206,6 +206,7 @@ SolverSpec parse_solver(const JsonFields& s) {
     solver.max_iterations = s.integer("max_iterations", solver.max_iterations, 1, 1000000);
     solver.optimize_iterations =
         s.integer("optimize_iterations", solver.optimize_iterations, 0, 1000000);
+    solver.surface_iterations = s.integer("surface_iterations", solver.surface_iterations, 0, 1000000);
     return solver;
 }
 
@@ -307,7 +308,8 @@ std::string case_to_json(const Case& c) {
                       {"optimize", c.solver.optimize},
                       {"theta", c.solver.theta},
                       {"max_iterations", c.solver.max_iterations},
-                      {"optimize_iterations", c.solver.optimize_iterations}};
+                      {"optimize_iterations", c.solver.optimize_iterations},
+                      {"surface_iterations", c.solver.surface_iterations}};
     return root.dump(2) + "\n";
 }
 

@@ -75,6 +75,9 @@ struct SolverSpec {
     double theta = 0.8;
     int max_iterations = 200;       // untangling outer iterations
     int optimize_iterations = 10;   // barrier outer iterations; 0 keeps the constructed grid
+    // Barrier outer iterations of the surface pass (the wall grid alone on u = 0 with the 2D
+    // functional, before the volume); 0 skips it.
+    int surface_iterations = 10;
 };
 
 // A nested grid-convergence family: `run` writes levels 1..levels, each level the one before

@@ -90,7 +90,7 @@ WallLayers wall_layers(const Case& c) {
             c.boundary_layer->layers};
 }
 
-BlockGrid build_grid(const Case& c, const ImplicitFunction& body) {
+BlockGrid build_grid(const Case& c, const ImplicitFunction& body, const std::vector<Vec3>* wall_from) {
     if (c.domain == "exterior") {
         OGridOptions o;
         o.cells_per_edge = cells_per_edge(c, body);
@@ -103,9 +103,11 @@ BlockGrid build_grid(const Case& c, const ImplicitFunction& body) {
                                : 10 * (body.bounds().hi - centre).cwiseAbs().cwiseMax(
                                           (body.bounds().lo - centre).cwiseAbs()).norm();
         o.centre = c.grid.center;
+        o.wall_from = wall_from;
         return make_o_grid(body, o);
     }
     if (c.grid.topology == "single-block") {
+        if (wall_from) throw std::invalid_argument("a single block is not built from a given wall grid");
         SingleBlockOptions o;
         o.cells = c.grid.cells;
         o.wall_layers = wall_layers(c);
@@ -118,6 +120,7 @@ BlockGrid build_grid(const Case& c, const ImplicitFunction& body) {
     o.core_size = c.grid.core_size;
     o.wall_layers = wall_layers(c);
     o.centre = c.grid.center;
+    o.wall_from = wall_from;
     return make_o_h_grid(body, o);
 }
 
@@ -202,6 +205,25 @@ RunResult run_case(const Case& c, const std::string& outdir, const RunOptions& o
         if (snapped.crease_nodes + snapped.corner_nodes > 0)
             log << fmt::format("  sharp features: {} wall nodes on creases, {} on corners\n",
                                snapped.crease_nodes, snapped.corner_nodes);
+        if (c.solver.surface_iterations > 0) {
+            untangle::UntangleOptions surface = untangle_options(c.solver, log);
+            surface.max_optimize_iterations = c.solver.surface_iterations;
+            log << "  surface grid on u = 0 (2D functional, wall nodes only):\n";
+            const SurfaceOptimizationResult s = optimize_wall_surface(result.grid, *body, surface);
+            if (s.triangles > 0) {
+                log << untangle::format_untangle_summary(s.solve)
+                    << fmt::format("  {} wall nodes, {} corner triangles; largest move {:.3g} wall edges\n",
+                                   s.nodes, s.triangles, s.max_move);
+                // The lines of the O-H and O-grid built again from the optimized wall (the
+                // single block keeps the lines that followed it).
+                if (c.domain == "exterior" || c.grid.topology != "single-block") {
+                    BlockGrid rebuilt = build_grid(c, *body, &result.grid.points);
+                    rebuilt.kinds = std::move(result.grid.kinds);  // crease and corner nodes
+                    result.grid = std::move(rebuilt);
+                }
+                timer.done("surface");
+            }
+        }
         GridOptimizationOptions o;
         o.untangle = untangle_options(c.solver, log);
         o.wall_layers = wall_layers(c);

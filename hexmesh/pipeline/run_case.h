@@ -24,8 +24,11 @@ struct RunResult {
 
 // The initial grid of the case's body, before any optimization: interior O-H or single
 // block, or the exterior O-grid out to the far field. Throws InputError when a cell_size
-// asks for an absurd number of cells.
-BlockGrid build_grid(const Case& c, const ImplicitFunction& body);
+// asks for an absurd number of cells. With `wall_from` (the points of a grid build_grid made
+// for the same case, its wall grid since moved on u = 0), the O-H and O-grid lines are built
+// from those wall nodes instead of the radial projections; the single block has no such
+// construction and throws std::invalid_argument.
+BlockGrid build_grid(const Case& c, const ImplicitFunction& body, const std::vector<Vec3>* wall_from = nullptr);
 
 // The boundary-layer law of the case (layers = 0 without a boundary_layer block).
 WallLayers wall_layers(const Case& c);

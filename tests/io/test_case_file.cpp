@@ -25,7 +25,8 @@ TEST(CaseFile, ParsesAFullCase) {
       "geometry": {"sphere": {"center": [1, 2, 3], "radius": 0.5}, "scale": 2},
       "grid": {"topology": "o-h", "cells_per_edge": 16, "wall_cells": 8, "core_size": 0.4},
       "boundary_layer": {"first_height": 0.001, "growth_ratio": 1.1, "layers": 5},
-      "solver": {"untangle": "lbfgs", "optimize": "explicit", "theta": 0.7, "max_iterations": 50},
+      "solver": {"untangle": "lbfgs", "optimize": "explicit", "theta": 0.7, "max_iterations": 50,
+                 "surface_iterations": 0},
       "outputs": ["vtk"]
     })", "case.json");
     EXPECT_EQ(c.geometry.kind, "sphere");
@@ -39,6 +40,7 @@ TEST(CaseFile, ParsesAFullCase) {
     EXPECT_EQ(c.boundary_layer->layers, 5);
     EXPECT_EQ(c.solver.untangle, "lbfgs");
     EXPECT_EQ(c.solver.optimize, "explicit");
+    EXPECT_EQ(c.solver.surface_iterations, 0);
     EXPECT_EQ(c.domain, "interior");
     EXPECT_EQ(c.outputs, std::vector<std::string>{"vtk"});
 }
@@ -82,6 +84,13 @@ TEST(CaseFile, NegativeSizesAreRefused) {
     EXPECT_NE(error_of(R"({"geometry": {"box": {"size": [1, -2, 1]}}})")
                   .find("geometry.box.size: expected an array of 3 positive numbers"),
               std::string::npos);
+}
+
+TEST(CaseFile, SurfaceIterationsAreACountThatDefaultsToTen) {
+    EXPECT_EQ(parse_case(R"({"geometry": {"sphere": {"radius": 1}}})", "case.json").solver.surface_iterations, 10);
+    const std::string e =
+        error_of(R"({"geometry": {"sphere": {"radius": 1}}, "solver": {"surface_iterations": -1}})");
+    EXPECT_NE(e.find("solver.surface_iterations"), std::string::npos) << e;
 }
 
 TEST(CaseFile, AbsurdSizesAreRefused) {

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -37,6 +38,24 @@ TEST(RunCase, WritesGridAndReportThatReadBack) {
     EXPECT_TRUE(fs::exists(dir / "grid.case.json"));
     EXPECT_EQ(read_vtk_mesh((dir / "grid.vtm").string()).num_cells(), 8 * 8 * 8 + 6 * 8 * 8 * 4);
     EXPECT_NE(log.str().find("grid (o-h, 7 blocks, 2048 cells)"), std::string::npos) << log.str();
+    // The surface pass ran, as a phase of its own, and the grid is valid after it.
+    EXPECT_NE(log.str().find("surface grid on u = 0"), std::string::npos) << log.str();
+    const auto& phases = result.report.phase_seconds;
+    EXPECT_TRUE(std::any_of(phases.begin(), phases.end(), [](const auto& p) { return p.first == "surface"; }));
+    EXPECT_EQ(result.report.quality.inverted_cells, 0);
+    fs::remove_all(dir);
+}
+
+TEST(RunCase, SurfaceIterationsZeroSkipsTheSurfacePass) {
+    const Case c = parse_case(R"({"geometry": {"ellipsoid": {"semi_axes": [3, 2, 1]}},
+        "grid": {"cells_per_edge": 6, "wall_cells": 3}, "solver": {"surface_iterations": 0}})", "e.json");
+    const fs::path dir = fs::temp_directory_path() / "hexmesh_test_run_case_no_surface";
+    fs::remove_all(dir);
+    std::ostringstream log;
+    const RunResult result = run_case(c, dir.string(), RunOptions{}, log);
+    EXPECT_EQ(log.str().find("surface grid on u = 0"), std::string::npos) << log.str();
+    const auto& phases = result.report.phase_seconds;
+    EXPECT_FALSE(std::any_of(phases.begin(), phases.end(), [](const auto& p) { return p.first == "surface"; }));
     fs::remove_all(dir);
 }
 
