@@ -196,7 +196,8 @@ BoundaryLayerSpec parse_boundary_layer(const JsonFields& b, const GridSpec& grid
 }
 
 SolverSpec parse_solver(const JsonFields& s) {
-    s.allow_only({"untangle", "optimize", "theta", "max_iterations", "optimize_iterations", "surface_iterations"});
+    s.allow_only({"untangle", "optimize", "theta", "max_iterations", "optimize_iterations",
+                  "surface_iterations"});
     SolverSpec solver;
     const auto methods = {"explicit", "block-diagonal", "coordinate-split", "newton-cg", "lbfgs"};
     solver.untangle = s.choice("untangle", solver.untangle, methods);
@@ -206,7 +207,8 @@ SolverSpec parse_solver(const JsonFields& s) {
     solver.max_iterations = s.integer("max_iterations", solver.max_iterations, 1, 1000000);
     solver.optimize_iterations =
         s.integer("optimize_iterations", solver.optimize_iterations, 0, 1000000);
-    solver.surface_iterations = s.integer("surface_iterations", solver.surface_iterations, 0, 1000000);
+    solver.surface_iterations =
+        s.integer("surface_iterations", solver.surface_iterations, 0, 1000000);
     return solver;
 }
 

@@ -1,7 +1,5 @@
 #include "untangle/assembly.h"
 
-#include "untangle/triangle_energy.h"
-
 #include <algorithm>
 #include <bitset>
 #include <cmath>
@@ -183,31 +181,26 @@ Assembly::Assembly(const Problem& problem, Id chunk_elements) : problem_(problem
     const Id nv = Id(problem.points.size()), ne = problem.num_elements();
     if (nv > std::numeric_limits<int32_t>::max())
         throw std::invalid_argument("too many vertices for 32-bit Hessian columns");
-    if (problem.hex_edges.size() != problem.hexes.size() || problem.targets.size() != problem.tets.size() ||
+    if (problem.hex_edges.size() != problem.hexes.size() ||
+        problem.targets.size() != problem.tets.size() ||
         problem.triangle_targets.size() != problem.triangles.size())
         throw std::invalid_argument("one target per element is required");
     if (!problem.triangles.empty() && !problem.surface_normal)
         throw std::invalid_argument("surface triangles need the normal of u = 0");
+    for (const auto& t : problem.triangles)
+        for (Id v : t)
+            if (v >= 0 && v < nv && problem.kinds.size() == problem.points.size() &&
+                problem.kinds[v] == VertexKind::interior)
+                throw std::invalid_argument("a surface triangle has an interior vertex " +
+                                            std::to_string(v));
     const auto valid = [nv](Id v) { return v >= 0 && v < nv; };
     for (const auto& h : problem.hexes)
         if (!std::all_of(h.begin(), h.end(), valid)) throw std::invalid_argument("element refers to a missing vertex");
     for (const auto& t : problem.tets)
         if (!std::all_of(t.begin(), t.end(), valid)) throw std::invalid_argument("element refers to a missing vertex");
     for (const auto& t : problem.triangles)
-        if (!std::all_of(t.begin(), t.end(), valid)) throw std::invalid_argument("element refers to a missing vertex");
-    if (!problem.triangles.empty()) {
-        std::vector<Id> place(nv, -1);
-        triangle_surface_.resize(problem.triangles.size());
-        for (size_t r = 0; r < problem.triangles.size(); ++r)
-            for (int a = 0; a < 3; ++a) {
-                const Id v = problem.triangles[r][a];
-                if (place[v] < 0) {
-                    place[v] = Id(surface_vertices_.size());
-                    surface_vertices_.push_back(v);
-                }
-                triangle_surface_[r][a] = place[v];
-            }
-    }
+        if (!std::all_of(t.begin(), t.end(), valid))
+            throw std::invalid_argument("element refers to a missing vertex");
 
     // Chunks of consecutive elements (a hex's corner tets together, targets streaming from
     // memory in order; the mesh's own order usually keeps neighbours close), coloured; chunks
@@ -286,8 +279,8 @@ ElementStats Assembly::stats(const std::vector<Vec3>& x) const {
                 const Id t = e - first_triangle;
                 const double d = e < first_triangle
                                      ? problem_.det(x, e)
-                                     : triangle_det(Problem::corners(x, problem_.triangles[t]), normals[t],
-                                                    problem_.triangle_targets[t]);
+                                     : triangle_det(Problem::corners(x, problem_.triangles[t]),
+                                                    normals[t], problem_.triangle_targets[t]);
                 if (!(d >= s.min_det)) s.min_det = d;  // a NaN wins: it must not go unseen
                 s.inverted += !(d > 0);
             }
@@ -301,16 +294,9 @@ ElementStats Assembly::stats(const std::vector<Vec3>& x) const {
 }
 
 std::vector<Vec3> Assembly::triangle_normals(const std::vector<Vec3>& x) const {
-    std::vector<Vec3> vertex(surface_vertices_.size()), normals(problem_.triangles.size());
-    tbb::parallel_for(size_t(0), vertex.size(), [&](size_t k) {
-        const Id v = surface_vertices_[k];
-        vertex[k] = problem_.surface_normal(v, x[v]).normalized();
-    });
-    // The sum in Problem::triangle_normal's order, so both give the same bits.
+    std::vector<Vec3> normals(problem_.triangles.size());
     tbb::parallel_for(size_t(0), normals.size(), [&](size_t r) {
-        const auto& k = triangle_surface_[r];
-        const Vec3 n = vertex[k[0]] + vertex[k[1]] + vertex[k[2]];
-        normals[r] = n / n.norm();
+        normals[r] = problem_.triangle_normal(x, problem_.triangles[r]);
     });
     return normals;
 }
@@ -327,9 +313,12 @@ double Assembly::energy(const std::vector<Vec3>& x, const EnergyParams& p) const
     const std::vector<Vec3> normals = triangle_normals(x);
     return deterministic_sum(size_t(hexes + tets) + problem_.triangles.size(), [&](size_t u) {
         if (Id(u) < hexes) return hex_energy(hex_corners(x, Id(u)), problem_.hex_edges[u], p);
-        if (Id(u) < hexes + tets) return tet_energy(Problem::corners(x, problem_.tets[u - hexes]), problem_.targets[u - hexes], p);
+        if (Id(u) < hexes + tets)
+            return tet_energy(Problem::corners(x, problem_.tets[u - hexes]),
+                              problem_.targets[u - hexes], p);
         const Id r = Id(u) - hexes - tets;
-        return triangle_energy(Problem::corners(x, problem_.triangles[r]), normals[r], problem_.triangle_targets[r], p);
+        return triangle_energy(Problem::corners(x, problem_.triangles[r]), normals[r],
+                               problem_.triangle_targets[r], p);
     });
 }
 
@@ -368,8 +357,9 @@ double Assembly::sum_by_colour_elements(HexKernel&& hex_kernel, TetKernel&& tet_
 }
 
 template <class ScatterHex, class ScatterTet, class ScatterTriangle>
-double Assembly::assemble_hessian(const std::vector<Vec3>& x, const EnergyParams& p, std::vector<Vec3>& g,
-                                  ScatterHex&& scatter_hex, ScatterTet&& scatter_tet,
+double Assembly::assemble_hessian(const std::vector<Vec3>& x, const EnergyParams& p,
+                                  std::vector<Vec3>& g, ScatterHex&& scatter_hex,
+                                  ScatterTet&& scatter_tet,
                                   ScatterTriangle&& scatter_triangle) const {
     g.assign(x.size(), Vec3::Zero());
     const std::vector<Vec3> normals = triangle_normals(x);
@@ -548,7 +538,9 @@ double Assembly::hessian(const std::vector<Vec3>& x, const EnergyParams& p, std:
             for (int a = 0; a < 3; ++a) {
                 HessianBlock* row = h.block.data() + h.row_start[t[a]];
                 for (int b = 0; b < 3; ++b)
-                    if (t[a] <= t[b]) row[slots.triangle[r][3 * a + b]] += hr.block<3, 3>(3 * a, 3 * b).cast<float>();
+                    if (t[a] <= t[b])
+                        row[slots.triangle[r][3 * a + b]] +=
+                            hr.block<3, 3>(3 * a, 3 * b).cast<float>();
             }
         });
 }

@@ -98,7 +98,7 @@ private:
     double sum_by_colour_elements(HexKernel&& hex_kernel, TetKernel&& tet_kernel,
                                   TriangleKernel&& triangle_kernel) const;
     // Per surface triangle, the normal its energy is measured against at x
-    // (Problem::triangle_normal, each vertex's surface normal evaluated once).
+    // (Problem::triangle_normal).
     std::vector<Vec3> triangle_normals(const std::vector<Vec3>& x) const;
     // Cuts the elements into chunks of `size` consecutive ones and colours them; false if
     // that needs more colours than the colouring can hold.
@@ -129,8 +129,6 @@ private:
     std::vector<Id> chunk_order_;    // chunk numbers (chunk k = elements from k chunk_size_), by colour
     std::vector<Id> colour_start_;   // offsets into chunk_order_
     BlockMatrix pattern_;  // row_start and col only
-    std::vector<Id> surface_vertices_;                  // the vertices of the triangles
-    std::vector<std::array<Id, 3>> triangle_surface_;  // per triangle, its vertices' places there
     mutable std::once_flag slots_once_;
     mutable Slots slots_;
 };

@@ -1,8 +1,14 @@
-// What the untangler optimizes: vertices, their constraints, and tetrahedral elements with targets.
+// What the untangler optimizes: vertices, their constraints, and elements with targets
+// (tetrahedra, and triangles on the surface u = 0).
 #pragma once
 
 #include <array>
+#include <cassert>
+#include <cmath>
 #include <functional>
+#include <limits>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "hexmesh/core/reference_hex.h"
@@ -23,15 +29,20 @@ inline TetTarget hex_corner_target(int c, const Vec3& edges) {
 
 // The vertex ids of one element: 4 for a tet, 3 for a surface triangle.
 struct ElementNodes {
-    std::array<Id, 4> id;
-    int size;
+    std::array<Id, 4> id{};
+    int size = 4;
     const Id* begin() const { return id.data(); }
     const Id* end() const { return id.data() + size; }
-    Id operator[](int a) const { return id[a]; }
+    Id operator[](int a) const {
+        assert(a >= 0 && a < size);
+        return id[a];
+    }
 };
 
 // A mesh split into tetrahedra: hexahedra, each split into its 8 corner tets, and plain tets;
-// optionally with surface triangles (the 2D energy on u = 0, triangle_energy.h).
+// and surface triangles (the 2D energy on u = 0, triangle_energy.h), whose vertices must be
+// boundary vertices (slip, feature_edge, corner or fixed: an interior vertex of a triangle
+// alone would have no stiffness along the normal).
 // Vertices move according to their kind: interior (free), slip (in the tangent plane of
 // u = 0, then projected back by V), feature_edge (along the crease tangent, then projected
 // onto the crease), corner and fixed (never). The geometry comes as functions of (vertex id,
@@ -42,7 +53,11 @@ struct ElementNodes {
 // hex's edge lengths along its local x, y, z; then the plain tets[e - 8 #hexes], then the
 // surface triangles[e - 8 #hexes - #tets]. A hex takes 88 bytes where its 8 tets with full
 // targets would take 960. A triangle's energy is measured in the tangent plane of u = 0
-// whose normal is the mean of surface_normal at its three vertices (triangle_normal).
+// whose normal is surface_normal at its centroid (triangle_normal: at a crease, where the
+// normals of its vertices may belong to other faces, the centroid lies on its own). The
+// normal moves with the vertices, but the gradient and Hessian hold it fixed: they are
+// those of the energy in the current tangent planes, which is what a step that slides on
+// u = 0 changes to first order.
 struct Problem {
     std::vector<Vec3> points;                // #V
     std::vector<VertexKind> kinds;           // #V
@@ -53,7 +68,8 @@ struct Problem {
     // #R, vertex ids, counter-clockwise seen from the side surface_normal points to
     std::vector<std::array<Id, 3>> triangles;
     std::vector<TriangleTarget> triangle_targets;  // #R
-    std::function<Vec3(Id, const Vec3&)> surface_normal;      // slip: normal of u = 0 (grad u)
+    // slip vertices and triangles' vertices: normal of u = 0 (grad u)
+    std::function<Vec3(Id, const Vec3&)> surface_normal;
     std::function<Vec3(Id, const Vec3&)> project_to_surface;  // slip: the projection V
     std::function<Vec3(Id, const Vec3&)> edge_tangent;        // feature_edge: crease direction
     std::function<Vec3(Id, const Vec3&)> project_to_edge;     // feature_edge: onto the crease
@@ -74,12 +90,18 @@ struct Problem {
         const auto& c = hex_corner_tets[e % 8];
         return {{h[c[0]], h[c[1]], h[c[2]], h[c[3]]}, 4};
     }
-    // The unit normal a triangle's energy is measured against: the normalized mean of
-    // surface_normal at its vertices (NaN when they cancel).
+    // The unit normal a triangle's energy is measured against: surface_normal (asked for its
+    // first vertex) at its centroid. Throws std::runtime_error, naming the vertex, where
+    // grad u vanishes or is not finite.
     Vec3 triangle_normal(const std::vector<Vec3>& x, const std::array<Id, 3>& t) const {
-        Vec3 n = Vec3::Zero();
-        for (Id v : t) n += surface_normal(v, x[v]).normalized();
-        return n / n.norm();
+        const Vec3 centroid = (x[t[0]] + x[t[1]] + x[t[2]]) / 3;
+        const Vec3 g = surface_normal(t[0], centroid);
+        const double length = g.norm();
+        if (!(length > 0 && length < std::numeric_limits<double>::infinity()))
+            throw std::runtime_error("no surface normal (grad u = (" + std::to_string(g[0]) + ", " +
+                                     std::to_string(g[1]) + ", " + std::to_string(g[2]) +
+                                     ")) at the triangle of vertex " + std::to_string(t[0]));
+        return g / length;
     }
     TetTarget target(Id e) const {
         return is_hex_corner(e) ? hex_corner_target(int(e % 8), hex_edges[e / 8]) : targets[e - 8 * Id(hexes.size())];
@@ -99,7 +121,8 @@ struct Problem {
     double det(const std::vector<Vec3>& x, Id e) const {
         if (is_triangle(e)) {
             const Id r = e - first_triangle();
-            return triangle_det(corners(x, triangles[r]), triangle_normal(x, triangles[r]), triangle_targets[r]);
+            return triangle_det(corners(x, triangles[r]), triangle_normal(x, triangles[r]),
+                                triangle_targets[r]);
         }
         return tet_det(corners(x, element(e).id), target(e));
     }

@@ -25,6 +25,13 @@ Mat23 tangent_frame(const Vec3& n) {
     return p;
 }
 
+// [y1 - y0, y2 - y0].
+Eigen::Matrix<double, 3, 2> edge_matrix(const Mat3& y) {
+    Eigen::Matrix<double, 3, 2> e;
+    e << y.col(1) - y.col(0), y.col(2) - y.col(0);
+    return e;
+}
+
 // phi as a function of I = tr(S^T S) and d = det S, with the partial derivatives needed.
 struct Invariants {
     double value = 0, f_i = 0, f_d = 0, f_dd = 0, f_id = 0;
@@ -66,12 +73,10 @@ struct Evaluation {
     Invariants f;
 };
 
-bool evaluate(const Mat3& y, const Vec3& n, const TriangleTarget& t, const EnergyParams& p, Evaluation& e,
-              double& value) {
+bool evaluate(const Mat3& y, const Vec3& n, const TriangleTarget& t, const EnergyParams& p,
+              Evaluation& e, double& value) {
     e.frame = tangent_frame(n);
-    Eigen::Matrix<double, 3, 2> edges;
-    edges << y.col(1) - y.col(0), y.col(2) - y.col(0);
-    e.s = e.frame * edges * t.inverse;
+    e.s = e.frame * edge_matrix(y) * t.inverse;  // the same expression as triangle_det
     const double d = e.s.determinant();
     if (p.eps <= 0 && d <= 0) {
         value = infinity;
@@ -85,7 +90,8 @@ bool evaluate(const Mat3& y, const Vec3& n, const TriangleTarget& t, const Energ
 // Column a: dE/dy_a from G = dphi/dS: w P^T G H^-T for vertices 1 and 2, minus their sum for 0.
 void vertex_gradient(const Evaluation& e, const TriangleTarget& t, Mat3& grad) {
     const Mat2 g = 2 * e.f.f_i * e.s + e.f.f_d * cofactor(e.s);
-    const Eigen::Matrix<double, 3, 2> dq = t.weight * e.frame.transpose() * g * t.inverse.transpose();
+    const Eigen::Matrix<double, 3, 2> dq =
+        t.weight * e.frame.transpose() * g * t.inverse.transpose();
     grad.col(0) = -dq.rowwise().sum();
     grad.rightCols<2>() = dq;
 }
@@ -93,10 +99,11 @@ void vertex_gradient(const Evaluation& e, const TriangleTarget& t, Mat3& grad) {
 }  // namespace
 
 double triangle_det(const Mat3& y, const Vec3& n, const TriangleTarget& t) {
-    return n.normalized().dot((y.col(1) - y.col(0)).cross(y.col(2) - y.col(0))) * t.inverse.determinant();
+    return (tangent_frame(n) * edge_matrix(y) * t.inverse).determinant();
 }
 
-double triangle_energy(const Mat3& y, const Vec3& n, const TriangleTarget& t, const EnergyParams& p) {
+double triangle_energy(const Mat3& y, const Vec3& n, const TriangleTarget& t,
+                       const EnergyParams& p) {
     Evaluation e;
     double value;
     evaluate(y, n, t, p, e, value);
@@ -137,8 +144,8 @@ double triangle_energy_hessian(const Mat3& y, const Vec3& n, const TriangleTarge
     // (minus their sum for a = 0).
     Eigen::Matrix<double, 4, 9> jac;
     for (int a = 0; a < 3; ++a) {
-        const Eigen::RowVector2d g =
-            a == 0 ? Eigen::RowVector2d(-t.inverse.colwise().sum()) : Eigen::RowVector2d(t.inverse.row(a - 1));
+        const Eigen::RowVector2d g = a == 0 ? Eigen::RowVector2d(-t.inverse.colwise().sum())
+                                            : Eigen::RowVector2d(t.inverse.row(a - 1));
         for (int j = 0; j < 2; ++j)
             for (int i = 0; i < 2; ++i) jac.block<1, 3>(i + 2 * j, 3 * a) = e.frame.row(i) * g[j];
     }

@@ -31,11 +31,13 @@ struct TriangleTarget {
 // iff S is a similarity; phi = 1 at S = I when v0 = 1. n is a parameter: the derivatives
 // below are those of the energy with n held fixed (it comes from grad u, not from y).
 
-// det S of the triangle (<= 0: folded against n). n need not be unit (zero: NaN).
+// det S of the triangle (<= 0: folded against n), the same expression as in the energy so
+// that both agree on the sign. n need not be unit (zero: NaN).
 double triangle_det(const Mat3& y, const Vec3& n, const TriangleTarget& t);
 
 // w phi(S); +infinity when eps = 0 and det S <= 0, NaN when n = 0 or y is not finite.
-double triangle_energy(const Mat3& y, const Vec3& n, const TriangleTarget& t, const EnergyParams& p);
+double triangle_energy(const Mat3& y, const Vec3& n, const TriangleTarget& t,
+                       const EnergyParams& p);
 
 // Value and gradient (column a = dE/dy_a, in the tangent plane). `grad` is left
 // unspecified when the value is not finite.
@@ -46,7 +48,8 @@ double triangle_energy_gradient(const Mat3& y, const Vec3& n, const TriangleTarg
 // eigenvalues in S clamped to zero (project_psd = false: the exact Hessian). `grad` and
 // `hess` are left unspecified when the value is not finite.
 double triangle_energy_hessian(const Mat3& y, const Vec3& n, const TriangleTarget& t,
-                               const EnergyParams& p, Mat3& grad, Mat9& hess, bool project_psd = true);
+                               const EnergyParams& p, Mat3& grad, Mat9& hess,
+                               bool project_psd = true);
 
 // The target of the right-angle corner of a rectangle with edges (a, b) along the
 // triangle's first and second edge (quad corner triangles), v0 = 1, weight the area a b / 2.

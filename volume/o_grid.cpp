@@ -225,7 +225,8 @@ BlockGrid make_o_grid(const ImplicitFunction& body, const OGridOptions& options)
     tbb::parallel_for(Id(0), ns, [&](Id s) {
         const LatticePoint& p = surface.points[s];
         const Vec3 dir = cube_sphere_ray(p, n, half);
-        wall[s] = options.wall_from ? (*options.wall_from)[s] : place_on_surface(body, centre, dir, h);
+        wall[s] =
+            options.wall_from ? (*options.wall_from)[s] : place_on_surface(body, centre, dir, h);
         const Vec3 g = body.gradient(wall[s]);
         normal[s] = g.norm() > 0 ? Vec3(g.normalized()) : Vec3(dir.normalized());
         if (options.far_field == FarFieldShape::sphere) {

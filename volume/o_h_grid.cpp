@@ -61,6 +61,12 @@ BlockGrid make_o_h_grid(const ImplicitFunction& body, const OHGridOptions& optio
                                             : place_on_surface(body, centre, dir, h);
         const Vec3 core = grid.points[node_id(abc, 0)];
         const double length = (wall - core).norm();
+        if ((wall - core).dot(dir) <= 0 && options.wall_from) {
+            throw std::invalid_argument(fmt::format(
+                "the given wall node at ({:.4g}, {:.4g}, {:.4g}) lies behind its core node: its "
+                "line would turn back",
+                wall.x(), wall.y(), wall.z()));
+        }
         if ((wall - core).dot(dir) <= 0) {
             throw std::invalid_argument(fmt::format(
                 "core_size {} puts the core box outside the body near ({:.4g}, {:.4g}, "

@@ -14,4 +14,12 @@ namespace hexmesh {
 // left untouched; the result reproduces any grid that is trilinear in its parameters.
 void fill_interior_tfi(const Block& block, std::vector<Vec3>& points);
 
+// Carries the interior nodes of `block` along with its boundary nodes, which have moved from
+// `before` (#V, the positions they had) to `points`: each interior node moves by the
+// difference between the interpolations above of the boundary now and before, so a uniform
+// shift of the boundary shifts every node by the same amount and a boundary that did not
+// move moves nothing. Boundary nodes are left as they are.
+void carry_interior_tfi(const Block& block, const std::vector<Vec3>& before,
+                        std::vector<Vec3>& points);
+
 }  // namespace hexmesh

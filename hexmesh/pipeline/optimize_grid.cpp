@@ -1,6 +1,5 @@
 #include "hexmesh/pipeline/optimize_grid.h"
 
-#include <Eigen/Geometry>
 #include <algorithm>
 
 #include "hexmesh/core/quality.h"
@@ -8,7 +7,6 @@
 #include "surface/implicit_features.h"
 #include "surface/projection.h"
 #include "volume/wall_extrusion.h"
-#include "volume/wall_lines.h"
 
 namespace hexmesh {
 namespace {
@@ -36,20 +34,6 @@ struct GridProblem {
             for (size_t i = 0; i < nodes.size(); ++i) points[nodes[i]] = problem.points[i];
     }
 };
-
-// The geometry of `body` for the problem's constrained vertices: slip on u = 0 (grad u, the
-// projection V), feature edges along the body's creases; tolerances from p.length_scale.
-void slide_on(const ImplicitFunction& body, untangle::Problem& p) {
-    const double h = p.length_scale;
-    p.surface_normal = [&body](Id, const Vec3& x) { return body.gradient(x); };
-    p.project_to_surface = [&body, h](Id, const Vec3& x) {
-        ProjectionOptions o;
-        o.tolerance = 1e-12;
-        return project_to_surface(body, x, h, o).point;
-    };
-    p.edge_tangent = [&body, h](Id, const Vec3& x) { return crease_tangent(body, x, 1e-3 * h); };
-    p.project_to_edge = [&body, h](Id, const Vec3& x) { return project_to_crease(body, x, h); };
-}
 
 // Box targets of the cell's edge lengths in `target_points` (node positions of the grid).
 GridProblem make_problem(const BlockGrid& grid, const std::vector<Vec3>& target_points,
@@ -117,110 +101,18 @@ std::vector<bool> grow_by_cells(const BlockGrid& grid, std::vector<bool> marked,
     return marked;
 }
 
-// The wall grid of `faces` as a problem of surface triangles: `nodes` maps problem ids to
-// grid ids. Each quad's corner triangles turn counter-clockwise seen from where grad u
-// points (the face's orientation taken from the majority of its quads).
-struct SurfaceProblem {
-    untangle::Problem problem;
-    std::vector<Id> nodes;
-};
-
-SurfaceProblem make_surface_problem(const BlockGrid& grid, const std::vector<WallFace>& faces,
-                                    const ImplicitFunction& body) {
-    SurfaceProblem s;
-    untangle::Problem& p = s.problem;
-    std::vector<Id> local(grid.points.size(), -1);
-    const auto local_id = [&](Id v) {
-        if (local[v] < 0) {
-            local[v] = Id(s.nodes.size());
-            s.nodes.push_back(v);
-            p.points.push_back(grid.points[v]);
-            p.kinds.push_back(grid.kinds[v]);
-        }
-        return local[v];
-    };
-    double total = 0;
-    for (const WallFace& f : faces) {
-        // Quad (p, q): its corners in cyclic order.
-        const auto quad = [&f](int a, int b) {
-            return std::array<Id, 4>{f.node(a, b, 0), f.node(a + 1, b, 0), f.node(a + 1, b + 1, 0), f.node(a, b + 1, 0)};
-        };
-        double turn = 0;
-        for (int b = 0; b + 1 < f.nq; ++b)
-            for (int a = 0; a + 1 < f.np; ++a) {
-                const auto q = quad(a, b);
-                const Vec3& x0 = grid.points[q[0]];
-                const Vec3 n = body.gradient(x0);
-                turn += n.dot((grid.points[q[1]] - x0).cross(grid.points[q[3]] - x0)) > 0 ? 1 : -1;
-            }
-        for (int b = 0; b + 1 < f.nq; ++b)
-            for (int a = 0; a + 1 < f.np; ++a) {
-                std::array<Id, 4> q = quad(a, b);
-                if (turn < 0) std::swap(q[1], q[3]);
-                const auto length = [&](int c, int d) { return (grid.points[q[c]] - grid.points[q[d]]).norm(); };
-                // Mean lengths of the two pairs of opposite edges: (0-1, 3-2) and (0-3, 1-2).
-                const double first = (length(0, 1) + length(3, 2)) / 2, second = (length(0, 3) + length(1, 2)) / 2;
-                total += first + second;
-                for (int c = 0; c < 4; ++c) {
-                    const bool along_first = c % 2 == 0;  // corner c's edge to c + 1 is a "first" edge
-                    p.triangles.push_back({local_id(q[c]), local_id(q[(c + 1) % 4]), local_id(q[(c + 3) % 4])});
-                    p.triangle_targets.push_back(along_first ? untangle::rectangle_corner_target(first, second)
-                                                             : untangle::rectangle_corner_target(second, first));
-                }
-            }
-    }
-    const size_t quads = p.triangles.size() / 4;
-    p.length_scale = quads > 0 ? total / (2.0 * double(quads)) : 1.0;
-    slide_on(body, p);
-    return s;
-}
-
 }  // namespace
 
-SurfaceOptimizationResult optimize_wall_surface(BlockGrid& grid, const ImplicitFunction& body,
-                                                const untangle::UntangleOptions& options) {
-    SurfaceOptimizationResult result;
-    const std::vector<WallFace> faces = wall_faces(grid);
-    SurfaceProblem s = make_surface_problem(grid, faces, body);
-    untangle::Problem& p = s.problem;
-    result.nodes = Id(s.nodes.size());
-    result.triangles = Id(p.triangles.size());
-    if (p.triangles.empty()) return result;
-    result.solve = untangle::untangle_and_optimize(p, options);
-
-    // Wall nodes to their new places; the lines through the volume follow.
-    std::vector<Vec3> wall_move(grid.points.size(), Vec3::Zero());
-    std::vector<char> is_wall(grid.points.size(), 0);
-    for (size_t i = 0; i < s.nodes.size(); ++i) {
-        const Id v = s.nodes[i];
-        wall_move[v] = p.points[i] - grid.points[v];
-        is_wall[v] = 1;
-        result.max_move = std::max(result.max_move, wall_move[v].norm() / p.length_scale);
-    }
-    // (node, wall node, weight) once per line through the node: the lines two wall blocks
-    // share come from the same wall node and count once.
-    struct Follow {
-        Id node, wall;
-        double weight;
-        bool operator<(const Follow& o) const { return node != o.node ? node < o.node : wall < o.wall; }
+void slide_on(const ImplicitFunction& body, untangle::Problem& p) {
+    const double h = p.length_scale;
+    p.surface_normal = [&body](Id, const Vec3& x) { return body.gradient(x); };
+    p.project_to_surface = [&body, h](Id, const Vec3& x) {
+        ProjectionOptions o;
+        o.tolerance = 1e-12;
+        return project_to_surface(body, x, h, o).point;
     };
-    std::vector<Follow> follows;
-    for (const WallFace& f : faces)
-        for (int b = 0; b < f.nq; ++b)
-            for (int a = 0; a < f.np; ++a) {
-                const Id w = f.node(a, b, 0);
-                for (int t = 1; t + 1 < f.depth; ++t) {
-                    const Id v = f.node(a, b, t);
-                    if (!is_wall[v]) follows.push_back({v, w, 1 - double(t) / (f.depth - 1)});
-                }
-            }
-    std::sort(follows.begin(), follows.end());
-    follows.erase(std::unique(follows.begin(), follows.end(),
-                              [](const Follow& x, const Follow& y) { return x.node == y.node && x.wall == y.wall; }),
-                  follows.end());
-    for (const Follow& f : follows) grid.points[f.node] += f.weight * wall_move[f.wall];
-    for (size_t i = 0; i < s.nodes.size(); ++i) grid.points[s.nodes[i]] = p.points[i];
-    return result;
+    p.edge_tangent = [&body, h](Id, const Vec3& x) { return crease_tangent(body, x, 1e-3 * h); };
+    p.project_to_edge = [&body, h](Id, const Vec3& x) { return project_to_crease(body, x, h); };
 }
 
 GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& body,

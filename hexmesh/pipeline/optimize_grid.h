@@ -39,24 +39,10 @@ struct GridOptimizationResult {
     Id laid_nodes = 0;
 };
 
-struct SurfaceOptimizationResult {
-    untangle::UntangleResult solve;  // inverted = folded triangles (against grad u)
-    Id nodes = 0, triangles = 0;     // wall nodes and their corner triangles
-    double max_move = 0;             // largest wall-node displacement, in mean wall edges
-};
-
-// The surface pass of DESIGN §7: the grid on u = 0 (the nodes of the blocks' "wall" faces)
-// optimized alone with the 2D functional of DESIGN §4 (untangle/triangle_energy.h), measured
-// in the tangent plane of grad u. Every wall quad gives its 4 corner triangles, each with the
-// target of a rectangle corner with the quad's mean edge lengths as built, so the cells keep
-// their sizes while their corners are driven towards right angles and folds on the surface
-// are untangled; slip nodes slide on u = 0, feature_edge nodes along their crease, corner
-// and fixed nodes stay. The volume follows: each node of a wall-normal line moves by its
-// wall node's displacement times (1 - t / (depth - 1)), t its place on the line (summed over
-// the lines through it in single-block grids; wall nodes and the lines' far ends stay put).
-// Never leaves the surface grid worse than given (fewer folded triangles, then lower energy).
-SurfaceOptimizationResult optimize_wall_surface(BlockGrid& grid, const ImplicitFunction& body,
-                                                const untangle::UntangleOptions& options);
+// Gives `p` the geometry of `body` for its constrained vertices: slip on u = 0 (grad u, the
+// projection V), feature edges along the body's creases (surface/implicit_features.h);
+// tolerances relative to p.length_scale, which must be set. `body` must outlive `p`.
+void slide_on(const ImplicitFunction& body, untangle::Problem& p);
 
 // Splits every hex of `grid` into its 8 corner tets and minimizes the functional of DESIGN §4
 // over the grid's points (updated in place). Each cell's target is the box of its own initial

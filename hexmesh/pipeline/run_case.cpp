@@ -1,16 +1,17 @@
 #include "hexmesh/pipeline/run_case.h"
 
+#include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fmt/format.h>
 
 #include "hexmesh/core/reference_hex.h"
 #include "hexmesh/pipeline/make_body.h"
 #include "hexmesh/pipeline/optimize_grid.h"
+#include "hexmesh/pipeline/optimize_surface.h"
 #include "hexmesh/pipeline/phase_timer.h"
 #include "hexmesh/pipeline/refine_family.h"
 #include "io/export_grid.h"
@@ -19,8 +20,9 @@
 #include "volume/feature_snapping.h"
 #include "volume/o_grid.h"
 #include "volume/o_h_grid.h"
-#include "volume/wall_metrics.h"
 #include "volume/single_block_grid.h"
+#include "volume/tfi.h"
+#include "volume/wall_metrics.h"
 
 namespace hexmesh {
 namespace {
@@ -90,7 +92,8 @@ WallLayers wall_layers(const Case& c) {
             c.boundary_layer->layers};
 }
 
-BlockGrid build_grid(const Case& c, const ImplicitFunction& body, const std::vector<Vec3>* wall_from) {
+BlockGrid build_grid(const Case& c, const ImplicitFunction& body,
+                     const std::vector<Vec3>* wall_from) {
     if (c.domain == "exterior") {
         OGridOptions o;
         o.cells_per_edge = cells_per_edge(c, body);
@@ -107,7 +110,8 @@ BlockGrid build_grid(const Case& c, const ImplicitFunction& body, const std::vec
         return make_o_grid(body, o);
     }
     if (c.grid.topology == "single-block") {
-        if (wall_from) throw std::invalid_argument("a single block is not built from a given wall grid");
+        if (wall_from)
+            throw std::invalid_argument("a single block is not built from a given wall grid");
         SingleBlockOptions o;
         o.cells = c.grid.cells;
         o.wall_layers = wall_layers(c);
@@ -209,20 +213,22 @@ RunResult run_case(const Case& c, const std::string& outdir, const RunOptions& o
             untangle::UntangleOptions surface = untangle_options(c.solver, log);
             surface.max_optimize_iterations = c.solver.surface_iterations;
             log << "  surface grid on u = 0 (2D functional, wall nodes only):\n";
+            const std::vector<Vec3> before = result.grid.points;
             const SurfaceOptimizationResult s = optimize_wall_surface(result.grid, *body, surface);
-            if (s.triangles > 0) {
-                log << untangle::format_untangle_summary(s.solve)
-                    << fmt::format("  {} wall nodes, {} corner triangles; largest move {:.3g} wall edges\n",
-                                   s.nodes, s.triangles, s.max_move);
-                // The lines of the O-H and O-grid built again from the optimized wall (the
-                // single block keeps the lines that followed it).
-                if (c.domain == "exterior" || c.grid.topology != "single-block") {
-                    BlockGrid rebuilt = build_grid(c, *body, &result.grid.points);
-                    rebuilt.kinds = std::move(result.grid.kinds);  // crease and corner nodes
-                    result.grid = std::move(rebuilt);
-                }
-                timer.done("surface");
+            log << untangle::format_untangle_summary(s.solve)
+                << fmt::format(
+                       "  {} wall nodes, {} corner triangles; largest move {:.3g} wall edges\n",
+                       s.nodes, s.triangles, s.max_move);
+            if (c.domain == "exterior" || c.grid.topology != "single-block") {
+                // The O-H and O-grid lines built again from the optimized wall.
+                BlockGrid rebuilt = build_grid(c, *body, &result.grid.points);
+                rebuilt.kinds = std::move(result.grid.kinds);  // crease and corner nodes
+                result.grid = std::move(rebuilt);
+            } else {
+                for (const Block& block : result.grid.blocks)
+                    carry_interior_tfi(block, before, result.grid.points);
             }
+            timer.done("surface");
         }
         GridOptimizationOptions o;
         o.untangle = untangle_options(c.solver, log);

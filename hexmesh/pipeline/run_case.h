@@ -28,7 +28,8 @@ struct RunResult {
 // for the same case, its wall grid since moved on u = 0), the O-H and O-grid lines are built
 // from those wall nodes instead of the radial projections; the single block has no such
 // construction and throws std::invalid_argument.
-BlockGrid build_grid(const Case& c, const ImplicitFunction& body, const std::vector<Vec3>* wall_from = nullptr);
+BlockGrid build_grid(const Case& c, const ImplicitFunction& body,
+                     const std::vector<Vec3>* wall_from = nullptr);
 
 // The boundary-layer law of the case (layers = 0 without a boundary_layer block).
 WallLayers wall_layers(const Case& c);

@@ -84,7 +84,7 @@ void add_elements(const VolumeMesh& mesh, bool uniform, untangle::Problem& p, do
 
 std::vector<BlockedElement> find_blocked(const VolumeMesh& mesh, const untangle::Problem& p) {
     std::vector<BlockedElement> blocked;
-    for (Id e = 0; e < p.num_elements(); ++e) {
+    for (Id e = 0; e < p.first_triangle(); ++e) {  // the mesh's cells: corner tets and tets
         const std::array<Id, 4> t = p.element(e).id;
         const bool all_fixed =
             std::all_of(t.begin(), t.end(), [&](Id v) { return degrees_of_freedom(p.kinds[v]) == 0; });

@@ -87,9 +87,11 @@ TEST(CaseFile, NegativeSizesAreRefused) {
 }
 
 TEST(CaseFile, SurfaceIterationsAreACountThatDefaultsToTen) {
-    EXPECT_EQ(parse_case(R"({"geometry": {"sphere": {"radius": 1}}})", "case.json").solver.surface_iterations, 10);
-    const std::string e =
-        error_of(R"({"geometry": {"sphere": {"radius": 1}}, "solver": {"surface_iterations": -1}})");
+    EXPECT_EQ(parse_case(R"({"geometry": {"sphere": {"radius": 1}}})", "case.json")
+                  .solver.surface_iterations,
+              10);
+    const std::string e = error_of(
+        R"({"geometry": {"sphere": {"radius": 1}}, "solver": {"surface_iterations": -1}})");
     EXPECT_NE(e.find("solver.surface_iterations"), std::string::npos) << e;
 }
 

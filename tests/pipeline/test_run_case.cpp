@@ -41,21 +41,24 @@ TEST(RunCase, WritesGridAndReportThatReadBack) {
     // The surface pass ran, as a phase of its own, and the grid is valid after it.
     EXPECT_NE(log.str().find("surface grid on u = 0"), std::string::npos) << log.str();
     const auto& phases = result.report.phase_seconds;
-    EXPECT_TRUE(std::any_of(phases.begin(), phases.end(), [](const auto& p) { return p.first == "surface"; }));
+    EXPECT_TRUE(std::any_of(phases.begin(), phases.end(),
+                            [](const auto& p) { return p.first == "surface"; }));
     EXPECT_EQ(result.report.quality.inverted_cells, 0);
     fs::remove_all(dir);
 }
 
 TEST(RunCase, SurfaceIterationsZeroSkipsTheSurfacePass) {
     const Case c = parse_case(R"({"geometry": {"ellipsoid": {"semi_axes": [3, 2, 1]}},
-        "grid": {"cells_per_edge": 6, "wall_cells": 3}, "solver": {"surface_iterations": 0}})", "e.json");
+        "grid": {"cells_per_edge": 6, "wall_cells": 3}, "solver": {"surface_iterations": 0}})",
+                              "e.json");
     const fs::path dir = fs::temp_directory_path() / "hexmesh_test_run_case_no_surface";
     fs::remove_all(dir);
     std::ostringstream log;
     const RunResult result = run_case(c, dir.string(), RunOptions{}, log);
     EXPECT_EQ(log.str().find("surface grid on u = 0"), std::string::npos) << log.str();
     const auto& phases = result.report.phase_seconds;
-    EXPECT_FALSE(std::any_of(phases.begin(), phases.end(), [](const auto& p) { return p.first == "surface"; }));
+    EXPECT_FALSE(std::any_of(phases.begin(), phases.end(),
+                             [](const auto& p) { return p.first == "surface"; }));
     fs::remove_all(dir);
 }
 

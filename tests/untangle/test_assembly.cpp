@@ -60,7 +60,8 @@ void expect_assembly_matches_serial_sums(const Problem& p, const Assembly& a) {
         } else {
             Mat34 gt;
             Mat12 ht;
-            serial_f += tet_energy_hessian(Problem::corners(p.points, t.id), p.target(e), params, gt, ht);
+            serial_f +=
+                tet_energy_hessian(Problem::corners(p.points, t.id), p.target(e), params, gt, ht);
             ge = gt, he = ht;
         }
         for (int c = 0; c < t.size; ++c) serial_g[t[c]] += ge.col(c);
@@ -154,7 +155,9 @@ TEST(Assembly, SurfaceTrianglesAssembleLikeTheSerialSumsAndCountInTheStats) {
     const auto id = [](int i, int j) { return Id(i + 5 * j); };
     for (int j = 1; j < 4; ++j)
         for (int i = 1; i < 4; ++i) p.points[id(i, j)] += Vec3(u(rng), u(rng), 0);
-    p.surface_normal = [](Id, const Vec3& x) { return Vec3(0.2 * std::sin(3 * x[0]), 0.2 * std::cos(2 * x[1]), -1); };
+    p.surface_normal = [](Id, const Vec3& x) {
+        return Vec3(0.2 * std::sin(3 * x[0]), 0.2 * std::cos(2 * x[1]), -1);
+    };
     for (int j = 0; j < 4; ++j)
         for (int i = 0; i < 4; ++i) {
             // Counter-clockwise from -z: (i, j) -> (i, j + 1) -> (i + 1, j + 1) -> (i + 1, j).
@@ -172,11 +175,58 @@ TEST(Assembly, SurfaceTrianglesAssembleLikeTheSerialSumsAndCountInTheStats) {
     EXPECT_EQ(before.inverted, 0);
     std::swap(p.points[id(2, 2)], p.points[id(2, 3)]);
     Id folded = 0;
-    for (Id r = 0; r < Id(p.triangles.size()); ++r) folded += !(p.det(p.points, p.first_triangle() + r) > 0);
+    for (Id r = 0; r < Id(p.triangles.size()); ++r)
+        folded += !(p.det(p.points, p.first_triangle() + r) > 0);
     EXPECT_GT(folded, 0);
     Id folded_tets = 0;
     for (Id e = 0; e < p.first_triangle(); ++e) folded_tets += !(p.det(p.points, e) > 0);
     EXPECT_EQ(a.stats(p.points).inverted, folded + folded_tets);
+}
+
+TEST(Assembly, TrianglesAloneAssembleLikeTheSerialSums) {
+    // A 3 x 3 patch of quads in the plane z = 0, each cut into its 4 corner triangles (pairs
+    // across a quad's diagonal that no tet has), nodes moved in the plane, one triangle
+    // folded; the normal field tilted per vertex.
+    Problem p;
+    std::mt19937 rng(4);
+    std::uniform_real_distribution<double> u(-0.2, 0.2);
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) {
+            p.points.push_back(Vec3(i + u(rng), j + u(rng), 0));
+            p.kinds.push_back(VertexKind::slip);
+        }
+    std::swap(p.points[5], p.points[6]);
+    p.surface_normal = [](Id, const Vec3& x) { return Vec3(0.1 * x[1], -0.2 * x[0], 1); };
+    for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 3; ++i) {
+            const std::array<Id, 4> q = {Id(i + 4 * j), Id(i + 1 + 4 * j), Id(i + 1 + 4 * (j + 1)),
+                                         Id(i + 4 * (j + 1))};
+            for (int c = 0; c < 4; ++c) {
+                p.triangles.push_back({q[c], q[(c + 1) % 4], q[(c + 3) % 4]});
+                p.triangle_targets.push_back(rectangle_corner_target(1, 1.2));
+            }
+        }
+    const Assembly a(p, 5);
+    EXPECT_GT(a.stats(p.points).inverted, 0);
+    expect_assembly_matches_serial_sums(p, a);
+    // A normal that is not finite is named; an interior vertex on a triangle is refused (it
+    // would have no stiffness along n).
+    Problem nan_normal = p;
+    nan_normal.surface_normal = [](Id v, const Vec3&) {
+        return v == 9 ? Vec3(NAN, 0, 1) : Vec3(0, 0, 1);
+    };
+    const Assembly c(nan_normal);
+    try {
+        c.energy(nan_normal.points, {0.8, 0.1});
+        ADD_FAILURE() << "no exception";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("no surface normal (grad u = (nan, 0.000000, "
+                                             "1.000000)) at the triangle of vertex 9"),
+                  std::string::npos)
+            << e.what();
+    }
+    p.kinds[0] = VertexKind::interior;
+    EXPECT_THROW(Assembly b(p), std::invalid_argument);
 }
 
 TEST(Assembly, HessianProductsRunInParallelWhenTheRowsAreMany) {

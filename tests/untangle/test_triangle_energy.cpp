@@ -33,7 +33,8 @@ Mat3 random_triangle(std::mt19937& rng, double spread) {
 const Vec3 up(0, 0, 1);
 const TriangleTarget target = rectangle_corner_target(1.5, 0.5);
 
-Mat3 fd_gradient(const Mat3& y, const Vec3& n, const TriangleTarget& t, const EnergyParams& p, double h) {
+Mat3 fd_gradient(const Mat3& y, const Vec3& n, const TriangleTarget& t, const EnergyParams& p,
+                 double h) {
     Mat3 g;
     for (int a = 0; a < 3; ++a)
         for (int c = 0; c < 3; ++c) {
@@ -70,12 +71,13 @@ TEST(TriangleEnergy, IsMeasuredInTheTangentPlane) {
         const Mat3 y = random_triangle(rng, 0.2);
         Mat3 lifted = y;
         lifted.row(2) += Eigen::RowVector3d(0.3, -0.7, 1.1);
-        EXPECT_NEAR(triangle_energy(lifted, up, target, {0.8, 0.1}), triangle_energy(y, up, target, {0.8, 0.1}),
-                    1e-12);
+        EXPECT_NEAR(triangle_energy(lifted, up, target, {0.8, 0.1}),
+                    triangle_energy(y, up, target, {0.8, 0.1}), 1e-12);
         EXPECT_NEAR(triangle_det(y, up, target), -triangle_det(y, -up, target), 1e-15);
         EXPECT_NEAR(triangle_det(y, 7 * up, target), triangle_det(y, up, target), 1e-15);
     }
-    EXPECT_NEAR(triangle_det(corner_triangle(3, 1), up, target), 4.0, 1e-14);  // area ratio 1.5 / 0.375
+    EXPECT_NEAR(triangle_det(corner_triangle(3, 1), up, target), 4.0,
+                1e-14);  // area ratio 1.5 / 0.375
 }
 
 TEST(TriangleEnergy, InvariantUnderRotationAndTranslation) {
@@ -87,8 +89,8 @@ TEST(TriangleEnergy, InvariantUnderRotationAndTranslation) {
         z.colwise() += Vec3(5, -1, 2);
         for (double eps : {0.0, 0.1}) {
             if (triangle_det(y, up, target) <= 0 && eps == 0) continue;
-            EXPECT_NEAR(triangle_energy(z, r * up, target, {0.8, eps}), triangle_energy(y, up, target, {0.8, eps}),
-                        1e-12);
+            EXPECT_NEAR(triangle_energy(z, r * up, target, {0.8, eps}),
+                        triangle_energy(y, up, target, {0.8, eps}), 1e-12);
         }
     }
 }
@@ -107,8 +109,11 @@ TEST(TriangleEnergy, GradientMatchesFiniteDifferences) {
                 EXPECT_LE(triangle_det(y, n, target), 0);
                 continue;
             }
-            EXPECT_LT((g - fd_gradient(y, n, target, p, 1e-6)).norm(), 1e-6 * (1 + g.norm())) << k << " " << eps;
-            EXPECT_LT(std::abs(g.row(0).sum()) + std::abs(g.row(1).sum()) + std::abs(g.row(2).sum()), 1e-12 * (1 + g.norm()));
+            EXPECT_LT((g - fd_gradient(y, n, target, p, 1e-6)).norm(), 1e-6 * (1 + g.norm()))
+                << k << " " << eps;
+            EXPECT_LT(
+                std::abs(g.row(0).sum()) + std::abs(g.row(1).sum()) + std::abs(g.row(2).sum()),
+                1e-12 * (1 + g.norm()));
             EXPECT_LT((n.transpose() * g).norm(), 1e-12 * (1 + g.norm()));  // no push off the plane
         }
     }
@@ -164,7 +169,8 @@ TEST(TriangleEnergy, ProjectedHessianIsPositiveSemiDefiniteAndExactWhereConvex) 
 TEST(TriangleEnergy, BarrierIsInfiniteOnFoldedTrianglesAndFiniteWithEps) {
     const Mat3 folded = corner_triangle(1, -1);
     EXPECT_LT(triangle_det(folded, up, target), 0);
-    EXPECT_EQ(triangle_energy(folded, up, target, {0.8, 0}), std::numeric_limits<double>::infinity());
+    EXPECT_EQ(triangle_energy(folded, up, target, {0.8, 0}),
+              std::numeric_limits<double>::infinity());
     const double e = triangle_energy(folded, up, target, {0.8, 0.1});
     EXPECT_TRUE(std::isfinite(e));
     EXPECT_GT(e, triangle_energy(corner_triangle(1, 1), up, target, {0.8, 0.1}));

@@ -39,6 +39,38 @@ TEST(Tfi, ReproducesAnAffineStretchedGridFromItsFaces) {
         EXPECT_LT((points[id] - expected[id]).norm(), 1e-12) << "node " << id;
 }
 
+TEST(Tfi, CarriesTheInteriorWithItsBoundary) {
+    // A stretched, sheared block: a uniform shift of its boundary shifts every node by the
+    // same amount; moving one boundary node moves the nodes near it most.
+    const Dims dims{6, 5, 7};
+    const Block block = identity_block(dims);
+    std::vector<Vec3> before(dims.count());
+    for (int k = 0; k < dims.nk; ++k)
+        for (int j = 0; j < dims.nj; ++j)
+            for (int i = 0; i < dims.ni; ++i)
+                before[dims.flat(i, j, k)] =
+                    Vec3(i * i * 0.1 + 0.2 * j, j + 0.05 * k * k, k * 0.7 - 0.1 * i);
+    std::vector<Vec3> points = before;
+    const Vec3 d(0.3, -0.2, 0.5);
+    for (Id v = 0; v < dims.count(); ++v) {
+        const int i = int(v % dims.ni), j = int(v / dims.ni % dims.nj),
+                  k = int(v / (Id(dims.ni) * dims.nj));
+        if (i == 0 || j == 0 || k == 0 || i == dims.ni - 1 || j == dims.nj - 1 || k == dims.nk - 1)
+            points[v] += d;
+    }
+    carry_interior_tfi(block, before, points);
+    for (Id v = 0; v < dims.count(); ++v) EXPECT_LT((points[v] - before[v] - d).norm(), 1e-12) << v;
+
+    points = before;
+    points[dims.flat(0, 2, 3)] += Vec3(0.2, 0, 0);
+    carry_interior_tfi(block, before, points);
+    const double near = (points[dims.flat(1, 2, 3)] - before[dims.flat(1, 2, 3)]).norm();
+    const double far = (points[dims.flat(4, 2, 3)] - before[dims.flat(4, 2, 3)]).norm();
+    EXPECT_GT(near, 0.05);
+    EXPECT_LT(far, near);
+    EXPECT_EQ(points[dims.flat(5, 2, 3)], before[dims.flat(5, 2, 3)]);  // boundary: left
+}
+
 TEST(Tfi, LeavesBoundaryNodesUntouched) {
     const Dims dims{4, 4, 4};
     const Block block = identity_block(dims);

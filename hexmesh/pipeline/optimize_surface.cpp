@@ -1,0 +1,97 @@
+#include "hexmesh/pipeline/optimize_surface.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+
+#include "hexmesh/pipeline/optimize_grid.h"
+#include "volume/wall_lines.h"
+
+namespace hexmesh {
+namespace {
+
+// The wall grid of `faces` as a problem of surface triangles: `nodes` maps problem ids to
+// grid ids. Each quad's corner triangles turn counter-clockwise seen from where grad u
+// points (the face's orientation taken from the majority of its quads).
+struct SurfaceProblem {
+    untangle::Problem problem;
+    std::vector<Id> nodes;
+};
+
+SurfaceProblem make_surface_problem(const BlockGrid& grid, const std::vector<WallFace>& faces,
+                                    const ImplicitFunction& body) {
+    SurfaceProblem s;
+    untangle::Problem& p = s.problem;
+    std::vector<Id> local(grid.points.size(), -1);
+    const auto local_id = [&](Id v) {
+        if (local[v] < 0) {
+            local[v] = Id(s.nodes.size());
+            s.nodes.push_back(v);
+            p.points.push_back(grid.points[v]);
+            p.kinds.push_back(grid.kinds[v]);
+        }
+        return local[v];
+    };
+    double total = 0;
+    for (const WallFace& f : faces) {
+        // Quad (p, q): its corners in cyclic order.
+        const auto quad = [&f](int a, int b) {
+            return std::array<Id, 4>{f.node(a, b, 0), f.node(a + 1, b, 0), f.node(a + 1, b + 1, 0),
+                                     f.node(a, b + 1, 0)};
+        };
+        double turn = 0;
+        for (int b = 0; b + 1 < f.nq; ++b)
+            for (int a = 0; a + 1 < f.np; ++a) {
+                const auto q = quad(a, b);
+                const Vec3& x0 = grid.points[q[0]];
+                const Vec3 n = body.gradient(x0);
+                const double d = n.dot((grid.points[q[1]] - x0).cross(grid.points[q[3]] - x0));
+                turn += (d > 0) - (d < 0);
+            }
+        for (int b = 0; b + 1 < f.nq; ++b)
+            for (int a = 0; a + 1 < f.np; ++a) {
+                std::array<Id, 4> q = quad(a, b);
+                if (turn < 0) std::swap(q[1], q[3]);
+                const auto length = [&](int c, int d) {
+                    return (grid.points[q[c]] - grid.points[q[d]]).norm();
+                };
+                // Mean lengths of the two pairs of opposite edges: (0-1, 3-2) and (0-3, 1-2).
+                const double first = (length(0, 1) + length(3, 2)) / 2,
+                             second = (length(0, 3) + length(1, 2)) / 2;
+                total += first + second;
+                for (int c = 0; c < 4; ++c) {
+                    const bool along_first =
+                        c % 2 == 0;  // corner c's edge to c + 1 is a "first" edge
+                    p.triangles.push_back(
+                        {local_id(q[c]), local_id(q[(c + 1) % 4]), local_id(q[(c + 3) % 4])});
+                    p.triangle_targets.push_back(
+                        along_first ? untangle::rectangle_corner_target(first, second)
+                                    : untangle::rectangle_corner_target(second, first));
+                }
+            }
+    }
+    const size_t quads = p.triangles.size() / 4;
+    p.length_scale = quads > 0 ? total / (2.0 * double(quads)) : 1.0;
+    slide_on(body, p);
+    return s;
+}
+
+}  // namespace
+
+SurfaceOptimizationResult optimize_wall_surface(BlockGrid& grid, const ImplicitFunction& body,
+                                                const untangle::UntangleOptions& options) {
+    SurfaceOptimizationResult result;
+    SurfaceProblem s = make_surface_problem(grid, wall_faces(grid), body);
+    untangle::Problem& p = s.problem;
+    result.nodes = Id(s.nodes.size());
+    result.triangles = Id(p.triangles.size());
+    if (p.triangles.empty()) return result;
+    result.solve = untangle::untangle_and_optimize(p, options);
+    for (size_t i = 0; i < s.nodes.size(); ++i) {
+        Vec3& x = grid.points[s.nodes[i]];
+        result.max_move = std::max(result.max_move, (p.points[i] - x).norm() / p.length_scale);
+        x = p.points[i];
+    }
+    return result;
+}
+
+}  // namespace hexmesh
