@@ -162,6 +162,42 @@ std::pair<double, Id> wall_edge_lengths(const BlockGrid& grid) {
     return total;
 }
 
+// Cells whose scaled Jacobian (corners and centre) is <= 0.
+Id nonpositive_cells(const BlockGrid& grid) {
+    const std::vector<double> sj = scaled_jacobians(grid);
+    return Id(std::count_if(sj.begin(), sj.end(), [](double q) { return !(q > 0); }));
+}
+
+// The surface pass (hexmesh/pipeline/optimize_surface.h), then the volume from the optimized
+// wall: the O-H and O-grid lines built again, a single block's interior carried along by
+// TFI. When the volume built so has more cells with a scaled Jacobian <= 0 than the grid
+// had (wall nodes that slid far from their lines' core or far-field ends, in deep
+// concavities), the grid as constructed is kept.
+void surface_pass(const Case& c, const ImplicitFunction& body, BlockGrid& grid, std::ostream& log) {
+    untangle::UntangleOptions surface = untangle_options(c.solver, log);
+    surface.max_optimize_iterations = c.solver.surface_iterations;
+    log << "  surface grid on u = 0 (2D functional, wall nodes only):\n";
+    BlockGrid built = grid;
+    const SurfaceOptimizationResult s = optimize_wall_surface(grid, body, surface);
+    log << untangle::format_untangle_summary(s.solve)
+        << fmt::format("  {} wall nodes, {} corner triangles; largest move {:.3g} wall edges\n",
+                       s.nodes, s.triangles, s.max_move);
+    if (c.domain == "exterior" || c.grid.topology != "single-block") {
+        BlockGrid rebuilt = build_grid(c, body, &grid.points);
+        rebuilt.kinds = std::move(grid.kinds);  // crease and corner nodes
+        grid = std::move(rebuilt);
+    } else {
+        for (const Block& block : grid.blocks) carry_interior_tfi(block, built.points, grid.points);
+    }
+    const Id bad_before = nonpositive_cells(built), bad_after = nonpositive_cells(grid);
+    if (bad_after > bad_before) {
+        log << fmt::format("  the volume built from that wall has {} cells with a scaled Jacobian <= 0, "
+                           "against {} as constructed: the grid as constructed is kept\n",
+                           bad_after, bad_before);
+        grid = std::move(built);
+    }
+}
+
 }  // namespace
 
 GridReport measure_grid(const BlockGrid& grid, const ImplicitFunction& body,
@@ -210,24 +246,7 @@ RunResult run_case(const Case& c, const std::string& outdir, const RunOptions& o
             log << fmt::format("  sharp features: {} wall nodes on creases, {} on corners\n",
                                snapped.crease_nodes, snapped.corner_nodes);
         if (c.solver.surface_iterations > 0) {
-            untangle::UntangleOptions surface = untangle_options(c.solver, log);
-            surface.max_optimize_iterations = c.solver.surface_iterations;
-            log << "  surface grid on u = 0 (2D functional, wall nodes only):\n";
-            const std::vector<Vec3> before = result.grid.points;
-            const SurfaceOptimizationResult s = optimize_wall_surface(result.grid, *body, surface);
-            log << untangle::format_untangle_summary(s.solve)
-                << fmt::format(
-                       "  {} wall nodes, {} corner triangles; largest move {:.3g} wall edges\n",
-                       s.nodes, s.triangles, s.max_move);
-            if (c.domain == "exterior" || c.grid.topology != "single-block") {
-                // The O-H and O-grid lines built again from the optimized wall.
-                BlockGrid rebuilt = build_grid(c, *body, &result.grid.points);
-                rebuilt.kinds = std::move(result.grid.kinds);  // crease and corner nodes
-                result.grid = std::move(rebuilt);
-            } else {
-                for (const Block& block : result.grid.blocks)
-                    carry_interior_tfi(block, before, result.grid.points);
-            }
+            surface_pass(c, *body, result.grid, log);
             timer.done("surface");
         }
         GridOptimizationOptions o;

@@ -62,6 +62,24 @@ TEST(RunCase, SurfaceIterationsZeroSkipsTheSurfacePass) {
     fs::remove_all(dir);
 }
 
+TEST(RunCase, SurfacePassThatWouldShearTheVolumeIsUndone) {
+    // A sphere with a deep dimple: the surface pass spreads the wall nodes crowded on the
+    // dimple's steep side, so far from their radial lines that straight lines from the core
+    // would cross; the grid as constructed is kept, and the run ends valid.
+    const Case c = parse_case(R"({"geometry": {"difference": [{"sphere": {"radius": 1}},
+        {"sphere": {"center": [0, 0, 0.85], "radius": 0.6}}]},
+        "grid": {"cells_per_edge": 10, "wall_cells": 5, "core_size": 0.15},
+        "solver": {"optimize_iterations": 1}})", "dimple.json");
+    const fs::path dir = fs::temp_directory_path() / "hexmesh_test_run_case_dimple";
+    fs::remove_all(dir);
+    std::ostringstream log;
+    const RunResult result = run_case(c, dir.string(), RunOptions{}, log);
+    EXPECT_NE(log.str().find("the grid as constructed is kept"), std::string::npos) << log.str();
+    EXPECT_EQ(result.report.quality.inverted_cells, 0);
+    EXPECT_GT(result.report.quality.min_scaled_jacobian, 0);
+    fs::remove_all(dir);
+}
+
 TEST(RunCase, FailedRunLeavesNoOutput) {
     const Case c = parse_case(R"({"geometry": {"torus": {"major_radius": 1, "minor_radius": 0.2}}})",
                               "t.json");
