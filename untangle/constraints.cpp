@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <fmt/format.h>
 #include <stdexcept>
 #include <tbb/parallel_for.h>
 
@@ -18,6 +19,15 @@ void check_constraints(const Problem& problem) {
             throw std::invalid_argument("slip vertices need a surface u = 0 to slide on");
         if (k == VertexKind::feature_edge && (!problem.edge_tangent || !problem.project_to_edge))
             throw std::invalid_argument("feature-edge vertices need their crease");
+    }
+    if (!problem.triangles.empty() && !problem.surface_normal)
+        throw std::invalid_argument("surface triangles need the normal of u = 0");
+    for (const auto& t : problem.triangles) {
+        if (problem.triangle_normal(problem.points, t).norm() > 0.5) continue;  // unit
+        const Vec3 c = (problem.points[t[0]] + problem.points[t[1]] + problem.points[t[2]]) / 3;
+        throw std::runtime_error(fmt::format("no normal of u = 0 at the surface triangle with centroid "
+                                             "({:.6g}, {:.6g}, {:.6g}): grad u vanishes or is not finite there",
+                                             c[0], c[1], c[2]));
     }
 }
 

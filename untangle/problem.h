@@ -4,11 +4,7 @@
 
 #include <array>
 #include <cassert>
-#include <cmath>
 #include <functional>
-#include <limits>
-#include <stdexcept>
-#include <string>
 #include <vector>
 
 #include "hexmesh/core/reference_hex.h"
@@ -53,9 +49,9 @@ struct ElementNodes {
 // hex's edge lengths along its local x, y, z; then the plain tets[e - 8 #hexes], then the
 // surface triangles[e - 8 #hexes - #tets]. A hex takes 88 bytes where its 8 tets with full
 // targets would take 960. A triangle's energy is measured in the tangent plane of u = 0
-// whose normal is surface_normal at its centroid (triangle_normal: at a crease, where the
-// normals of its vertices may belong to other faces, the centroid lies on its own). The
-// normal moves with the vertices, but the gradient and Hessian hold it fixed: they are
+// whose normal is surface_normal at its centroid (triangle_normal: next to a crease, the
+// normals of its vertices may all belong to the neighbouring faces). The normal moves with
+// the vertices, but the gradient and Hessian hold it fixed: they are
 // those of the energy in the current tangent planes, which is what a step that slides on
 // u = 0 changes to first order.
 struct Problem {
@@ -68,7 +64,7 @@ struct Problem {
     // #R, vertex ids, counter-clockwise seen from the side surface_normal points to
     std::vector<std::array<Id, 3>> triangles;
     std::vector<TriangleTarget> triangle_targets;  // #R
-    // slip vertices and triangles' vertices: normal of u = 0 (grad u)
+    // slip vertices, and triangles: normal of u = 0 (grad u) at a point near vertex id
     std::function<Vec3(Id, const Vec3&)> surface_normal;
     std::function<Vec3(Id, const Vec3&)> project_to_surface;  // slip: the projection V
     std::function<Vec3(Id, const Vec3&)> edge_tangent;        // feature_edge: crease direction
@@ -90,18 +86,19 @@ struct Problem {
         const auto& c = hex_corner_tets[e % 8];
         return {{h[c[0]], h[c[1]], h[c[2]], h[c[3]]}, 4};
     }
-    // The unit normal a triangle's energy is measured against: surface_normal (asked for its
-    // first vertex) at its centroid. Throws std::runtime_error, naming the vertex, where
-    // grad u vanishes or is not finite.
+    // The unit normal a triangle's energy is measured against: surface_normal at its
+    // centroid; where that turns by more than 120 degrees from the normal at its first vertex
+    // (the centroid, on the chord, across a part thinner than the triangle's sag, or grad u
+    // vanishing there; a crease of 90 degrees is fine), the normalized sum of its vertices'
+    // normals. Zero or NaN when neither exists: the
+    // triangle's energy is then NaN, and a step that leads there is rejected
+    // (check_constraints refuses a problem that starts so).
     Vec3 triangle_normal(const std::vector<Vec3>& x, const std::array<Id, 3>& t) const {
-        const Vec3 centroid = (x[t[0]] + x[t[1]] + x[t[2]]) / 3;
-        const Vec3 g = surface_normal(t[0], centroid);
-        const double length = g.norm();
-        if (!(length > 0 && length < std::numeric_limits<double>::infinity()))
-            throw std::runtime_error("no surface normal (grad u = (" + std::to_string(g[0]) + ", " +
-                                     std::to_string(g[1]) + ", " + std::to_string(g[2]) +
-                                     ")) at the triangle of vertex " + std::to_string(t[0]));
-        return g / length;
+        const Vec3 n0 = surface_normal(t[0], x[t[0]]).normalized();  // zero stays zero
+        const Vec3 n = surface_normal(t[0], (x[t[0]] + x[t[1]] + x[t[2]]) / 3).normalized();
+        if (n.dot(n0) > -0.5) return n;
+        return (n0 + surface_normal(t[1], x[t[1]]).normalized() + surface_normal(t[2], x[t[2]]).normalized())
+            .normalized();
     }
     TetTarget target(Id e) const {
         return is_hex_corner(e) ? hex_corner_target(int(e % 8), hex_edges[e / 8]) : targets[e - 8 * Id(hexes.size())];

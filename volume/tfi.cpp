@@ -62,10 +62,11 @@ void fill_interior_tfi(const Block& block, std::vector<Vec3>& points) {
 
 void carry_interior_tfi(const Block& block, const std::vector<Vec3>& before,
                         std::vector<Vec3>& points) {
+    const Dims& d = block.nodes;
+    if (d.ni < 3 || d.nj < 3 || d.nk < 3) return;  // no interior node
     std::vector<Vec3> was = before, now = points;
     fill_interior_tfi(block, was);
     fill_interior_tfi(block, now);
-    const Dims& d = block.nodes;
     for (int k = 1; k + 1 < d.nk; ++k)
         for (int j = 1; j + 1 < d.nj; ++j)
             for (int i = 1; i + 1 < d.ni; ++i) {

@@ -177,24 +177,31 @@ void surface_pass(const Case& c, const ImplicitFunction& body, BlockGrid& grid, 
     untangle::UntangleOptions surface = untangle_options(c.solver, log);
     surface.max_optimize_iterations = c.solver.surface_iterations;
     log << "  surface grid on u = 0 (2D functional, wall nodes only):\n";
-    BlockGrid built = grid;
+    const std::vector<Vec3> built = grid.points;
+    const Id bad_before = nonpositive_cells(grid);
     const SurfaceOptimizationResult s = optimize_wall_surface(grid, body, surface);
     log << untangle::format_untangle_summary(s.solve)
         << fmt::format("  {} wall nodes, {} corner triangles; largest move {:.3g} wall edges\n",
                        s.nodes, s.triangles, s.max_move);
     if (c.domain == "exterior" || c.grid.topology != "single-block") {
-        BlockGrid rebuilt = build_grid(c, body, &grid.points);
-        rebuilt.kinds = std::move(grid.kinds);  // crease and corner nodes
-        grid = std::move(rebuilt);
+        try {
+            BlockGrid rebuilt = build_grid(c, body, &grid.points);  // same blocks and node ids
+            grid.points = std::move(rebuilt.points);
+        } catch (const std::invalid_argument& e) {  // a wall node behind its core node
+            log << "  no volume can be built from that wall (" << e.what()
+                << "): the grid as constructed is kept\n";
+            grid.points = built;
+            return;
+        }
     } else {
-        for (const Block& block : grid.blocks) carry_interior_tfi(block, built.points, grid.points);
+        for (const Block& block : grid.blocks) carry_interior_tfi(block, built, grid.points);
     }
-    const Id bad_before = nonpositive_cells(built), bad_after = nonpositive_cells(grid);
+    const Id bad_after = nonpositive_cells(grid);
     if (bad_after > bad_before) {
         log << fmt::format("  the volume built from that wall has {} cells with a scaled Jacobian <= 0, "
                            "against {} as constructed: the grid as constructed is kept\n",
                            bad_after, bad_before);
-        grid = std::move(built);
+        grid.points = built;
     }
 }
 

@@ -68,7 +68,7 @@ TEST(RunCase, SurfacePassThatWouldShearTheVolumeIsUndone) {
     // would cross; the grid as constructed is kept, and the run ends valid.
     const Case c = parse_case(R"({"geometry": {"difference": [{"sphere": {"radius": 1}},
         {"sphere": {"center": [0, 0, 0.85], "radius": 0.6}}]},
-        "grid": {"cells_per_edge": 10, "wall_cells": 5, "core_size": 0.15},
+        "grid": {"cells_per_edge": 18, "wall_cells": 8, "core_size": 0.15},
         "solver": {"optimize_iterations": 1}})", "dimple.json");
     const fs::path dir = fs::temp_directory_path() / "hexmesh_test_run_case_dimple";
     fs::remove_all(dir);
