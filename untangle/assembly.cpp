@@ -8,7 +8,6 @@
 #include <limits>
 #include <mutex>
 #include <stdexcept>
-#include <string>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
@@ -186,14 +185,6 @@ Assembly::Assembly(const Problem& problem, Id chunk_elements) : problem_(problem
         problem.targets.size() != problem.tets.size() ||
         problem.triangle_targets.size() != problem.triangles.size())
         throw std::invalid_argument("one target per element is required");
-    if (!problem.triangles.empty() && !problem.surface_normal)
-        throw std::invalid_argument("surface triangles need the normal of u = 0");
-    for (const auto& t : problem.triangles)
-        for (Id v : t)
-            if (v >= 0 && v < nv && problem.kinds.size() == problem.points.size() &&
-                problem.kinds[v] == VertexKind::interior)
-                throw std::invalid_argument("a surface triangle has an interior vertex " +
-                                            std::to_string(v));
     const auto valid = [nv](Id v) { return v >= 0 && v < nv; };
     for (const auto& h : problem.hexes)
         if (!std::all_of(h.begin(), h.end(), valid)) throw std::invalid_argument("element refers to a missing vertex");

@@ -22,6 +22,12 @@ void check_constraints(const Problem& problem) {
     }
     if (!problem.triangles.empty() && !problem.surface_normal)
         throw std::invalid_argument("surface triangles need the normal of u = 0");
+    for (const auto& t : problem.triangles)
+        for (Id v : t)
+            if (v < 0 || v >= Id(problem.points.size()))
+                throw std::invalid_argument("element refers to a missing vertex");
+            else if (problem.kinds[v] == VertexKind::interior)  // no stiffness along the normal
+                throw std::invalid_argument(fmt::format("a surface triangle has an interior vertex ({})", v));
     for (const auto& t : problem.triangles) {
         if (problem.triangle_normal(problem.points, t).norm() > 0.5) continue;  // unit
         const Vec3 c = (problem.points[t[0]] + problem.points[t[1]] + problem.points[t[2]]) / 3;

@@ -20,7 +20,8 @@ int active_directions(VertexKind kind);
 void project_constrained(const Problem& problem, std::vector<Vec3>& x);
 
 // Throws std::invalid_argument when a kind needs data the problem lacks (a surface for slip,
-// the edge functions for feature edges), std::runtime_error, naming its place, when a surface
+// the edge functions for feature edges, the normal for triangles) or a triangle has an
+// interior vertex, std::runtime_error, naming its place, when a surface
 // triangle has no normal at the problem's points.
 void check_constraints(const Problem& problem);
 
