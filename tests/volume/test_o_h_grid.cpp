@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "grid_checks.h"
 #include "hexmesh/core/quality.h"
@@ -65,6 +66,17 @@ TEST(OHGrid, LinesAreBuiltFromAGivenWallGrid) {
     const std::vector<Vec3> fewer(moved.points.begin(), moved.points.end() - 1);
     o.wall_from = &fewer;
     EXPECT_THROW(make_o_h_grid(sphere, o), std::invalid_argument);
+    // A wall node behind its core node (towards the centre): named, nothing built.
+    std::vector<Vec3> behind = moved.points;
+    const Id w = b.node(3, 4, nk);
+    behind[w] = c + 0.1 * (behind[w] - c);
+    o.wall_from = &behind;
+    try {
+        make_o_h_grid(sphere, o);
+        ADD_FAILURE() << "no exception";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("lies behind its core node"), std::string::npos) << e.what();
+    }
 }
 
 TEST(OHGrid, SphereGridIsValidWithWallNodesOnTheSphere) {
