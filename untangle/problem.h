@@ -103,15 +103,12 @@ struct Problem {
     TetTarget target(Id e) const {
         return is_hex_corner(e) ? hex_corner_target(int(e % 8), hex_edges[e / 8]) : targets[e - 8 * Id(hexes.size())];
     }
-    // The positions in x of the given vertices, as columns.
-    static Mat34 corners(const std::vector<Vec3>& x, const std::array<Id, 4>& nodes) {
-        Mat34 y;
-        for (int a = 0; a < 4; ++a) y.col(a) = x[nodes[a]];
-        return y;
-    }
-    static Mat3 corners(const std::vector<Vec3>& x, const std::array<Id, 3>& nodes) {
-        Mat3 y;
-        for (int a = 0; a < 3; ++a) y.col(a) = x[nodes[a]];
+    // The positions in x of the given vertices, as columns (3 x 4 for a tet, 3 x 3 for a
+    // triangle).
+    template <size_t N>
+    static Eigen::Matrix<double, 3, int(N)> corners(const std::vector<Vec3>& x, const std::array<Id, N>& nodes) {
+        Eigen::Matrix<double, 3, int(N)> y;
+        for (size_t a = 0; a < N; ++a) y.col(a) = x[nodes[a]];
         return y;
     }
     // det S of element e at positions x (<= 0: inverted).

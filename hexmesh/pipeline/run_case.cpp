@@ -171,8 +171,8 @@ Id nonpositive_cells(const BlockGrid& grid) {
 // The surface pass (hexmesh/pipeline/optimize_surface.h), then the volume from the optimized
 // wall: the O-H and O-grid lines built again, a single block's interior carried along by
 // TFI. When the volume built so has more cells with a scaled Jacobian <= 0 than the grid
-// had (wall nodes that slid far from their lines' core or far-field ends, in deep
-// concavities), the grid as constructed is kept.
+// had, or cannot be built (wall nodes that slid far from their lines' core or far-field
+// ends, in deep concavities), the grid as constructed is kept.
 void surface_pass(const Case& c, const ImplicitFunction& body, BlockGrid& grid, std::ostream& log) {
     untangle::UntangleOptions surface = untangle_options(c.solver, log);
     surface.max_optimize_iterations = c.solver.surface_iterations;
