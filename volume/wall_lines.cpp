@@ -6,14 +6,20 @@
 
 namespace hexmesh {
 
+std::vector<WallFace> wall_faces(const Block& b) {
+    std::vector<WallFace> faces;
+    for (int f = imin; f <= kmax; ++f) {
+        const int axis = f / 2, p = axis == 0 ? 1 : 0, q = axis == 2 ? 1 : 2;
+        if (b.face_patch[f] != "wall" || b.nodes[axis] < 2) continue;
+        faces.push_back({&b, axis, f % 2 == 1, p, q, b.nodes[p], b.nodes[q], b.nodes[axis]});
+    }
+    return faces;
+}
+
 std::vector<WallFace> wall_faces(const BlockGrid& grid) {
     std::vector<WallFace> faces;
     for (const Block& b : grid.blocks)
-        for (int f = imin; f <= kmax; ++f) {
-            const int axis = f / 2, p = axis == 0 ? 1 : 0, q = axis == 2 ? 1 : 2;
-            if (b.face_patch[f] != "wall" || b.nodes[axis] < 2) continue;
-            faces.push_back({&b, axis, f % 2 == 1, p, q, b.nodes[p], b.nodes[q], b.nodes[axis]});
-        }
+        for (const WallFace& f : wall_faces(b)) faces.push_back(f);
     return faces;
 }
 

@@ -32,6 +32,9 @@ struct WallFace {
 // Wall faces in block order, then BlockFace order; faces one node thick are skipped.
 std::vector<WallFace> wall_faces(const BlockGrid& grid);
 
+// The wall faces of one block, in BlockFace order.
+std::vector<WallFace> wall_faces(const Block& block);
+
 // +1 when the grid lies on the u > 0 side of the face (exterior grid), -1 when on u < 0:
 // the majority sign of u at the middle nodes of the face's lines.
 double grid_side(const WallFace& f, const std::vector<Vec3>& points, const ImplicitFunction& body);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <unordered_map>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
@@ -56,83 +57,91 @@ LineMeasures measure_line(const WallFace& f, int p, int q, const std::vector<Vec
 
 }  // namespace
 
-WallQuality measure_wall(const BlockGrid& grid, const ImplicitFunction& body,
-                         const WallLayers& law) {
-    WallQuality w;
-    w.first_layer_target = law.layers > 0 ? law.first_height : 0;
-    w.growth_ratio_target = law.layers > 1 ? law.growth_ratio : 0;
+WallMeter::WallMeter(const ImplicitFunction& body, const WallLayers& law)
+    : body_(body), law_(law) {
+    w_.first_layer_target = law.layers > 0 ? law.first_height : 0;
+    w_.growth_ratio_target = law.layers > 1 ? law.growth_ratio : 0;
+    w_.first_layer_min = w_.growth_ratio_min = inf;
+    w_.first_layer_max = w_.growth_ratio_max = -inf;
+}
 
-    double thickness_sum = 0, angle_sum = 0, ratio_sum = 0;
-    Id thickness_within = 0, angles = 0, ratios_within = 0;
-    w.first_layer_min = w.growth_ratio_min = inf;
-    w.first_layer_max = w.growth_ratio_max = -inf;
-    for (const WallFace& f : wall_faces(grid)) {
-        const double side = grid_side(f, grid.points, body);
+void WallMeter::add(const BlockGrid& grid, const Block& block) {
+    WallQuality& w = w_;
+    for (const WallFace& f : wall_faces(block)) {
+        const double side = grid_side(f, grid.points, body_);
         // Ratios m = 0 .. ratios-1 compare edges m and m+1 of the line.
         const int edges = f.depth - 1;
         const int ratios =
-            std::max(0, law.layers > 0 ? std::min(law.layers, edges) - 1 : edges - 1);
+            std::max(0, law_.layers > 0 ? std::min(law_.layers, edges) - 1 : edges - 1);
         std::vector<LineMeasures> lines(f.lines());
         tbb::parallel_for(Id(0), f.lines(), [&](Id l) {
-            lines[l] = measure_line(f, int(l % f.np), int(l / f.np), grid.points, body, side,
+            lines[l] = measure_line(f, int(l % f.np), int(l / f.np), grid.points, body_, side,
                                     ratios, w.growth_ratio_target);
         });
 
         // Reduced in a fixed order, so the sums do not depend on the thread count.
         for (const LineMeasures& m : lines) {
             w.orthogonality_max_deg = std::max(w.orthogonality_max_deg, m.angle_deg);
-            angle_sum += m.angle_deg;
-            ++angles;
+            angle_sum_ += m.angle_deg;
+            ++angles_;
             w.growth_ratios += m.ratios;
-            ratios_within += m.ratios_within;
+            ratios_within_ += m.ratios_within;
             w.growth_ratio_min = std::min(w.growth_ratio_min, m.ratio_min);
             w.growth_ratio_max = std::max(w.growth_ratio_max, m.ratio_max);
-            ratio_sum += m.ratio_sum;
+            ratio_sum_ += m.ratio_sum;
         }
         for (int q = 0; q + 1 < f.nq; ++q)
             for (int p = 0; p + 1 < f.np; ++p) {
                 auto at = [&](int a, int b) { return lines[a + Id(f.np) * b].first_layer; };
                 const double t = 0.25 * (at(p, q) + at(p + 1, q) + at(p, q + 1) + at(p + 1, q + 1));
                 ++w.wall_cells;
-                thickness_sum += t;
+                thickness_sum_ += t;
                 w.first_layer_min = std::min(w.first_layer_min, t);
                 w.first_layer_max = std::max(w.first_layer_max, t);
-                thickness_within +=
+                thickness_within_ +=
                     w.first_layer_target > 0 &&
                     std::abs(t - w.first_layer_target) <= 0.1 * w.first_layer_target;
             }
     }
+}
 
+WallQuality WallMeter::result() const {
+    WallQuality w = w_;
     if (w.wall_cells > 0) {
-        w.first_layer_mean = thickness_sum / w.wall_cells;
-        w.first_layer_within_10_percent = double(thickness_within) / w.wall_cells;
+        w.first_layer_mean = thickness_sum_ / w.wall_cells;
+        w.first_layer_within_10_percent = double(thickness_within_) / w.wall_cells;
     } else {
         w.first_layer_min = w.first_layer_max = 0;
     }
-    if (angles > 0) w.orthogonality_mean_deg = angle_sum / angles;
+    if (angles_ > 0) w.orthogonality_mean_deg = angle_sum_ / angles_;
     if (w.growth_ratios > 0) {
-        w.growth_ratio_mean = ratio_sum / w.growth_ratios;
-        w.growth_ratio_within_5_percent = double(ratios_within) / w.growth_ratios;
+        w.growth_ratio_mean = ratio_sum_ / w.growth_ratios;
+        w.growth_ratio_within_5_percent = double(ratios_within_) / w.growth_ratios;
     } else {
         w.growth_ratio_min = w.growth_ratio_max = 0;
     }
     return w;
 }
 
-HausdorffDistance hausdorff_to_surface(const BlockGrid& grid, const TriangleSurface& surface) {
-    // The grid's wall as a triangle surface of its own, on the wall nodes only.
-    TriangleSurface wall;
-    std::vector<int> local(grid.points.size(), -1);
+WallQuality measure_wall(const BlockGrid& grid, const ImplicitFunction& body,
+                         const WallLayers& law) {
+    WallMeter meter(body, law);
+    for (const Block& block : grid.blocks) meter.add(grid, block);
+    return meter.result();
+}
+
+void append_wall_triangles(const BlockGrid& grid, const Block& block, TriangleSurface& wall) {
+    std::unordered_map<Id, int> local;  // the block's wall nodes in `wall`
     auto local_id = [&](Id v) {
-        if (local[v] < 0) {
+        const auto [it, inserted] = local.try_emplace(v, int(wall.points.size()));
+        if (inserted) {
             if (wall.points.size() >= size_t(std::numeric_limits<int>::max()))
                 throw std::invalid_argument("hausdorff_to_surface: too many wall nodes");
-            local[v] = int(wall.points.size());
             wall.points.push_back(grid.points[v]);
         }
-        return local[v];
+        return it->second;
     };
-    for (const WallFace& f : wall_faces(grid))
+    for (const WallFace& f : wall_faces(block))
         for (int q = 0; q + 1 < f.nq; ++q)
             for (int p = 0; p + 1 < f.np; ++p) {
                 const int a = local_id(f.node(p, q, 0)), b = local_id(f.node(p + 1, q, 0)),
@@ -140,6 +149,15 @@ HausdorffDistance hausdorff_to_surface(const BlockGrid& grid, const TriangleSurf
                 wall.triangles.push_back({a, b, c});
                 wall.triangles.push_back({a, c, d});
             }
+}
+
+HausdorffDistance hausdorff_to_surface(const BlockGrid& grid, const TriangleSurface& surface) {
+    TriangleSurface wall;
+    for (const Block& block : grid.blocks) append_wall_triangles(grid, block, wall);
+    return hausdorff_to_surface(wall, surface);
+}
+
+HausdorffDistance hausdorff_to_surface(const TriangleSurface& wall, const TriangleSurface& surface) {
     if (wall.triangles.empty())
         throw std::invalid_argument("hausdorff_to_surface: the grid has no wall face");
 

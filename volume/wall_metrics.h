@@ -23,6 +23,23 @@ namespace hexmesh {
 WallQuality measure_wall(const BlockGrid& grid, const ImplicitFunction& body,
                          const WallLayers& law);
 
+// measure_wall block by block, for a grid made (or read) one block at a time: add() each
+// block, in order, with the grid holding its points (the whole grid or one of its own), then
+// result(). The same numbers as measure_wall of the whole grid.
+class WallMeter {
+public:
+    WallMeter(const ImplicitFunction& body, const WallLayers& law);
+    void add(const BlockGrid& grid, const Block& block);
+    WallQuality result() const;
+
+private:
+    const ImplicitFunction& body_;
+    WallLayers law_;
+    WallQuality w_;  // counts, extremes and targets so far
+    double thickness_sum_ = 0, angle_sum_ = 0, ratio_sum_ = 0;
+    Id thickness_within_ = 0, angles_ = 0, ratios_within_ = 0;
+};
+
 struct HausdorffDistance {
     double grid_to_surface = 0;  // max over the grid's wall nodes of the distance to surface
     double surface_to_grid = 0;  // max over surface samples of the distance to the wall faces
@@ -37,5 +54,12 @@ struct HausdorffDistance {
 // sample (the distance is 1-Lipschitz). Throws std::invalid_argument when the
 // grid has no wall face or the surface no triangle of non-zero area.
 HausdorffDistance hausdorff_to_surface(const BlockGrid& grid, const TriangleSurface& surface);
+
+// The "wall" faces of one block as triangles (a, b, c), (a, c, d), appended to `wall` (a
+// node shared with an earlier block appears again: distances do not mind).
+void append_wall_triangles(const BlockGrid& grid, const Block& block, TriangleSurface& wall);
+
+// hausdorff_to_surface with the grid's wall already gathered by append_wall_triangles.
+HausdorffDistance hausdorff_to_surface(const TriangleSurface& wall, const TriangleSurface& surface);
 
 }  // namespace hexmesh

@@ -14,8 +14,10 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <unordered_map>
 #include <utility>
 
+#include "hexmesh/core/array_hash.h"
 #include "hexmesh/core/face_geometry.h"
 #include "hexmesh/core/quality.h"
 #include "hexmesh/core/reference_hex.h"
@@ -149,97 +151,6 @@ private:
 
     const HexMesh& mesh_;
     std::vector<FaceId> partner_;  // per face id
-};
-
-// The cells of a block grid in to_hex_mesh order (block by block, i fastest), read from the
-// blocks: a face inside a block meets the structured neighbour across it; only the faces on
-// block boundaries are matched by node ids, so the pass costs no unstructured copy.
-class GridCells {
-public:
-    explicit GridCells(const BlockGrid& grid) : grid_(grid) {
-        first_.push_back(0);
-        for (const Block& b : grid.blocks) first_.push_back(first_.back() + b.cells().count());
-        match_block_faces();
-    }
-
-    Id num_cells() const { return first_.back(); }
-    Id first_cell(size_t block) const { return first_[block]; }
-    const std::vector<Vec3>& points() const { return grid_.points; }
-    CellView cell(Id c) const {
-        const auto [b, at] = locate(c);
-        const Block& block = grid_.blocks[b];
-        const Dims d = block.cells();
-        const std::array<Id, 3> stride = {1, d.ni, Id(d.ni) * d.nj};
-        CellView v;
-        v.nodes = cell_nodes(block, at[0], at[1], at[2]);
-        for (int f = 0; f < 6; ++f) {
-            const int axis = f / 2;
-            if (f % 2 == 0 && at[axis] > 0) {
-                v.partner[f] = 6 * (c - stride[axis]) + f + 1;
-                v.lower_neighbour |= 1u << f;
-            } else if (f % 2 == 1 && at[axis] < d[axis] - 1) {
-                v.partner[f] = 6 * (c + stride[axis]) + f - 1;
-            } else {
-                v.partner[f] = boundary_partner_[b][f][face_index(d, axis, at)];
-            }
-        }
-        return v;
-    }
-    std::array<Vec3, 4> face_points(Id face) const {
-        return points_of(grid_.points, cell(face / 6).nodes, hex_faces[face % 6]);
-    }
-
-private:
-    // The block of cell c and its (i, j, k) there.
-    std::pair<size_t, std::array<int, 3>> locate(Id c) const {
-        const size_t b = size_t(std::upper_bound(first_.begin(), first_.end(), c) - first_.begin()) - 1;
-        const Dims d = grid_.blocks[b].cells();
-        const Id r = c - first_[b];
-        return {b, {int(r % d.ni), int((r / d.ni) % d.nj), int(r / (Id(d.ni) * d.nj))}};
-    }
-
-    // Position of a cell's face in the list of a block face's cells (the two other axes, the
-    // lower one fastest).
-    static Id face_index(const Dims& d, int axis, const std::array<int, 3>& at) {
-        const int u = axis == 0 ? 1 : 0, w = axis == 2 ? 1 : 2;
-        return at[u] + Id(d[u]) * at[w];
-    }
-
-    void match_block_faces() {
-        boundary_partner_.resize(grid_.blocks.size());
-        std::vector<std::pair<std::array<Id, 4>, Id>> faces;
-        for (size_t b = 0; b < grid_.blocks.size(); ++b) {
-            const Block& block = grid_.blocks[b];
-            const Dims d = block.cells();
-            if (d.count() == 0) continue;
-            for (int f = 0; f < 6; ++f) {
-                const int axis = f / 2, u = axis == 0 ? 1 : 0, w = axis == 2 ? 1 : 2;
-                boundary_partner_[b][f].assign(size_t(Id(d[u]) * d[w]), no_partner);
-                std::array<int, 3> at{};
-                at[axis] = f % 2 == 0 ? 0 : d[axis] - 1;
-                for (at[w] = 0; at[w] < d[w]; ++at[w])
-                    for (at[u] = 0; at[u] < d[u]; ++at[u]) {
-                        const Id c = first_[b] + at[0] + Id(d.ni) * (at[1] + Id(d.nj) * at[2]);
-                        faces.emplace_back(sorted_face(cell_nodes(block, at[0], at[1], at[2]), f),
-                                           6 * c + f);
-                    }
-            }
-        }
-        pair_equal_faces(faces, [&](Id a, Id b) {
-            boundary_slot(a) = b;
-            boundary_slot(b) = a;
-        });
-    }
-
-    Id& boundary_slot(Id face) {
-        const auto [b, at] = locate(face / 6);
-        const int f = int(face % 6);
-        return boundary_partner_[b][f][face_index(grid_.blocks[b].cells(), f / 2, at)];
-    }
-
-    const BlockGrid& grid_;
-    std::vector<Id> first_;  // first cell of each block, then the total
-    std::vector<std::array<std::vector<Id>, 6>> boundary_partner_;  // per block face and cell
 };
 
 bool is_owner_side(Id face, Id other) {
@@ -399,15 +310,6 @@ QualityReport measure(const Cells& cells) {
 }
 
 
-// Centre and volume of one cell of any cell source, as the first pass computes them.
-template <class Cells>
-CellGeometry geometry_of(const Cells& cells, Id c) {
-    const CellView v = cells.cell(c);
-    std::array<FaceGeometry, 6> faces;
-    for (int f = 0; f < 6; ++f) faces[f] = oriented_face(cells, c, v, f);
-    return detail::cell_geometry(faces);
-}
-
 // One k-slab of a block as the block pass keeps it: per cell (i + ni j) its centre, volume
 // and kmax face as its owner sees it (the kmin face of the cell above).
 struct Slab {
@@ -421,127 +323,172 @@ struct Slab {
     }
 };
 
-// measure() for a block grid in one pass: slab by slab (k), row by row (j), cell by cell
-// (i), every internal face is computed once, by its owner (the lower cell: the one below
-// along i, j or k), and reused by the cell above it; its face measures are taken as soon as
-// both centres are known. Faces on block boundaries go through the generic path (interface
-// partners matched by node ids). Slab ranges run in parallel, each one computing the slab
-// below its first for the faces in between; the scaled-Jacobian sum is added slab by slab
-// in order, so the result does not depend on the split.
-QualityReport measure_blocks(const BlockGrid& grid) {
-    const GridCells cells(grid);
-    const Id total = cells.num_cells();
-    if (total == 0) return QualityReport{};
-    const std::vector<Vec3>& points = grid.points;
-    CellStats per_cell;
-    FaceStats per_face;
-    for (size_t b = 0; b < grid.blocks.size(); ++b) {
-        const Block& block = grid.blocks[b];
-        const Dims d = block.cells();
-        if (d.count() == 0) continue;
-        const size_t plane = size_t(d.ni) * size_t(d.nj);
-        const Id first = cells.first_cell(b);
-        std::vector<CellStats> slab_stats(size_t(d.nk));
+// A face on a block boundary as one of its cells sees it, waiting for the cell across (which
+// may be in a block not yet added): its points in that cell's hex_faces order, and the cell.
+struct OpenFace {
+    Id cell = 0;
+    std::array<Vec3, 4> p;
+    Vec3 centre;
+    double volume = 0;
+};
 
-        // Slab k into `out`; with `stats`, its cells' measures too, and with `below` (slab
-        // k - 1) the measures of every internal face whose upper cell is in slab k.
-        const auto run_slab = [&](int k, Slab& out, const Slab* below, CellStats* stats,
-                                  FaceStats* faces_acc) {
-            std::vector<FaceGeometry> jmax(size_t(d.ni));  // of the row below
-            for (int j = 0; j < d.nj; ++j) {
-                FaceGeometry imax;  // of the cell to the left
-                for (int i = 0; i < d.ni; ++i) {
-                    const size_t at = size_t(i) + size_t(d.ni) * size_t(j);
-                    const Id c = first + Id(at) + Id(plane) * k;
-                    const std::array<Id, 8> nodes = cell_nodes(block, i, j, k);
-                    std::array<Vec3, 8> p;
-                    for (int n = 0; n < 8; ++n) p[n] = points[nodes[n]];
-                    const bool on_boundary = i == 0 || j == 0 || k == 0 || i == d.ni - 1 ||
-                                             j == d.nj - 1 || k == d.nk - 1;
-                    CellView v;
-                    if (on_boundary) v = cells.cell(c);
-                    const std::array<bool, 6> inside = {i > 0, i < d.ni - 1, j > 0,
-                                                        j < d.nj - 1, k > 0, k < d.nk - 1};
-                    std::array<FaceGeometry, 6> faces;
-                    for (int f = 0; f < 6; ++f) {
-                        if (!inside[f]) {
-                            faces[f] = oriented_face(cells, c, v, f);
-                        } else if (f % 2 == 1) {  // owned: from this cell's points
-                            faces[f] = detail::quad_geometry(face_of(p, hex_faces[f]));
-                        } else {  // the owner below computed it (or, for a slab computed
-                                  // without the one below, its points in the owner's order)
-                            faces[f] = f == 0   ? imax
-                                       : f == 2 ? jmax[size_t(i)]
-                                       : below  ? below->kmax[at]
-                                                : detail::quad_geometry(face_of(p, seen_from_lower[f]));
-                            faces[f].area = -faces[f].area;
-                        }
-                    }
-                    const CellGeometry g = detail::cell_geometry(faces);
-                    out.centre[at] = g.centre;
-                    out.volume[at] = g.volume;
-                    out.kmax[at] = faces[5];
-                    imax = faces[1];
-                    jmax[size_t(i)] = faces[3];
-                    if (!stats) continue;
-                    add_cell(*stats, faces, g, p);
+using FaceKey = std::array<Id, 4>;  // the face's global node ids, sorted
 
-                    // Faces: internal ones from below (i, j, k), then block-boundary ones.
-                    FaceStats& acc = *faces_acc;
-                    for (int f = 0; f < 6; f += 2) {
-                        if (!inside[f]) continue;
-                        const std::array<Vec3, 4> q = face_of(p, seen_from_lower[f]);
-                        FaceGeometry owner_face = faces[f];
-                        owner_face.area = -owner_face.area;
-                        const size_t lower = f == 0 ? at - 1 : f == 2 ? at - size_t(d.ni) : at;
-                        const Slab& s = f == 4 ? *below : out;
-                        add_internal_face(acc, q, owner_face, s.centre[lower], g.centre, s.volume[lower],
-                                          g.volume);
-                    }
-                    if (!on_boundary) continue;
-                    for (int f = 0; f < 6; ++f) {
-                        if (inside[f]) continue;
-                        const Id other = v.partner[f];
-                        if (!is_owner_side(6 * c + f, other)) continue;  // its owner measures it
-                        const std::array<Vec3, 4> q = face_of(p, hex_faces[f]);
-                        if (other == no_partner) {
-                            acc.max_skew = std::max(acc.max_skew,
-                                                    detail::boundary_face_skewness(q, faces[f], g.centre));
-                            continue;
-                        }
-                        const CellGeometry n = geometry_of(cells, other / 6);
-                        add_internal_face(acc, q, faces[f], g.centre, n.centre, g.volume, n.volume);
-                    }
-                }
-            }
-        };
+// What one range of slabs of a block yields: its face measures and its open faces.
+struct BlockFaces {
+    FaceStats stats;
+    std::vector<std::pair<FaceKey, OpenFace>> open;
 
-        const int grain = std::max(2, d.nk / 16);  // each range also computes the slab below it
-        const FaceStats block_faces = tbb::parallel_reduce(
-            tbb::blocked_range<int>(0, d.nk, grain), FaceStats{},
-            [&](const tbb::blocked_range<int>& r, FaceStats acc) {
-                Slab below, current;
-                below.resize(plane);
-                current.resize(plane);
-                if (r.begin() > 0) run_slab(r.begin() - 1, below, nullptr, nullptr, nullptr);
-                for (int k = r.begin(); k != r.end(); ++k) {
-                    run_slab(k, current, k > 0 ? &below : nullptr, &slab_stats[size_t(k)], &acc);
-                    std::swap(below, current);
-                }
-                return acc;
-            },
-            [](FaceStats x, const FaceStats& y) {
-                x.join(y);
-                return x;
-            },
-            tbb::simple_partitioner{});  // ranges of at most `grain` slabs, whatever the load
-        per_face.join(block_faces);
-        for (const CellStats& s : slab_stats) per_cell.join(s);
+    void join(BlockFaces& o) {
+        stats.join(o.stats);
+        open.insert(open.end(), std::make_move_iterator(o.open.begin()),
+                    std::make_move_iterator(o.open.end()));
     }
-    return make_report(total, per_cell, per_face);
-}
+};
 
 }  // namespace
+
+struct BlockQuality::State {
+    Id cells = 0;  // cells added so far: the global id of the next block's first cell
+    CellStats per_cell;
+    FaceStats per_face;
+    std::unordered_map<FaceKey, OpenFace, ArrayHash<Id, 4>> open;
+    std::unordered_map<FaceKey, std::pair<Id, Id>, ArrayHash<Id, 4>> matched;  // its 2 cells
+};
+
+BlockQuality::BlockQuality() : state_(std::make_unique<State>()) {}
+BlockQuality::~BlockQuality() = default;
+
+// One block slab by slab (k), row by row (j), cell by cell (i): every face inside the block is
+// computed once, by its owner (the lower cell: the one below along i, j or k), and reused by
+// the cell above it; its face measures are taken as soon as both centres are known. Faces on
+// the block's boundary are computed from the cell's own points and left open, to be paired
+// by node ids with the cell across. Slab ranges run in parallel, each one computing the slab
+// below its first for the faces in between; the scaled-Jacobian sum is added slab by slab in
+// order, so the result does not depend on the split.
+void BlockQuality::add(const BlockGrid& grid, const Block& block, const std::vector<Id>* ids) {
+    State& st = *state_;
+    const Dims d = block.cells();
+    if (d.count() == 0) return;
+    const std::vector<Vec3>& points = grid.points;
+    const size_t plane = size_t(d.ni) * size_t(d.nj);
+    const Id first = st.cells;
+    std::vector<CellStats> slab_stats(size_t(d.nk));
+    const auto global = [&](Id v) { return ids ? (*ids)[size_t(v)] : v; };
+
+    // Slab k into `out`; with `stats`, its cells' measures too, and with `below` (slab
+    // k - 1) the measures of every internal face whose upper cell is in slab k.
+    const auto run_slab = [&](int k, Slab& out, const Slab* below, CellStats* stats,
+                              BlockFaces* faces_acc) {
+        std::vector<FaceGeometry> jmax(size_t(d.ni));  // of the row below
+        for (int j = 0; j < d.nj; ++j) {
+            FaceGeometry imax;  // of the cell to the left
+            for (int i = 0; i < d.ni; ++i) {
+                const size_t at = size_t(i) + size_t(d.ni) * size_t(j);
+                const std::array<Id, 8> nodes = cell_nodes(block, i, j, k);
+                std::array<Vec3, 8> p;
+                for (int n = 0; n < 8; ++n) p[n] = points[nodes[n]];
+                const std::array<bool, 6> inside = {i > 0, i < d.ni - 1, j > 0,
+                                                    j < d.nj - 1, k > 0, k < d.nk - 1};
+                std::array<FaceGeometry, 6> faces;
+                for (int f = 0; f < 6; ++f) {
+                    if (!inside[f] || f % 2 == 1) {  // on the boundary, or owned: own points
+                        faces[f] = detail::quad_geometry(face_of(p, hex_faces[f]));
+                    } else {  // the owner below computed it (or, for a slab computed
+                              // without the one below, its points in the owner's order)
+                        faces[f] = f == 0   ? imax
+                                   : f == 2 ? jmax[size_t(i)]
+                                   : below  ? below->kmax[at]
+                                            : detail::quad_geometry(face_of(p, seen_from_lower[f]));
+                        faces[f].area = -faces[f].area;
+                    }
+                }
+                const CellGeometry g = detail::cell_geometry(faces);
+                out.centre[at] = g.centre;
+                out.volume[at] = g.volume;
+                out.kmax[at] = faces[5];
+                imax = faces[1];
+                jmax[size_t(i)] = faces[3];
+                if (!stats) continue;
+                add_cell(*stats, faces, g, p);
+
+                // Faces: internal ones from below (i, j, k), then block-boundary ones.
+                for (int f = 0; f < 6; f += 2) {
+                    if (!inside[f]) continue;
+                    const std::array<Vec3, 4> q = face_of(p, seen_from_lower[f]);
+                    FaceGeometry owner_face = faces[f];
+                    owner_face.area = -owner_face.area;
+                    const size_t lower = f == 0 ? at - 1 : f == 2 ? at - size_t(d.ni) : at;
+                    const Slab& s = f == 4 ? *below : out;
+                    add_internal_face(faces_acc->stats, q, owner_face, s.centre[lower], g.centre,
+                                      s.volume[lower], g.volume);
+                }
+                for (int f = 0; f < 6; ++f) {
+                    if (inside[f]) continue;
+                    FaceKey key;
+                    for (int n = 0; n < 4; ++n) key[n] = global(nodes[hex_faces[f][n]]);
+                    std::sort(key.begin(), key.end());
+                    const Id c = first + Id(at) + Id(plane) * k;
+                    faces_acc->open.push_back({key, {c, face_of(p, hex_faces[f]), g.centre, g.volume}});
+                }
+            }
+        }
+    };
+
+    const int grain = std::max(2, d.nk / 16);  // each range also computes the slab below it
+    BlockFaces block_faces = tbb::parallel_reduce(
+        tbb::blocked_range<int>(0, d.nk, grain), BlockFaces{},
+        [&](const tbb::blocked_range<int>& r, BlockFaces acc) {
+            Slab below, current;
+            below.resize(plane);
+            current.resize(plane);
+            if (r.begin() > 0) run_slab(r.begin() - 1, below, nullptr, nullptr, nullptr);
+            for (int k = r.begin(); k != r.end(); ++k) {
+                run_slab(k, current, k > 0 ? &below : nullptr, &slab_stats[size_t(k)], &acc);
+                std::swap(below, current);
+            }
+            return acc;
+        },
+        [](BlockFaces x, BlockFaces y) {
+            x.join(y);
+            return x;
+        },
+        tbb::simple_partitioner{});  // ranges of at most `grain` slabs, whatever the load
+    st.per_face.join(block_faces.stats);
+    for (const CellStats& s : slab_stats) st.per_cell.join(s);
+    st.cells += d.count();
+
+    // Pair the block's open faces with those already open (from earlier blocks, or earlier
+    // in this one); the owner is the lower cell, its point order gives the face geometry.
+    for (auto& [key, face] : block_faces.open) {
+        if (const auto m = st.matched.find(key); m != st.matched.end()) {
+            std::ostringstream msg;
+            msg << "measure_quality: a face is shared by more than two cells (cells "
+                << m->second.first << ", " << m->second.second << ", " << face.cell
+                << "); the mesh is not a valid hex mesh";
+            throw std::invalid_argument(msg.str());
+        }
+        const auto [it, inserted] = st.open.try_emplace(key, face);
+        if (inserted) continue;
+        const OpenFace& a = it->second.cell < face.cell ? it->second : face;
+        const OpenFace& b = it->second.cell < face.cell ? face : it->second;
+        add_internal_face(st.per_face, a.p, detail::quad_geometry(a.p), a.centre, b.centre,
+                          a.volume, b.volume);
+        st.matched.emplace(key, std::make_pair(a.cell, b.cell));
+        st.open.erase(it);
+    }
+}
+
+QualityReport BlockQuality::report() const {
+    const State& st = *state_;
+    if (st.cells == 0) return QualityReport{};
+    FaceStats per_face = st.per_face;
+    for (const auto& [key, face] : st.open)  // never paired: boundary faces
+        per_face.max_skew = std::max(
+            per_face.max_skew,
+            detail::boundary_face_skewness(face.p, detail::quad_geometry(face.p), face.centre));
+    return make_report(st.cells, st.per_cell, per_face);
+}
 
 QualityReport measure_quality(const HexMesh& mesh) {
     if (6 * mesh.num_cells() <= Id(std::numeric_limits<std::int32_t>::max()))
@@ -550,7 +497,9 @@ QualityReport measure_quality(const HexMesh& mesh) {
 }
 
 QualityReport measure_quality(const BlockGrid& grid) {
-    return measure_blocks(grid);
+    BlockQuality q;
+    for (const Block& block : grid.blocks) q.add(grid, block);
+    return q.report();
 }
 
 }  // namespace hexmesh

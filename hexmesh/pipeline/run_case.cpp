@@ -1,14 +1,12 @@
 #include "hexmesh/pipeline/run_case.h"
 
 #include <fmt/format.h>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 
-#include "hexmesh/core/reference_hex.h"
+#include "hexmesh/pipeline/grid_report.h"
 #include "hexmesh/pipeline/make_body.h"
 #include "hexmesh/pipeline/optimize_grid.h"
 #include "hexmesh/pipeline/optimize_surface.h"
@@ -22,7 +20,6 @@
 #include "volume/o_h_grid.h"
 #include "volume/single_block_grid.h"
 #include "volume/tfi.h"
-#include "volume/wall_metrics.h"
 
 namespace hexmesh {
 namespace {
@@ -130,38 +127,6 @@ BlockGrid build_grid(const Case& c, const ImplicitFunction& body,
 
 namespace {
 
-// Sum of the lengths of the cell edges whose two ends are wall (slip) nodes, and their count;
-// an edge counts once per cell it bounds. Deterministic: blocks in order, each split alike.
-std::pair<double, Id> wall_edge_lengths(const BlockGrid& grid) {
-    using Sum = std::pair<double, Id>;
-    Sum total{0, 0};
-    for (const Block& block : grid.blocks) {
-        const Dims d = block.cells();
-        const Sum s = tbb::parallel_deterministic_reduce(
-            tbb::blocked_range<int>(0, d.nk, 1), Sum{0, 0},
-            [&](const tbb::blocked_range<int>& r, Sum acc) {
-                for (int k = r.begin(); k != r.end(); ++k)
-                    for (int j = 0; j < d.nj; ++j)
-                        for (int i = 0; i < d.ni; ++i) {
-                            const std::array<Id, 8> nodes = cell_nodes(block, i, j, k);
-                            for (const auto& e : hex_edges) {
-                                const Id a = nodes[e[0]], b = nodes[e[1]];
-                                if (grid.kinds[a] != VertexKind::slip ||
-                                    grid.kinds[b] != VertexKind::slip)
-                                    continue;
-                                acc.first += (grid.points[a] - grid.points[b]).norm();
-                                ++acc.second;
-                            }
-                        }
-                return acc;
-            },
-            [](Sum x, const Sum& y) { return Sum{x.first + y.first, x.second + y.second}; });
-        total.first += s.first;
-        total.second += s.second;
-    }
-    return total;
-}
-
 // Cells whose scaled Jacobian (corners and centre) is <= 0.
 Id nonpositive_cells(const BlockGrid& grid) {
     const std::vector<double> sj = scaled_jacobians(grid);
@@ -206,36 +171,6 @@ void surface_pass(const Case& c, const ImplicitFunction& body, BlockGrid& grid, 
 }
 
 }  // namespace
-
-GridReport measure_grid(const BlockGrid& grid, const ImplicitFunction& body,
-                        const WallLayers& law, const TriangleSurface* surface) {
-    GridReport report;
-    report.quality = measure_quality(grid);
-    const bool has_wall = std::any_of(grid.blocks.begin(), grid.blocks.end(), [](const Block& b) {
-        return std::find(b.face_patch.begin(), b.face_patch.end(), "wall") != b.face_patch.end();
-    });
-    if (has_wall) {
-        report.wall = measure_wall(grid, body, law);
-        if (surface) {
-            const HausdorffDistance d = hausdorff_to_surface(grid, *surface);
-            report.wall->hausdorff = d.hausdorff;
-            report.wall->grid_to_surface = d.grid_to_surface;
-            report.wall->surface_to_grid = d.surface_to_grid;
-        }
-    }
-
-    // h: mean length of the hex edges whose two ends lie on the wall (counted once per cell).
-    const auto [length, edges] = wall_edge_lengths(grid);
-    if (edges == 0) return report;
-    const double h = length / edges;
-    double worst = 0;
-    for (size_t v = 0; v < grid.points.size(); ++v)
-        if (grid.kinds[v] == VertexKind::slip)
-            worst = std::max(worst, std::abs(body.value(grid.points[v])));
-    report.length_scale = h;
-    report.max_surface_distance = worst / h;
-    return report;
-}
 
 RunResult run_case(const Case& c, const std::string& outdir, const RunOptions& options,
                    std::ostream& log) {

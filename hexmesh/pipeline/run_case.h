@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "hexmesh/core/block_grid.h"
+#include "hexmesh/pipeline/grid_report.h"
 #include "io/case_file.h"
 #include "io/quality_report.h"
 #include "hexmesh/core/triangle_surface.h"
@@ -33,12 +34,6 @@ BlockGrid build_grid(const Case& c, const ImplicitFunction& body,
 
 // The boundary-layer law of the case (layers = 0 without a boundary_layer block).
 WallLayers wall_layers(const Case& c);
-
-// Quality metrics of `grid`, surface fidelity against `body` over its slip nodes, the
-// wall-layer metrics against `law` and, when `surface` is given, the Hausdorff distance
-// between the grid's wall and it.
-GridReport measure_grid(const BlockGrid& grid, const ImplicitFunction& body,
-                        const WallLayers& law = {}, const TriangleSurface* surface = nullptr);
 
 struct RunOptions {
     // A grid with inverted cells is refused (std::runtime_error, nothing written) unless

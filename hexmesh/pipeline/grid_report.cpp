@@ -1,0 +1,104 @@
+#include "hexmesh/pipeline/grid_report.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "hexmesh/core/reference_hex.h"
+
+namespace hexmesh {
+namespace {
+
+// Sum of the lengths of the block's cell edges whose two ends are wall (slip) nodes, and
+// their count; an edge counts once per cell it bounds. Deterministic: each block split alike.
+std::pair<double, Id> wall_edge_lengths(const BlockGrid& grid, const Block& block) {
+    using Sum = std::pair<double, Id>;
+    const Dims d = block.cells();
+    return tbb::parallel_deterministic_reduce(
+        tbb::blocked_range<int>(0, d.nk, 1), Sum{0, 0},
+        [&](const tbb::blocked_range<int>& r, Sum acc) {
+            for (int k = r.begin(); k != r.end(); ++k)
+                for (int j = 0; j < d.nj; ++j)
+                    for (int i = 0; i < d.ni; ++i) {
+                        const std::array<Id, 8> nodes = cell_nodes(block, i, j, k);
+                        for (const auto& e : hex_edges) {
+                            const Id a = nodes[e[0]], b = nodes[e[1]];
+                            if (grid.kinds[a] != VertexKind::slip ||
+                                grid.kinds[b] != VertexKind::slip)
+                                continue;
+                            acc.first += (grid.points[a] - grid.points[b]).norm();
+                            ++acc.second;
+                        }
+                    }
+            return acc;
+        },
+        [](Sum x, const Sum& y) {
+            return Sum{x.first + y.first, x.second + y.second};
+        });
+}
+
+// max |u| over the block's slip nodes.
+double max_slip_value(const BlockGrid& grid, const Block& block, const ImplicitFunction& body) {
+    return tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, block.node_ids.size(), 4096), 0.0,
+        [&](const tbb::blocked_range<size_t>& r, double worst) {
+            for (size_t m = r.begin(); m != r.end(); ++m) {
+                const Id v = block.node_ids[m];
+                if (grid.kinds[v] == VertexKind::slip)
+                    worst = std::max(worst, std::abs(body.value(grid.points[v])));
+            }
+            return worst;
+        },
+        [](double a, double b) { return std::max(a, b); });
+}
+
+}  // namespace
+
+GridMeter::GridMeter(const ImplicitFunction& body, const WallLayers& law,
+                     const TriangleSurface* surface)
+    : body_(body), surface_(surface), wall_(body, law) {}
+
+void GridMeter::add(const BlockGrid& grid, const Block& block, const std::vector<Id>* ids) {
+    quality_.add(grid, block, ids);
+    if (std::find(block.face_patch.begin(), block.face_patch.end(), "wall") !=
+        block.face_patch.end()) {
+        has_wall_ = true;
+        wall_.add(grid, block);
+        if (surface_) append_wall_triangles(grid, block, wall_triangles_);
+    }
+    const auto [length, edges] = wall_edge_lengths(grid, block);
+    wall_edge_length_ += length;
+    wall_edges_ += edges;
+    max_slip_value_ = std::max(max_slip_value_, max_slip_value(grid, block, body_));
+}
+
+GridReport GridMeter::report() const {
+    GridReport report;
+    report.quality = quality_.report();
+    if (has_wall_) {
+        report.wall = wall_.result();
+        if (surface_) {
+            const HausdorffDistance d = hausdorff_to_surface(wall_triangles_, *surface_);
+            report.wall->hausdorff = d.hausdorff;
+            report.wall->grid_to_surface = d.grid_to_surface;
+            report.wall->surface_to_grid = d.surface_to_grid;
+        }
+    }
+    // h: mean length of the hex edges whose two ends lie on the wall (counted once per cell).
+    if (wall_edges_ == 0) return report;
+    const double h = wall_edge_length_ / wall_edges_;
+    report.length_scale = h;
+    report.max_surface_distance = max_slip_value_ / h;
+    return report;
+}
+
+GridReport measure_grid(const BlockGrid& grid, const ImplicitFunction& body, const WallLayers& law,
+                        const TriangleSurface* surface) {
+    GridMeter meter(body, law, surface);
+    for (const Block& block : grid.blocks) meter.add(grid, block);
+    return meter.report();
+}
+
+}  // namespace hexmesh

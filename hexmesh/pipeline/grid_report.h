@@ -1,0 +1,49 @@
+// The quality report of a block grid against its body: cell and face quality, wall layers,
+// surface fidelity; whole, or block by block as a grid too large to hold is made.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "hexmesh/core/block_grid.h"
+#include "hexmesh/core/implicit_function.h"
+#include "hexmesh/core/quality.h"
+#include "hexmesh/core/triangle_surface.h"
+#include "io/quality_report.h"
+#include "volume/stretching.h"
+#include "volume/wall_metrics.h"
+
+namespace hexmesh {
+
+// measure_grid block by block: add() each block of the grid in order, then report(). The
+// grid passed with a block holds its points: the whole grid, or a grid of that block alone
+// numbered on its own, with `ids` its points' ids in the whole grid (BlockQuality pairs the
+// faces across blocks by them). Holds the open block faces and the wall as triangles (for
+// the Hausdorff distance), never the cells.
+class GridMeter {
+public:
+    GridMeter(const ImplicitFunction& body, const WallLayers& law = {},
+              const TriangleSurface* surface = nullptr);
+
+    void add(const BlockGrid& grid, const Block& block, const std::vector<Id>* ids = nullptr);
+    GridReport report() const;
+
+private:
+    const ImplicitFunction& body_;
+    const TriangleSurface* surface_;
+    BlockQuality quality_;
+    WallMeter wall_;
+    bool has_wall_ = false;
+    TriangleSurface wall_triangles_;  // gathered only with a surface
+    double wall_edge_length_ = 0;     // over the cell edges with two slip ends
+    Id wall_edges_ = 0;
+    double max_slip_value_ = 0;  // max |u| over slip nodes
+};
+
+// Quality metrics of `grid`, surface fidelity against `body` over its slip nodes, the
+// wall-layer metrics against `law` and, when `surface` is given, the Hausdorff distance
+// between the grid's wall and it. A GridMeter over the blocks in order.
+GridReport measure_grid(const BlockGrid& grid, const ImplicitFunction& body,
+                        const WallLayers& law = {}, const TriangleSurface* surface = nullptr);
+
+}  // namespace hexmesh
