@@ -1,6 +1,7 @@
 #include "io/vtk_mesh.h"
 
 #include <filesystem>
+#include <fstream>
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 #include <unordered_map>
@@ -23,7 +24,6 @@
 #include <vtkStructuredGrid.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkXMLMultiBlockDataReader.h>
-#include <vtkXMLMultiBlockDataWriter.h>
 #include <vtkXMLStructuredGridReader.h>
 #include <vtkXMLStructuredGridWriter.h>
 #include <vtkXMLUnstructuredGridReader.h>
@@ -42,22 +42,36 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The block as a VTK structured grid with the arrays write_vtk_grid promises. It may point
+// into grid.points: write it before `grid` changes or goes.
 vtkSmartPointer<vtkStructuredGrid> to_vtk_block(const BlockGrid& grid, const Block& block) {
     auto out = vtkSmartPointer<vtkStructuredGrid>::New();
     out->SetDimensions(block.nodes.ni, block.nodes.nj, block.nodes.nk);
     // Filled in parallel through the arrays' own storage.
+    const Id count = block.nodes.count();
     vtkNew<vtkDoubleArray> coordinates;
     coordinates->SetNumberOfComponents(3);
-    coordinates->SetNumberOfTuples(block.nodes.count());
+    // A block that is its grid's points in order (one block made at a time) lends them to
+    // VTK for the write instead of copying them: `out` does not outlive the call's writer.
+    static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 is three packed doubles");
+    bool own_points = Id(grid.points.size()) == count;
+    for (Id m = 0; own_points && m < count; ++m) own_points = block.node_ids[m] == m;
+    if (own_points) {
+        coordinates->SetArray(const_cast<double*>(grid.points.data()->data()), 3 * count,
+                              /*save: VTK must not free it*/ 1);
+    } else {
+        coordinates->SetNumberOfTuples(count);
+    }
     double* xyz = coordinates->GetPointer(0);
     vtkNew<vtkUnsignedCharArray> kinds;
     kinds->SetName("vertex_kind");
-    kinds->SetNumberOfValues(block.nodes.count());
+    kinds->SetNumberOfValues(count);
     unsigned char* kind = kinds->GetPointer(0);
-    tbb::parallel_for(Id(0), block.nodes.count(), [&](Id m) {
-        const Vec3& p = grid.points[block.node_ids[m]];
-        for (int a = 0; a < 3; ++a) xyz[3 * m + a] = p[a];
-        kind[m] = grid.kinds.empty() ? 0 : uint8_t(grid.kinds[block.node_ids[m]]);
+    tbb::parallel_for(Id(0), count, [&](Id m) {
+        const Id v = block.node_ids[m];
+        if (!own_points)
+            for (int a = 0; a < 3; ++a) xyz[3 * m + a] = grid.points[v][a];
+        kind[m] = grid.kinds.empty() ? 0 : uint8_t(grid.kinds[v]);
     });
     vtkNew<vtkPoints> points;
     points->SetData(coordinates);
@@ -156,33 +170,75 @@ void append_block(vtkStructuredGrid* piece, const std::string& fallback_name, Bl
 
 }  // namespace
 
-void write_vtk_grid(const BlockGrid& grid, const std::string& path) {
-    const std::string ext = vtk_support::extension(path);
-    if (grid.blocks.size() == 1 && ext == ".vts") {
-        vtk_support::take_message();
-        vtkNew<vtkXMLStructuredGridWriter> writer;
-        writer->SetFileName(path.c_str());
-        writer->SetInputData(to_vtk_block(grid, grid.blocks[0]));
-        vtk_support::configure_xml_writer(*writer);
-        vtk_support::check_written(writer->Write(), path);
-        return;
-    }
-    if (ext != ".vtm") {
+VtkGridWriter::VtkGridWriter(std::string path, size_t num_blocks)
+    : path_(std::move(path)), num_blocks_(num_blocks) {
+    const std::string ext = vtk_support::extension(path_);
+    if (num_blocks_ == 1 && ext == ".vts") return;
+    if (ext != ".vtm")
         throw std::runtime_error(
-            fmt::format("{}: a grid of {} blocks is written as .vtm", path, grid.blocks.size()));
-    }
-    vtkNew<vtkMultiBlockDataSet> blocks;
-    blocks->SetNumberOfBlocks(unsigned(grid.blocks.size()));
-    for (unsigned b = 0; b < grid.blocks.size(); ++b) {
-        blocks->SetBlock(b, to_vtk_block(grid, grid.blocks[b]));
-        blocks->GetMetaData(b)->Set(vtkCompositeDataSet::NAME(), grid.blocks[b].name.c_str());
-    }
+            fmt::format("{}: a grid of {} blocks is written as .vtm", path_, num_blocks_));
+    const fs::path vtm(path_);
+    pieces_ = vtm.stem().string();
+    std::error_code ec;
+    fs::create_directories(vtm.parent_path() / pieces_, ec);
+    if (ec)
+        throw std::runtime_error(fmt::format("{}: cannot create the folder of its blocks ({})",
+                                             path_, ec.message()));
+}
+
+void VtkGridWriter::add(const BlockGrid& grid, const Block& block) {
+    if (names_.size() >= num_blocks_)
+        throw std::logic_error(fmt::format("{}: more blocks than the {} announced", path_, num_blocks_));
+    // .vtm: the pieces where VTK's multiblock writer puts them, STEM/STEM_<index>.vts.
+    const std::string piece =
+        pieces_.empty() ? std::string() : fmt::format("{}/{}_{}.vts", pieces_, pieces_, names_.size());
+    const std::string file =
+        pieces_.empty() ? path_ : (fs::path(path_).parent_path() / piece).string();
     vtk_support::take_message();
-    vtkNew<vtkXMLMultiBlockDataWriter> writer;
-    writer->SetFileName(path.c_str());
-    writer->SetInputData(blocks);
+    vtkNew<vtkXMLStructuredGridWriter> writer;
+    writer->SetFileName(file.c_str());
+    writer->SetInputData(to_vtk_block(grid, block));
     vtk_support::configure_xml_writer(*writer);
-    vtk_support::check_written(writer->Write(), path);
+    vtk_support::check_written(writer->Write(), file);
+    names_.push_back(block.name);
+}
+
+void VtkGridWriter::finish() {
+    if (names_.size() != num_blocks_)
+        throw std::logic_error(fmt::format("{}: {} blocks written of the {} announced", path_,
+                                           names_.size(), num_blocks_));
+    if (pieces_.empty()) return;
+    // The index VTK's XML multiblock reader reads: one DataSet per block, named.
+    const auto escaped = [](const std::string& text) {
+        std::string out;
+        for (char ch : text) {
+            switch (ch) {
+                case '&': out += "&amp;"; break;
+                case '<': out += "&lt;"; break;
+                case '>': out += "&gt;"; break;
+                case '"': out += "&quot;"; break;
+                default: out += ch;
+            }
+        }
+        return out;
+    };
+    std::string xml =
+        "<VTKFile type=\"vtkMultiBlockDataSet\" version=\"1.0\" byte_order=\"LittleEndian\" "
+        "header_type=\"UInt64\">\n  <vtkMultiBlockDataSet>\n";
+    for (size_t b = 0; b < names_.size(); ++b)
+        xml += fmt::format("    <DataSet index=\"{}\" name=\"{}\" file=\"{}/{}_{}.vts\"/>\n", b,
+                           escaped(names_[b]), pieces_, pieces_, b);
+    xml += "  </vtkMultiBlockDataSet>\n</VTKFile>\n";
+    std::ofstream out(path_, std::ios::binary);
+    out << xml;
+    out.close();
+    if (!out) throw std::runtime_error(fmt::format("{}: cannot write the file", path_));
+}
+
+void write_vtk_grid(const BlockGrid& grid, const std::string& path) {
+    VtkGridWriter writer(path, grid.blocks.size());
+    for (const Block& block : grid.blocks) writer.add(grid, block);
+    writer.finish();
 }
 
 HexMesh read_vtk_mesh(const std::string& path) {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "hexmesh/core/block_grid.h"
 #include "hexmesh/core/hex_mesh.h"
@@ -16,6 +17,25 @@ namespace hexmesh {
 // imin imax jmin jmax kmin kmax; "" for a block interface). Throws std::runtime_error naming
 // the file if VTK cannot write it.
 void write_vtk_grid(const BlockGrid& grid, const std::string& path);
+
+// write_vtk_grid one block at a time, for a grid made block by block and never held whole:
+// add() writes each block's piece as it comes (the grid passed holds that block's points),
+// finish() the .vtm index that names them. The files are those write_vtk_grid writes.
+class VtkGridWriter {
+public:
+    // `path`: .vts when num_blocks is 1, else .vtm (std::runtime_error otherwise); the
+    // folder of a .vtm's pieces is created here.
+    VtkGridWriter(std::string path, size_t num_blocks);
+    void add(const BlockGrid& grid, const Block& block);
+    // Throws std::logic_error unless num_blocks blocks were added.
+    void finish();
+
+private:
+    std::string path_;
+    size_t num_blocks_;
+    std::string pieces_;              // a .vtm's stem STEM: its pieces are STEM/STEM_<b>.vts
+    std::vector<std::string> names_;  // of the blocks written so far
+};
 
 // Reads a .vts or .vtm written by write_vtk_grid back into a block grid: blocks (names from
 // the .vtm or "block_name"), face patches, vertex kinds, and shared nodes, points that are
