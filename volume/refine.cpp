@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cassert>
 #include <limits>
+#include <stdexcept>
 #include <unordered_map>
 
 #include "hexmesh/core/array_hash.h"
@@ -13,7 +14,7 @@ namespace hexmesh {
 namespace {
 
 // A coarse edge (2 ids, then padding) or face (4 ids), sorted: the key of its new node.
-using EntityKey = std::array<Id, 4>;
+using EntityKey = std::array<Id, 4>;  // BlockRefiner::Key
 
 // Fills the odd entries of a fine line whose even entries (the coarse samples) are set:
 // x(m + 1/2) by cubic Lagrange in the index where two samples lie on each side, quadratic at
@@ -100,62 +101,141 @@ VertexKind new_node_kind(const BlockGrid& coarse, const Block& block, const Dims
     return kind;
 }
 
+// Calls f(i, j, k) once for every node on the boundary faces of a block of node dims d.
+template <class F>
+void for_each_face_node(const Dims& d, F&& f) {
+    for (int k = 0; k < d.nk; ++k)
+        for (int j = 0; j < d.nj; ++j) {
+            if (k == 0 || k == d.nk - 1 || j == 0 || j == d.nj - 1) {
+                for (int i = 0; i < d.ni; ++i) f(i, j, k);
+            } else {
+                f(0, j, k);
+                if (d.ni > 1) f(d.ni - 1, j, k);
+            }
+        }
+}
+
+Dims fine_dims(const Dims& c) { return {2 * c.ni - 1, 2 * c.nj - 1, 2 * c.nk - 1}; }
+
+// Nodes strictly inside a block of node dims d.
+Id inner_nodes(const Dims& d) {
+    return Dims{d.ni - 2, d.nj - 2, d.nk - 2}.count();
+}
+
 }  // namespace
 
-BlockGrid refine_grid(const BlockGrid& coarse) {
-    BlockGrid fine;
-    // At most every fine node of every block is new (shared block-face nodes count twice).
-    size_t bound = coarse.points.size();
+BlockRefiner::BlockRefiner(const BlockGrid& coarse) : coarse_(coarse) {
+    num_points_ = next_id_ = static_cast<Id>(coarse.points.size());
     for (const Block& block : coarse.blocks) {
-        const Dims& c = block.nodes;
-        bound += size_t(Dims{2 * c.ni - 1, 2 * c.nj - 1, 2 * c.nk - 1}.count() - c.count());
+        const Dims f = fine_dims(block.nodes);
+        for_each_face_node(f, [&](int i, int j, int k) {
+            const int odd = (i & 1) + (j & 1) + (k & 1);
+            if (odd == 0) return;
+            const int idx[3] = {i, j, k};
+            const Key key = entity_key(block, idx);
+            FaceNode& n = face_nodes_[key];
+            n.kind = std::max(n.kind, new_node_kind(coarse, block, f, idx, odd, key));
+            if (n.remaining++ == 0) ++num_points_;
+        });
+        // New nodes inside the block: its inner fine nodes but the coarse ones.
+        num_points_ += inner_nodes(f) - inner_nodes(block.nodes);
     }
-    fine.points.reserve(bound);
-    fine.kinds.reserve(bound);
+}
+
+RefinedBlock BlockRefiner::refine(size_t b, const Place& place) {
+    if (b != next_block_ || b >= coarse_.blocks.size())
+        throw std::logic_error("BlockRefiner::refine: blocks are refined once each, in order");
+    ++next_block_;
+    const Block& block = coarse_.blocks[b];
+    const Dims f = fine_dims(block.nodes);
+    const Id count = f.count();
+
+    RefinedBlock out;
+    out.grid.points = fine_positions(coarse_, block, f);
+    out.grid.kinds.assign(size_t(count), VertexKind::interior);
+    out.ids.assign(size_t(count), -1);
+    out.shared.assign(size_t(count), false);
+    out.coarse.assign(size_t(count), false);
+    Block& fine = out.grid.blocks.emplace_back();
+    fine.name = block.name;
+    fine.face_patch = block.face_patch;
+    fine.nodes = f;
+    fine.node_ids.resize(size_t(count));
+    for (Id m = 0; m < count; ++m) fine.node_ids[m] = m;
+
+    // Ids in refine_grid's order; the block-face nodes this block reaches first get placed,
+    // the others take the position their first block gave them.
+    using Entry = decltype(face_nodes_)::iterator;
+    std::vector<std::pair<Id, Entry>> first, again;
+    for (int k = 0; k < f.nk; ++k)
+        for (int j = 0; j < f.nj; ++j)
+            for (int i = 0; i < f.ni; ++i) {
+                const Id m = f.flat(i, j, k);
+                if ((i & 1) + (j & 1) + (k & 1) == 0) {
+                    const Id v = block.node(i / 2, j / 2, k / 2);
+                    out.ids[m] = v;
+                    out.grid.kinds[m] = coarse_.kinds[v];
+                    out.coarse[m] = true;
+                    continue;
+                }
+                const bool on_face = i == 0 || i == f.ni - 1 || j == 0 || j == f.nj - 1 ||
+                                     k == 0 || k == f.nk - 1;
+                if (!on_face) {
+                    out.ids[m] = next_id_++;
+                    continue;
+                }
+                const int idx[3] = {i, j, k};
+                const Entry e = face_nodes_.find(entity_key(block, idx));
+                assert(e != face_nodes_.end());
+                FaceNode& n = e->second;
+                out.grid.kinds[m] = n.kind;
+                if (n.id < 0) {
+                    n.id = next_id_++;
+                    out.shared[m] = n.remaining > 1;
+                    first.emplace_back(m, e);
+                } else {
+                    out.shared[m] = true;
+                    again.emplace_back(m, e);
+                }
+                out.ids[m] = n.id;
+            }
+    std::vector<Vec3>& x = out.grid.points;
+    if (place)
+        tbb::parallel_for(size_t(0), first.size(), [&](size_t n) {
+            const Id m = first[n].first;
+            x[m] = place(x[m], out.grid.kinds[m]);
+        });
+    for (const auto& [m, e] : first) e->second.x = x[m];
+    for (const auto& [m, e] : again) x[m] = e->second.x;
+    for (auto* list : {&first, &again})
+        for (const auto& [m, e] : *list)
+            if (--e->second.remaining == 0) face_nodes_.erase(e);
+    return out;
+}
+
+BlockGrid refine_grid(const BlockGrid& coarse) {
+    BlockRefiner refiner(coarse);
+    BlockGrid fine;
     fine.points = coarse.points;
     fine.kinds = coarse.kinds;
-    std::unordered_map<EntityKey, Id, ArrayHash<Id, 4>> shared;  // new nodes on block faces
-    for (const Block& block : coarse.blocks) {
-        const Dims& c = block.nodes;
-        const Dims f = {2 * c.ni - 1, 2 * c.nj - 1, 2 * c.nk - 1};
-        const std::vector<Vec3> x = fine_positions(coarse, block, f);
-        Block out;
-        out.name = block.name;
-        out.face_patch = block.face_patch;
-        out.nodes = f;
-        out.node_ids.resize(f.count());
-        for (int k = 0; k < f.nk; ++k)
-            for (int j = 0; j < f.nj; ++j)
-                for (int i = 0; i < f.ni; ++i) {
-                    const int idx[3] = {i, j, k};
-                    const Id flat = f.flat(i, j, k);
-                    const int odd = (i & 1) + (j & 1) + (k & 1);
-                    if (odd == 0) {
-                        out.node_ids[flat] = block.node(i / 2, j / 2, k / 2);
-                        continue;
-                    }
-                    const bool on_face = i == 0 || i == f.ni - 1 || j == 0 || j == f.nj - 1 ||
-                                         k == 0 || k == f.nk - 1;
-                    const EntityKey key = on_face ? entity_key(block, idx) : EntityKey{};
-                    const Id id = static_cast<Id>(fine.points.size());
-                    if (on_face) {
-                        const auto [it, inserted] = shared.try_emplace(key, id);
-                        const VertexKind kind = new_node_kind(coarse, block, f, idx, odd, key);
-                        if (!inserted) {
-                            out.node_ids[flat] = it->second;
-                            fine.kinds[it->second] = std::max(fine.kinds[it->second], kind);
-                            continue;
-                        }
-                        fine.kinds.push_back(kind);
-                    } else {
-                        fine.kinds.push_back(VertexKind::interior);
-                    }
-                    fine.points.push_back(x[flat]);
-                    out.node_ids[flat] = id;
-                }
-        fine.blocks.push_back(std::move(out));
-    }
+    fine.points.resize(size_t(refiner.num_points()));
+    fine.kinds.resize(size_t(refiner.num_points()), VertexKind::interior);
+    for (size_t b = 0; b < coarse.blocks.size(); ++b) add_refined_block(fine, refiner.refine(b));
     return fine;
+}
+
+void add_refined_block(BlockGrid& fine, RefinedBlock&& piece) {
+    const size_t needed = size_t(*std::max_element(piece.ids.begin(), piece.ids.end())) + 1;
+    if (fine.points.size() < needed) {
+        fine.points.resize(needed);
+        fine.kinds.resize(needed, VertexKind::interior);
+    }
+    for (size_t m = 0; m < piece.ids.size(); ++m) {
+        fine.points[piece.ids[m]] = piece.grid.points[m];
+        fine.kinds[piece.ids[m]] = piece.grid.kinds[m];
+    }
+    Block& block = fine.blocks.emplace_back(std::move(piece.grid.blocks[0]));
+    block.node_ids = std::move(piece.ids);
 }
 
 }  // namespace hexmesh

@@ -1,6 +1,12 @@
-// Uniform nested refinement of a block grid: every hex split into 8, interfaces kept conforming.
+// Uniform nested refinement of a block grid: every hex split into 8, interfaces kept conforming,
+// whole or one block at a time.
 #pragma once
 
+#include <functional>
+#include <unordered_map>
+#include <vector>
+
+#include "hexmesh/core/array_hash.h"
 #include "hexmesh/core/block_grid.h"
 
 namespace hexmesh {
@@ -27,5 +33,56 @@ namespace hexmesh {
 // fixed, else interior; a node on several faces takes the most constrained kind. Blocks keep
 // their names and patches. Parallel (TBB) over grid lines and cells.
 BlockGrid refine_grid(const BlockGrid& coarse);
+
+// One fine block of refine_grid, on its own: a grid of one block whose point m is the block's
+// node m (flat, i fastest), so it can be finished (projected, optimized, measured, written)
+// and dropped before the next block is made.
+struct RefinedBlock {
+    BlockGrid grid;            // one block; its node_ids are 0, 1, 2, ...
+    std::vector<Id> ids;       // the id of each point in refine_grid's numbering
+    std::vector<bool> shared;  // a new node that other blocks (or this one twice) also hold
+    std::vector<bool> coarse;  // a node of the coarse grid, at its coarse position
+};
+
+// Puts a fine block into the fine grid being assembled (`fine` starts as a copy of the coarse
+// grid's points and kinds; it grows to the largest id met): refine_grid is BlockRefiner's
+// blocks in order, each added so.
+void add_refined_block(BlockGrid& fine, RefinedBlock&& piece);
+
+// refine_grid one block at a time, in block order. Memory: the coarse grid (by reference),
+// one fine block, and the new nodes on block faces that a later block still has to reach
+// (each kept until its last block has taken it). The constructor walks the block faces once
+// to give those shared nodes their kind (the most constrained of their blocks').
+class BlockRefiner {
+public:
+    // place(x, kind): where a new node on a block face goes (e.g. a wall node projected onto
+    // the body); called once per such node, in parallel, before any block receives it, so a
+    // node shared by blocks gets one position. Nodes inside a block stay where interpolated.
+    using Place = std::function<Vec3(const Vec3& x, VertexKind kind)>;
+
+    explicit BlockRefiner(const BlockGrid& coarse);
+
+    // Fine block b (blocks are taken in order 0, 1, ..., each once).
+    RefinedBlock refine(size_t b, const Place& place = nullptr);
+
+    // Points of the whole fine grid (refine_grid(coarse).points.size()), and its cells.
+    Id num_points() const { return num_points_; }
+    Id num_cells() const { return 8 * coarse_.num_cells(); }
+
+private:
+    // The new node of a coarse edge or face (its 2 or 4 coarse ids, sorted, padded).
+    struct FaceNode {
+        Id id = -1;       // assigned by the first block that reaches it
+        Vec3 x = Vec3::Zero();
+        VertexKind kind = VertexKind::interior;
+        int remaining = 0;  // occurrences (block, fine node) not yet taken
+    };
+    using Key = std::array<Id, 4>;
+
+    const BlockGrid& coarse_;
+    std::unordered_map<Key, FaceNode, ArrayHash<Id, 4>> face_nodes_;
+    Id num_points_ = 0, next_id_ = 0;
+    size_t next_block_ = 0;
+};
 
 }  // namespace hexmesh

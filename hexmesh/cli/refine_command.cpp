@@ -1,11 +1,14 @@
-// `hexmesh refine GRID -o OUTDIR [--levels N] [--case CASE.json]`: a grid one (or N) levels finer.
+// `hexmesh refine GRID -o OUTDIR [--levels N] [--case CASE.json]`: a grid one (or N) levels finer,
+// its last level made, measured and written block by block.
 #include <fmt/format.h>
 
+#include <chrono>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 
 #include "hexmesh/cli/commands.h"
+#include "hexmesh/pipeline/grid_report.h"
 #include "hexmesh/pipeline/make_body.h"
 #include "hexmesh/pipeline/phase_timer.h"
 #include "hexmesh/pipeline/refine_family.h"
@@ -59,24 +62,52 @@ void add_refine_command(CLI::App& app, int& exit_code) {
                                        grid.num_cells()));
         const Body body = make_body(c.geometry);
         timer.done("geometry");
-        for (int level = 1; level <= args->levels; ++level) {
+        // Every level but the last in memory (each is 8 times smaller than the next); the
+        // last one block by block: each fine block is measured, written and dropped.
+        for (int level = 1; level < args->levels; ++level) {
             RefinementResult r = refine_on_body(grid, *body);
             grid = std::move(r.grid);
-            timer.done("refine",
-                       fmt::format("({} cells, {} wall nodes projected, max move {:.3g})",
-                                   grid.num_cells(), r.projected, r.max_projection));
+            timer.done("refine", fmt::format("({} cells, {} wall nodes projected, max move {:.3g})",
+                                             grid.num_cells(), r.projected, r.max_projection));
         }
         const std::optional<TriangleSurface> surface = reference_surface(c.geometry);
-        const GridReport report = measure_grid(grid, *body, {}, surface ? &*surface : nullptr);
-        timer.done("quality");
+        StagedOutput out(args->outdir);
+        GridMeter meter(*body, {}, surface ? &*surface : nullptr);
+        VtkGridWriter writer(out.path(grid.blocks.size() == 1 ? "grid.vts" : "grid.vtm"),
+                             grid.blocks.size());
+        double refine_s = 0, quality_s = 0, write_s = 0;
+        auto lap = [clock = std::chrono::steady_clock::now()]() mutable {
+            const auto now = std::chrono::steady_clock::now();
+            const double s = std::chrono::duration<double>(now - clock).count();
+            clock = now;
+            return s;
+        };
+        const RefinementStats stats = refine_blocks(grid, *body, {}, [&](RefinedBlock& piece) {
+            const Block& block = piece.grid.blocks[0];
+            const double r = lap();
+            meter.add(piece.grid, block, &piece.ids);
+            const double q = lap();
+            writer.add(piece.grid, block);
+            const double w = lap();
+            refine_s += r;
+            quality_s += q;
+            write_s += w;
+            std::cout << fmt::format("    block {:<12} {:>11} cells: refine {:.2f} s, quality {:.2f} s, write {:.2f} s\n",
+                                     block.name, block.cells().count(), r, q, w);
+        });
+        writer.finish();
+        const GridReport report = meter.report();
+        timer.done("refine",
+                   fmt::format("({} cells, {} wall nodes projected, max move {:.3g}; block by block: "
+                               "refine {:.2f} s, quality {:.2f} s, write {:.2f} s)",
+                               report.quality.cells, stats.projected, stats.max_projection,
+                               refine_s, quality_s, write_s + lap()));
         std::cout << "\n" << format_quality_table(report) << "\n";
         if (report.quality.inverted_cells > 0)
             throw std::runtime_error(
                 fmt::format("{}: the refined grid has {} inverted cells; "
                             "nothing written",
                             args->grid_path, report.quality.inverted_cells));
-        StagedOutput out(args->outdir);
-        write_vtk_grid(grid, out.path(grid.blocks.size() == 1 ? "grid.vts" : "grid.vtm"));
         out.write_text("quality.json", quality_json(report));
         out.write_text("grid.case.json", case_to_json(c));
         const std::vector<std::string> written = out.commit();

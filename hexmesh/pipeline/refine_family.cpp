@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
+#include <tbb/combinable.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
@@ -79,10 +80,11 @@ double min_scaled_jacobian_held(const BlockGrid& grid, const std::vector<bool>& 
 // The functional's box targets can pull a cell below the quality interpolation gave it (at
 // the irregular corners of the O-H core, where the coarse cell is no box). Where the polish
 // leaves one of the optimized `cells` below the worst scaled Jacobian of the interpolated
-// grid, its free nodes go back to their interpolated (and projected) positions `saved`
-// (free node ids `free` ascending, positions alike), until no cell is below it. The floor
-// costs a pass over the whole grid, so it is only computed when some optimized cell ends
-// below `cells_floor`, their worst before the polish (the grid's worst is at most that).
+// `grid` (one fine block), its free nodes go back to their interpolated (and projected)
+// positions `saved` (free node ids `free` ascending, positions alike), until no cell is
+// below it. The floor costs a pass over every cell of `grid`, so it is only computed when
+// some optimized cell ends below `cells_floor`, their worst before the polish (the grid's
+// worst is at most that).
 // The other cells did not move; the projected grid itself meets the floor, so this ends.
 // Skipped when interpolation left inverted cells (floor <= 0): then the polish is the
 // untangling.
@@ -111,49 +113,29 @@ void keep_no_worse_than(BlockGrid& grid, const std::vector<std::array<Id, 8>>& c
     }
 }
 
-}  // namespace
-
-RefinementResult refine_on_body(const BlockGrid& coarse, const ImplicitFunction& body,
-                                const RefinementOptions& options) {
-    RefinementResult result;
-    result.grid = refine_grid(coarse);
-    BlockGrid& grid = result.grid;
-    const Id first_new = static_cast<Id>(coarse.points.size());
+// Finishes one fine block whose new wall nodes are on the body: `sweeps` steps of the
+// block-diagonal solver over the new nodes of the cells that touch a new wall node, but the
+// nodes other blocks share (they keep the position their first block gave them, so blocks
+// stay conforming whatever order they are finished in), then keep_no_worse_than. Returns
+// how many nodes were free.
+Id polish_block(RefinedBlock& piece, const ImplicitFunction& body, const RefinementOptions& options) {
+    BlockGrid& grid = piece.grid;
     const Id count = static_cast<Id>(grid.points.size());
-    const double h = cell_length_scale(grid);
-
-    std::vector<double> moved(count, -1.0);
-    tbb::parallel_for(first_new, count, [&](Id v) {
-        const VertexKind kind = grid.kinds[v];
-        if (kind != VertexKind::slip && kind != VertexKind::feature_edge) return;
-        Vec3 p = grid.points[v];
-        if (kind == VertexKind::slip) {
-            ProjectionOptions o;
-            o.tolerance = 1e-12;
-            p = project_to_surface(body, p, h, o).point;
-        } else {
-            p = project_to_crease(body, p, h);
+    std::vector<bool> unmoved(count), held(count, true);
+    for (Id v = 0; v < count; ++v)
+        unmoved[v] = piece.coarse[v] || (grid.kinds[v] != VertexKind::slip &&
+                                         grid.kinds[v] != VertexKind::feature_edge);
+    for (const std::array<Id, 8>& nodes : cells_not_held(grid, unmoved))
+        for (Id v : nodes)
+            if (!piece.coarse[v] && !piece.shared[v]) held[v] = false;
+    std::vector<Id> free;
+    std::vector<Vec3> saved;
+    for (Id v = 0; v < count; ++v)
+        if (!held[v]) {
+            free.push_back(v);
+            saved.push_back(grid.points[v]);
         }
-        moved[v] = (p - grid.points[v]).norm();
-        grid.points[v] = p;
-    });
-    for (Id v = first_new; v < count; ++v)
-        if (moved[v] >= 0) {
-            ++result.projected;
-            result.max_projection = std::max(result.max_projection, moved[v]);
-        }
-
-    // Free: the new nodes of the cells that touch a new wall node (the interpolated interior
-    // is as smooth as the coarse grid and stays as it is); held: everything else.
-    std::vector<bool> held(count, true);
-    {
-        std::vector<bool> unmoved(count);
-        for (Id v = 0; v < count; ++v) unmoved[v] = moved[v] < 0;
-        for (const std::array<Id, 8>& nodes : cells_not_held(grid, unmoved))
-            for (Id v : nodes)
-                if (v >= first_new) held[v] = false;
-    }
-    if (options.sweeps <= 0) return result;
+    if (options.sweeps <= 0 || free.empty()) return 0;
 
     GridOptimizationOptions o;
     o.untangle.untangle_solver.method = untangle::Method::block_diagonal;
@@ -165,16 +147,59 @@ RefinementResult refine_on_body(const BlockGrid& coarse, const ImplicitFunction&
     o.untangle.log = options.log;
     o.held = held;
     const std::vector<std::array<Id, 8>> cells = cells_not_held(grid, held);
-    std::vector<Id> free;
-    std::vector<Vec3> saved;
-    for (Id v = first_new; v < count; ++v)
-        if (!held[v]) {
-            free.push_back(v);
-            saved.push_back(grid.points[v]);
-        }
     const double cells_floor = min_scaled_jacobian(grid, cells);
-    result.solve = optimize_grid(grid, body, o).solve;
+    optimize_grid(grid, body, o);
     keep_no_worse_than(grid, cells, cells_floor, held, free, saved);
+    return static_cast<Id>(free.size());
+}
+
+}  // namespace
+
+RefinementStats refine_blocks(const BlockGrid& coarse, const ImplicitFunction& body,
+                              const RefinementOptions& options, const BlockSink& sink) {
+    RefinementStats stats;
+    BlockRefiner refiner(coarse);
+    // The fine grid's length scale: half the coarse one (8 times the cells in the same box).
+    const double h = cell_length_scale(coarse) / 2;
+    tbb::combinable<std::pair<Id, double>> moves([] { return std::pair<Id, double>{0, 0.0}; });
+    const BlockRefiner::Place place = [&](const Vec3& x, VertexKind kind) {
+        if (kind != VertexKind::slip && kind != VertexKind::feature_edge) return x;
+        Vec3 p;
+        if (kind == VertexKind::slip) {
+            ProjectionOptions o;
+            o.tolerance = 1e-12;
+            p = project_to_surface(body, x, h, o).point;
+        } else {
+            p = project_to_crease(body, x, h);
+        }
+        auto& [n, longest] = moves.local();
+        ++n;
+        longest = std::max(longest, (p - x).norm());
+        return p;
+    };
+    for (size_t b = 0; b < coarse.blocks.size(); ++b) {
+        RefinedBlock piece = refiner.refine(b, place);
+        stats.polished += polish_block(piece, body, options);
+        sink(piece);
+    }
+    moves.combine_each([&](const std::pair<Id, double>& m) {
+        stats.projected += m.first;
+        stats.max_projection = std::max(stats.max_projection, m.second);
+    });
+    stats.points = refiner.num_points();
+    return stats;
+}
+
+RefinementResult refine_on_body(const BlockGrid& coarse, const ImplicitFunction& body,
+                                const RefinementOptions& options) {
+    RefinementResult result;
+    BlockGrid& grid = result.grid;
+    grid.points = coarse.points;
+    grid.kinds = coarse.kinds;
+    const RefinementStats stats = refine_blocks(
+        coarse, body, options, [&](RefinedBlock& piece) { add_refined_block(grid, std::move(piece)); });
+    result.projected = stats.projected;
+    result.max_projection = stats.max_projection;
     return result;
 }
 

@@ -1,13 +1,14 @@
 // Nested refinement on the body: refine_grid, new wall nodes onto u = 0, a local polish.
 #pragma once
 
+#include <functional>
 #include <ostream>
 #include <vector>
 
 #include "hexmesh/core/block_grid.h"
 #include "hexmesh/core/implicit_function.h"
 #include "io/quality_report.h"
-#include "untangle/untangle.h"
+#include "volume/refine.h"
 #include "volume/stretching.h"
 
 namespace hexmesh {
@@ -20,24 +21,44 @@ struct RefinementOptions {
 
 struct RefinementResult {
     BlockGrid grid;
-    untangle::UntangleResult solve;  // the local optimization of the new nodes
-    Id projected = 0;                // new wall nodes moved onto u = 0 (or onto a crease)
-    double max_projection = 0;       // the longest such move, in geometry units
+    Id projected = 0;           // new wall nodes moved onto u = 0 (or onto a crease)
+    double max_projection = 0;  // the longest such move, in geometry units
 };
 
-// One level finer than `coarse` (a grid on `body`, e.g. from `run` or a previous level):
-// refine_grid (volume/refine.h), then every new slip node projected onto u = 0 of `body`
-// (project_to_surface) and every new feature_edge node onto its crease, then `sweeps`
-// steps of the block-diagonal solver (slip on u = 0) over the new nodes of the cells that
-// touch the wall, each cell's target the box of its own edge lengths after interpolation (as
-// in optimize_grid); the interpolated interior needs no polish and is left as it is. Where
-// the polish leaves a cell below the worst scaled Jacobian of the interpolated grid, that
-// cell's new nodes return to their interpolated positions, so refinement never lowers the
-// interpolation's min scaled Jacobian. The coarse nodes are held at their exact positions:
-// node v < coarse.points.size() of the result is coarse node v, so the levels are nested.
-// Inverted cells (there should be none) are untangled by the same local solver.
+// One level finer than `coarse` (a grid on `body`, e.g. from `run` or a previous level), made
+// block by block (refine_blocks) and assembled: node v < coarse.points.size() of the result
+// is coarse node v, at its exact position, so the levels are nested.
 RefinementResult refine_on_body(const BlockGrid& coarse, const ImplicitFunction& body,
                                 const RefinementOptions& options = {});
+
+struct RefinementStats {
+    Id points = 0;              // nodes of the fine grid
+    Id projected = 0;           // new wall nodes moved onto u = 0 (or onto a crease)
+    double max_projection = 0;  // the longest such move, in geometry units
+    Id polished = 0;            // new nodes the local solver moved
+};
+
+// Receives each finished fine block (see BlockRefiner: its points numbered on their own,
+// `ids` their ids in the whole fine grid); it may keep, measure or write it, then drop it.
+using BlockSink = std::function<void(RefinedBlock& block)>;
+
+// One level finer than `coarse`, one block at a time, so that memory holds the coarse grid
+// and one fine block, not the fine grid. Each block: BlockRefiner splits it, its new slip
+// nodes go onto u = 0 of `body` (project_to_surface) and its new feature_edge nodes onto
+// their crease, as they are first reached (a node shared by blocks is placed once); then
+// `sweeps` steps of the block-diagonal solver (slip on u = 0) over the new nodes of the
+// cells that touch a new wall node, each cell's target the box of its own edge lengths
+// after interpolation (as in optimize_grid). The interpolated interior needs no polish and
+// is left as it is; so are the new nodes on block interfaces, which every block holding
+// them takes as the first one placed them (the blocks stay conforming, and each is
+// finished alone). Where the polish leaves a cell below the worst scaled Jacobian of the
+// block's interpolated cells, that cell's new nodes return to their interpolated
+// positions, so refinement never lowers the interpolation's min scaled Jacobian. Coarse
+// nodes keep their exact positions. Inverted cells (there should be none) are untangled
+// by the same local solver. Then `sink` gets the block. Blocks run in order, each one
+// multi-threaded (TBB).
+RefinementStats refine_blocks(const BlockGrid& coarse, const ImplicitFunction& body,
+                              const RefinementOptions& options, const BlockSink& sink);
 
 // The nested family level_1 = `coarse`, level_2, ..., level_`levels` (levels >= 1), each
 // level refine_on_body of the one before.

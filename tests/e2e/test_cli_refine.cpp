@@ -104,6 +104,27 @@ TEST_F(SphereFamily, RefineCommandWritesTheNextLevelOfTheFamily) {
     EXPECT_TRUE(fs::exists(refined_dir / "grid.case.json"));
 }
 
+// `refine` makes, measures and writes its level block by block; `run` holds its levels whole.
+// The grids are the same node for node, blocks conforming (shared nodes read back as one).
+TEST_F(SphereFamily, RefineCommandWritesBlockByBlockTheGridRunHoldsWhole) {
+    ASSERT_EQ(refine.exit_code, 0) << refine.err;
+    EXPECT_NE(refine.out.find("block wall_xmin"), std::string::npos) << refine.out;
+    const BlockGrid mine = read_vtk_block_grid((refined_dir / "grid.vtm").string());
+    const BlockGrid runs = read_vtk_block_grid((family_dir / "level_2" / "grid.vtm").string());
+    ASSERT_EQ(mine.points.size(), runs.points.size());
+    ASSERT_EQ(mine.blocks.size(), runs.blocks.size());
+    for (size_t b = 0; b < mine.blocks.size(); ++b) {
+        EXPECT_EQ(mine.blocks[b].name, runs.blocks[b].name);
+        for (size_t m = 0; m < mine.blocks[b].node_ids.size(); ++m)
+            ASSERT_EQ(mine.points[mine.blocks[b].node_ids[m]], runs.points[runs.blocks[b].node_ids[m]])
+                << "block " << b << " node " << m;
+    }
+    const json a = json::parse(read_text(refined_dir / "quality.json"));
+    const json b = json::parse(read_text(family_dir / "level_2" / "quality.json"));
+    EXPECT_EQ(a.at("min_scaled_jacobian").get<double>(), b.at("min_scaled_jacobian").get<double>());
+    EXPECT_EQ(a.at("cells").get<long>(), b.at("cells").get<long>());
+}
+
 TEST_F(SphereFamily, RefinedGridContainsEveryCoarseNode) {
     ASSERT_EQ(refine.exit_code, 0) << refine.err;
     const BlockGrid coarse = read_vtk_block_grid((family_dir / "level_1" / "grid.vtm").string());

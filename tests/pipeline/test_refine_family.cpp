@@ -1,4 +1,5 @@
-// Nested families on the body: refine_on_body and refine_family on the sphere and the bean STL.
+// Nested families on the body: refine_on_body, refine_family and refine_blocks on the sphere
+// and the bean STL.
 #include <gtest/gtest.h>
 
 #include <map>
@@ -95,6 +96,37 @@ TEST_P(RefineFamily, FirstLayerAboutHalvesPerLevel) {
         EXPECT_NEAR(f.reports[l + 1].wall->first_layer_mean / f.reports[l].wall->first_layer_mean,
                     0.5, 0.06);
     }
+}
+
+// The level `hexmesh refine` makes block by block, measured as its blocks come and dropped:
+// the blocks are those of the assembled level, and so is the report.
+TEST_P(RefineFamily, BlockByBlockLevelMatchesTheAssembledOne) {
+    const Family& f = family(GetParam());
+    const BlockGrid& assembled = f.levels[2];
+    GridMeter meter(*f.body);
+    size_t b = 0;
+    const RefinementStats stats = refine_blocks(f.levels[1], *f.body, {}, [&](RefinedBlock& piece) {
+        ASSERT_LT(b, assembled.blocks.size());
+        EXPECT_EQ(piece.ids, assembled.blocks[b].node_ids);
+        for (size_t m = 0; m < piece.ids.size(); ++m)
+            ASSERT_EQ(piece.grid.points[m], assembled.points[piece.ids[m]]) << "block " << b;
+        meter.add(piece.grid, piece.grid.blocks[0], &piece.ids);
+        ++b;
+    });
+    EXPECT_EQ(b, assembled.blocks.size());
+    EXPECT_EQ(stats.points, Id(assembled.points.size()));
+    EXPECT_GT(stats.projected, 0);
+    EXPECT_GT(stats.polished, 0);
+    const GridReport streamed = meter.report(), whole = f.reports[2];
+    EXPECT_EQ(streamed.quality.cells, whole.quality.cells);
+    EXPECT_EQ(streamed.quality.inverted_corner_tets, 0);
+    EXPECT_EQ(streamed.quality.min_scaled_jacobian, whole.quality.min_scaled_jacobian);
+    EXPECT_EQ(streamed.quality.mean_scaled_jacobian, whole.quality.mean_scaled_jacobian);
+    EXPECT_EQ(streamed.quality.max_non_orthogonality_deg, whole.quality.max_non_orthogonality_deg);
+    ASSERT_TRUE(streamed.wall && whole.wall);
+    EXPECT_EQ(streamed.wall->first_layer_mean, whole.wall->first_layer_mean);
+    EXPECT_EQ(streamed.wall->orthogonality_max_deg, whole.wall->orthogonality_max_deg);
+    EXPECT_EQ(*streamed.max_surface_distance, *whole.max_surface_distance);
 }
 
 INSTANTIATE_TEST_SUITE_P(Bodies, RefineFamily, ::testing::Values("sphere", "bean"));

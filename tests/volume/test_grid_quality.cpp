@@ -87,6 +87,30 @@ TEST(GridQuality, SingleBlockAndRefinedGridsMatchTheUnstructuredReport) {
     expect_same_report(refine_grid(make_o_h_grid(Sphere(Vec3::Zero(), 1.0), o_h_options())));
 }
 
+// A grid measured as it is made, one block at a time, each block with its own points and
+// the whole grid's ids: the numbers of the whole grid's report.
+TEST(GridQuality, BlocksMeasuredOneAtATimeMatchTheWholeGrid) {
+    BlockGrid coarse = make_o_h_grid(Sphere(Vec3::Zero(), 1.0), o_h_options());
+    shake(coarse, 0.03, 9);
+    const QualityReport whole = measure_quality(refine_grid(coarse));
+    BlockRefiner refiner(coarse);
+    BlockQuality streamed;
+    for (size_t b = 0; b < coarse.blocks.size(); ++b) {
+        const RefinedBlock piece = refiner.refine(b);
+        streamed.add(piece.grid, piece.grid.blocks[0], &piece.ids);
+    }
+    const QualityReport q = streamed.report();
+    EXPECT_EQ(q.cells, whole.cells);
+    EXPECT_EQ(q.inverted_corner_tets, whole.inverted_corner_tets);
+    EXPECT_EQ(q.min_scaled_jacobian, whole.min_scaled_jacobian);
+    EXPECT_EQ(q.mean_scaled_jacobian, whole.mean_scaled_jacobian);  // same order of sums
+    EXPECT_EQ(q.max_skewness, whole.max_skewness);
+    EXPECT_EQ(q.max_non_orthogonality_deg, whole.max_non_orthogonality_deg);
+    EXPECT_EQ(q.max_aspect_ratio, whole.max_aspect_ratio);
+    EXPECT_EQ(q.max_volume_ratio, whole.max_volume_ratio);
+    EXPECT_EQ(q.min_volume, whole.min_volume);
+}
+
 // A block one cell thick (every cell on both k faces), and an empty block (no nodes, as a
 // reader may hand over) before a real one: ids of the later block's cells must not shift.
 TEST(GridQuality, ThinAndEmptyBlocksMatchTheUnstructuredReport) {

@@ -1,7 +1,12 @@
-// refine_grid: topology, nesting and conformity of a refined O-H sphere grid.
+// refine_grid: topology, nesting and conformity of a refined O-H sphere grid; BlockRefiner,
+// the same grid one block at a time.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <atomic>
+#include <map>
 #include <set>
+#include <stdexcept>
 
 #include "grid_checks.h"
 #include "hexmesh/core/quality.h"
@@ -143,4 +148,48 @@ TEST(RefineGrid, GeometricStretchingBecomesItsSquareRoot) {
             fine.points[f.node(i + 2, 0, 0)].x() - fine.points[f.node(i + 1, 0, 0)].x();
         EXPECT_NEAR(c / a, std::sqrt(r), 2e-3) << i;
     }
+}
+
+// Block by block: every fine block holds the fine grid's points at its ids; a new node on a
+// block interface is placed once, by its first block, and every block holding it gets that
+// position, even when placement would give another one each time.
+TEST(BlockRefiner, BlocksAreTheFineGridsAndPlaceEachFaceNodeOnce) {
+    const BlockGrid coarse = sphere_grid();
+    const BlockGrid fine = refine_grid(coarse);
+    BlockRefiner refiner(coarse);
+    EXPECT_EQ(refiner.num_points(), Id(fine.points.size()));
+    EXPECT_EQ(refiner.num_cells(), fine.num_cells());
+    std::atomic<int> calls{0};
+    const auto place = [&](const Vec3& x, VertexKind) { return Vec3(x + Vec3(0, 0, 1e-3 * ++calls)); };
+    std::map<Id, Vec3> placed;  // face nodes by fine id
+    std::map<Id, int> holders;
+    for (size_t b = 0; b < coarse.blocks.size(); ++b) {
+        const RefinedBlock piece = refiner.refine(b, place);
+        ASSERT_EQ(piece.grid.blocks.size(), 1u);
+        const Block& block = piece.grid.blocks[0];
+        EXPECT_EQ(block.nodes.count(), fine.blocks[b].nodes.count());
+        EXPECT_EQ(piece.ids, fine.blocks[b].node_ids);
+        for (size_t m = 0; m < piece.ids.size(); ++m) {
+            const Id v = piece.ids[m];
+            EXPECT_EQ(piece.grid.kinds[m], fine.kinds[v]);
+            EXPECT_EQ(piece.coarse[m], v < Id(coarse.points.size()));
+            const Vec3 x = piece.grid.points[m];
+            const bool moved = x != fine.points[v];
+            if (piece.coarse[m]) {
+                EXPECT_EQ(x, coarse.points[v]);
+                continue;
+            }
+            if (!moved) continue;  // inside the block: not placed
+            const auto [it, first] = placed.try_emplace(v, x);
+            if (!first) {
+                EXPECT_EQ(it->second, x) << "fine node " << v;
+            }
+            if (++holders[v] > 1) {
+                EXPECT_TRUE(piece.shared[m]) << "fine node " << v;
+            }
+        }
+    }
+    EXPECT_EQ(calls.load(), int(placed.size()));
+    EXPECT_GT(std::count_if(holders.begin(), holders.end(), [](const auto& h) { return h.second > 1; }), 0);
+    EXPECT_THROW(refiner.refine(0), std::logic_error);  // each block once, in order
 }
