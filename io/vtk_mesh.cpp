@@ -54,7 +54,7 @@ vtkSmartPointer<vtkStructuredGrid> to_vtk_block(const BlockGrid& grid, const Blo
     // A block that is its grid's points in order (one block made at a time) lends them to
     // VTK for the write instead of copying them: `out` does not outlive the call's writer.
     static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 is three packed doubles");
-    bool own_points = Id(grid.points.size()) == count;
+    bool own_points = count > 0 && Id(grid.points.size()) == count;
     for (Id m = 0; own_points && m < count; ++m) own_points = block.node_ids[m] == m;
     if (own_points) {
         coordinates->SetArray(const_cast<double*>(grid.points.data()->data()), 3 * count,
@@ -227,7 +227,7 @@ void VtkGridWriter::finish() {
         "header_type=\"UInt64\">\n  <vtkMultiBlockDataSet>\n";
     for (size_t b = 0; b < names_.size(); ++b)
         xml += fmt::format("    <DataSet index=\"{}\" name=\"{}\" file=\"{}/{}_{}.vts\"/>\n", b,
-                           escaped(names_[b]), pieces_, pieces_, b);
+                           escaped(names_[b]), escaped(pieces_), escaped(pieces_), b);
     xml += "  </vtkMultiBlockDataSet>\n</VTKFile>\n";
     std::ofstream out(path_, std::ios::binary);
     out << xml;

@@ -6,6 +6,7 @@
 #include <cassert>
 #include <limits>
 #include <stdexcept>
+#include <string>
 #include <unordered_map>
 
 #include "hexmesh/core/array_hash.h"
@@ -115,7 +116,11 @@ void for_each_face_node(const Dims& d, F&& f) {
         }
 }
 
-Dims fine_dims(const Dims& c) { return {2 * c.ni - 1, 2 * c.nj - 1, 2 * c.nk - 1}; }
+// 2n - 1 nodes per direction (a block without nodes stays without).
+Dims fine_dims(const Dims& c) {
+    if (c.count() == 0) return {0, 0, 0};
+    return {2 * c.ni - 1, 2 * c.nj - 1, 2 * c.nk - 1};
+}
 
 // Nodes strictly inside a block of node dims d.
 Id inner_nodes(const Dims& d) {
@@ -125,6 +130,10 @@ Id inner_nodes(const Dims& d) {
 }  // namespace
 
 BlockRefiner::BlockRefiner(const BlockGrid& coarse) : coarse_(coarse) {
+    if (coarse.kinds.size() != coarse.points.size())
+        throw std::invalid_argument(
+            "refine: the grid has " + std::to_string(coarse.kinds.size()) + " vertex kinds for " +
+            std::to_string(coarse.points.size()) + " points");
     num_points_ = next_id_ = static_cast<Id>(coarse.points.size());
     for (const Block& block : coarse.blocks) {
         const Dims f = fine_dims(block.nodes);
@@ -151,6 +160,7 @@ RefinedBlock BlockRefiner::refine(size_t b, const Place& place) {
     const Id count = f.count();
 
     RefinedBlock out;
+    out.fine_points = num_points_;
     out.grid.points = fine_positions(coarse_, block, f);
     out.grid.kinds.assign(size_t(count), VertexKind::interior);
     out.ids.assign(size_t(count), -1);
@@ -218,17 +228,14 @@ BlockGrid refine_grid(const BlockGrid& coarse) {
     BlockGrid fine;
     fine.points = coarse.points;
     fine.kinds = coarse.kinds;
-    fine.points.resize(size_t(refiner.num_points()));
-    fine.kinds.resize(size_t(refiner.num_points()), VertexKind::interior);
     for (size_t b = 0; b < coarse.blocks.size(); ++b) add_refined_block(fine, refiner.refine(b));
     return fine;
 }
 
 void add_refined_block(BlockGrid& fine, RefinedBlock&& piece) {
-    const size_t needed = size_t(*std::max_element(piece.ids.begin(), piece.ids.end())) + 1;
-    if (fine.points.size() < needed) {
-        fine.points.resize(needed);
-        fine.kinds.resize(needed, VertexKind::interior);
+    if (fine.points.size() < size_t(piece.fine_points)) {
+        fine.points.resize(size_t(piece.fine_points));
+        fine.kinds.resize(size_t(piece.fine_points), VertexKind::interior);
     }
     for (size_t m = 0; m < piece.ids.size(); ++m) {
         fine.points[piece.ids[m]] = piece.grid.points[m];

@@ -42,17 +42,19 @@ struct RefinedBlock {
     std::vector<Id> ids;       // the id of each point in refine_grid's numbering
     std::vector<bool> shared;  // a new node that other blocks (or this one twice) also hold
     std::vector<bool> coarse;  // a node of the coarse grid, at its coarse position
+    Id fine_points = 0;        // points of the whole fine grid
 };
 
 // Puts a fine block into the fine grid being assembled (`fine` starts as a copy of the coarse
-// grid's points and kinds; it grows to the largest id met): refine_grid is BlockRefiner's
-// blocks in order, each added so.
+// grid's points and kinds; the first block sizes it to the whole fine grid): refine_grid is
+// BlockRefiner's blocks in order, each added so.
 void add_refined_block(BlockGrid& fine, RefinedBlock&& piece);
 
 // refine_grid one block at a time, in block order. Memory: the coarse grid (by reference),
-// one fine block, and the new nodes on block faces that a later block still has to reach
-// (each kept until its last block has taken it). The constructor walks the block faces once
-// to give those shared nodes their kind (the most constrained of their blocks').
+// one fine block, and the new nodes on block faces: the constructor walks every block face
+// once to count each such node's blocks and give it its kind (the most constrained of its
+// blocks'); a node is dropped once its last block has taken it. Throws
+// std::invalid_argument when the grid's kinds are not sized like its points.
 class BlockRefiner {
 public:
     // place(x, kind): where a new node on a block face goes (e.g. a wall node projected onto

@@ -96,12 +96,14 @@ void add_refine_command(CLI::App& app, int& exit_code) {
                                      block.name, block.cells().count(), r, q, w);
         });
         writer.finish();
+        write_s += lap();
         const GridReport report = meter.report();
+        quality_s += lap();
         timer.done("refine",
                    fmt::format("({} cells, {} wall nodes projected, max move {:.3g}; block by block: "
                                "refine {:.2f} s, quality {:.2f} s, write {:.2f} s)",
                                report.quality.cells, stats.projected, stats.max_projection,
-                               refine_s, quality_s, write_s + lap()));
+                               refine_s, quality_s, write_s));
         std::cout << "\n" << format_quality_table(report) << "\n";
         if (report.quality.inverted_cells > 0)
             throw std::runtime_error(

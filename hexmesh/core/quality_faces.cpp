@@ -2,8 +2,10 @@
 // unstructured meshes (two passes over cells) and block grids (one pass, slab by slab).
 //
 // Face (cell c, local face f) has id 6c + f; its nodes follow hex_faces (outward from c).
-// An internal face is owned by the lower cell id and, as in a polyMesh, its geometry is
-// computed once from the owner's point order; the neighbour sees the negated area vector.
+// An internal face is owned by the lower cell id and, as in a polyMesh, its measures use the
+// owner's point order. In the unstructured pass the neighbour sees the negated area vector;
+// in the block pass too inside a block, while a cell on a block boundary computes its
+// boundary faces from its own points (the same face to rounding).
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
@@ -30,15 +32,11 @@ using detail::FaceGeometry;
 
 constexpr Id no_partner = -1;
 
-// One cell as the measuring passes see it: its nodes and, per local face, the face id
+// One cell as the unstructured pass sees it: its nodes and, per local face, the face id
 // (6 cell + local face) of the same face seen from the other cell, or no_partner.
-// Bit f of `lower_neighbour` says that the other cell is its structured neighbour one
-// step down that axis (f = imin, jmin or kmin of a block), so the other side's point
-// order follows from this cell's nodes (see seen_from_lower).
 struct CellView {
     std::array<Id, 8> nodes;
     std::array<Id, 6> partner;
-    unsigned lower_neighbour = 0;
 };
 
 // For an imin / jmin / kmin face f: the local nodes of this cell that the cell below lists
@@ -164,9 +162,7 @@ FaceGeometry oriented_face(const Cells& cells, Id c, const CellView& v, int f) {
     const Id other = v.partner[f];
     if (is_owner_side(6 * c + f, other))
         return detail::quad_geometry(points_of(cells.points(), v.nodes, hex_faces[f]));
-    FaceGeometry g = detail::quad_geometry(
-        v.lower_neighbour >> f & 1u ? points_of(cells.points(), v.nodes, seen_from_lower[f])
-                                    : cells.face_points(other));
+    FaceGeometry g = detail::quad_geometry(cells.face_points(other));
     g.area = -g.area;
     return g;
 }

@@ -1,4 +1,5 @@
-// Nested refinement on the body: refine_grid, new wall nodes onto u = 0, a local polish.
+// Nested refinement on the body: blocks split (BlockRefiner), new wall nodes onto u = 0, a local
+// polish; whole, or block by block.
 #pragma once
 
 #include <functional>
@@ -35,15 +36,15 @@ struct RefinementStats {
     Id points = 0;              // nodes of the fine grid
     Id projected = 0;           // new wall nodes moved onto u = 0 (or onto a crease)
     double max_projection = 0;  // the longest such move, in geometry units
-    Id polished = 0;            // new nodes the local solver moved
+    Id polished = 0;            // new nodes given to the local solver (free in the polish)
 };
 
 // Receives each finished fine block (see BlockRefiner: its points numbered on their own,
 // `ids` their ids in the whole fine grid); it may keep, measure or write it, then drop it.
 using BlockSink = std::function<void(RefinedBlock& block)>;
 
-// One level finer than `coarse`, one block at a time, so that memory holds the coarse grid
-// and one fine block, not the fine grid. Each block: BlockRefiner splits it, its new slip
+// One level finer than `coarse`, one block at a time, so that memory holds the coarse grid,
+// one fine block and the new nodes on block faces (see BlockRefiner), not the fine grid. Each block: BlockRefiner splits it, its new slip
 // nodes go onto u = 0 of `body` (project_to_surface) and its new feature_edge nodes onto
 // their crease, as they are first reached (a node shared by blocks is placed once); then
 // `sweeps` steps of the block-diagonal solver (slip on u = 0) over the new nodes of the

@@ -7,6 +7,7 @@
 #include <map>
 #include <set>
 #include <stdexcept>
+#include <string>
 
 #include "grid_checks.h"
 #include "hexmesh/core/quality.h"
@@ -192,4 +193,66 @@ TEST(BlockRefiner, BlocksAreTheFineGridsAndPlaceEachFaceNodeOnce) {
     EXPECT_EQ(calls.load(), int(placed.size()));
     EXPECT_GT(std::count_if(holders.begin(), holders.end(), [](const auto& h) { return h.second > 1; }), 0);
     EXPECT_THROW(refiner.refine(0), std::logic_error);  // each block once, in order
+}
+
+// Two one-cell blocks side by side (x in [0, 1] and [1, 2]), numbered by hand: block 0's 19 new
+// nodes take ids 12..30 in its flat order, block 1 takes the 5 new nodes of the shared face
+// from block 0 and numbers its 14 others 31..44. An empty block (as a reader may hand over)
+// passes through; kinds not sized like the points are refused.
+TEST(BlockRefiner, TwoBlocksNumberedByHand) {
+    BlockGrid coarse;
+    for (int z = 0; z < 2; ++z)
+        for (int y = 0; y < 2; ++y)
+            for (int x = 0; x < 3; ++x) coarse.points.push_back(Vec3(x, y, z));
+    coarse.kinds.assign(coarse.points.size(), VertexKind::interior);
+    coarse.blocks.push_back(Block{});  // no nodes
+    for (int b = 0; b < 2; ++b) {
+        Block block;
+        block.name = "b" + std::to_string(b);
+        block.nodes = {2, 2, 2};
+        for (int k = 0; k < 2; ++k)
+            for (int j = 0; j < 2; ++j)
+                for (int i = 0; i < 2; ++i) block.node_ids.push_back(Id(b + i + 3 * (j + 2 * k)));
+        coarse.blocks.push_back(block);
+    }
+    BlockRefiner refiner(coarse);
+    EXPECT_EQ(refiner.num_points(), 45);
+    EXPECT_EQ(refiner.refine(0).ids.size(), 0u);
+    const RefinedBlock a = refiner.refine(1), b = refiner.refine(2);
+    const Dims f = {3, 3, 3};
+    Id next = 12;
+    for (int k = 0; k < 3; ++k)
+        for (int j = 0; j < 3; ++j)
+            for (int i = 0; i < 3; ++i) {
+                const Id m = f.flat(i, j, k);
+                const bool old = i % 2 == 0 && j % 2 == 0 && k % 2 == 0;
+                EXPECT_EQ(a.ids[m], old ? Id(i / 2 + 3 * (j / 2 + 2 * (k / 2))) : next++);
+                EXPECT_EQ(a.shared[m], !old && i == 2);
+            }
+    EXPECT_EQ(next, 31);
+    for (int k = 0; k < 3; ++k)
+        for (int j = 0; j < 3; ++j)
+            for (int i = 0; i < 3; ++i) {
+                const Id m = f.flat(i, j, k);
+                const bool old = i % 2 == 0 && j % 2 == 0 && k % 2 == 0;
+                if (old) {
+                    EXPECT_EQ(b.ids[m], Id(1 + i / 2 + 3 * (j / 2 + 2 * (k / 2))));
+                } else if (i == 0) {  // the shared face: block 0's node at i = 2
+                    EXPECT_EQ(b.ids[m], a.ids[f.flat(2, j, k)]);
+                    EXPECT_EQ(b.grid.points[m], a.grid.points[f.flat(2, j, k)]);
+                    EXPECT_TRUE(b.shared[m]);
+                } else {
+                    EXPECT_EQ(b.ids[m], next++);
+                    EXPECT_FALSE(b.shared[m]);
+                }
+                EXPECT_EQ(b.grid.points[m], Vec3(1 + 0.5 * i, 0.5 * j, 0.5 * k));
+            }
+    EXPECT_EQ(next, 45);
+    const BlockGrid fine = refine_grid(coarse);
+    EXPECT_EQ(fine.points.size(), 45u);
+    EXPECT_EQ(fine.blocks.size(), 3u);
+    EXPECT_EQ(fine.num_cells(), 16);
+
+    coarse.kinds.clear();
+    EXPECT_THROW(BlockRefiner{coarse}, std::invalid_argument);
 }
