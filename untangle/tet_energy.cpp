@@ -211,7 +211,15 @@ using LaneInts = int64_t __attribute__((vector_size(32)));  // comparison result
 using LaneBits = uint64_t __attribute__((vector_size(32)));
 constexpr int lane_count = 4;
 
-Lanes lane_sqrt(Lanes x) {
+// The lane kernels are inlined into hex_sum, which is built twice: for the baseline and, on
+// x86-64, for AVX2 (one 4-double register per vector instead of two SSE2 ones); hex_energy
+// and hex_energy_hessian call the second where the CPU has AVX2. The same IEEE operations run
+// in the same order (no FMA: contracting a * b + c would round differently), so both give
+// the same bits. Only hex_sum_avx2 is built for AVX2: nothing built for it can be linked
+// into a baseline path.
+#define HEXMESH_LANE_INLINE __attribute__((always_inline)) inline
+
+HEXMESH_LANE_INLINE Lanes lane_sqrt(Lanes x) {
 #if defined(__SSE2__)
     __m128d half[2];
     std::memcpy(half, &x, sizeof x);
@@ -224,14 +232,14 @@ Lanes lane_sqrt(Lanes x) {
     return x;
 }
 
-bool any_lane(LaneInts mask) {
+HEXMESH_LANE_INLINE bool any_lane(LaneInts mask) {
     for (int l = 0; l < lane_count; ++l)
         if (mask[l]) return true;
     return false;
 }
 
 // inverse_cbrt in every lane.
-Lanes inverse_cbrt(Lanes x) {
+HEXMESH_LANE_INLINE Lanes inverse_cbrt(Lanes x) {
     LaneBits bits;  // unsigned: the shifts are logical, also in NaN lanes
     std::memcpy(&bits, &x, sizeof x);
     bits = 0x553eeeeeeeeef000ULL - ((((bits >> 32) * 0xAAAAAAABULL) >> 33) << 32);
@@ -254,7 +262,7 @@ struct LanePhi {
     Lanes value, f_i, f_d, f_dd, f_id;
 };
 template <int order>
-LanePhi phi_lanes(Lanes i, Lanes d, const EnergyParams& p) {
+HEXMESH_LANE_INLINE LanePhi phi_lanes(Lanes i, Lanes d, const EnergyParams& p) {
     const double eps = p.eps, theta = p.theta;
     Lanes x = d, x1 = d * 0 + 1, x2 = d * 0;
     if (eps > 0) {
@@ -326,7 +334,7 @@ namespace {
 
 // The PSD Hessian blocks of the corners of group g (hessian_blocks with g = diag(scale)),
 // added to hess.
-void corner_hessian_lanes(int g, const Lanes (&s)[9], const Lanes (&scale)[3], const LanePhi& f, double weight,
+HEXMESH_LANE_INLINE void corner_hessian_lanes(int g, const Lanes (&s)[9], const Lanes (&scale)[3], const LanePhi& f, double weight,
                           HexHessian& hess) {
     // Signed SVD S = U diag(sigma) V^T, lane by lane.
     Lanes u[3][3], v[3][3], sigma[3];
@@ -431,7 +439,7 @@ void corner_hessian_lanes(int g, const Lanes (&s)[9], const Lanes (&scale)[3], c
 // above, the SVD per lane), for the corners 4 g .. 4 g + 3 in the lanes. The gradient and
 // the Hessian blocks are added to grad and hess.
 template <int order>
-bool hex_corner_lanes(int g, const Mat38& y, const Vec3& inverse, double weight, const EnergyParams& p,
+HEXMESH_LANE_INLINE bool hex_corner_lanes(int g, const Mat38& y, const Vec3& inverse, double weight, const EnergyParams& p,
                       double& total, Mat38* grad, HexHessian* hess) {
     // s[3 k + c]: component c of column k of S (edge k of the corner, scaled).
     Lanes s[9], scale[3];
@@ -490,7 +498,7 @@ namespace {
 // corners run four at a time, one per vector lane: the energy (order 0), with the gradient
 // (1), with the gradient and the PSD Hessian (2).
 template <int order>
-double hex_sum(const Mat38& y, const Vec3& edges, const EnergyParams& p, Mat38* grad, HexHessian* hess) {
+HEXMESH_LANE_INLINE double hex_sum(const Mat38& y, const Vec3& edges, const EnergyParams& p, Mat38* grad, HexHessian* hess) {
     const Vec3 inverse = edges.cwiseInverse();
     const double weight = edges.prod() / 6;
     if (order >= 1) grad->setZero();
@@ -502,15 +510,49 @@ double hex_sum(const Mat38& y, const Vec3& edges, const EnergyParams& p, Mat38* 
     return weight * total;
 }
 
+#if defined(__x86_64__) && defined(__GNUC__)
+template <int order>
+__attribute__((target("avx2"))) double hex_sum_avx2(const Mat38& y, const Vec3& edges,
+                                                       const EnergyParams& p, Mat38* grad,
+                                                       HexHessian* hess) {
+    return hex_sum<order>(y, edges, p, grad, hess);
+}
+
+bool cpu_has_avx2() {
+    __builtin_cpu_init();  // this runs among the static initializers
+    return __builtin_cpu_supports("avx2");
+}
+const bool use_avx2 = cpu_has_avx2();
+
+template <int order>
+double hex_sum_best(const Mat38& y, const Vec3& edges, const EnergyParams& p, Mat38* grad,
+                    HexHessian* hess) {
+    return use_avx2 ? hex_sum_avx2<order>(y, edges, p, grad, hess)
+                    : hex_sum<order>(y, edges, p, grad, hess);
+}
+#else
+template <int order>
+double hex_sum_best(const Mat38& y, const Vec3& edges, const EnergyParams& p, Mat38* grad,
+                    HexHessian* hess) {
+    return hex_sum<order>(y, edges, p, grad, hess);
+}
+#endif
+
 }  // namespace
 
 double hex_energy(const Mat38& y, const Vec3& edges, const EnergyParams& p, Mat38* grad) {
-    return grad ? hex_sum<1>(y, edges, p, grad, nullptr) : hex_sum<0>(y, edges, p, nullptr, nullptr);
+    return grad ? hex_sum_best<1>(y, edges, p, grad, nullptr) : hex_sum_best<0>(y, edges, p, nullptr, nullptr);
 }
 
 double hex_energy_hessian(const Mat38& y, const Vec3& edges, const EnergyParams& p, Mat38& grad,
                           HexHessian& hess) {
-    return hex_sum<2>(y, edges, p, &grad, &hess);
+    return hex_sum_best<2>(y, edges, p, &grad, &hess);
+}
+
+double hex_energy_baseline(const Mat38& y, const Vec3& edges, const EnergyParams& p, Mat38* grad,
+                           HexHessian* hess) {
+    if (hess) return hex_sum<2>(y, edges, p, grad, hess);
+    return grad ? hex_sum<1>(y, edges, p, grad, nullptr) : hex_sum<0>(y, edges, p, nullptr, nullptr);
 }
 
 TetTarget regular_tet_target(double edge) {

@@ -52,8 +52,8 @@ double tet_energy_hessian(const Mat34& y, const TetTarget& t, const EnergyParams
 // order) whose targets are the corners of a box with edge lengths `edges` along the hex's
 // local x, y, z (hex_corner_target), and with `grad` its gradient (column a = dE/dy_a):
 // the same values as tet_energy_gradient on each corner (to rounding), computed without
-// matrix products, four corners at a time in vector lanes. +infinity when eps = 0 and a
-// corner has det S <= 0.
+// matrix products, four corners at a time in vector lanes (built for AVX2 too, and run so
+// where the CPU has it: the same bits). +infinity when eps = 0 and a corner has det S <= 0.
 double hex_energy(const Mat38& y, const Vec3& edges, const EnergyParams& p, Mat38* grad = nullptr);
 
 // The node pairs (a <= b) of a hex that share one of its corner tets: the 8 diagonals, the
@@ -82,6 +82,11 @@ struct HexHessian {
 // when the value is infinite.
 double hex_energy_hessian(const Mat38& y, const Vec3& edges, const EnergyParams& p, Mat38& grad,
                           HexHessian& hess);
+
+// hex_energy (with `hess`: hex_energy_hessian) as built for baseline x86-64, whatever the CPU
+// runs: to check that the AVX2 build gives the same bits.
+double hex_energy_baseline(const Mat38& y, const Vec3& edges, const EnergyParams& p, Mat38* grad,
+                           HexHessian* hess = nullptr);
 
 // The target of a regular tet of edge `edge`, and of the right-angle corner of an axis-aligned
 // box with edges (a, b, c) (hex corner tets), each with v0 = 1.

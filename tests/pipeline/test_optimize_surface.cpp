@@ -75,13 +75,16 @@ TEST(OptimizeWallSurface, UntanglesAFoldedWallGridOnTheSurface) {
     EXPECT_EQ(wall_quads(grid, sphere).folded, 0);
     const double h = grid_length_scale(sphere, 8);
     for (size_t v = 0; v < grid.points.size(); ++v)
-        if (grid.kinds[v] == VertexKind::slip)
+        if (grid.kinds[v] == VertexKind::slip) {
             EXPECT_LT(std::abs(sphere.value(grid.points[v])), 1e-9 * h);
+        }
     EXPECT_GT((grid.points[a] - before[a]).norm(), 0.5 * h);
     EXPECT_GT(r.max_move, 0.5);
     // Only wall nodes moved; the grid built again from them has no inverted cell.
     for (size_t v = 0; v < grid.points.size(); ++v)
-        if (grid.kinds[v] != VertexKind::slip) EXPECT_EQ(grid.points[v], before[v]);
+        if (grid.kinds[v] != VertexKind::slip) {
+            EXPECT_EQ(grid.points[v], before[v]);
+        }
     grid_options.wall_from = &grid.points;
     EXPECT_EQ(measure_quality(to_hex_mesh(make_o_h_grid(sphere, grid_options))).inverted_cells, 0);
 }

@@ -209,7 +209,9 @@ TEST(OGrid, LinesAreBuiltFromAGivenWallGrid) {
     o.wall_from = &moved.points;
     const BlockGrid grid = make_o_grid(sphere, o);
     for (size_t v = 0; v < grid.points.size(); ++v)
-        if (grid.kinds[v] == VertexKind::slip) EXPECT_EQ(grid.points[v], moved.points[v]);
+        if (grid.kinds[v] == VertexKind::slip) {
+            EXPECT_EQ(grid.points[v], moved.points[v]);
+        }
     const WallLines w = measure_wall_lines(grid, sphere, o.wall_layers);
     EXPECT_LT(w.max_law_error, 1e-9);
     EXPECT_LT(w.max_angle_deg, 0.5);
