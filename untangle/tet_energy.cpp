@@ -203,8 +203,11 @@ void hessian_blocks(const Mat3& s, const Invariants& f, const Mat3& g, double we
 
 // Four corner tets at a time, one per lane of a vector of doubles (GCC vector extensions:
 // two SSE2 registers on baseline x86-64), with the same operations as the scalar code.
-// These vectors never cross the library's interface: the ABI note about passing them
-// without AVX does not apply (GCC reports it at the end of the file: ignored from here on).
+// These vectors never cross a call: every function taking or returning them is
+// HEXMESH_LANE_INLINE (below), which is what makes the AVX2 build safe, since an AVX2
+// caller would pass them in a register a baseline callee reads from memory. So the ABI
+// note about passing them without AVX does not apply (GCC reports it at the end of the
+// file: ignored from here on). A new helper on Lanes must be HEXMESH_LANE_INLINE too.
 #pragma GCC diagnostic ignored "-Wpsabi"
 using Lanes = double __attribute__((vector_size(32)));
 using LaneInts = int64_t __attribute__((vector_size(32)));  // comparison results
@@ -214,8 +217,8 @@ constexpr int lane_count = 4;
 // The lane kernels are inlined into hex_sum, which is built twice: for the baseline and, on
 // x86-64, for AVX2 (one 4-double register per vector instead of two SSE2 ones); hex_energy
 // and hex_energy_hessian call the second where the CPU has AVX2. The same IEEE operations run
-// in the same order (no FMA: contracting a * b + c would round differently), so both give
-// the same bits. Only hex_sum_avx2 is built for AVX2: nothing built for it can be linked
+// in the same order (no FMA: contracting a * b + c would round differently; the project
+// builds without -march or -mfma), so both give the same bits. Only hex_sum_avx2 is built for AVX2: nothing built for it can be linked
 // into a baseline path.
 #define HEXMESH_LANE_INLINE __attribute__((always_inline)) inline
 

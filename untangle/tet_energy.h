@@ -83,8 +83,8 @@ struct HexHessian {
 double hex_energy_hessian(const Mat38& y, const Vec3& edges, const EnergyParams& p, Mat38& grad,
                           HexHessian& hess);
 
-// hex_energy (with `hess`: hex_energy_hessian) as built for baseline x86-64, whatever the CPU
-// runs: to check that the AVX2 build gives the same bits.
+// hex_energy (with `hess`: hex_energy_hessian, and then `grad` is required) as built for
+// baseline x86-64, whatever the CPU runs: to check that the AVX2 build changes no bits.
 double hex_energy_baseline(const Mat38& y, const Vec3& edges, const EnergyParams& p, Mat38* grad,
                            HexHessian* hess = nullptr);
 
