@@ -72,7 +72,9 @@ struct FarFieldSpec {
 struct SolverSpec {
     std::string untangle = "newton-cg";
     std::string optimize = "newton-cg";
-    double theta = 0.8;
+    // Volume weight of the functional while optimizing. Below DESIGN §4's 0.8: weighing shape
+    // more gives better wall-layer grids (README, "solver"; bench/RESULTS.md).
+    double theta = 0.2;
     int max_iterations = 200;       // untangling outer iterations
     int optimize_iterations = 10;   // barrier outer iterations; 0 keeps the constructed grid
     // Barrier outer iterations of the surface pass (the wall grid alone on u = 0 with the 2D

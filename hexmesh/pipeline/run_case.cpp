@@ -220,8 +220,9 @@ RunResult run_case(const Case& c, const std::string& outdir, const RunOptions& o
     refuse_invalid(c, result.report, "level_1/", options);  // before refining it
     result.level_reports.push_back(result.report);
     std::vector<BlockGrid> grids = {result.grid};
-    RefinementOptions refinement;
-    refinement.theta = c.solver.theta;
+    // The polish of refined levels keeps its own theta (RefinementOptions, volume-weighted): it
+    // holds the interpolated wall spacing, which a shape-weighted polish lets drift.
+    const RefinementOptions refinement;
     for (int level = 2; level <= c.refinement.levels; ++level) {
         RefinementResult r = refine_on_body(grids.back(), *body, refinement);
         timer.done(fmt::format("refinement level {}", level),

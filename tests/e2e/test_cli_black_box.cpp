@@ -103,9 +103,9 @@ INSTANTIATE_TEST_SUITE_P(
                       BlackBoxCase{"bean_exterior", "cases/bean_exterior/case.json", 0.3, 5.0, true}),
     [](const ::testing::TestParamInfo<BlackBoxCase>& info) { return info.param.name; });
 
-// A body with sharp edges: its creases and corners are captured by wall nodes and the grid is
-// valid. (Its minimum scaled Jacobian stays low where the body's creases cross the cube-sphere
-// patches; see the README.)
+// A body with sharp edges: its creases and corners are captured by wall nodes, the grid is
+// valid and its boundary layer is laid. (Its minimum scaled Jacobian stays below the smooth
+// bodies' where the body's creases cross the cube-sphere patches; see the README.)
 TEST(BlackBoxCsg, BoxUnionCylinderIsValidWithItsCreasesCaptured) {
     const fs::path out = scratch("black_box_csg");
     fs::remove_all(out);
@@ -114,7 +114,10 @@ TEST(BlackBoxCsg, BoxUnionCylinderIsValidWithItsCreasesCaptured) {
     EXPECT_NE(r.out.find("sharp features:"), std::string::npos) << r.out;
     const json q = json::parse(read_text(out / "quality.json"));
     EXPECT_TRUE(q.at("valid").get<bool>());
-    EXPECT_GT(q.at("min_scaled_jacobian").get<double>(), 0.0);
+    EXPECT_GT(q.at("min_scaled_jacobian").get<double>(), 0.2);  // 0.07 when optimized with theta 0.8
+    EXPECT_GT(q.at("mean_scaled_jacobian").get<double>(), 0.85);
+    EXPECT_GE(q.at("wall").at("first_layer_thickness").at("fraction_within_10_percent").get<double>(), 0.9);
+    EXPECT_EQ(r.out.find("the laid layers left inverted cells"), std::string::npos) << r.out;
     fs::remove_all(out);
 }
 

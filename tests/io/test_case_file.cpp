@@ -86,6 +86,18 @@ TEST(CaseFile, NegativeSizesAreRefused) {
               std::string::npos);
 }
 
+// run optimizes shape first by default (README, "solver"); a case may set it in (0, 1).
+TEST(CaseFile, ThetaDefaultsToShapeFirstAndStaysInsideZeroOne) {
+    EXPECT_EQ(parse_case(R"({"geometry": {"sphere": {"radius": 1}}})", "case.json").solver.theta, 0.2);
+    EXPECT_EQ(parse_case(R"({"geometry": {"sphere": {"radius": 1}}, "solver": {"theta": 0.8}})",
+                         "case.json")
+                  .solver.theta,
+              0.8);
+    const std::string e =
+        error_of(R"({"geometry": {"sphere": {"radius": 1}}, "solver": {"theta": 1.5}})");
+    EXPECT_NE(e.find("solver.theta"), std::string::npos) << e;
+}
+
 TEST(CaseFile, SurfaceIterationsAreACountThatDefaultsToTen) {
     EXPECT_EQ(parse_case(R"({"geometry": {"sphere": {"radius": 1}}})", "case.json")
                   .solver.surface_iterations,
