@@ -1,25 +1,21 @@
 #include "io/vtk_mesh.h"
 
-#include <filesystem>
-#include <fstream>
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
-#include <unordered_map>
-
 #include <vtkCellArray.h>
+#include <vtkCellData.h>
 #include <vtkCellType.h>
 #include <vtkCompositeDataIterator.h>
 #include <vtkDataSetReader.h>
 #include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
 #include <vtkIdList.h>
 #include <vtkInformation.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
-#include <vtkCellData.h>
 #include <vtkPoints.h>
 #include <vtkSmartPointer.h>
-#include <vtkFieldData.h>
 #include <vtkStringArray.h>
 #include <vtkStructuredGrid.h>
 #include <vtkUnsignedCharArray.h>
@@ -28,14 +24,18 @@
 #include <vtkXMLStructuredGridWriter.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
+#include <filesystem>
+#include <fstream>
+#include <unordered_map>
+
 #include "hexmesh/core/array_hash.h"
 #include "hexmesh/core/quality.h"
 #include "io/case_file.h"
-#include "io/vtk_support.h"
 #include "io/export_grid.h"
 #include "io/gmsh_mesh.h"
 #include "io/medit_mesh.h"
 #include "io/plot3d.h"
+#include "io/vtk_support.h"
 
 namespace hexmesh {
 namespace {
@@ -182,16 +182,18 @@ VtkGridWriter::VtkGridWriter(std::string path, size_t num_blocks)
     std::error_code ec;
     fs::create_directories(vtm.parent_path() / pieces_, ec);
     if (ec)
-        throw std::runtime_error(fmt::format("{}: cannot create the folder of its blocks ({})",
-                                             path_, ec.message()));
+        throw std::runtime_error(
+            fmt::format("{}: cannot create the folder of its blocks ({})", path_, ec.message()));
 }
 
 void VtkGridWriter::add(const BlockGrid& grid, const Block& block) {
     if (names_.size() >= num_blocks_)
-        throw std::logic_error(fmt::format("{}: more blocks than the {} announced", path_, num_blocks_));
+        throw std::logic_error(
+            fmt::format("{}: more blocks than the {} announced", path_, num_blocks_));
     // .vtm: the pieces where VTK's multiblock writer puts them, STEM/STEM_<index>.vts.
-    const std::string piece =
-        pieces_.empty() ? std::string() : fmt::format("{}/{}_{}.vts", pieces_, pieces_, names_.size());
+    const std::string piece = pieces_.empty()
+                                  ? std::string()
+                                  : fmt::format("{}/{}_{}.vts", pieces_, pieces_, names_.size());
     const std::string file =
         pieces_.empty() ? path_ : (fs::path(path_).parent_path() / piece).string();
     vtk_support::take_message();
@@ -213,11 +215,20 @@ void VtkGridWriter::finish() {
         std::string out;
         for (char ch : text) {
             switch (ch) {
-                case '&': out += "&amp;"; break;
-                case '<': out += "&lt;"; break;
-                case '>': out += "&gt;"; break;
-                case '"': out += "&quot;"; break;
-                default: out += ch;
+                case '&':
+                    out += "&amp;";
+                    break;
+                case '<':
+                    out += "&lt;";
+                    break;
+                case '>':
+                    out += "&gt;";
+                    break;
+                case '"':
+                    out += "&quot;";
+                    break;
+                default:
+                    out += ch;
             }
         }
         return out;

@@ -218,8 +218,8 @@ constexpr int lane_count = 4;
 // x86-64, for AVX2 (one 4-double register per vector instead of two SSE2 ones); hex_energy
 // and hex_energy_hessian call the second where the CPU has AVX2. The same IEEE operations run
 // in the same order (no FMA: contracting a * b + c would round differently; the project
-// builds without -march or -mfma), so both give the same bits. Only hex_sum_avx2 is built for AVX2: nothing built for it can be linked
-// into a baseline path.
+// builds without -march or -mfma), so both give the same bits. Only hex_sum_avx2 is built
+// for AVX2: nothing built for it can be linked into a baseline path.
 #define HEXMESH_LANE_INLINE __attribute__((always_inline)) inline
 
 HEXMESH_LANE_INLINE Lanes lane_sqrt(Lanes x) {
@@ -337,8 +337,8 @@ namespace {
 
 // The PSD Hessian blocks of the corners of group g (hessian_blocks with g = diag(scale)),
 // added to hess.
-HEXMESH_LANE_INLINE void corner_hessian_lanes(int g, const Lanes (&s)[9], const Lanes (&scale)[3], const LanePhi& f, double weight,
-                          HexHessian& hess) {
+HEXMESH_LANE_INLINE void corner_hessian_lanes(int g, const Lanes (&s)[9], const Lanes (&scale)[3],
+                                              const LanePhi& f, double weight, HexHessian& hess) {
     // Signed SVD S = U diag(sigma) V^T, lane by lane.
     Lanes u[3][3], v[3][3], sigma[3];
     for (int l = 0; l < lane_count; ++l) {
@@ -442,8 +442,9 @@ HEXMESH_LANE_INLINE void corner_hessian_lanes(int g, const Lanes (&s)[9], const 
 // above, the SVD per lane), for the corners 4 g .. 4 g + 3 in the lanes. The gradient and
 // the Hessian blocks are added to grad and hess.
 template <int order>
-HEXMESH_LANE_INLINE bool hex_corner_lanes(int g, const Mat38& y, const Vec3& inverse, double weight, const EnergyParams& p,
-                      double& total, Mat38* grad, HexHessian* hess) {
+HEXMESH_LANE_INLINE bool hex_corner_lanes(int g, const Mat38& y, const Vec3& inverse, double weight,
+                                          const EnergyParams& p, double& total, Mat38* grad,
+                                          HexHessian* hess) {
     // s[3 k + c]: component c of column k of S (edge k of the corner, scaled).
     Lanes s[9], scale[3];
     for (int l = 0; l < lane_count; ++l) {
@@ -501,7 +502,8 @@ namespace {
 // corners run four at a time, one per vector lane: the energy (order 0), with the gradient
 // (1), with the gradient and the PSD Hessian (2).
 template <int order>
-HEXMESH_LANE_INLINE double hex_sum(const Mat38& y, const Vec3& edges, const EnergyParams& p, Mat38* grad, HexHessian* hess) {
+HEXMESH_LANE_INLINE double hex_sum(const Mat38& y, const Vec3& edges, const EnergyParams& p,
+                                   Mat38* grad, HexHessian* hess) {
     const Vec3 inverse = edges.cwiseInverse();
     const double weight = edges.prod() / 6;
     if (order >= 1) grad->setZero();
@@ -516,8 +518,8 @@ HEXMESH_LANE_INLINE double hex_sum(const Mat38& y, const Vec3& edges, const Ener
 #if defined(__x86_64__) && defined(__GNUC__)
 template <int order>
 __attribute__((target("avx2"))) double hex_sum_avx2(const Mat38& y, const Vec3& edges,
-                                                       const EnergyParams& p, Mat38* grad,
-                                                       HexHessian* hess) {
+                                                    const EnergyParams& p, Mat38* grad,
+                                                    HexHessian* hess) {
     return hex_sum<order>(y, edges, p, grad, hess);
 }
 
@@ -544,7 +546,8 @@ double hex_sum_best(const Mat38& y, const Vec3& edges, const EnergyParams& p, Ma
 }  // namespace
 
 double hex_energy(const Mat38& y, const Vec3& edges, const EnergyParams& p, Mat38* grad) {
-    return grad ? hex_sum_best<1>(y, edges, p, grad, nullptr) : hex_sum_best<0>(y, edges, p, nullptr, nullptr);
+    return grad ? hex_sum_best<1>(y, edges, p, grad, nullptr)
+                : hex_sum_best<0>(y, edges, p, nullptr, nullptr);
 }
 
 double hex_energy_hessian(const Mat38& y, const Vec3& edges, const EnergyParams& p, Mat38& grad,
@@ -555,7 +558,8 @@ double hex_energy_hessian(const Mat38& y, const Vec3& edges, const EnergyParams&
 double hex_energy_baseline(const Mat38& y, const Vec3& edges, const EnergyParams& p, Mat38* grad,
                            HexHessian* hess) {
     if (hess) return hex_sum<2>(y, edges, p, grad, hess);
-    return grad ? hex_sum<1>(y, edges, p, grad, nullptr) : hex_sum<0>(y, edges, p, nullptr, nullptr);
+    return grad ? hex_sum<1>(y, edges, p, grad, nullptr)
+                : hex_sum<0>(y, edges, p, nullptr, nullptr);
 }
 
 TetTarget regular_tet_target(double edge) {

@@ -131,9 +131,9 @@ Id inner_nodes(const Dims& d) {
 
 BlockRefiner::BlockRefiner(const BlockGrid& coarse) : coarse_(coarse) {
     if (coarse.kinds.size() != coarse.points.size())
-        throw std::invalid_argument(
-            "refine: the grid has " + std::to_string(coarse.kinds.size()) + " vertex kinds for " +
-            std::to_string(coarse.points.size()) + " points");
+        throw std::invalid_argument("refine: the grid has " + std::to_string(coarse.kinds.size()) +
+                                    " vertex kinds for " + std::to_string(coarse.points.size()) +
+                                    " points");
     num_points_ = next_id_ = static_cast<Id>(coarse.points.size());
     for (const Block& block : coarse.blocks) {
         const Dims f = fine_dims(block.nodes);
@@ -188,8 +188,8 @@ RefinedBlock BlockRefiner::refine(size_t b, const Place& place) {
                     out.coarse[m] = true;
                     continue;
                 }
-                const bool on_face = i == 0 || i == f.ni - 1 || j == 0 || j == f.nj - 1 ||
-                                     k == 0 || k == f.nk - 1;
+                const bool on_face =
+                    i == 0 || i == f.ni - 1 || j == 0 || j == f.nj - 1 || k == 0 || k == f.nk - 1;
                 if (!on_face) {
                     out.ids[m] = next_id_++;
                     continue;

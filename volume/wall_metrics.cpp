@@ -1,5 +1,9 @@
 #include "volume/wall_metrics.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
@@ -7,9 +11,6 @@
 #include <limits>
 #include <stdexcept>
 #include <unordered_map>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
 
 #include "surface/exact_distance.h"
 #include "volume/wall_lines.h"
@@ -57,8 +58,7 @@ LineMeasures measure_line(const WallFace& f, int p, int q, const std::vector<Vec
 
 }  // namespace
 
-WallMeter::WallMeter(const ImplicitFunction& body, const WallLayers& law)
-    : body_(body), law_(law) {
+WallMeter::WallMeter(const ImplicitFunction& body, const WallLayers& law) : body_(body), law_(law) {
     w_.first_layer_target = law.layers > 0 ? law.first_height : 0;
     w_.growth_ratio_target = law.layers > 1 ? law.growth_ratio : 0;
     w_.first_layer_min = w_.growth_ratio_min = inf;
@@ -157,7 +157,8 @@ HausdorffDistance hausdorff_to_surface(const BlockGrid& grid, const TriangleSurf
     return hausdorff_to_surface(wall, surface);
 }
 
-HausdorffDistance hausdorff_to_surface(const TriangleSurface& wall, const TriangleSurface& surface) {
+HausdorffDistance hausdorff_to_surface(const TriangleSurface& wall,
+                                       const TriangleSurface& surface) {
     if (wall.triangles.empty())
         throw std::invalid_argument("hausdorff_to_surface: the grid has no wall face");
 

@@ -92,18 +92,21 @@ void add_refine_command(CLI::App& app, int& exit_code) {
             refine_s += r;
             quality_s += q;
             write_s += w;
-            std::cout << fmt::format("    block {:<12} {:>11} cells: refine {:.2f} s, quality {:.2f} s, write {:.2f} s\n",
-                                     block.name, block.cells().count(), r, q, w);
+            std::cout << fmt::format(
+                "    block {:<12} {:>11} cells: refine {:.2f} s, quality {:.2f} s, write {:.2f} "
+                "s\n",
+                block.name, block.cells().count(), r, q, w);
         });
         writer.finish();
         write_s += lap();
         const GridReport report = meter.report();
         quality_s += lap();
-        timer.done("refine",
-                   fmt::format("({} cells, {} wall nodes projected, max move {:.3g}; block by block: "
-                               "refine {:.2f} s, quality {:.2f} s, write {:.2f} s)",
-                               report.quality.cells, stats.projected, stats.max_projection,
-                               refine_s, quality_s, write_s));
+        timer.done(
+            "refine",
+            fmt::format("({} cells, {} wall nodes projected, max move {:.3g}; block by block: "
+                        "refine {:.2f} s, quality {:.2f} s, write {:.2f} s)",
+                        report.quality.cells, stats.projected, stats.max_projection, refine_s,
+                        quality_s, write_s));
         std::cout << "\n" << format_quality_table(report) << "\n";
         if (report.quality.inverted_cells > 0)
             throw std::runtime_error(

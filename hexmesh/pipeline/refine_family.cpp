@@ -118,7 +118,8 @@ void keep_no_worse_than(BlockGrid& grid, const std::vector<std::array<Id, 8>>& c
 // nodes other blocks share (they keep the position their first block gave them, so blocks
 // stay conforming whatever order they are finished in), then keep_no_worse_than. Returns
 // how many nodes were free.
-Id polish_block(RefinedBlock& piece, const ImplicitFunction& body, const RefinementOptions& options) {
+Id polish_block(RefinedBlock& piece, const ImplicitFunction& body,
+                const RefinementOptions& options) {
     BlockGrid& grid = piece.grid;
     const Id count = static_cast<Id>(grid.points.size());
     std::vector<bool> unmoved(count), held(count, true);
@@ -196,8 +197,9 @@ RefinementResult refine_on_body(const BlockGrid& coarse, const ImplicitFunction&
     BlockGrid& grid = result.grid;
     grid.points = coarse.points;
     grid.kinds = coarse.kinds;
-    const RefinementStats stats = refine_blocks(
-        coarse, body, options, [&](RefinedBlock& piece) { add_refined_block(grid, std::move(piece)); });
+    const RefinementStats stats = refine_blocks(coarse, body, options, [&](RefinedBlock& piece) {
+        add_refined_block(grid, std::move(piece));
+    });
     result.projected = stats.projected;
     result.max_projection = stats.max_projection;
     return result;

@@ -44,12 +44,12 @@ struct RefinementStats {
 using BlockSink = std::function<void(RefinedBlock& block)>;
 
 // One level finer than `coarse`, one block at a time, so that memory holds the coarse grid,
-// one fine block and the new nodes on block faces (see BlockRefiner), not the fine grid. Each block: BlockRefiner splits it, its new slip
-// nodes go onto u = 0 of `body` (project_to_surface) and its new feature_edge nodes onto
-// their crease, as they are first reached (a node shared by blocks is placed once); then
-// `sweeps` steps of the block-diagonal solver (slip on u = 0) over the new nodes of the
-// cells that touch a new wall node, each cell's target the box of its own edge lengths
-// after interpolation (as in optimize_grid). The interpolated interior needs no polish and
+// one fine block and the new nodes on block faces (see BlockRefiner), not the fine grid. Each
+// block: BlockRefiner splits it, its new slip nodes go onto u = 0 of `body` (project_to_surface)
+// and its new feature_edge nodes onto their crease, as they are first reached (a node shared by
+// blocks is placed once); then `sweeps` steps of the block-diagonal solver (slip on u = 0) over the
+// new nodes of the cells that touch a new wall node, each cell's target the box of its own edge
+// lengths after interpolation (as in optimize_grid). The interpolated interior needs no polish and
 // is left as it is; so are the new nodes on block interfaces, which every block holding
 // them takes as the first one placed them (the blocks stay conforming, and each is
 // finished alone). Where the polish leaves a cell below the worst scaled Jacobian of the
