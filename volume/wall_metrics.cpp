@@ -13,6 +13,7 @@
 #include <unordered_map>
 
 #include "surface/exact_distance.h"
+#include "surface/implicit_features.h"
 #include "volume/wall_lines.h"
 
 namespace hexmesh {
@@ -23,8 +24,12 @@ constexpr double inf = std::numeric_limits<double>::infinity();
 
 // What one wall-normal line contributes.
 struct LineMeasures {
-    double first_layer = 0;  // (x1 - x0) . n
-    double angle_deg = 0;    // between x1 - x0 and n
+    Vec3 first_edge = Vec3::Zero();  // x1 - x0
+    // The unit wall normals at x0 (into the grid): n, and at a crease or corner node the
+    // normals of the other smooth pieces meeting there (up to 3 in all).
+    std::array<Vec3, 3> normals;
+    int normal_count = 0;
+    double angle_deg = 0;  // between x1 - x0 and n
     Id ratios = 0, ratios_within = 0;
     double ratio_min = inf, ratio_max = -inf, ratio_sum = 0;
 };
@@ -39,7 +44,19 @@ LineMeasures measure_line(const WallFace& f, int p, int q, const std::vector<Vec
     const double g_norm = g.norm();
     const Vec3 n =
         g_norm > 0 && std::isfinite(g_norm) ? Vec3(side * g / g_norm) : Vec3(edge.normalized());
-    m.first_layer = edge.dot(n);
+    m.first_edge = edge;
+    m.normals[m.normal_count++] = n;
+    std::vector<ImplicitFunction::Piece> pieces;
+    body.active_pieces(x0, 1e-3 * edge.norm(), pieces);
+    const double same = std::cos(same_normal_degrees * pi / 180);
+    for (const auto& piece : pieces) {
+        const double norm = piece.gradient.norm();
+        if (m.normal_count == int(m.normals.size()) || !(norm > 0) || !std::isfinite(norm)) continue;
+        const Vec3 other = side * piece.gradient / norm;
+        if (std::none_of(m.normals.begin(), m.normals.begin() + m.normal_count,
+                         [&](const Vec3& known) { return known.dot(other) > same; }))
+            m.normals[m.normal_count++] = other;
+    }
     m.angle_deg = std::atan2(edge.cross(n).norm(), edge.dot(n)) * 180 / pi;
 
     double spacing = edge.norm();
@@ -54,6 +71,27 @@ LineMeasures measure_line(const WallFace& f, int p, int q, const std::vector<Vec
         spacing = next;
     }
     return m;
+}
+
+// The first-layer thickness of the wall cell (p, q) of `f`: the mean over its 4 wall nodes of
+// (x1 - x0) . n, n the node's wall normal; at a crease or corner node, the normal of the
+// piece the cell lies on: the one nearest the normal of the cell's wall face (the cross
+// product of its diagonals). The line there leaves along the bisector of the pieces, at the
+// law's height above each of them.
+double cell_thickness(const WallFace& f, int p, int q, const std::vector<Vec3>& points,
+                      const std::vector<LineMeasures>& lines) {
+    const Vec3 a = points[f.node(p, q, 0)], b = points[f.node(p + 1, q, 0)],
+               c = points[f.node(p + 1, q + 1, 0)], d = points[f.node(p, q + 1, 0)];
+    const Vec3 face = (c - a).cross(d - b);  // either orientation: nearest up to sign
+    double sum = 0;
+    for (const auto& [s, t] : {std::pair{p, q}, {p + 1, q}, {p, q + 1}, {p + 1, q + 1}}) {
+        const LineMeasures& m = lines[s + Id(f.np) * t];
+        const Vec3* n = &m.normals[0];
+        for (int i = 1; i < m.normal_count; ++i)
+            if (std::abs(m.normals[i].dot(face)) > std::abs(n->dot(face))) n = &m.normals[i];
+        sum += m.first_edge.dot(*n);
+    }
+    return 0.25 * sum;
 }
 
 }  // namespace
@@ -92,8 +130,7 @@ void WallMeter::add(const BlockGrid& grid, const Block& block) {
         }
         for (int q = 0; q + 1 < f.nq; ++q)
             for (int p = 0; p + 1 < f.np; ++p) {
-                auto at = [&](int a, int b) { return lines[a + Id(f.np) * b].first_layer; };
-                const double t = 0.25 * (at(p, q) + at(p + 1, q) + at(p, q + 1) + at(p + 1, q + 1));
+                const double t = cell_thickness(f, p, q, grid.points, lines);
                 ++w.wall_cells;
                 thickness_sum_ += t;
                 w.first_layer_min = std::min(w.first_layer_min, t);

@@ -11,6 +11,7 @@
 #include "volume/o_grid.h"
 #include "volume/o_h_grid.h"
 #include "volume/single_block_grid.h"
+#include "volume/wall_extrusion.h"
 #include "volume/wall_metrics.h"
 
 using namespace hexmesh;
@@ -185,6 +186,23 @@ TEST(WallMetrics, MisScaledFirstLayerIsNeverWithinTenPercent) {
     EXPECT_NEAR(w.growth_ratio_min, 0.010 / 0.012, 1e-6);
     EXPECT_NEAR(w.growth_ratio_max, 1.44, 1e-6);
     EXPECT_NEAR(w.growth_ratio_within_5_percent, 1.0 / 3.0, 1e-12);
+}
+
+TEST(WallMetrics, LinesLaidAlongBisectorsAtABoxsCreasesHaveTheLawsHeight) {
+    // The O-H grid of a box: its patch edges run along the box's edges, so every wall node on
+    // them sits on a crease (or corner), and the laid lines there leave along the bisector,
+    // sqrt(2) (sqrt(3)) times the law's height long, at that height above each face.
+    const Box box(Vec3(0.1, -0.2, 0.3), Vec3(1.0, 0.8, 0.6));
+    BlockGrid grid = make_o_h_grid(box, sphere_options());
+    const std::vector<bool> laid = extrude_wall_layers(grid, box, law, 0);
+    ASSERT_EQ(Id(std::count(laid.begin(), laid.end(), true)), 6 * 12 * 12 * 5 + 2 * 5);
+    const WallQuality w = measure_wall(grid, box, law);
+    EXPECT_NEAR(w.first_layer_min, 0.01, 1e-9);
+    EXPECT_NEAR(w.first_layer_max, 0.01, 1e-9);
+    EXPECT_EQ(w.first_layer_within_10_percent, 1.0);
+    // The lines leave the edges at 45 degrees and the corners at acos(1 / sqrt(3)) from the
+    // normal of grad u, which belongs to one face there.
+    EXPECT_NEAR(w.orthogonality_max_deg, std::acos(1 / std::sqrt(3.0)) * 180 / pi, 1e-6);
 }
 
 TEST(WallMetrics, EveryFaceDirectionInsideAndOutside) {
