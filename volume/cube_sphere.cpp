@@ -34,4 +34,15 @@ Vec3 cube_sphere_ray(const LatticePoint& p, int n, const Vec3& half) {
     return w;
 }
 
+Vec3 cube_sphere_ray(const LatticePoint& p, int n, const CubeCorners& corners) {
+    const Vec3 t = cube_sphere_ray(p, n, Vec3::Ones());
+    Vec3 w = Vec3::Zero();
+    for (int c = 0; c < 8; ++c) {
+        double weight = 1;
+        for (int d = 0; d < 3; ++d) weight *= (c >> d & 1) ? (1 + t[d]) / 2 : (1 - t[d]) / 2;
+        w += weight * corners[c];
+    }
+    return w;
+}
+
 }  // namespace hexmesh

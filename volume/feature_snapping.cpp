@@ -2,6 +2,9 @@
 
 #include <limits>
 #include <map>
+#include <optional>
+#include <set>
+#include <tbb/parallel_for.h>
 
 #include "hexmesh/core/reference_hex.h"
 #include "surface/implicit_features.h"
@@ -25,7 +28,36 @@ std::vector<double> shortest_wall_edge(const BlockGrid& grid) {
     return shortest;
 }
 
+// A corner's key: its position rounded to 1e-3 h, so one corner reached from several nodes
+// counts once.
+std::array<long long, 3> corner_key(const Vec3& c, double h) {
+    return {std::llround(c.x() / (1e-3 * h)), std::llround(c.y() / (1e-3 * h)),
+            std::llround(c.z() / (1e-3 * h))};
+}
+
+// The corner snap_to_corner finds from x, if it is one (within 1e-6 h) and within reach.
+std::optional<Vec3> corner_within(const ImplicitFunction& body, const Vec3& x, double h,
+                                  double reach) {
+    if (classify_surface_point(body, x, reach) != FeatureKind::corner) return std::nullopt;
+    const Vec3 c = snap_to_corner(body, x, h);
+    if (classify_surface_point(body, c, 1e-6 * h) != FeatureKind::corner) return std::nullopt;
+    if ((c - x).norm() > reach) return std::nullopt;
+    return c;
+}
+
 }  // namespace
+
+std::vector<Vec3> body_corners_near(const ImplicitFunction& body, const std::vector<Vec3>& points,
+                                    double reach) {
+    std::vector<std::optional<Vec3>> found(points.size());
+    tbb::parallel_for(size_t(0), points.size(),
+                      [&](size_t v) { found[v] = corner_within(body, points[v], reach, reach); });
+    std::set<std::array<long long, 3>> seen;
+    std::vector<Vec3> corners;
+    for (const std::optional<Vec3>& c : found)
+        if (c && seen.insert(corner_key(*c, reach)).second) corners.push_back(*c);
+    return corners;
+}
 
 FeatureSnapping snap_to_features(BlockGrid& grid, const ImplicitFunction& body, double fraction) {
     const std::vector<double> shortest = shortest_wall_edge(grid);
@@ -42,19 +74,13 @@ FeatureSnapping snap_to_features(BlockGrid& grid, const ImplicitFunction& body, 
         if (grid.kinds[v] != VertexKind::slip) continue;
         const double h = shortest[v], reach = fraction * h;
         const Vec3& x = grid.points[v];
-        const FeatureKind kind = classify_surface_point(body, x, reach);
-        if (kind == FeatureKind::smooth) continue;
+        if (classify_surface_point(body, x, reach) == FeatureKind::smooth) continue;
         crease_candidates.push_back(Id(v));
-        if (kind != FeatureKind::corner) continue;
-        const Vec3 c = snap_to_corner(body, x, h);
-        if (classify_surface_point(body, c, 1e-6 * h) != FeatureKind::corner) continue;
-        const double d = (c - x).norm();
-        if (d > reach) continue;
-        const std::array<long long, 3> key = {std::llround(c.x() / (1e-3 * h)),
-                                              std::llround(c.y() / (1e-3 * h)),
-                                              std::llround(c.z() / (1e-3 * h))};
-        auto [it, added] = corners.try_emplace(key, Claim{Id(v), d, c});
-        if (!added && d < it->second.distance) it->second = {Id(v), d, c};
+        const std::optional<Vec3> c = corner_within(body, x, h, reach);
+        if (!c) continue;
+        const double d = (*c - x).norm();
+        auto [it, added] = corners.try_emplace(corner_key(*c, h), Claim{Id(v), d, *c});
+        if (!added && d < it->second.distance) it->second = {Id(v), d, *c};
     }
     std::vector<bool> is_corner(grid.points.size(), false);
     for (const auto& [key, claim] : corners) {

@@ -20,4 +20,10 @@ struct FeatureSnapping {
 FeatureSnapping snap_to_features(BlockGrid& grid, const ImplicitFunction& body,
                                  double fraction = 0.35);
 
+// The corners of `body` (three or more pieces with normals spanning 3D, see
+// surface/implicit_features.h) within `reach` of one of `points`, each listed once, in the
+// order first found. Empty for a smooth body.
+std::vector<Vec3> body_corners_near(const ImplicitFunction& body, const std::vector<Vec3>& points,
+                                    double reach);
+
 }  // namespace hexmesh

@@ -1,12 +1,14 @@
 #include "volume/o_h_grid.h"
 
 #include <cmath>
+#include <optional>
 #include <fmt/format.h>
 #include <stdexcept>
 #include <string>
 #include <tbb/parallel_for.h>
 
 #include "volume/cube_sphere.h"
+#include "volume/feature_snapping.h"
 #include "volume/surface_placement.h"
 #include "volume/tfi.h"
 
@@ -18,6 +20,25 @@ void check_options(const OHGridOptions& o) {
     if (o.wall_cells < 1) throw std::invalid_argument("wall_cells must be at least 1");
     if (!(o.core_size > 0 && o.core_size < 1))
         throw std::invalid_argument("core_size must be in (0, 1)");
+}
+
+// The body's corners as the cube's, when `wall` (the wall nodes, surface lattice order) comes
+// near exactly one sharp corner in each octant around the centre; nullopt otherwise.
+std::optional<CubeCorners> body_corners_by_octant(const ImplicitFunction& body, const Vec3& centre,
+                                                  const std::vector<Vec3>& wall, double h) {
+    const std::vector<Vec3> found = body_corners_near(body, wall, h);
+    if (found.size() != 8) return std::nullopt;
+    CubeCorners corners;
+    std::array<bool, 8> taken{};
+    for (const Vec3& c : found) {
+        const Vec3 r = c - centre;
+        if ((r.cwiseAbs().array() < 1e-3 * h).any()) return std::nullopt;  // on an axis plane
+        const int octant = (r.x() > 0) + 2 * (r.y() > 0) + 4 * (r.z() > 0);
+        if (taken[octant]) return std::nullopt;
+        taken[octant] = true;
+        corners[octant] = r;
+    }
+    return corners;
 }
 
 }  // namespace
@@ -44,12 +65,31 @@ BlockGrid make_o_h_grid(const ImplicitFunction& body, const OHGridOptions& optio
         const Id core = lattice.flat(abc[0], abc[1], abc[2]);
         return layer == 0 ? core : lattice.count() + (layer - 1) * ns + surface.number[core];
     };
-    auto ray = [&](const LatticePoint& abc) { return cube_sphere_ray(abc, n, half); };
+    if (options.wall_from && Id(options.wall_from->size()) != lattice.count() + nk * ns)
+        throw std::invalid_argument("wall_from: the points of a grid made with other options");
+
+    // The wall nodes: given, or the radial projections of the rays through the bounds' box,
+    // then (box-like bodies) through the body's corners.
+    std::optional<CubeCorners> corners;
+    auto ray = [&](const LatticePoint& abc) {
+        return corners ? cube_sphere_ray(abc, n, *corners) : cube_sphere_ray(abc, n, half);
+    };
+    std::vector<Vec3> wall(ns);
+    const auto place_wall = [&] {
+        tbb::parallel_for(Id(0), ns, [&](Id s) {
+            const LatticePoint& abc = surface.points[s];
+            wall[s] = options.wall_from ? (*options.wall_from)[node_id(abc, nk)]
+                                        : place_on_surface(body, centre, ray(abc), h);
+        });
+    };
+    place_wall();
+    if (options.patch_corners_on_body_corners) {
+        corners = body_corners_by_octant(body, centre, wall, h);
+        if (corners && !options.wall_from) place_wall();
+    }
 
     BlockGrid grid;
     grid.points.assign(lattice.count() + nk * ns, Vec3::Zero());
-    if (options.wall_from && options.wall_from->size() != grid.points.size())
-        throw std::invalid_argument("wall_from: the points of a grid made with other options");
     grid.kinds.assign(grid.points.size(), VertexKind::interior);
     for (const LatticePoint& abc : surface.points)
         grid.points[node_id(abc, 0)] = centre + options.core_size * ray(abc);
@@ -57,17 +97,16 @@ BlockGrid make_o_h_grid(const ImplicitFunction& body, const OHGridOptions& optio
     tbb::parallel_for(Id(0), ns, [&](Id s) {
         const LatticePoint& abc = surface.points[s];
         const Vec3 dir = ray(abc);
-        const Vec3 wall = options.wall_from ? (*options.wall_from)[node_id(abc, nk)]
-                                            : place_on_surface(body, centre, dir, h);
+        const Vec3 wall_node = wall[s];
         const Vec3 core = grid.points[node_id(abc, 0)];
-        const double length = (wall - core).norm();
-        if ((wall - core).dot(dir) <= 0 && options.wall_from) {
+        const double length = (wall_node - core).norm();
+        if ((wall_node - core).dot(dir) <= 0 && options.wall_from) {
             throw std::invalid_argument(fmt::format(
                 "the given wall node at ({:.4g}, {:.4g}, {:.4g}) lies behind its core node: its "
                 "line would turn back",
-                wall.x(), wall.y(), wall.z()));
+                wall_node.x(), wall_node.y(), wall_node.z()));
         }
-        if ((wall - core).dot(dir) <= 0) {
+        if ((wall_node - core).dot(dir) <= 0) {
             throw std::invalid_argument(fmt::format(
                 "core_size {} puts the core box outside the body near ({:.4g}, {:.4g}, "
                 "{:.4g}); use a smaller core_size",
@@ -75,7 +114,8 @@ BlockGrid make_o_h_grid(const ImplicitFunction& body, const OHGridOptions& optio
         }
         const std::vector<double> d = wall_distances(length, nk, options.wall_layers);
         for (int layer = 1; layer <= nk; ++layer)
-            grid.points[node_id(abc, layer)] = wall + (core - wall) * (d[nk - layer] / length);
+            grid.points[node_id(abc, layer)] =
+                wall_node + (core - wall_node) * (d[nk - layer] / length);
         grid.kinds[node_id(abc, nk)] = VertexKind::slip;
     });
 

@@ -19,13 +19,18 @@ struct OHGridOptions {
     // projections, and the lines built from them. nullptr: radial projection.
     const std::vector<Vec3>* wall_from = nullptr;
     std::optional<Vec3> centre;  // default: centre of the body's bounds
+    // A box-like body, with exactly one sharp corner in each octant around the centre (found
+    // near the wall nodes), gets the patch corners there: the rays span the hexahedron of
+    // its corners (cube_sphere_ray with CubeCorners) instead of the bounds' box, so the
+    // patch edges can follow its edges. false: always the bounds' box.
+    bool patch_corners_on_body_corners = true;
 };
 
 // Grid of the body's interior. Blocks: "core" (n^3 cells) and "wall_xmin", "wall_xmax", ...,
 // "wall_zmax" (n x n x wall_cells cells, k = 0 on the core, k = wall_cells on the wall).
 // Every block is right-handed in (i,j,k); the wall blocks' kmax faces form patch "wall". Wall nodes are the cube-sphere (equiangular)
-// directions from the centre, scaled by the body's half extents, projected radially onto
-// u = 0 (kind slip); the wall-normal lines are straight segments from the core box to the
+// directions from the centre, scaled by the body's half extents (or spanning its corners,
+// see patch_corners_on_body_corners), projected radially onto u = 0 (kind slip); the wall-normal lines are straight segments from the core box to the
 // wall carrying the WallLayers distribution; the core interior is filled by TFI.
 // Throws std::invalid_argument on bad options or a body that is not star-shaped.
 BlockGrid make_o_h_grid(const ImplicitFunction& body, const OHGridOptions& options);

@@ -1,13 +1,18 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
 #include "grid_checks.h"
 #include "hexmesh/core/quality.h"
 #include "surface/analytic.h"
+#include "surface/csg.h"
+#include "volume/cube_sphere.h"
 #include "volume/o_h_grid.h"
 
 using namespace hexmesh;
@@ -128,6 +133,78 @@ TEST(OHGrid, EllipsoidGridIsValid) {
         if (grid.kinds[v] == VertexKind::slip) {
             EXPECT_LT(std::abs(body.value(grid.points[v])), 1e-9);
         }
+}
+
+TEST(OHGrid, RaysThroughTheCornersOfABoxAreTheStretchedCubeSpheres) {
+    const Vec3 half(1.0, 0.8, 0.6);
+    CubeCorners corners;
+    for (int c = 0; c < 8; ++c)
+        for (int d = 0; d < 3; ++d) corners[c][d] = (c >> d & 1) ? half[d] : -half[d];
+    const int n = 7;
+    for (const LatticePoint& p : make_cube_surface_lattice(n).points)
+        EXPECT_LT((cube_sphere_ray(p, n, corners) - cube_sphere_ray(p, n, half)).norm(), 1e-14);
+}
+
+namespace {
+
+// The positions of the 8 patch corners of an O-H grid (node (0 or n, 0 or n) of each wall
+// block's wall face), each once.
+std::vector<Vec3> patch_corners(const BlockGrid& grid) {
+    std::vector<Id> ids;
+    for (const Block& b : grid.blocks) {
+        if (b.face_patch[kmax] != "wall") continue;
+        const int n = b.nodes.ni - 1, k = b.nodes.nk - 1;
+        for (int j : {0, n})
+            for (int i : {0, n}) ids.push_back(b.node(i, j, k));
+    }
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    std::vector<Vec3> points;
+    for (Id v : ids) points.push_back(grid.points[v]);
+    return points;
+}
+
+// Distance from p to the nearest of `points`.
+double nearest(const std::vector<Vec3>& points, const Vec3& p) {
+    double d = std::numeric_limits<double>::infinity();
+    for (const Vec3& q : points) d = std::min(d, (q - p).norm());
+    return d;
+}
+
+}  // namespace
+
+TEST(OHGrid, PatchCornersGoToTheCornersOfABoxLikeBody) {
+    // The box of cases/box_cylinder with its cylinder on top: the bounds' box reaches up to
+    // the cylinder's top, so its diagonals miss the body's upper corners; the body's own
+    // corners (one per octant around the bounds' centre) take the patch corners.
+    const Body body = std::make_shared<Csg>(
+        CsgOp::Union,
+        std::vector<Body>{std::make_shared<Box>(Vec3::Zero(), Vec3(1.0, 1.0, 0.6)),
+                          std::make_shared<Cylinder>(Vec3(0, 0, 0.5), 0.6, 0.7)});
+    OHGridOptions o = sphere_options();
+    o.core_size = 0.3;
+    const BlockGrid grid = make_o_h_grid(*body, o);
+    const std::vector<Vec3> at = patch_corners(grid);
+    ASSERT_EQ(at.size(), 8u);
+    for (int c = 0; c < 8; ++c) {
+        const Vec3 corner((c & 1) ? 1.0 : -1.0, (c & 2) ? 1.0 : -1.0, (c & 4) ? 0.6 : -0.6);
+        EXPECT_LT(nearest(at, corner), 1e-9) << corner.transpose();
+    }
+    for (size_t v = 0; v < grid.points.size(); ++v)
+        if (grid.kinds[v] == VertexKind::slip) {
+            EXPECT_LT(std::abs(body->value(grid.points[v])), 1e-9);
+        }
+
+    o.patch_corners_on_body_corners = false;  // the upper patch corners land on the cylinder
+    const std::vector<Vec3> off = patch_corners(make_o_h_grid(*body, o));
+    EXPECT_GT(nearest(off, Vec3(1.0, 1.0, 0.6)), 0.1);
+
+    // A smooth body, or one with other corners than one per octant, keeps the bounds' box.
+    const Sphere sphere(Vec3(0.1, -0.2, 0.3), 1.0);
+    o.patch_corners_on_body_corners = true;
+    const BlockGrid round = make_o_h_grid(sphere, o);
+    o.patch_corners_on_body_corners = false;
+    EXPECT_EQ(round.points, make_o_h_grid(sphere, o).points);
 }
 
 TEST(OHGrid, RefusesACentreOutsideTheBody) {
