@@ -335,13 +335,110 @@ double tet_energy_hessian(const Mat34& y, const TetTarget& t, const EnergyParams
 
 namespace {
 
-// The PSD Hessian blocks of the corners of group g (hessian_blocks with g = diag(scale)),
-// added to hess.
-HEXMESH_LANE_INLINE void corner_hessian_lanes(int g, const Lanes (&s)[9], const Lanes (&scale)[3],
-                                              const LanePhi& f, double weight, HexHessian& hess) {
-    // Signed SVD S = U diag(sigma) V^T, lane by lane.
-    Lanes u[3][3], v[3][3], sigma[3];
+// Cyclic Jacobi rotations on the symmetric 3 x 3 matrix a (upper triangle used) in every
+// lane, until every lane's off-diagonal part is below 1e-17 of the largest |a_ii| (at most
+// 12 sweeps): a's diagonal becomes its eigenvalues and v (set here) the eigenvectors, as
+// columns. No trigonometry, no branch per lane. The caller scales a so that its largest
+// |a_ii| is about 1 (squares must not overflow).
+HEXMESH_LANE_INLINE void jacobi_lanes(Lanes (&a)[3][3], Lanes (&v)[3][3]) {
+    const auto abs = [](Lanes x) { return x < 0 ? -x : x; };
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) v[i][j] = a[0][0] * 0 + (i == j ? 1 : 0);
+    for (int sweep = 0; sweep < 12; ++sweep) {
+        Lanes size = abs(a[0][0]) > abs(a[1][1]) ? abs(a[0][0]) : abs(a[1][1]);
+        size = size > abs(a[2][2]) ? size : abs(a[2][2]);
+        const Lanes off = abs(a[0][1]) + abs(a[0][2]) + abs(a[1][2]);
+        if (!any_lane(off > 1e-17 * size)) break;
+        for (const auto& [p, q] : {std::pair{0, 1}, {0, 2}, {1, 2}}) {
+            const int r = 3 - p - q;
+            const Lanes apq = a[p][q], d = a[q][q] - a[p][p];
+            // t = tan of the angle that zeroes a_pq: 2 a_pq sgn(d) / (|d| + sqrt(d^2 + 4 a_pq^2)).
+            const Lanes denominator = abs(d) + lane_sqrt(d * d + 4 * apq * apq);
+            const Lanes t = denominator > 0 ? 2 * apq / (d < 0 ? -denominator : denominator) : d * 0;
+            const Lanes c = 1 / lane_sqrt(1 + t * t), sn = t * c;
+            a[p][p] -= t * apq;
+            a[q][q] += t * apq;
+            a[p][q] = d * 0;
+            Lanes& arp = p < r ? a[p][r] : a[r][p];
+            Lanes& arq = q < r ? a[q][r] : a[r][q];
+            const Lanes rp = arp, rq = arq;
+            arp = c * rp - sn * rq;
+            arq = sn * rp + c * rq;
+            for (int k = 0; k < 3; ++k) {
+                const Lanes vp = v[k][p], vq = v[k][q];
+                v[k][p] = c * vp - sn * vq;
+                v[k][q] = sn * vp + c * vq;
+            }
+        }
+    }
+}
+
+// signed_svd in every lane, the eigensystem of S^T S by jacobi_lanes: V its eigenvectors
+// sorted by decreasing eigenvalue and turned into a rotation; U by Gram-Schmidt on S V as in
+// signed_svd; sigma the diagonal of U^T S V. s[3 k + c] = S(c, k). Lanes whose S^T S is zero,
+// not finite or out of range (largest diagonal entry outside [1e-280, 1e280]) take the scalar
+// signed_svd.
+HEXMESH_LANE_INLINE void signed_svd_lanes(const Lanes (&s)[9], Lanes (&u)[3][3], Lanes (&sigma)[3],
+                                          Lanes (&v)[3][3]) {
+    // A = S^T S, scaled by its largest diagonal entry (the eigenvectors do not change).
+    Lanes a[3][3];
+    for (int i = 0; i < 3; ++i)
+        for (int j = i; j < 3; ++j)
+            a[i][j] = s[3 * i] * s[3 * j] + s[3 * i + 1] * s[3 * j + 1] + s[3 * i + 2] * s[3 * j + 2];
+    Lanes largest = a[0][0] > a[1][1] ? a[0][0] : a[1][1];
+    largest = largest > a[2][2] ? largest : a[2][2];
+    const LaneInts usable = (largest >= 1e-280) & (largest <= 1e280);
+    const Lanes scale = usable ? 1 / largest : largest * 0 + 1;
+    for (int i = 0; i < 3; ++i)
+        for (int j = i; j < 3; ++j) a[i][j] *= scale;
+    jacobi_lanes(a, v);
+    // Eigenvalues largest first: compare-and-swap (0, 1), (0, 2), (1, 2), columns of V with them.
+    Lanes lambda[3] = {a[0][0], a[1][1], a[2][2]};
+    for (const auto& [i, j] : {std::pair{0, 1}, {0, 2}, {1, 2}}) {
+        const LaneInts swap = lambda[i] < lambda[j];
+        const Lanes li = lambda[i];
+        lambda[i] = swap ? lambda[j] : li;
+        lambda[j] = swap ? li : lambda[j];
+        for (int k = 0; k < 3; ++k) {
+            const Lanes vi = v[k][i];
+            v[k][i] = swap ? v[k][j] : vi;
+            v[k][j] = swap ? vi : v[k][j];
+        }
+    }
+    const Lanes det_v = v[0][0] * (v[1][1] * v[2][2] - v[1][2] * v[2][1]) -
+                        v[0][1] * (v[1][0] * v[2][2] - v[1][2] * v[2][0]) +
+                        v[0][2] * (v[1][0] * v[2][1] - v[1][1] * v[2][0]);
+    for (int k = 0; k < 3; ++k) v[k][2] = det_v < 0 ? -v[k][2] : v[k][2];
+    // S V, then U: u0 = unit(sv0), u1 = unit(sv1 - (u0 . sv1) u0), u2 = u0 x u1.
+    Lanes sv[3][3];  // sv[k][r] = (S V)(r, k)
+    for (int k = 0; k < 3; ++k)
+        for (int r = 0; r < 3; ++r) sv[k][r] = s[r] * v[0][k] + s[3 + r] * v[1][k] + s[6 + r] * v[2][k];
+    const Lanes zero = largest * 0, one = zero + 1;
+    const Lanes n0 = lane_sqrt(sv[0][0] * sv[0][0] + sv[0][1] * sv[0][1] + sv[0][2] * sv[0][2]);
+    const LaneInts has0 = n0 > 1e-300;
+    Lanes u0[3];
+    for (int r = 0; r < 3; ++r) u0[r] = has0 ? sv[0][r] / n0 : (r == 0 ? one : zero);
+    // A unit vector orthogonal to u0 (Eigen's unitOrthogonal: in the xy-plane unless u0 is
+    // nearly along z).
+    const LaneInts along_z = (u0[0] * u0[0] + u0[1] * u0[1]) <= 1e-24 * (u0[2] * u0[2]);
+    const Lanes nxy = lane_sqrt(u0[0] * u0[0] + u0[1] * u0[1]), nyz = lane_sqrt(u0[1] * u0[1] + u0[2] * u0[2]);
+    const Lanes normal[3] = {along_z ? zero : -u0[1] / nxy, along_z ? -u0[2] / nyz : u0[0] / nxy,
+                             along_z ? u0[1] / nyz : zero};
+    const Lanes dot01 = u0[0] * sv[1][0] + u0[1] * sv[1][1] + u0[2] * sv[1][2];
+    Lanes w1[3];
+    for (int r = 0; r < 3; ++r) w1[r] = sv[1][r] - dot01 * u0[r];
+    const Lanes n1 = lane_sqrt(w1[0] * w1[0] + w1[1] * w1[1] + w1[2] * w1[2]);
+    const LaneInts has1 = n1 > 1e-300;
+    Lanes u1[3];
+    for (int r = 0; r < 3; ++r) u1[r] = has1 ? w1[r] / n1 : normal[r];
+    const Lanes u2[3] = {u0[1] * u1[2] - u0[2] * u1[1], u0[2] * u1[0] - u0[0] * u1[2],
+                         u0[0] * u1[1] - u0[1] * u1[0]};
+    for (int r = 0; r < 3; ++r) u[r][0] = u0[r], u[r][1] = u1[r], u[r][2] = u2[r];
+    for (int k = 0; k < 3; ++k)
+        sigma[k] = u[0][k] * sv[k][0] + u[1][k] * sv[k][1] + u[2][k] * sv[k][2];
+    if (!any_lane(~usable)) return;
     for (int l = 0; l < lane_count; ++l) {
+        if (usable[l]) continue;
         Mat3 sl, ul, vl;
         Vec3 sigma_l;
         for (int k = 0; k < 3; ++k)
@@ -352,6 +449,15 @@ HEXMESH_LANE_INLINE void corner_hessian_lanes(int g, const Lanes (&s)[9], const 
             for (int c = 0; c < 3; ++c) u[r][c][l] = ul(r, c), v[r][c][l] = vl(r, c);
         }
     }
+}
+
+// The PSD Hessian blocks of the corners of group g (hessian_blocks with g = diag(scale)),
+// added to hess.
+HEXMESH_LANE_INLINE void corner_hessian_lanes(int g, const Lanes (&s)[9], const Lanes (&scale)[3],
+                                              const LanePhi& f, double weight, HexHessian& hess) {
+    // Signed SVD S = U diag(sigma) V^T.
+    Lanes u[3][3], v[3][3], sigma[3];
+    signed_svd_lanes(s, u, sigma, v);
     // The scalings' 3 x 3 matrix `a`, weighted, clamped where it is not positive definite.
     const Lanes d_i[3] = {sigma[1] * sigma[2], sigma[0] * sigma[2], sigma[0] * sigma[1]};
     Lanes a[3][3];
@@ -366,17 +472,38 @@ HEXMESH_LANE_INLINE void corner_hessian_lanes(int g, const Lanes (&s)[9], const 
     Lanes scaling[3][3];
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) scaling[i][j] = weight * a[i][j];
-    for (int l = 0; l < lane_count; ++l) {
-        if (definite[l]) continue;
-        Mat3 al;
+    if (any_lane(~definite)) {
+        // weight a+ = V diag(weight max(lambda, 0)) V^T, a scaled to about 1 for the rotations.
+        const auto abs = [](Lanes x) { return x < 0 ? -x : x; };
+        Lanes size = abs(a[0][0]) > abs(a[1][1]) ? abs(a[0][0]) : abs(a[1][1]);
+        size = size > abs(a[2][2]) ? size : abs(a[2][2]);
+        const LaneInts usable = (size >= 1e-280) & (size <= 1e280);
+        const Lanes scale = usable ? 1 / size : size * 0 + 1;
+        Lanes e[3][3], w[3][3];
         for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j) al(i, j) = a[i][j][l];
-        Eigen::SelfAdjointEigenSolver<Mat3> eigen;
-        eigen.computeDirect(al);
-        const Mat3 clamped = eigen.eigenvectors() * (weight * eigen.eigenvalues().cwiseMax(0.0)).asDiagonal() *
-                             eigen.eigenvectors().transpose();
+            for (int j = i; j < 3; ++j) e[i][j] = a[i][j] * scale;
+        jacobi_lanes(e, w);
+        Lanes kept[3];
+        for (int k = 0; k < 3; ++k) kept[k] = e[k][k] > 0 ? weight * (e[k][k] / scale) : 0 * e[k][k];
         for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j) scaling[i][j][l] = clamped(i, j);
+            for (int j = 0; j < 3; ++j) {
+                const Lanes clamped = w[i][0] * kept[0] * w[j][0] + w[i][1] * kept[1] * w[j][1] +
+                                      w[i][2] * kept[2] * w[j][2];
+                scaling[i][j] = definite ? scaling[i][j] : clamped;
+            }
+        for (int l = 0; l < lane_count; ++l) {  // a zero or out-of-range a: Eigen's closed form
+            if (definite[l] || usable[l]) continue;
+            Mat3 al;
+            for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j) al(i, j) = a[i][j][l];
+            Eigen::SelfAdjointEigenSolver<Mat3> eigen;
+            eigen.computeDirect(al);
+            const Mat3 clamped = eigen.eigenvectors() *
+                                 (weight * eigen.eigenvalues().cwiseMax(0.0)).asDiagonal() *
+                                 eigen.eigenvectors().transpose();
+            for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j) scaling[i][j][l] = clamped(i, j);
+        }
     }
     // Twists and flips: pair[k] = weight (flip + twist) / 2, twist_flip[k] = weight (flip -
     // twist) / 2, both clamped, for the pair (i, j) whose third index is k.
