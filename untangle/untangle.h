@@ -41,8 +41,8 @@ struct UntangleOptions {
     int inner_steps = 30;               // descent steps per outer iteration
     // Relative energy decrease that ends an inner untangling solve. Each eps is one stage of
     // the continuation, not worth solving to the end: with 1e-3 instead of 1e-6 every shared
-    // mesh untangles in the same outer iterations, 2-3x faster, to an equal or better min
-    // scaled Jacobian (bench/RESULTS.md, "Untangler").
+    // mesh untangles in the same outer iterations, 2-3x faster, to about the same min scaled
+    // Jacobian (bench/RESULTS.md, "Untangler").
     double inner_tolerance = 1e-3;
     // Relative energy change that ends optimization: a barrier step (and so an outer
     // iteration) that lowers F by less ends it.
