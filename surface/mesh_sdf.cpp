@@ -6,10 +6,12 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <unordered_map>
 
 #include "surface/sdf_grid.h"
+#include "surface/winding_number.h"
 
 namespace hexmesh {
 namespace {
@@ -40,20 +42,27 @@ Builder load_builder() {
     static const Builder builder = [] {
         std::string tried;
         Dl_info self{};
+        // The entry point of the module at `path`, or nullptr with the reason added to `tried`.
+        const auto entry = [&tried](const std::string& path) -> Builder {
+            if (void* module = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL)) {
+                if (void* symbol = dlsym(module, "hexmesh_build_sdf_grid"))
+                    return reinterpret_cast<Builder>(symbol);
+                tried += std::string(dlerror()) + "; ";
+                dlclose(module);
+                return nullptr;
+            }
+            tried += std::string(dlerror()) + "; ";
+            return nullptr;
+        };
         if (dladdr(reinterpret_cast<void*>(&load_builder), &self) && self.dli_fname) {
-            const std::string beside =
-                (std::filesystem::path(self.dli_fname).parent_path() / HEXMESH_OPENVDB_MODULE).string();
-            if (void* module = dlopen(beside.c_str(), RTLD_NOW | RTLD_LOCAL))
-                return reinterpret_cast<Builder>(dlsym(module, "hexmesh_build_sdf_grid"));
-            tried = std::string(dlerror()) + "; ";
+            const std::filesystem::path dir = std::filesystem::path(self.dli_fname).parent_path();
+            if (const Builder b = entry((dir / HEXMESH_OPENVDB_MODULE).string())) return b;
         }
-        if (void* module = dlopen(HEXMESH_OPENVDB_MODULE, RTLD_NOW | RTLD_LOCAL))
-            return reinterpret_cast<Builder>(dlsym(module, "hexmesh_build_sdf_grid"));
-        tried += dlerror();
+        if (const Builder b = entry(HEXMESH_OPENVDB_MODULE)) return b;
         throw std::runtime_error("cannot load the OpenVDB module " HEXMESH_OPENVDB_MODULE
-                                 " that builds signed distance fields of surfaces: " + tried);
+                                 " that builds signed distance fields of surfaces: " +
+                                 tried);
     }();
-    if (!builder) throw std::runtime_error("the OpenVDB module has no hexmesh_build_sdf_grid");
     return builder;
 }
 
@@ -98,8 +107,13 @@ MeshSdf::MeshSdf(const TriangleSurface& surface, const MeshSdfOptions& options)
     g.interior = options.interior_band * voxel;
     g.by_winding = options.sign == SdfSign::winding_number ||
                    (options.sign == SdfSign::automatic && has_boundary_edges(surface));
-    g.grid = build_sdf_grid(surface, {voxel, g.origin, options.exterior_band,
-                                      options.interior_band, g.by_winding});
+    std::optional<WindingNumber> winding;
+    SdfGridSpec spec{voxel, g.origin, options.exterior_band, options.interior_band, {}};
+    if (g.by_winding) {
+        winding.emplace(surface);
+        spec.winding = [&winding](const Vec3& p) { return (*winding)(p); };
+    }
+    g.grid = build_sdf_grid(surface, spec);
 
     const std::array<int, 6> box = g.grid->active_box();
     if (box[0] > box[3]) throw std::invalid_argument("MeshSdf: the conversion produced no voxel");

@@ -12,7 +12,6 @@
 #include <stdexcept>
 
 #include "surface/sdf_grid.h"
-#include "surface/winding_number.h"
 
 namespace hexmesh {
 namespace {
@@ -34,15 +33,14 @@ struct IndexSpaceMesh {
 };
 
 // Unsigned distances in the band, then each active voxel signed by the winding number
-// at its centre, then the inactive tiles by a signed flood fill of those signs.
-openvdb::FloatGrid::Ptr winding_signed_grid(const TriangleSurface& surface,
-                                            const IndexSpaceMesh& mesh,
+// (o.winding) at its centre, then the inactive tiles by a signed flood fill of those signs.
+openvdb::FloatGrid::Ptr winding_signed_grid(const IndexSpaceMesh& mesh,
                                             const openvdb::math::Transform& transform,
                                             const SdfGridSpec& o, double voxel) {
     const float band = float(std::max(o.exterior_band, o.interior_band));
     auto grid = openvdb::tools::meshToVolume<openvdb::FloatGrid>(
         mesh, transform, band, band, openvdb::tools::UNSIGNED_DISTANCE_FIELD);
-    const WindingNumber winding(surface);
+    const std::function<double(const Vec3&)>& winding = o.winding;
     openvdb::tree::LeafManager<openvdb::FloatTree> leaves(grid->tree());
     // Face neighbours a and b (one voxel apart) cannot lie on two sides of the surface when
     // udf(a) + udf(b) > voxel: then b copies a's sign instead of a winding-number query.
@@ -57,7 +55,8 @@ openvdb::FloatGrid::Ptr winding_signed_grid(const TriangleSurface& surface,
             int sign = 0;
             for (int a = 0; a < 3 && sign == 0; ++a) {
                 if (local[a] == 0) continue;
-                const openvdb::Index n = offset - (a == 0 ? Leaf::DIM * Leaf::DIM : a == 1 ? Leaf::DIM : 1);
+                constexpr openvdb::Index stride[3] = {Leaf::DIM * Leaf::DIM, Leaf::DIM, 1};
+                const openvdb::Index n = offset - stride[a];
                 if (leaf.isValueOn(n) && std::abs(leaf.getValue(n)) + udf > step)
                     sign = leaf.getValue(n) < 0 ? -1 : 1;
             }
@@ -73,7 +72,6 @@ openvdb::FloatGrid::Ptr winding_signed_grid(const TriangleSurface& surface,
     grid->setGridClass(openvdb::GRID_LEVEL_SET);
     return grid;
 }
-
 
 class OpenVdbGrid : public SdfGrid {
 public:
@@ -115,9 +113,9 @@ extern "C" hexmesh::SdfGrid* hexmesh_build_sdf_grid(const hexmesh::TriangleSurfa
     transform->postTranslate(openvdb::Vec3d(spec.origin.x(), spec.origin.y(), spec.origin.z()));
     const IndexSpaceMesh mesh{surface, spec.origin, 1.0 / spec.voxel};
     openvdb::FloatGrid::Ptr grid =
-        spec.by_winding ? winding_signed_grid(surface, mesh, *transform, spec, spec.voxel)
-                        : openvdb::tools::meshToVolume<openvdb::FloatGrid>(
-                              mesh, *transform, float(spec.exterior_band), float(spec.interior_band));
+        spec.winding ? winding_signed_grid(mesh, *transform, spec, spec.voxel)
+                     : openvdb::tools::meshToVolume<openvdb::FloatGrid>(
+                           mesh, *transform, float(spec.exterior_band), float(spec.interior_band));
     grid->setName("sdf");
     return new OpenVdbGrid(std::move(grid));
 }

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -13,12 +14,15 @@
 namespace hexmesh {
 
 // What to build: voxel edge and origin (world = origin + voxel * index), band half-widths in
-// voxels, and the sign: winding number at every band voxel, or OpenVDB's exterior flood fill.
+// voxels, and the sign: the winding number (`winding`, > 1/2 inside) at the band voxels when
+// given, else OpenVDB's exterior flood fill. The winding number is computed on this side
+// (surface/winding_number.h) and handed over, so the module needs no hexmesh symbol from the
+// program that loads it (it is linked with --no-undefined).
 struct SdfGridSpec {
     double voxel = 0;
     Vec3 origin = Vec3::Zero();
     double exterior_band = 3, interior_band = 3;
-    bool by_winding = false;
+    std::function<double(const Vec3&)> winding;  // empty: flood fill
 };
 
 class SdfGrid {
@@ -37,7 +41,8 @@ public:
 
 // Builds the grid of `surface` (OpenVDB's mesh-to-volume conversion, then the sign), in the
 // module; loads the module on first call. Throws std::runtime_error naming the module when it
-// cannot be loaded.
+// cannot be loaded; OpenVDB's own errors (std::exception) pass through the module's C entry
+// point unchanged (GCC unwinds through it).
 std::unique_ptr<SdfGrid> build_sdf_grid(const TriangleSurface& surface, const SdfGridSpec& spec);
 
 }  // namespace hexmesh

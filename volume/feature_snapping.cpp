@@ -1,10 +1,11 @@
 #include "volume/feature_snapping.h"
 
+#include <tbb/parallel_for.h>
+
 #include <limits>
 #include <map>
 #include <optional>
 #include <set>
-#include <tbb/parallel_for.h>
 
 #include "hexmesh/core/reference_hex.h"
 #include "surface/implicit_features.h"

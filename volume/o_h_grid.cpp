@@ -1,12 +1,14 @@
 #include "volume/o_h_grid.h"
 
-#include <cmath>
-#include <optional>
 #include <fmt/format.h>
-#include <stdexcept>
-#include <string>
 #include <tbb/parallel_for.h>
 
+#include <cmath>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "surface/implicit_features.h"
 #include "volume/cube_sphere.h"
 #include "volume/feature_snapping.h"
 #include "volume/surface_placement.h"
@@ -22,11 +24,10 @@ void check_options(const OHGridOptions& o) {
         throw std::invalid_argument("core_size must be in (0, 1)");
 }
 
-// The body's corners as the cube's, when `wall` (the wall nodes, surface lattice order) comes
-// near exactly one sharp corner in each octant around the centre; nullopt otherwise.
-std::optional<CubeCorners> body_corners_by_octant(const ImplicitFunction& body, const Vec3& centre,
-                                                  const std::vector<Vec3>& wall, double h) {
-    const std::vector<Vec3> found = body_corners_near(body, wall, h);
+// The body's corners `found` as the cube's, when there is exactly one in each octant around
+// the centre; nullopt otherwise.
+std::optional<CubeCorners> body_corners_by_octant(const Vec3& centre,
+                                                  const std::vector<Vec3>& found, double h) {
     if (found.size() != 8) return std::nullopt;
     CubeCorners corners;
     std::array<bool, 8> taken{};
@@ -83,9 +84,20 @@ BlockGrid make_o_h_grid(const ImplicitFunction& body, const OHGridOptions& optio
         });
     };
     place_wall();
-    if (options.patch_corners_on_body_corners) {
-        corners = body_corners_by_octant(body, centre, wall, h);
-        if (corners && !options.wall_from) place_wall();
+    if (options.patch_corners_on_body_corners && !options.wall_from) {
+        corners = body_corners_by_octant(centre, body_corners_near(body, wall, h), h);
+        if (corners) place_wall();
+    } else if (options.patch_corners_on_body_corners) {
+        // A given wall keeps the choice of the grid it came from: its 8 patch-corner nodes sit
+        // on body corners, one per octant, exactly when that grid's rays spanned them.
+        std::vector<Vec3> at_corners;
+        for (int c = 0; c < 8; ++c) {
+            const LatticePoint abc = {(c & 1) * n, (c >> 1 & 1) * n, (c >> 2 & 1) * n};
+            const Vec3& x = wall[surface.number_of(abc)];
+            if (classify_surface_point(body, x, 1e-6 * h) == FeatureKind::corner)
+                at_corners.push_back(x);
+        }
+        corners = body_corners_by_octant(centre, at_corners, h);
     }
 
     BlockGrid grid;

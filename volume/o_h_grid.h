@@ -12,7 +12,7 @@ namespace hexmesh {
 struct OHGridOptions {
     int cells_per_edge = 20;   // cells along each edge of the core box and of each wall patch
     int wall_cells = 10;       // cells across each wall block, from the core to the wall
-    double core_size = 0.45;   // core half-size as a fraction of the body's half extents
+    double core_size = 0.45;   // core box: this fraction of the rays' box (bounds or corners)
     WallLayers wall_layers;    // law of the cells next to the wall (layers = 0: uniform)
     // The points of a grid made with the same options (e.g. after its wall grid was
     // optimized on u = 0): its wall nodes are taken as they are instead of the radial
@@ -22,17 +22,19 @@ struct OHGridOptions {
     // A box-like body, with exactly one sharp corner in each octant around the centre (found
     // near the wall nodes), gets the patch corners there: the rays span the hexahedron of
     // its corners (cube_sphere_ray with CubeCorners) instead of the bounds' box, so the
-    // patch edges can follow its edges. false: always the bounds' box.
+    // patch edges can follow its edges. With wall_from: when the given wall's 8 patch-corner
+    // nodes are such corners (as that grid made them). false: always the bounds' box.
     bool patch_corners_on_body_corners = true;
 };
 
 // Grid of the body's interior. Blocks: "core" (n^3 cells) and "wall_xmin", "wall_xmax", ...,
 // "wall_zmax" (n x n x wall_cells cells, k = 0 on the core, k = wall_cells on the wall).
-// Every block is right-handed in (i,j,k); the wall blocks' kmax faces form patch "wall". Wall nodes are the cube-sphere (equiangular)
-// directions from the centre, scaled by the body's half extents (or spanning its corners,
-// see patch_corners_on_body_corners), projected radially onto u = 0 (kind slip); the wall-normal lines are straight segments from the core box to the
-// wall carrying the WallLayers distribution; the core interior is filled by TFI.
-// Throws std::invalid_argument on bad options or a body that is not star-shaped.
+// Every block is right-handed in (i,j,k); the wall blocks' kmax faces form patch "wall". Wall nodes
+// are the cube-sphere (equiangular) directions from the centre, scaled by the body's half extents
+// (or spanning its corners, see patch_corners_on_body_corners), projected radially onto u = 0 (kind
+// slip); the wall-normal lines are straight segments from the core box to the wall carrying the
+// WallLayers distribution; the core interior is filled by TFI. Throws std::invalid_argument on bad
+// options or a body that is not star-shaped.
 BlockGrid make_o_h_grid(const ImplicitFunction& body, const OHGridOptions& options);
 
 // Length scale of a grid of the body with n cells per edge: bounds diagonal / (sqrt(3) n).

@@ -46,12 +46,21 @@ LineMeasures measure_line(const WallFace& f, int p, int q, const std::vector<Vec
         g_norm > 0 && std::isfinite(g_norm) ? Vec3(side * g / g_norm) : Vec3(edge.normalized());
     m.first_edge = edge;
     m.normals[m.normal_count++] = n;
+    // The pieces active within 1e-3 of the shortest wall edge at x0 (the wall spacing, which
+    // feature snapping places crease nodes well within; the first edge can be far thinner).
+    double spacing_along_wall = inf;
+    for (const auto& [dp, dq] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}})
+        if (p + dp >= 0 && p + dp < f.np && q + dq >= 0 && q + dq < f.nq)
+            spacing_along_wall =
+                std::min(spacing_along_wall, (points[f.node(p + dp, q + dq, 0)] - x0).norm());
+    if (!std::isfinite(spacing_along_wall)) spacing_along_wall = edge.norm();
     std::vector<ImplicitFunction::Piece> pieces;
-    body.active_pieces(x0, 1e-3 * edge.norm(), pieces);
+    body.active_pieces(x0, 1e-3 * spacing_along_wall, pieces);
     const double same = std::cos(same_normal_degrees * pi / 180);
     for (const auto& piece : pieces) {
         const double norm = piece.gradient.norm();
-        if (m.normal_count == int(m.normals.size()) || !(norm > 0) || !std::isfinite(norm)) continue;
+        if (m.normal_count == int(m.normals.size()) || !(norm > 0) || !std::isfinite(norm))
+            continue;
         const Vec3 other = side * piece.gradient / norm;
         if (std::none_of(m.normals.begin(), m.normals.begin() + m.normal_count,
                          [&](const Vec3& known) { return known.dot(other) > same; }))

@@ -13,11 +13,12 @@ namespace hexmesh {
 // Wall-normal lines: for every block face whose face_patch is "wall", every node x0 of the
 // face and the nodes x1, x2, ... going into the block along the face's index direction
 // (face kmax: k = nk-1, nk-2, ...; face imin: i = 0, 1, ...). A node shared by several
-// blocks starts one line per block face. A wall cell's first-layer thickness is measured
-// along the normal of its own wall face (see WallQuality). The wall normal at x0 is grad u / |grad u|,
+// blocks starts one line per block face. The wall normal at x0 is grad u / |grad u|,
 // oriented into the grid: towards u < 0 when most nodes in the middle of the face's lines
 // have u < 0 (interior grid), towards u > 0 otherwise (exterior grid); where grad u
-// vanishes, the first edge direction stands in for it. The law gives the targets
+// vanishes, the first edge direction stands in for it. A wall cell's first-layer thickness
+// takes, at a crease or corner node, the normal of the piece its wall face lies on instead
+// (see WallQuality). The law gives the targets
 // (law.first_height, law.growth_ratio) and how many edges of a line form the boundary
 // layer; law.layers == 0 means no law: targets 0 and growth ratios over whole lines.
 // The hausdorff fields are left empty. Deterministic, parallel over the lines of a face.

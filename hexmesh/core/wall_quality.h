@@ -15,8 +15,10 @@ struct WallQuality {
     Id wall_cells = 0;  // cells with a face on a wall patch, counted once per block face
 
     // First-layer thickness of a wall cell: mean over its 4 wall nodes of the first edge of
-    // the line projected on the unit normal of the cell's wall face pointing into the grid
-    // (> 0 when valid): the cell's height above its wall face, also next to a crease.
+    // the line projected on the unit wall normal there pointing into the grid (> 0 when
+    // valid); at a crease or corner node, the normal of the piece the cell lies on (the one
+    // nearest its wall face's normal), so the layer laid along the bisector there measures
+    // its height above that face.
     double first_layer_min = 0;
     double first_layer_mean = 0;
     double first_layer_max = 0;

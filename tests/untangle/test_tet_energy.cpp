@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <random>
+#include <sstream>
 
 #include "hexmesh/core/reference_hex.h"
 #include "untangle/problem.h"
@@ -291,6 +292,78 @@ TEST(TetEnergy, HexEnergyGivesTheBaselineBuildsBits) {
             for (const auto& [a, b] : hex_hessian_pairs) EXPECT_EQ(h.block[a][b], h_base.block[a][b]) << k;
         }
     }
+}
+
+namespace {
+
+// Hexes where the Hessian lanes' eigensolver meets its special cases: repeated singular values
+// (an undistorted box), rank-deficient corners (a collapsed edge, a flattened hex), inverted
+// corners (a mirrored box), a heavily tangled one, and scales at which S^T S is near the
+// limits of the rotations' range or beyond it (the scalar fallback). Not smaller than 1e-20
+// in range: at eps 0 the barrier's second derivative (det^(-8/3)) overflows there, in the
+// scalar code too.
+std::vector<std::pair<std::string, Mat38>> special_hexes(const Vec3& edges) {
+    std::mt19937 rng(5);
+    const Mat38 box = displaced_box(rng, edges, 0.0);
+    std::vector<std::pair<std::string, Mat38>> hexes = {{"box", box}};
+    Mat38 y = box;
+    y.col(6) = y.col(5);
+    hexes.push_back({"collapsed edge", y});
+    y = box;
+    y.row(2).setZero();
+    hexes.push_back({"flat", y});
+    y = box;
+    y.row(0) *= -1;
+    hexes.push_back({"mirrored", y});
+    hexes.push_back({"tangled", displaced_box(rng, edges, 1.0)});
+    const Mat38 distorted = displaced_box(rng, edges, 0.2);
+    for (double scale : {1e-20, 1e100, 1e-145, 1e145})
+        hexes.push_back({(std::ostringstream() << "scaled " << scale).str(), scale * distorted});
+    return hexes;
+}
+
+}  // namespace
+
+TEST(TetEnergy, HexHessianOfDegenerateAndScaledHexesIsTheSumOverItsCornerTets) {
+    const Vec3 edges(0.7, 1.3, 0.4);
+    for (const auto& [name, y] : special_hexes(edges))
+        for (double eps : {0.0, 0.05}) {
+            const EnergyParams p{0.8, eps};
+            Mat38 grad;
+            HexHessian hess;
+            const double e = hex_energy_hessian(y, edges, p, grad, hess);
+            Eigen::Matrix<double, 24, 24> sum = Eigen::Matrix<double, 24, 24>::Zero();
+            double sum_e = 0;
+            for (int c = 0; c < 8; ++c) {
+                const auto& t = hex_corner_tets[c];
+                Mat34 yc, gc;
+                Mat12 hc;
+                for (int a = 0; a < 4; ++a) yc.col(a) = y.col(t[a]);
+                sum_e += tet_energy_hessian(yc, hex_corner_target(c, edges), p, gc, hc);
+                if (!std::isfinite(sum_e)) break;
+                for (int a = 0; a < 4; ++a)
+                    for (int b = 0; b < 4; ++b)
+                        sum.block<3, 3>(3 * t[a], 3 * t[b]) += hc.block<3, 3>(3 * a, 3 * b);
+            }
+            ASSERT_EQ(bool(std::isfinite(e)), bool(std::isfinite(sum_e)))
+                << name << ", eps " << eps;
+            if (!std::isfinite(e)) continue;
+            EXPECT_NEAR(e, sum_e, 1e-12 * std::abs(sum_e)) << name << ", eps " << eps;
+            for (const auto& [a, b] : hex_hessian_pairs) {
+                const Mat3& got = hess.block[a][b];
+                EXPECT_TRUE(got.allFinite()) << name << ", eps " << eps;
+                EXPECT_LE((got - sum.block<3, 3>(3 * a, 3 * b)).norm(), 1e-10 * sum.norm())
+                    << name << ", eps " << eps << ", block " << a << " " << b;
+            }
+#if defined(__x86_64__) && defined(__GNUC__)
+            if (!__builtin_cpu_supports("avx2")) continue;
+#endif
+            Mat38 g_base, gh;
+            HexHessian h_base;
+            EXPECT_EQ(e, hex_energy_baseline(y, edges, p, &g_base, &h_base)) << name;
+            for (const auto& [a, b] : hex_hessian_pairs)
+                EXPECT_EQ(hess.block[a][b], h_base.block[a][b]) << name;
+        }
 }
 
 TEST(TetEnergy, HexEnergyIsNotFiniteWithANanOrInfiniteNode) {

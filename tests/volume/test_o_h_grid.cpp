@@ -178,9 +178,8 @@ TEST(OHGrid, PatchCornersGoToTheCornersOfABoxLikeBody) {
     // the cylinder's top, so its diagonals miss the body's upper corners; the body's own
     // corners (one per octant around the bounds' centre) take the patch corners.
     const Body body = std::make_shared<Csg>(
-        CsgOp::Union,
-        std::vector<Body>{std::make_shared<Box>(Vec3::Zero(), Vec3(1.0, 1.0, 0.6)),
-                          std::make_shared<Cylinder>(Vec3(0, 0, 0.5), 0.6, 0.7)});
+        CsgOp::Union, std::vector<Body>{std::make_shared<Box>(Vec3::Zero(), Vec3(1.0, 1.0, 0.6)),
+                                        std::make_shared<Cylinder>(Vec3(0, 0, 0.5), 0.6, 0.7)});
     OHGridOptions o = sphere_options();
     o.core_size = 0.3;
     const BlockGrid grid = make_o_h_grid(*body, o);
