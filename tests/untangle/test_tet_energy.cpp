@@ -221,6 +221,31 @@ Mat38 displaced_box(std::mt19937& rng, const Vec3& edges, double spread) {
     return y;
 }
 
+// The corner tets' energies, gradients and Hessians (the scalar code) summed over a hex: what
+// the hex kernels must give. Energy +inf (the rest partial) where a corner's is.
+struct CornerSums {
+    double energy = 0;
+    Mat38 grad = Mat38::Zero();
+    Eigen::Matrix<double, 24, 24> hess = Eigen::Matrix<double, 24, 24>::Zero();  // 8 x 8 blocks
+};
+CornerSums sum_over_corner_tets(const Mat38& y, const Vec3& edges, const EnergyParams& p) {
+    CornerSums sums;
+    for (int c = 0; c < 8; ++c) {
+        const auto& t = hex_corner_tets[c];
+        Mat34 yc, gc;
+        Mat12 hc;
+        for (int a = 0; a < 4; ++a) yc.col(a) = y.col(t[a]);
+        sums.energy += tet_energy_hessian(yc, hex_corner_target(c, edges), p, gc, hc);
+        if (!std::isfinite(sums.energy)) break;
+        for (int a = 0; a < 4; ++a) {
+            sums.grad.col(t[a]) += gc.col(a);
+            for (int b = 0; b < 4; ++b)
+                sums.hess.block<3, 3>(3 * t[a], 3 * t[b]) += hc.block<3, 3>(3 * a, 3 * b);
+        }
+    }
+    return sums;
+}
+
 }  // namespace
 
 TEST(TetEnergy, HexHessianIsTheSumOverItsCornerTets) {
@@ -236,21 +261,10 @@ TEST(TetEnergy, HexHessianIsTheSumOverItsCornerTets) {
             const double e = hex_energy_hessian(y, edges, p, grad, hess);
             EXPECT_EQ(bool(std::isfinite(e)), bool(std::isfinite(hex_energy(y, edges, p)))) << "case " << k;
             if (!std::isfinite(e)) continue;
-            // The corner tets' Hessians summed into an 8 x 8 block matrix.
-            Eigen::Matrix<double, 24, 24> sum = Eigen::Matrix<double, 24, 24>::Zero();
-            Mat38 sum_grad = Mat38::Zero();
-            double sum_e = 0;
-            for (int c = 0; c < 8; ++c) {
-                const auto& t = hex_corner_tets[c];
-                Mat34 yc, gc;
-                Mat12 hc;
-                for (int a = 0; a < 4; ++a) yc.col(a) = y.col(t[a]);
-                sum_e += tet_energy_hessian(yc, hex_corner_target(c, edges), p, gc, hc);
-                for (int a = 0; a < 4; ++a) {
-                    sum_grad.col(t[a]) += gc.col(a);
-                    for (int b = 0; b < 4; ++b) sum.block<3, 3>(3 * t[a], 3 * t[b]) += hc.block<3, 3>(3 * a, 3 * b);
-                }
-            }
+            const CornerSums corners = sum_over_corner_tets(y, edges, p);
+            const double sum_e = corners.energy;
+            const Mat38& sum_grad = corners.grad;
+            const auto& sum = corners.hess;
             EXPECT_NEAR(e, sum_e, 1e-12 * std::abs(sum_e));
             EXPECT_LT((grad - sum_grad).norm(), 1e-12 * (1 + sum_grad.norm()));
             for (const auto& [a, b] : hex_hessian_pairs) {
@@ -332,19 +346,9 @@ TEST(TetEnergy, HexHessianOfDegenerateAndScaledHexesIsTheSumOverItsCornerTets) {
             Mat38 grad;
             HexHessian hess;
             const double e = hex_energy_hessian(y, edges, p, grad, hess);
-            Eigen::Matrix<double, 24, 24> sum = Eigen::Matrix<double, 24, 24>::Zero();
-            double sum_e = 0;
-            for (int c = 0; c < 8; ++c) {
-                const auto& t = hex_corner_tets[c];
-                Mat34 yc, gc;
-                Mat12 hc;
-                for (int a = 0; a < 4; ++a) yc.col(a) = y.col(t[a]);
-                sum_e += tet_energy_hessian(yc, hex_corner_target(c, edges), p, gc, hc);
-                if (!std::isfinite(sum_e)) break;
-                for (int a = 0; a < 4; ++a)
-                    for (int b = 0; b < 4; ++b)
-                        sum.block<3, 3>(3 * t[a], 3 * t[b]) += hc.block<3, 3>(3 * a, 3 * b);
-            }
+            const CornerSums corners = sum_over_corner_tets(y, edges, p);
+            const double sum_e = corners.energy;
+            const auto& sum = corners.hess;
             ASSERT_EQ(bool(std::isfinite(e)), bool(std::isfinite(sum_e)))
                 << name << ", eps " << eps;
             if (!std::isfinite(e)) continue;
