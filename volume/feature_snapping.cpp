@@ -36,10 +36,10 @@ std::array<long long, 3> corner_key(const Vec3& c, double h) {
             std::llround(c.z() / (1e-3 * h))};
 }
 
-// The corner snap_to_corner finds from x, if it is one (within 1e-6 h) and within reach.
+// The corner snap_to_corner finds from x (a point classified as a corner within `reach`), if
+// it is one (within 1e-6 h) and within reach.
 std::optional<Vec3> corner_within(const ImplicitFunction& body, const Vec3& x, double h,
                                   double reach) {
-    if (classify_surface_point(body, x, reach) != FeatureKind::corner) return std::nullopt;
     const Vec3 c = snap_to_corner(body, x, h);
     if (classify_surface_point(body, c, 1e-6 * h) != FeatureKind::corner) return std::nullopt;
     if ((c - x).norm() > reach) return std::nullopt;
@@ -52,7 +52,10 @@ std::vector<Vec3> body_corners_near(const ImplicitFunction& body, const std::vec
                                     double reach) {
     std::vector<std::optional<Vec3>> found(points.size());
     tbb::parallel_for(size_t(0), points.size(),
-                      [&](size_t v) { found[v] = corner_within(body, points[v], reach, reach); });
+                      [&](size_t v) {
+                          if (classify_surface_point(body, points[v], reach) == FeatureKind::corner)
+                              found[v] = corner_within(body, points[v], reach, reach);
+                      });
     std::set<std::array<long long, 3>> seen;
     std::vector<Vec3> corners;
     for (const std::optional<Vec3>& c : found)
@@ -75,8 +78,10 @@ FeatureSnapping snap_to_features(BlockGrid& grid, const ImplicitFunction& body, 
         if (grid.kinds[v] != VertexKind::slip) continue;
         const double h = shortest[v], reach = fraction * h;
         const Vec3& x = grid.points[v];
-        if (classify_surface_point(body, x, reach) == FeatureKind::smooth) continue;
+        const FeatureKind kind = classify_surface_point(body, x, reach);
+        if (kind == FeatureKind::smooth) continue;
         crease_candidates.push_back(Id(v));
+        if (kind != FeatureKind::corner) continue;
         const std::optional<Vec3> c = corner_within(body, x, h, reach);
         if (!c) continue;
         const double d = (*c - x).norm();
