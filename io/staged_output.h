@@ -10,7 +10,9 @@ namespace hexmesh {
 // where to write an output; commit() moves every staged entry to OUTDIR/name, replacing an
 // older output of the same name. Without commit() (an error on the way), the destructor
 // removes the staging folder, and OUTDIR too if this object created it: no partial output
-// is ever left under a final name. Throws std::runtime_error if OUTDIR cannot be created.
+// is ever left under a final name. The staging folder is OUTDIR/.staging-HOST-PID; those of
+// earlier runs on this host whose process is gone (killed before cleaning up) are removed on
+// construction. Throws std::runtime_error if OUTDIR cannot be created.
 class StagedOutput {
 public:
     explicit StagedOutput(std::string outdir);
