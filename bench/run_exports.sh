@@ -95,7 +95,12 @@ done
 mkdir -p "$workdir/bin" "$workdir/logs"
 cp "$HEXMESH" "$workdir/bin/hexmesh"
 ldd "$HEXMESH" | awk '$2 == "=>" && $3 ~ /^\// && $3 !~ /^\/(usr\/)?lib/ {print $3}' |
-    while read -r lib; do cp "$lib" "$workdir/bin/"; done
+    while read -r lib; do
+        cp "$lib" "$workdir/bin/"
+        # The module MeshSdf loads at run time (OpenVDB) lives beside libhexmesh_surface.so.
+        module="$(dirname "$lib")/libhexmesh_openvdb.so"
+        if [[ -f "$module" ]]; then cp "$module" "$workdir/bin/"; fi
+    done
 export LD_LIBRARY_PATH="$workdir/bin${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 hx="$workdir/bin/hexmesh"
 load1() { cut -d' ' -f1 /proc/loadavg; }
