@@ -6,7 +6,6 @@
 #include <optional>
 #include <tbb/parallel_for.h>
 
-#include "surface/implicit_features.h"
 #include "volume/wall_lines.h"
 
 namespace hexmesh {
@@ -20,16 +19,8 @@ namespace {
 // edge) or the wall has no normal.
 std::optional<Vec3> unit_offset(const ImplicitFunction& body, const Vec3& x0, double side,
                                 double tolerance) {
-    std::vector<ImplicitFunction::Piece> pieces;
-    body.active_pieces(x0, tolerance, pieces);
     std::vector<Vec3> normals;
-    const double same = std::cos(same_normal_degrees * 3.14159265358979323846 / 180);
-    for (const auto& piece : pieces) {
-        if (!(piece.gradient.norm() > 0) || !piece.gradient.allFinite()) continue;
-        const Vec3 n = side * piece.gradient.normalized();
-        if (std::none_of(normals.begin(), normals.end(), [&](const Vec3& m) { return m.dot(n) > same; }))
-            normals.push_back(n);
-    }
+    append_wall_normals(body, x0, side, tolerance, normals);
     if (normals.empty()) return std::nullopt;
     Eigen::MatrixXd a(normals.size(), 3);
     for (size_t i = 0; i < normals.size(); ++i) a.row(Eigen::Index(i)) = normals[i].transpose();

@@ -1,8 +1,11 @@
 #include "volume/wall_lines.h"
 
 #include <algorithm>
+#include <cmath>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
+
+#include "surface/implicit_features.h"
 
 namespace hexmesh {
 
@@ -36,6 +39,19 @@ double grid_side(const WallFace& f, const std::vector<Vec3>& points, const Impli
         },
         [](Id a, Id b) { return a + b; });
     return balance < 0 ? -1.0 : 1.0;
+}
+
+void append_wall_normals(const ImplicitFunction& body, const Vec3& x0, double side,
+                         double tolerance, std::vector<Vec3>& normals) {
+    std::vector<ImplicitFunction::Piece> pieces;
+    body.active_pieces(x0, tolerance, pieces);
+    const double same = std::cos(same_normal_degrees * 3.14159265358979323846 / 180);
+    for (const auto& piece : pieces) {
+        if (!(piece.gradient.norm() > 0) || !piece.gradient.allFinite()) continue;
+        const Vec3 n = side * piece.gradient.normalized();
+        if (std::none_of(normals.begin(), normals.end(), [&](const Vec3& m) { return m.dot(n) > same; }))
+            normals.push_back(n);
+    }
 }
 
 }  // namespace hexmesh

@@ -39,4 +39,11 @@ std::vector<WallFace> wall_faces(const Block& block);
 // the majority sign of u at the middle nodes of the face's lines.
 double grid_side(const WallFace& f, const std::vector<Vec3>& points, const ImplicitFunction& body);
 
+// Appends to `normals` the unit normals, oriented by `side` (+1: out of the body, -1: into
+// it), of the smooth pieces of `body` active at x0 within `tolerance` that are not within
+// same_normal_degrees of one already there: one at a smooth place, two at a crease, three or
+// more at a corner. Pieces with a zero or non-finite gradient are skipped.
+void append_wall_normals(const ImplicitFunction& body, const Vec3& x0, double side,
+                         double tolerance, std::vector<Vec3>& normals);
+
 }  // namespace hexmesh

@@ -13,7 +13,6 @@
 #include <unordered_map>
 
 #include "surface/exact_distance.h"
-#include "surface/implicit_features.h"
 #include "volume/wall_lines.h"
 
 namespace hexmesh {
@@ -54,18 +53,10 @@ LineMeasures measure_line(const WallFace& f, int p, int q, const std::vector<Vec
             spacing_along_wall =
                 std::min(spacing_along_wall, (points[f.node(p + dp, q + dq, 0)] - x0).norm());
     if (!std::isfinite(spacing_along_wall)) spacing_along_wall = edge.norm();
-    std::vector<ImplicitFunction::Piece> pieces;
-    body.active_pieces(x0, 1e-3 * spacing_along_wall, pieces);
-    const double same = std::cos(same_normal_degrees * pi / 180);
-    for (const auto& piece : pieces) {
-        const double norm = piece.gradient.norm();
-        if (m.normal_count == int(m.normals.size()) || !(norm > 0) || !std::isfinite(norm))
-            continue;
-        const Vec3 other = side * piece.gradient / norm;
-        if (std::none_of(m.normals.begin(), m.normals.begin() + m.normal_count,
-                         [&](const Vec3& known) { return known.dot(other) > same; }))
-            m.normals[m.normal_count++] = other;
-    }
+    std::vector<Vec3> normals = {n};
+    append_wall_normals(body, x0, side, 1e-3 * spacing_along_wall, normals);
+    for (size_t i = 1; i < normals.size() && m.normal_count < int(m.normals.size()); ++i)
+        m.normals[m.normal_count++] = normals[i];
     m.angle_deg = std::atan2(edge.cross(n).norm(), edge.dot(n)) * 180 / pi;
 
     double spacing = edge.norm();
