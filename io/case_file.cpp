@@ -129,7 +129,7 @@ GeometrySpec parse_geometry(const json& value, const std::string& file, const st
 
 GridSpec parse_grid(const JsonFields& g) {
     g.allow_only({"topology", "cells_per_edge", "cell_size", "wall_cells", "core_size", "cells",
-                  "center"});
+                  "center", "axis", "ring_cells", "frame_cells"});
     GridSpec grid;
     grid.topology = g.choice("topology", grid.topology, {"o-h", "single-block"});
     grid.cells_per_edge = g.integer("cells_per_edge", grid.cells_per_edge, 2, 4096);
@@ -150,10 +150,22 @@ GridSpec parse_grid(const JsonFields& g) {
         }
     }
     if (g.has("center")) grid.center = g.vec3("center", Vec3::Zero());
-    const long long n = grid.cells_per_edge;
-    const long long total = grid.topology == "o-h"
-                                ? n * n * n + 6 * n * n * grid.wall_cells
-                                : (long long)grid.cells[0] * grid.cells[1] * grid.cells[2];
+    grid.axis = g.choice("axis", grid.axis, {"x", "y", "z"});
+    grid.ring_cells = g.integer("ring_cells", grid.ring_cells, 0, 4096);
+    grid.frame_cells = g.integer("frame_cells", grid.frame_cells, 0, 4096);
+    if (grid.axis.empty() && g.has("ring_cells")) g.fail("ring_cells", "given with \"axis\" only");
+    if (grid.axis.empty() && g.has("frame_cells"))
+        g.fail("frame_cells", "given with \"axis\" only");
+    if (!grid.axis.empty() && !(grid.cell_size > 0) && 2 * grid.frame_cells >= grid.cells_per_edge)
+        g.fail("frame_cells", "under half of cells_per_edge");
+    if (grid.topology != "o-h" && !grid.axis.empty())
+        g.fail("axis", "given with topology o-h only");
+    const long long n = grid.cells_per_edge,
+                    r = grid.ring_cells > 0 ? grid.ring_cells : (n + 1) / 2;
+    const long long total =
+        grid.topology != "o-h" ? (long long)grid.cells[0] * grid.cells[1] * grid.cells[2]
+        : grid.axis.empty()    ? n * n * n + 6 * n * n * grid.wall_cells
+                               : n * n * (n + 4 * r) + (6 * n * n + 8 * n * r) * grid.wall_cells;
     if (total > max_cells) {
         g.fail(grid.topology == "o-h" ? "cells_per_edge" : "cells",
                fmt::format("a grid of at most {} cells (this one has {})", max_cells, total));
@@ -297,6 +309,9 @@ std::string case_to_json(const Case& c) {
     if (c.grid.cell_size > 0) grid["cell_size"] = c.grid.cell_size;
     else grid["cells_per_edge"] = c.grid.cells_per_edge;
     if (c.grid.center) grid["center"] = vec3_json(*c.grid.center);
+    if (!c.grid.axis.empty()) grid["axis"] = c.grid.axis;
+    if (c.grid.ring_cells > 0) grid["ring_cells"] = c.grid.ring_cells;
+    if (!c.grid.axis.empty()) grid["frame_cells"] = c.grid.frame_cells;
     root["grid"] = grid;
     if (c.domain == "exterior") {
         root["far_field"] = {{"shape", c.far_field.shape}};

@@ -27,15 +27,18 @@ CubeSurfaceLattice make_cube_surface_lattice(int n) {
     return s;
 }
 
-Vec3 cube_sphere_ray(const LatticePoint& p, int n, const Vec3& half) {
+Vec3 equiangular(const LatticePoint& p, int n) {
     constexpr double pi = 3.14159265358979323846;
-    Vec3 w;
-    for (int d = 0; d < 3; ++d) w[d] = half[d] * std::tan(pi / 4 * (2.0 * p[d] / n - 1));
-    return w;
+    Vec3 t;
+    for (int d = 0; d < 3; ++d) t[d] = std::tan(pi / 4 * (2.0 * p[d] / n - 1));
+    return t;
 }
 
-Vec3 cube_sphere_ray(const LatticePoint& p, int n, const CubeCorners& corners) {
-    const Vec3 t = cube_sphere_ray(p, n, Vec3::Ones());
+Vec3 cube_ray(const Vec3& t, const Vec3& half) {
+    return half.cwiseProduct(t);
+}
+
+Vec3 cube_ray(const Vec3& t, const CubeCorners& corners) {
     Vec3 w = Vec3::Zero();
     for (int c = 0; c < 8; ++c) {
         double weight = 1;
@@ -43,6 +46,14 @@ Vec3 cube_sphere_ray(const LatticePoint& p, int n, const CubeCorners& corners) {
         w += weight * corners[c];
     }
     return w;
+}
+
+Vec3 cube_sphere_ray(const LatticePoint& p, int n, const Vec3& half) {
+    return cube_ray(equiangular(p, n), half);
+}
+
+Vec3 cube_sphere_ray(const LatticePoint& p, int n, const CubeCorners& corners) {
+    return cube_ray(equiangular(p, n), corners);
 }
 
 }  // namespace hexmesh

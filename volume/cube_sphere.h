@@ -46,19 +46,30 @@ struct CubeSurfaceLattice {
 
 CubeSurfaceLattice make_cube_surface_lattice(int n);
 
-// Equiangular cube-sphere coordinates of a lattice point: half[d] * tan(pi/4 (2 p[d]/n - 1)).
-// With half = (1,1,1) the rays through the points of one patch are evenly spread in angle;
-// other half extents stretch the cube to a box (the patch corners lie on its diagonals).
-Vec3 cube_sphere_ray(const LatticePoint& p, int n, const Vec3& half);
+// The cube coordinates t in [-1, 1]^3 of a lattice point, equiangular: t[d] = tan(pi/4
+// (2 p[d]/n - 1)). Rays through the points of one patch are evenly spread in angle.
+Vec3 equiangular(const LatticePoint& p, int n);
+
+// The ray of cube coordinates t: half[d] * t[d] (the cube stretched to a box of these half
+// extents; its corners on the box's diagonals).
+Vec3 cube_ray(const Vec3& t, const Vec3& half);
 
 // Where the cube's 8 corners go, relative to the centre: corner c = (a, b, c) in {0, n}^3 is
 // entry (a > 0) + 2 (b > 0) + 4 (c > 0).
 using CubeCorners = std::array<Vec3, 8>;
 
-// The same with the cube's corners sent to `corners` (each in its own octant): the trilinear
-// blend of the corners at the equiangular parameters t[d] = tan(pi/4 (2 p[d]/n - 1)) in
-// [-1, 1]. With the corners (+-half[0], +-half[1], +-half[2]) it is the ray above; with a
-// box-like body's own corners the patch corners and edges go to the body's.
+// The ray of cube coordinates t with the cube's corners sent to `corners` (each in its own
+// octant): their trilinear blend at t. With the corners (+-half[0], +-half[1], +-half[2]) it
+// is the ray above; with a box-like body's own corners the patch corners and edges go to the
+// body's.
+Vec3 cube_ray(const Vec3& t, const CubeCorners& corners);
+
+// Equiangular cube-sphere coordinates of a lattice point: cube_ray(equiangular(p, n), half).
+// With half = (1,1,1) the rays through the points of one patch are evenly spread in angle;
+// other half extents stretch the cube to a box (the patch corners lie on its diagonals).
+Vec3 cube_sphere_ray(const LatticePoint& p, int n, const Vec3& half);
+
+// The same with the cube's corners sent to `corners`: cube_ray(equiangular(p, n), corners).
 Vec3 cube_sphere_ray(const LatticePoint& p, int n, const CubeCorners& corners);
 
 }  // namespace hexmesh

@@ -3,12 +3,15 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "surface/implicit_features.h"
+#include "volume/core_layout.h"
 #include "volume/cube_sphere.h"
 #include "volume/feature_snapping.h"
 #include "volume/surface_placement.h"
@@ -22,6 +25,10 @@ void check_options(const OHGridOptions& o) {
     if (o.wall_cells < 1) throw std::invalid_argument("wall_cells must be at least 1");
     if (!(o.core_size > 0 && o.core_size < 1))
         throw std::invalid_argument("core_size must be in (0, 1)");
+    if (o.axis < -1 || o.axis > 2) throw std::invalid_argument("axis must be -1, 0, 1 or 2");
+    if (o.ring_cells < 0) throw std::invalid_argument("ring_cells must be 0 or more");
+    if (o.frame_cells < 0 || 2 * o.frame_cells >= o.cells_per_edge)
+        throw std::invalid_argument("frame_cells must be 0 or more and under half cells_per_edge");
 }
 
 // The body's corners `found` as the cube's, when there is exactly one in each octant around
@@ -42,6 +49,66 @@ std::optional<CubeCorners> body_corners_by_octant(const Vec3& centre,
     return corners;
 }
 
+// The node of `block` at (p, q) on `face`, p and q running along the face's two index
+// directions in ascending order.
+Id face_node(const Block& block, BlockFace face, int p, int q) {
+    const int axis = face / 2, axis_p = axis == 0 ? 1 : 0, axis_q = axis == 2 ? 1 : 2;
+    std::array<int, 3> ijk;
+    ijk[axis] = face % 2 ? block.nodes[axis] - 1 : 0;
+    ijk[axis_p] = p;
+    ijk[axis_q] = q;
+    return block.node(ijk[0], ijk[1], ijk[2]);
+}
+
+// Calls f(id) for every node of a block face.
+template <class F>
+void for_each_face_node(const Block& block, BlockFace face, F&& f) {
+    const int axis = face / 2;
+    const int np = block.nodes[axis == 0 ? 1 : 0], nq = block.nodes[axis == 2 ? 1 : 2];
+    for (int q = 0; q < nq; ++q)
+        for (int p = 0; p < np; ++p) f(face_node(block, face, p, q));
+}
+
+// The core node at cube corner c (entry (a > 0) + 2 (b > 0) + 4 (c > 0) as CubeCorners):
+// the wall node furthest towards it.
+Id cube_corner_node(const CoreLayout& core, const std::vector<Id>& on_wall, int c) {
+    const Vec3 towards(c & 1 ? 1 : -1, c & 2 ? 1 : -1, c & 4 ? 1 : -1);
+    return *std::max_element(on_wall.begin(), on_wall.end(), [&](Id x, Id y) {
+        return core.t[x].dot(towards) < core.t[y].dot(towards);
+    });
+}
+
+// The wall block on a core wall face: "wall_<side>", or "wall_<side>_<piece>" for a piece of
+// a split side, with (i, j) the face's index directions ordered so that (i, j, outward) is
+// right-handed, k = 0 on the core and k = nk on the wall; node_id(core id, layer).
+template <class NodeId>
+Block wall_block(const Block& base, const CoreLayout::WallFace& f, const std::vector<Vec3>& t,
+                 int nk, NodeId&& node_id) {
+    const CubePatch& patch = cube_patches[f.side];
+    const int axis = f.face / 2;
+    const int np = base.nodes[axis == 0 ? 1 : 0], nq = base.nodes[axis == 2 ? 1 : 2];
+    const Vec3 origin = t[face_node(base, f.face, 0, 0)];
+    const Vec3 along_p = t[face_node(base, f.face, 1, 0)] - origin;
+    const Vec3 along_q = t[face_node(base, f.face, 0, 1)] - origin;
+    const Vec3 outward = (patch.max_side ? 1.0 : -1.0) * Vec3::Unit(patch.axis);
+    const bool swap = along_p.cross(along_q).dot(outward) < 0;
+    const std::string piece = base.name.size() > 5 ? base.name.substr(5) : "";
+    const std::string side = patch.side;
+    const bool whole_side = piece.empty() || piece == "ring_" + side || piece == "frame_" + side;
+    Block b{"wall_" + side + (whole_side ? "" : "_" + piece),
+            {swap ? nq : np, swap ? np : nq, nk + 1},
+            {},
+            {}};
+    b.face_patch[kmax] = "wall";
+    b.node_ids.resize(b.nodes.count());
+    for (int k = 0; k <= nk; ++k)
+        for (int j = 0; j < b.nodes.nj; ++j)
+            for (int i = 0; i < b.nodes.ni; ++i)
+                b.node_ids[b.nodes.flat(i, j, k)] = node_id(
+                    swap ? face_node(base, f.face, j, i) : face_node(base, f.face, i, j), k);
+    return b;
+}
+
 }  // namespace
 
 double grid_length_scale(const ImplicitFunction& body, int cells_per_edge) {
@@ -57,97 +124,102 @@ BlockGrid make_o_h_grid(const ImplicitFunction& body, const OHGridOptions& optio
     const double h = grid_length_scale(body, n);
     require_inside(body, centre);
 
-    // Lattice (a,b,c) in [0,n]^3: the core's nodes. Its boundary points double as the
-    // wall-patch lattice, numbered for the wall layers 1..nk.
-    const CubeSurfaceLattice surface = make_cube_surface_lattice(n);
-    const Dims lattice = surface.lattice;
-    const Id ns = surface.size();
-    auto node_id = [&](const LatticePoint& abc, int layer) {
-        const Id core = lattice.flat(abc[0], abc[1], abc[2]);
-        return layer == 0 ? core : lattice.count() + (layer - 1) * ns + surface.number[core];
+    // The core's nodes in cube coordinates; those on the cube's surface double as the wall
+    // patches' nodes, numbered in core order for the wall layers 1..nk.
+    const int ring_cells = options.ring_cells > 0 ? options.ring_cells : (n + 1) / 2;
+    const double ring_edge = axial_frame_edge(n, options.frame_cells);
+    CoreLayout core = options.axis < 0
+                          ? one_block_core(n)
+                          : axial_core(n, options.frame_cells,
+                                       even_axial_rings(options.axis, ring_cells, ring_edge));
+    const Id core_nodes = Id(core.t.size());
+    std::vector<Id> number(core_nodes, -1), on_wall;  // surface number of each core node
+    for (const CoreLayout::WallFace& f : core.wall_faces)
+        for_each_face_node(core.blocks[f.block], f.face, [&](Id id) { number[id] = 0; });
+    for (Id id = 0; id < core_nodes; ++id)
+        if (number[id] == 0) number[id] = Id(on_wall.size()), on_wall.push_back(id);
+    const Id ns = Id(on_wall.size());
+    auto node_id = [&](Id core_id, int layer) {
+        return layer == 0 ? core_id : core_nodes + (layer - 1) * ns + number[core_id];
     };
-    if (options.wall_from && Id(options.wall_from->size()) != lattice.count() + nk * ns)
+    if (options.wall_from && Id(options.wall_from->size()) != core_nodes + nk * ns)
         throw std::invalid_argument("wall_from: the points of a grid made with other options");
 
     // The wall nodes: given, or the radial projections of the rays through the bounds' box,
     // then (box-like bodies) through the body's corners.
     std::optional<CubeCorners> corners;
-    auto ray = [&](const LatticePoint& abc) {
-        return corners ? cube_sphere_ray(abc, n, *corners) : cube_sphere_ray(abc, n, half);
-    };
+    auto ray = [&](const Vec3& t) { return corners ? cube_ray(t, *corners) : cube_ray(t, half); };
     std::vector<Vec3> wall(ns);
     const auto place_wall = [&] {
         tbb::parallel_for(Id(0), ns, [&](Id s) {
-            const LatticePoint& abc = surface.points[s];
-            wall[s] = options.wall_from ? (*options.wall_from)[node_id(abc, nk)]
-                                        : place_on_surface(body, centre, ray(abc), h);
+            wall[s] = options.wall_from
+                          ? (*options.wall_from)[node_id(on_wall[s], nk)]
+                          : place_on_surface(body, centre, ray(core.t[on_wall[s]]), h);
         });
     };
     place_wall();
     if (options.patch_corners_on_body_corners && !options.wall_from) {
         corners = body_corners_by_octant(centre, body_corners_near(body, wall, h), h);
-        if (corners) place_wall();
     } else if (options.patch_corners_on_body_corners) {
         // A given wall keeps the choice of the grid it came from: its 8 patch-corner nodes sit
         // on body corners, one per octant, exactly when that grid's rays spanned them.
         std::vector<Vec3> at_corners;
         for (int c = 0; c < 8; ++c) {
-            const LatticePoint abc = {(c & 1) * n, (c >> 1 & 1) * n, (c >> 2 & 1) * n};
-            const Vec3& x = wall[surface.number_of(abc)];
+            const Vec3& x = wall[number[cube_corner_node(core, on_wall, c)]];
             if (classify_surface_point(body, x, 1e-6 * h) == FeatureKind::corner)
                 at_corners.push_back(x);
         }
         corners = body_corners_by_octant(centre, at_corners, h);
     }
+    if (options.axis >= 0)
+        core =
+            axial_core(n, options.frame_cells,
+                       fit_axial_rings(body, centre, ray, options.axis, ring_cells, ring_edge, h));
+    if ((corners || options.axis >= 0) && !options.wall_from) place_wall();
 
     BlockGrid grid;
-    grid.points.assign(lattice.count() + nk * ns, Vec3::Zero());
+    grid.points.assign(core_nodes + nk * ns, Vec3::Zero());
     grid.kinds.assign(grid.points.size(), VertexKind::interior);
-    for (const LatticePoint& abc : surface.points)
-        grid.points[node_id(abc, 0)] = centre + options.core_size * ray(abc);
+    for (Id id = 0; id < core_nodes; ++id)
+        grid.points[id] = centre + options.core_size * ray(core.t[id]);
 
     tbb::parallel_for(Id(0), ns, [&](Id s) {
-        const LatticePoint& abc = surface.points[s];
-        const Vec3 dir = ray(abc);
+        const Id core_id = on_wall[s];
+        const Vec3 dir = ray(core.t[core_id]);
         const Vec3 wall_node = wall[s];
-        const Vec3 core = grid.points[node_id(abc, 0)];
-        const double length = (wall_node - core).norm();
-        if ((wall_node - core).dot(dir) <= 0 && options.wall_from) {
+        const Vec3 inner = grid.points[core_id];
+        const double length = (wall_node - inner).norm();
+        if ((wall_node - inner).dot(dir) <= 0 && options.wall_from) {
             throw std::invalid_argument(fmt::format(
                 "the given wall node at ({:.4g}, {:.4g}, {:.4g}) lies behind its core node: its "
                 "line would turn back",
                 wall_node.x(), wall_node.y(), wall_node.z()));
         }
-        if ((wall_node - core).dot(dir) <= 0) {
-            throw std::invalid_argument(fmt::format(
-                "core_size {} puts the core box outside the body near ({:.4g}, {:.4g}, "
-                "{:.4g}); use a smaller core_size",
-                options.core_size, core.x(), core.y(), core.z()));
+        if ((wall_node - inner).dot(dir) <= 0) {
+            throw std::invalid_argument(
+                fmt::format("core_size {} puts the core box outside the body near ({:.4g}, {:.4g}, "
+                            "{:.4g}); use a smaller core_size",
+                            options.core_size, inner.x(), inner.y(), inner.z()));
         }
         const std::vector<double> d = wall_distances(length, nk, options.wall_layers);
         for (int layer = 1; layer <= nk; ++layer)
-            grid.points[node_id(abc, layer)] =
-                wall_node + (core - wall_node) * (d[nk - layer] / length);
-        grid.kinds[node_id(abc, nk)] = VertexKind::slip;
+            grid.points[node_id(core_id, layer)] =
+                wall_node + (inner - wall_node) * (d[nk - layer] / length);
+        grid.kinds[node_id(core_id, nk)] = VertexKind::slip;
     });
 
-    Block core{"core", lattice, {}, {}};
-    core.node_ids.resize(lattice.count());
-    for (Id id = 0; id < lattice.count(); ++id) core.node_ids[id] = id;
-    fill_interior_tfi(core, grid.points);
-    grid.blocks.push_back(std::move(core));
-
-    for (const CubePatch& patch : cube_patches) {
-        Block b{std::string("wall_") + patch.side, {n + 1, n + 1, nk + 1}, {}, {}};
-        b.face_patch[kmax] = "wall";
-        b.node_ids.resize(b.nodes.count());
-        for (int k = 0; k <= nk; ++k)
-            for (int j = 0; j <= n; ++j)
-                for (int i = 0; i <= n; ++i)
-                    b.node_ids[b.nodes.flat(i, j, k)] =
-                        node_id(surface.patch_point(patch, i, j), k);
-        grid.blocks.push_back(std::move(b));
+    for (Block& block : core.blocks) {
+        fill_interior_tfi(block, grid.points);
+        grid.blocks.push_back(std::move(block));
     }
+    for (int side = 0; side < 6; ++side)
+        for (const CoreLayout::WallFace& f : core.wall_faces) {
+            if (f.side != side) continue;
+            const Block& base = grid.blocks[f.block];
+            grid.blocks.push_back(wall_block(base, f, core.t, nk, [&](Id core_id, int layer) {
+                return node_id(core_id, layer);
+            }));
+        }
     return grid;
 }
 

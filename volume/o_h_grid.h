@@ -25,10 +25,19 @@ struct OHGridOptions {
     // patch edges can follow its edges. With wall_from: when the given wall's 8 patch-corner
     // nodes are such corners (as that grid made them). false: always the bounds' box.
     bool patch_corners_on_body_corners = true;
+    // -1: one core block. 0, 1, 2: the core, and the two patches across this axis, O-gridded
+    // around the axis through the centre (volume/core_layout.h: axial_core), with rings fitted
+    // to the body's creases around it: for circular edges around the axis (a cylinder on a
+    // box, a body of revolution), which then run along grid lines.
+    int axis = -1;
+    int ring_cells = 0;   // with an axis: cells across the rings (0: (n+1)/2)
+    int frame_cells = 1;  // with an axis: cells across the frame along the cube's edges
 };
 
 // Grid of the body's interior. Blocks: "core" (n^3 cells) and "wall_xmin", "wall_xmax", ...,
-// "wall_zmax" (n x n x wall_cells cells, k = 0 on the core, k = wall_cells on the wall).
+// "wall_zmax" (n x n x wall_cells cells, k = 0 on the core, k = wall_cells on the wall). With
+// an axis, say z: the core is a column "core" and ring pieces "core_xmin", ..., and the zmin
+// and zmax patches are each a central "wall_zmax" and four "wall_zmax_xmin", ....
 // Every block is right-handed in (i,j,k); the wall blocks' kmax faces form patch "wall". Wall nodes
 // are the cube-sphere (equiangular) directions from the centre, scaled by the body's half extents
 // (or spanning its corners, see patch_corners_on_body_corners), projected radially onto u = 0 (kind

@@ -122,6 +122,9 @@ BlockGrid build_grid(const Case& c, const ImplicitFunction& body,
     o.wall_layers = wall_layers(c);
     o.centre = c.grid.center;
     o.wall_from = wall_from;
+    o.axis = c.grid.axis.empty() ? -1 : c.grid.axis[0] - 'x';
+    o.ring_cells = c.grid.ring_cells;
+    o.frame_cells = c.grid.frame_cells;
     return make_o_h_grid(body, o);
 }
 

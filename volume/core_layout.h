@@ -1,0 +1,77 @@
+// The core blocks of an O-H grid in cube coordinates: one box, or a column around an axis
+// with four ring pieces, so circles around that axis can run along grid lines.
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "hexmesh/core/block_grid.h"
+#include "hexmesh/core/implicit_function.h"
+
+namespace hexmesh {
+
+// Core blocks over node ids 0 .. t.size()-1, every block right-handed in (i, j, k). A node's
+// cube coordinates t lie in [-1, 1]^3 (the parameters of cube_ray in volume/cube_sphere.h);
+// the cube's surface |t|_inf = 1 carries the wall faces, which the wall blocks extrude.
+struct CoreLayout {
+    struct WallFace {
+        int block;  // index in blocks
+        BlockFace face;
+        int side;  // index in cube_patches of the cube face it lies on
+    };
+    std::vector<Block> blocks;
+    std::vector<Vec3> t;               // cube coordinates of each core node
+    std::vector<WallFace> wall_faces;  // in block order, then BlockFace order
+};
+
+// One box block "core" of n^3 cells at the equiangular coordinates of the lattice [0, n]^3
+// (volume/cube_sphere.h: equiangular), node ids in lattice order (i fastest). Its six faces
+// are the wall faces.
+CoreLayout one_block_core(int n);
+
+// Rings around `axis` in the two cube faces across it, as the axial core lays them out. In the
+// plane of those faces (the other two cube coordinates, b and c): a central square
+// |b|, |c| <= column, then rings s = 1 .. cells, ring s at distance radius[s] from the axis
+// along b and c. roundness[s] blends ring s from the square |b|, |c| = radius[s] (0) to the
+// circle of that radius (1); the first ring is the column's square, the last the frame's
+// inner square (roundness 0 at both; axial_frame_edge).
+struct AxialRings {
+    int axis = 2;
+    double column = 0.5;
+    std::vector<double> radius;     // cells + 1 values, radius[0] = column
+    std::vector<double> roundness;  // cells + 1 values in [0, 1]
+    int cells() const { return int(radius.size()) - 1; }
+};
+
+// The inner edge of a frame `frame` cells wide along the edges of a cube face of n cells per
+// edge (equiangular): the rings' last radius. 1 without a frame.
+double axial_frame_edge(int n, int frame);
+
+// Rings with `cells` cells, evenly spaced from a column of half-width outer / 2 to `outer`,
+// round in the middle (roundness sin(pi s / cells)).
+AxialRings even_axial_rings(int axis, int cells, double outer);
+
+// Rings fitted to the body's creases around the axis: along the 8 half-lines from the axis to
+// the edges of the two faces across it (t = w d +- axis, d = +-b, +-c, 0 < w < 1), the rays
+// ray(t) from `centre` are placed on u = 0 and the creases crossed are found (sharp features,
+// surface/implicit_features.h). Each crease inside `outer` then gets a ring through it along
+// those half-lines, round from the first crease to the last; the column is half the first
+// crease's radius (at most outer / 2); the other rings are spread evenly in arc length along
+// the wall between them. A body without such creases gets even_axial_rings. At most cells - 1
+// creases are fitted, nearest the axis first. Throws std::invalid_argument when a ray misses
+// u = 0 (the body is not star-shaped around the centre).
+AxialRings fit_axial_rings(const ImplicitFunction& body, const Vec3& centre,
+                           const std::function<Vec3(const Vec3&)>& ray, int axis, int cells,
+                           double outer, double length_scale);
+
+// The core O-gridded around the rings' axis, a prism along it over a cross-section of the
+// cube's faces across it: a column (m x m cells, m = n - 2 frame), four ring pieces from the
+// column to the frame's inner square (rings.cells() x m), and a frame `frame` cells wide
+// along the cube's edges: four sides (frame x m) and four corners (frame x frame), so the
+// cube's corners keep one cell per face. Blocks "core_column", "core_ring_xmax",
+// "core_frame_xmax", "core_frame_xmax_ymax", ... (named by the cube faces they reach), n cells
+// along the axis, equiangular. Wall faces: every piece's two ends and the pieces' faces on the
+// cube's sides. Node ids: the cross-section's nodes, layer by layer along the axis.
+CoreLayout axial_core(int n, int frame, const AxialRings& rings);
+
+}  // namespace hexmesh
