@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -17,22 +18,38 @@ namespace {
 // A coarse edge (2 ids, then padding) or face (4 ids), sorted: the key of its new node.
 using EntityKey = std::array<Id, 4>;  // BlockRefiner::Key
 
+// Whether a line turns by more than 45 degrees at b (from a to b to c): a crease of the wall
+// the line follows, where the map from the index is not smooth.
+bool kinked(const Vec3& a, const Vec3& b, const Vec3& c) {
+    const Vec3 u = b - a, v = c - b;
+    return u.dot(v) < std::cos(45 * 3.14159265358979323846 / 180) * u.norm() * v.norm();
+}
+
 // Fills the odd entries of a fine line whose even entries (the coarse samples) are set:
 // x(m + 1/2) by cubic Lagrange in the index where two samples lie on each side, quadratic at
-// the ends, linear on a 2-sample line. at(f) is the fine entry f of the line.
+// the ends, linear on a 2-sample line. A sample where the line turns sharply (kinked) ends
+// the stencils on either side of it, as a line end does: the map is smooth only between such
+// creases, and a stencil across one overshoots by a fraction of a cell, which is more than
+// a boundary layer's thickness. at(f) is the fine entry f of the line.
 template <class At>
 void interpolate_line(int coarse_count, At&& at) {
     const int n = coarse_count;
+    auto sample = [&](int m) -> const Vec3& { return at(2 * m); };
+    // Whether the line is smooth through sample m: an inner sample where it does not turn.
+    auto smooth_at = [&](int m) {
+        return m > 0 && m + 1 < n && !kinked(sample(m - 1), sample(m), sample(m + 1));
+    };
     for (int m = 0; m + 1 < n; ++m) {
         Vec3& mid = at(2 * m + 1);
-        if (n == 2) {
-            mid = 0.5 * (at(0) + at(2));
-        } else if (m == 0) {
-            mid = (3 * at(0) + 6 * at(2) - at(4)) / 8;
-        } else if (m == n - 2) {
-            mid = (3 * at(2 * n - 2) + 6 * at(2 * n - 4) - at(2 * n - 6)) / 8;
+        const bool left = smooth_at(m), right = smooth_at(m + 1);
+        if (left && right) {
+            mid = (9 * (sample(m) + sample(m + 1)) - sample(m - 1) - sample(m + 2)) / 16;
+        } else if (right) {
+            mid = (3 * sample(m) + 6 * sample(m + 1) - sample(m + 2)) / 8;
+        } else if (left) {
+            mid = (3 * sample(m + 1) + 6 * sample(m) - sample(m - 1)) / 8;
         } else {
-            mid = (9 * (at(2 * m) + at(2 * m + 2)) - at(2 * m - 2) - at(2 * m + 4)) / 16;
+            mid = 0.5 * (sample(m) + sample(m + 1));
         }
     }
 }

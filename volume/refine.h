@@ -22,8 +22,11 @@ namespace hexmesh {
 // Positions: the same smooth map x(xi) sampled at the half-integer indices, by tensor-product
 // interpolation along the block's grid lines in index space, one direction after the other
 // (i, then j, then k): cubic Lagrange (-1, 9, 9, -1)/16 where a line has two coarse nodes on
-// each side, quadratic (3, 6, -1)/8 at line ends, linear on 2-node lines. This keeps curved
-// walls curved and a geometric stretching geometric (ratio r becomes ~sqrt(r)). A node shared
+// each side, quadratic (3, 6, -1)/8 at line ends, linear on 2-node lines; a coarse node where
+// the line turns by more than 45 degrees (a crease of the wall it follows) counts as a line
+// end for the stencils on either side. This keeps curved walls curved and a geometric
+// stretching geometric (ratio r becomes ~sqrt(r)), and keeps the lines next to a crease on
+// their side of it. A node shared
 // by blocks takes the value of the first block that reaches it (the blocks agree up to
 // round-off where their lines coincide).
 //

@@ -151,6 +151,37 @@ TEST(RefineGrid, GeometricStretchingBecomesItsSquareRoot) {
     }
 }
 
+TEST(RefineGrid, LinesTurningAtACreaseStayOnTheirSideOfIt) {
+    // A block whose i lines turn by 90 degrees at i = 3 (along x, then along y), like the
+    // lines over a box's edge: the new nodes lie on the two straight legs, none overshoots the
+    // corner (a cubic stencil across it would move the two next to it by 1/16 of a cell).
+    BlockGrid grid;
+    const int n = 7;
+    Block b;
+    b.name = "bent";
+    b.nodes = {n, 2, 2};
+    for (int k = 0; k < 2; ++k)
+        for (int j = 0; j < 2; ++j)
+            for (int i = 0; i < n; ++i) {
+                b.node_ids.push_back(Id(grid.points.size()));
+                const double s = 0.2 * j;  // the j = 1 line runs inside the j = 0 one
+                grid.points.push_back(i < 3 ? Vec3(i, s, k) : Vec3(3 - s, i - 3 + s, k));
+                grid.kinds.push_back(VertexKind::interior);
+            }
+    grid.blocks.push_back(b);
+    const BlockGrid fine = refine_grid(grid);
+    const Block& f = fine.blocks[0];
+    for (int j = 0; j < f.nodes.nj; j += 2)
+        for (int i = 0; i < f.nodes.ni; ++i) {
+            const Vec3& x = fine.points[f.node(i, j, 0)];
+            const double s = 0.1 * j;
+            if (i <= 6)
+                EXPECT_NEAR(x.y(), s, 1e-12) << i << " " << j;
+            else
+                EXPECT_NEAR(x.x(), 3 - s, 1e-12) << i << " " << j;
+        }
+}
+
 // Block by block: every fine block holds the fine grid's points at its ids; a new node on a
 // block interface is placed once, by its first block, and every block holding it gets that
 // position, even when placement would give another one each time.
