@@ -61,6 +61,37 @@ std::vector<int> share_cells(const std::vector<double>& lengths, int cells) {
     return count;
 }
 
+// Where the half-line t = w d + end (0 < w < 1) meets the crease near the wall point `near`
+// (sampled at w = `sampled`): the crease point nearest `near`, and the w whose ray passes
+// closest to it. The ray is affine in w (cube_ray is trilinear in t), so that w solves a linear
+// least-squares problem; `sampled` when the crease point cannot be reached from there.
+double crease_on_half_line(const ImplicitFunction& body, const Vec3& centre,
+                           const std::function<Vec3(const Vec3&)>& ray, const Vec3& d,
+                           const Vec3& end, const Vec3& near, double sampled, double length_scale) {
+    const Vec3 q = project_to_crease(body, near, length_scale) - centre;
+    const Vec3 base = ray(end), step = ray(d + end) - base;
+    const Vec3 qs = q.cross(step);
+    if (!(qs.squaredNorm() > 0)) return sampled;
+    const double w = -q.cross(base).dot(qs) / qs.squaredNorm();
+    return std::abs(w - sampled) < 0.01 ? w : sampled;
+}
+
+// Lowers each ring's roundness as far as needed for the rings to stay nested: a round ring
+// reaches less far along the diagonals than a square one, so each ring's diagonal reach must
+// exceed the previous ring's by at least a quarter of its step along the axes.
+void keep_rings_nested(AxialRings& rings) {
+    const double root2 = std::sqrt(2.0);
+    double previous =
+        root2 * rings.radius[0] * (1 - rings.roundness[0]) + rings.radius[0] * rings.roundness[0];
+    for (int s = 1; s <= rings.cells(); ++s) {
+        const double w = rings.radius[s];
+        const double least = previous + 0.25 * (w - rings.radius[s - 1]);
+        const double most_round = (root2 - least / w) / (root2 - 1);
+        rings.roundness[s] = std::clamp(std::min(rings.roundness[s], most_round), 0.0, 1.0);
+        previous = w * (root2 - rings.roundness[s] * (root2 - 1));
+    }
+}
+
 }  // namespace
 
 CoreLayout one_block_core(int n) {
@@ -92,6 +123,7 @@ AxialRings even_axial_rings(int axis, int cells, double outer) {
                                           : rings.column + (outer - rings.column) * s / cells);
         rings.roundness.push_back(s == 0 || s == cells ? 0.0 : std::sin(pi * s / cells));
     }
+    keep_rings_nested(rings);
     return rings;
 }
 
@@ -122,7 +154,9 @@ AxialRings fit_axial_rings(const ImplicitFunction& body, const Vec3& centre,
                 }
                 if (sharp && run_start < 0) run_start = i;
                 if (!sharp && run_start >= 0) {
-                    const double mid = (w[run_start] + w[i - 1]) / 2;
+                    const double mid = crease_on_half_line(
+                        body, centre, ray, d, end * unit(axis), p[(run_start + i - 1) / 2],
+                        (w[run_start] + w[i - 1]) / 2, length_scale);
                     if (mid > 0.05 && mid < outer - 0.05) creases.push_back(mid);
                     run_start = -1;
                 }
@@ -158,10 +192,19 @@ AxialRings fit_axial_rings(const ImplicitFunction& body, const Vec3& centre,
         if (i == 0) first = int(rings.radius.size()) - 1;
         if (i + 2 == count.size()) last = int(rings.radius.size()) - 1;
     }
-    for (int s = 0; s <= cells; ++s)
-        rings.roundness.push_back(s < first  ? double(s) / first
-                                  : s > last ? double(cells - s) / (cells - last)
-                                             : 1.0);
+    // Round from the first crease's ring to the last; inside and outside, the rings' reach
+    // along the diagonals grows evenly with their radius to the column's and frame's squares.
+    const double root2 = std::sqrt(2.0), first_w = rings.radius[first], last_w = rings.radius[last];
+    for (int s = 0; s <= cells; ++s) {
+        const double x = rings.radius[s];
+        double reach = x;  // a circle's
+        if (s < first)
+            reach = root2 * rings.column + (first_w - root2 * rings.column) * (x - rings.column) /
+                                               (first_w - rings.column);
+        if (s > last) reach = last_w + (root2 * outer - last_w) * (x - last_w) / (outer - last_w);
+        rings.roundness.push_back(std::clamp((root2 - reach / x) / (root2 - 1), 0.0, 1.0));
+    }
+    keep_rings_nested(rings);
     return rings;
 }
 

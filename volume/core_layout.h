@@ -48,15 +48,18 @@ struct AxialRings {
 double axial_frame_edge(int n, int frame);
 
 // Rings with `cells` cells, evenly spaced from a column of half-width outer / 2 to `outer`,
-// round in the middle (roundness sin(pi s / cells)).
+// round in the middle (roundness sin(pi s / cells)) as far as they stay nested: each ring
+// reaches further along the diagonals than the one inside it by at least a quarter of its step
+// along the axes (a circle reaches less far than a square; fitted rings are held to the same).
 AxialRings even_axial_rings(int axis, int cells, double outer);
 
 // Rings fitted to the body's creases around the axis: along the 8 half-lines from the axis to
 // the edges of the two faces across it (t = w d +- axis, d = +-b, +-c, 0 < w < 1), the rays
 // ray(t) from `centre` are placed on u = 0 and the creases crossed are found (sharp features,
 // surface/implicit_features.h). Each crease inside `outer` then gets a ring through it along
-// those half-lines, round from the first crease to the last; the column is half the first
-// crease's radius (at most outer / 2); the other rings are spread evenly in arc length along
+// those half-lines, round from the first crease to the last (inside and outside, the reach
+// along the diagonals grows evenly to the column's and frame's squares); the column is half the
+// first crease's radius (at most outer / 2); the other rings are spread evenly in arc length along
 // the wall between them. A body without such creases gets even_axial_rings. At most cells - 1
 // creases are fitted, nearest the axis first. Throws std::invalid_argument when a ray misses
 // u = 0 (the body is not star-shaped around the centre).

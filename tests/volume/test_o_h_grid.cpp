@@ -206,6 +206,48 @@ TEST(OHGrid, PatchCornersGoToTheCornersOfABoxLikeBody) {
     EXPECT_EQ(round.points, make_o_h_grid(sphere, o).points);
 }
 
+TEST(OHGrid, AnAxialCoreRunsRingsOfWallNodesAlongACylindersCircles) {
+    // cases/box_cylinder: the rim (radius 0.6, z = 1.2) and the circle where the cylinder
+    // leaves the box (z = 0.6) lie inside the top patch. Around the z axis, each is a ring of
+    // wall nodes; with one core block the patch's lattice lines cross them.
+    const Body body = std::make_shared<Csg>(
+        CsgOp::Union, std::vector<Body>{std::make_shared<Box>(Vec3::Zero(), Vec3(1.0, 1.0, 0.6)),
+                                        std::make_shared<Cylinder>(Vec3(0, 0, 0.5), 0.6, 0.7)});
+    OHGridOptions o = sphere_options();
+    o.core_size = 0.55;
+    o.axis = 2;
+    const BlockGrid grid = make_o_h_grid(*body, o);
+    const int n = o.cells_per_edge, m = n - 2 * o.frame_cells;
+    EXPECT_EQ(grid.blocks.size(), 51u);  // 13 core pieces, 13 per end, 3 per side
+    EXPECT_EQ(measure_quality(to_hex_mesh(grid)).inverted_corner_tets, 0);
+    EXPECT_EQ(test_support::count_faces(to_hex_mesh(grid)).over_shared, 0);
+    auto on_circle = [&](const BlockGrid& g, double z) {
+        int count = 0;
+        for (size_t v = 0; v < g.points.size(); ++v) {
+            const Vec3& p = g.points[v];
+            if (g.kinds[v] == VertexKind::slip && std::abs(p.z() - z) < 1e-9 &&
+                std::abs(std::hypot(p.x(), p.y()) - 0.6) < 1e-9)
+                ++count;
+        }
+        return count;
+    };
+    EXPECT_EQ(on_circle(grid, 1.2), 4 * m);
+    EXPECT_EQ(on_circle(grid, 0.6), 4 * m);
+    o.axis = -1;
+    const BlockGrid one_block = make_o_h_grid(*body, o);
+    EXPECT_LT(on_circle(one_block, 1.2), 8);
+    EXPECT_LT(on_circle(one_block, 0.6), 8);
+
+    // Built again from its own wall, the grid is the same: the rings and patch corners are
+    // found again from the wall and the body alone.
+    o.axis = 2;
+    o.wall_from = &grid.points;
+    const BlockGrid again = make_o_h_grid(*body, o);
+    ASSERT_EQ(again.points.size(), grid.points.size());
+    for (size_t v = 0; v < grid.points.size(); ++v)
+        EXPECT_LT((again.points[v] - grid.points[v]).norm(), 1e-9) << v;
+}
+
 TEST(OHGrid, RefusesACentreOutsideTheBody) {
     const Torus torus(Vec3::Zero(), 1.0, 0.3);  // its bounds' centre is in the hole
     EXPECT_THROW(make_o_h_grid(torus, OHGridOptions{}), std::invalid_argument);

@@ -1,0 +1,107 @@
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <memory>
+
+#include "grid_checks.h"
+#include "hexmesh/core/quality.h"
+#include "surface/analytic.h"
+#include "surface/csg.h"
+#include "volume/core_layout.h"
+#include "volume/cube_sphere.h"
+
+using namespace hexmesh;
+
+namespace {
+
+// The core's blocks as a hex mesh over its cube coordinates.
+HexMesh core_mesh(const CoreLayout& core) {
+    BlockGrid grid;
+    grid.points = core.t;
+    grid.kinds.assign(core.t.size(), VertexKind::interior);
+    grid.blocks = core.blocks;
+    return to_hex_mesh(grid);
+}
+
+// The box of cases/box_cylinder centred at the origin with the cylinder on top: its rim
+// (radius 0.6, z = 1.2) and the circle where it leaves the box (z = 0.6).
+Body box_with_cylinder() {
+    return std::make_shared<Csg>(
+        CsgOp::Union, std::vector<Body>{std::make_shared<Box>(Vec3::Zero(), Vec3(1.0, 1.0, 0.6)),
+                                        std::make_shared<Cylinder>(Vec3(0, 0, 0.5), 0.6, 0.7)});
+}
+
+}  // namespace
+
+TEST(CoreLayout, AxialCoreIsAConformingRightHandedPrismFilledByItsPieces) {
+    const int n = 8;
+    for (const int frame : {0, 2}) {
+        for (const int axis : {0, 2}) {
+            const AxialRings rings = even_axial_rings(axis, 3, axial_frame_edge(n, frame));
+            const CoreLayout core = axial_core(n, frame, rings);
+            EXPECT_EQ(core.blocks.size(), frame > 0 ? 13u : 5u);
+            const HexMesh mesh = core_mesh(core);
+            EXPECT_EQ(measure_quality(mesh).inverted_corner_tets, 0) << frame << " " << axis;
+            // Shared faces match; the faces used once are exactly the wall faces, which lie on
+            // the cube's surface and cover each of its faces' area.
+            const auto faces = test_support::count_faces(mesh);
+            EXPECT_EQ(faces.over_shared, 0);
+            Id wall_quads = 0;
+            std::array<Id, 6> per_side{};
+            for (const CoreLayout::WallFace& f : core.wall_faces) {
+                const Block& b = core.blocks[f.block];
+                const int normal = f.face / 2;
+                const Id quads =
+                    Id(b.nodes[normal == 0 ? 1 : 0] - 1) * (b.nodes[normal == 2 ? 1 : 2] - 1);
+                wall_quads += quads;
+                per_side[f.side] += quads;
+                const CubePatch& side = cube_patches[f.side];
+                for (int k = 0; k < b.nodes.nk; ++k)
+                    for (int j = 0; j < b.nodes.nj; ++j)
+                        for (int i = 0; i < b.nodes.ni; ++i) {
+                            const int at[3] = {i, j, k};
+                            if (at[normal] != (f.face % 2 ? b.nodes[normal] - 1 : 0)) continue;
+                            EXPECT_NEAR(core.t[b.node(i, j, k)][side.axis], side.max_side ? 1 : -1,
+                                        1e-12);
+                        }
+            }
+            EXPECT_EQ(faces.boundary, wall_quads);
+            // The sides along the axis have n x n cells, as the one-block core's; the ends the
+            // column, rings and frame.
+            const Id m = n - 2 * frame;
+            for (int side = 0; side < 6; ++side)
+                EXPECT_EQ(per_side[side],
+                          side / 2 == axis ? m * m + 4 * 3 * m + 4 * frame * m + 4 * frame * frame
+                                           : Id(n) * n)
+                    << side;
+        }
+    }
+}
+
+TEST(CoreLayout, RingsAreFittedToTheCirclesOfACylinderOnABox) {
+    // Rays from the origin through the box's top face z = 0.6 at distance w from the axis
+    // meet the rim for w = 0.6 * 0.6 / 1.2 = 0.3 and the junction circle at w = 0.6.
+    const Body body = box_with_cylinder();
+    const Vec3 half(1.0, 1.0, 0.6);
+    const auto ray = [&](const Vec3& t) { return cube_ray(t, half); };
+    const double outer = axial_frame_edge(16, 1);
+    const AxialRings rings = fit_axial_rings(*body, Vec3::Zero(), ray, 2, 8, outer, 0.05);
+    ASSERT_EQ(rings.cells(), 8);
+    EXPECT_DOUBLE_EQ(rings.radius.back(), outer);
+    for (const double circle : {0.3, 0.6}) {
+        int s = 0;
+        while (s < 8 && std::abs(rings.radius[s] - circle) > 1e-9) ++s;
+        ASSERT_LT(s, 8) << "no ring on the circle at " << circle;
+        EXPECT_DOUBLE_EQ(rings.roundness[s], 1.0);
+    }
+    EXPECT_NEAR(rings.column, 0.15, 0.005);
+    for (int s = 0; s < 8; ++s) EXPECT_LT(rings.radius[s], rings.radius[s + 1]);
+    EXPECT_EQ(rings.roundness.front(), 0.0);
+    EXPECT_EQ(rings.roundness.back(), 0.0);
+
+    // A smooth body has no creases to fit: the rings are even.
+    const Sphere sphere(Vec3::Zero(), 1.0);
+    const AxialRings even = fit_axial_rings(sphere, Vec3::Zero(), ray, 2, 8, outer, 0.05);
+    EXPECT_EQ(even.radius, even_axial_rings(2, 8, outer).radius);
+}
