@@ -150,21 +150,21 @@ GridSpec parse_grid(const JsonFields& g) {
         }
     }
     if (g.has("center")) grid.center = g.vec3("center", Vec3::Zero());
-    grid.axis = g.choice("axis", grid.axis, {"x", "y", "z"});
+    grid.axis = g.choice("axis", grid.axis, {"none", "auto", "x", "y", "z"});
     grid.ring_cells = g.integer("ring_cells", grid.ring_cells, 0, 4096);
     grid.frame_cells = g.integer("frame_cells", grid.frame_cells, 0, 4096);
-    if (grid.axis.empty() && g.has("ring_cells")) g.fail("ring_cells", "given with \"axis\" only");
-    if (grid.axis.empty() && g.has("frame_cells"))
-        g.fail("frame_cells", "given with \"axis\" only");
-    if (!grid.axis.empty() && !(grid.cell_size > 0) && 2 * grid.frame_cells >= grid.cells_per_edge)
+    const bool axial = grid.axis != "none";
+    if (!axial && g.has("ring_cells")) g.fail("ring_cells", "given with an \"axis\" only");
+    if (!axial && g.has("frame_cells")) g.fail("frame_cells", "given with an \"axis\" only");
+    if (axial && !(grid.cell_size > 0) && 2 * grid.frame_cells >= grid.cells_per_edge)
         g.fail("frame_cells", "under half of cells_per_edge");
-    if (grid.topology != "o-h" && !grid.axis.empty())
-        g.fail("axis", "given with topology o-h only");
+    if (grid.topology != "o-h" && axial && grid.axis != "auto")
+        g.fail("axis", "\"none\" or \"auto\" (an axis goes with topology o-h)");
     const long long n = grid.cells_per_edge,
                     r = grid.ring_cells > 0 ? grid.ring_cells : (n + 1) / 2;
     const long long total =
         grid.topology != "o-h" ? (long long)grid.cells[0] * grid.cells[1] * grid.cells[2]
-        : grid.axis.empty()    ? n * n * n + 6 * n * n * grid.wall_cells
+        : !axial               ? n * n * n + 6 * n * n * grid.wall_cells
                                : n * n * (n + 4 * r) + (6 * n * n + 8 * n * r) * grid.wall_cells;
     if (total > max_cells) {
         g.fail(grid.topology == "o-h" ? "cells_per_edge" : "cells",
@@ -309,9 +309,9 @@ std::string case_to_json(const Case& c) {
     if (c.grid.cell_size > 0) grid["cell_size"] = c.grid.cell_size;
     else grid["cells_per_edge"] = c.grid.cells_per_edge;
     if (c.grid.center) grid["center"] = vec3_json(*c.grid.center);
-    if (!c.grid.axis.empty()) grid["axis"] = c.grid.axis;
+    grid["axis"] = c.grid.axis;
     if (c.grid.ring_cells > 0) grid["ring_cells"] = c.grid.ring_cells;
-    if (!c.grid.axis.empty()) grid["frame_cells"] = c.grid.frame_cells;
+    if (c.grid.axis != "none") grid["frame_cells"] = c.grid.frame_cells;
     root["grid"] = grid;
     if (c.domain == "exterior") {
         root["far_field"] = {{"shape", c.far_field.shape}};
@@ -356,6 +356,9 @@ Case parse_case(const std::string& text, const std::string& path) {
     c.geometry = parse_geometry(top.at("geometry"), path, "geometry");
     c.domain = top.choice("domain", c.domain, {"interior", "exterior"});
     if (top.has("grid")) c.grid = parse_grid(top.object("grid"));
+    if (c.domain == "exterior" && c.grid.axis != "none" && c.grid.axis != "auto")
+        top.object("grid").fail(
+            "axis", "\"none\" or \"auto\" (an exterior domain is gridded by the O-grid)");
     if (c.domain == "exterior" && c.grid.topology != "o-h")
         top.fail("grid.topology", "\"o-h\" (an exterior domain is gridded by the O-grid of its "
                                   "six wall patches)");

@@ -48,7 +48,9 @@ struct GridSpec {
     double core_size = 0.45;        // o-h: core half-size / body half extents
     std::array<int, 3> cells = {20, 20, 20};  // single-block
     std::optional<Vec3> center;
-    std::string axis;     // o-h: "" or "x" | "y" | "z": core and end patches O-gridded around it
+    // o-h: "x" | "y" | "z": the core and the patches across that axis O-gridded around it;
+    // "auto": around the axis the body's creases run around, if any; "none": one core block.
+    std::string axis = "auto";
     int ring_cells = 0;   // o-h with an axis: cells across the rings (0: (n+1)/2)
     int frame_cells = 1;  // o-h with an axis: cells across the frame along the edges
 };

@@ -62,13 +62,17 @@ std::vector<int> share_cells(const std::vector<double>& lengths, int cells) {
 }
 
 // Where the half-line t = w d + end (0 < w < 1) meets the crease near the wall point `near`
-// (sampled at w = `sampled`): the crease point nearest `near`, and the w whose ray passes
+// (sampled at w = `sampled`): the crease point nearest `near` (the corner, when `corner`),
+// and the w whose ray passes
 // closest to it. The ray is affine in w (cube_ray is trilinear in t), so that w solves a linear
 // least-squares problem; `sampled` when the crease point cannot be reached from there.
 double crease_on_half_line(const ImplicitFunction& body, const Vec3& centre,
                            const std::function<Vec3(const Vec3&)>& ray, const Vec3& d,
-                           const Vec3& end, const Vec3& near, double sampled, double length_scale) {
-    const Vec3 q = project_to_crease(body, near, length_scale) - centre;
+                           const Vec3& end, const Vec3& near, double sampled, bool corner,
+                           double length_scale) {
+    const Vec3 q = (corner ? snap_to_corner(body, near, length_scale)
+                           : project_to_crease(body, near, length_scale)) -
+                   centre;
     const Vec3 base = ray(end), step = ray(d + end) - base;
     const Vec3 qs = q.cross(step);
     if (!(qs.squaredNorm() > 0)) return sampled;
@@ -127,53 +131,93 @@ AxialRings even_axial_rings(int axis, int cells, double outer) {
     return rings;
 }
 
-AxialRings fit_axial_rings(const ImplicitFunction& body, const Vec3& centre,
-                           const std::function<Vec3(const Vec3&)>& ray, int axis, int cells,
-                           double outer, double length_scale) {
+AxialCreases find_axial_creases(const ImplicitFunction& body, const Vec3& centre,
+                                const std::function<Vec3(const Vec3&)>& ray, int axis, double outer,
+                                double length_scale) {
     const int b = (axis + 1) % 3, c = (axis + 2) % 3;
     constexpr int samples = 512;
-    std::vector<double> w(samples);
-    for (int i = 0; i < samples; ++i) w[i] = (i + 0.5) / samples;
-    // The creases met along each half-line, as the middles of runs of samples classified
-    // sharp; those next to the face's centre or edges (a tip, the patch edges) are not rings.
-    std::vector<double> creases;
-    std::vector<Vec3> meridian;  // the first half-line's wall points: its arc length
-    for (const double end : {1.0, -1.0})
-        for (const Vec3& d : {unit(b), unit(c), Vec3(-unit(b)), Vec3(-unit(c))}) {
-            std::vector<Vec3> p(samples);
-            for (int i = 0; i < samples; ++i)
-                p[i] =
-                    place_on_surface(body, centre, ray(w[i] * d + end * unit(axis)), length_scale);
-            int run_start = -1;
-            for (int i = 0; i <= samples; ++i) {
-                bool sharp = false;
-                if (i < samples) {
-                    const double spacing =
-                        (p[std::min(i + 1, samples - 1)] - p[std::max(i - 1, 0)]).norm() / 2;
-                    sharp = classify_surface_point(body, p[i], spacing) != FeatureKind::smooth;
-                }
-                if (sharp && run_start < 0) run_start = i;
-                if (!sharp && run_start >= 0) {
-                    const double mid = crease_on_half_line(
-                        body, centre, ray, d, end * unit(axis), p[(run_start + i - 1) / 2],
-                        (w[run_start] + w[i - 1]) / 2, length_scale);
-                    if (mid > 0.05 && mid < outer - 0.05) creases.push_back(mid);
-                    run_start = -1;
-                }
+    AxialCreases found;
+    for (int i = 0; i < samples; ++i) found.w.push_back((i + 0.5) / samples);
+    // The creases met along one half-line t = w dir + end, as the middles of runs of samples
+    // classified sharp, each then located exactly; those next to the face's centre or its
+    // frame (a tip, the patch edges) are not rings.
+    auto creases_along = [&](const Vec3& dir, const Vec3& end, std::vector<Vec3>& p) {
+        std::vector<double> creases;
+        p.resize(samples);
+        for (int i = 0; i < samples; ++i)
+            p[i] = place_on_surface(body, centre, ray(found.w[i] * dir + end), length_scale);
+        int run_start = -1;
+        for (int i = 0; i <= samples; ++i) {
+            bool sharp = false;
+            if (i < samples) {
+                const double spacing =
+                    (p[std::min(i + 1, samples - 1)] - p[std::max(i - 1, 0)]).norm() / 2;
+                sharp = classify_surface_point(body, p[i], spacing) != FeatureKind::smooth;
             }
-            if (meridian.empty()) meridian = std::move(p);
+            if (sharp && run_start < 0) run_start = i;
+            if (!sharp && run_start >= 0) {
+                // A short run crosses a crease; a long one runs along it (the half-line lies in
+                // a plane of the crease, as a box's diagonal plane holds its vertical edge), and
+                // its two ends are where the wall leaves it: corners.
+                std::vector<std::pair<int, bool>> at = {{(run_start + i - 1) / 2, false}};
+                if (i - run_start > 4) at = {{run_start, true}, {i - 1, true}};
+                for (const auto& [sample, corner] : at) {
+                    const double x = crease_on_half_line(body, centre, ray, dir, end, p[sample],
+                                                         found.w[sample], corner, length_scale);
+                    if (x > 0.05 && x < outer - 0.05) creases.push_back(x);
+                }
+                run_start = -1;
+            }
         }
-    std::sort(creases.begin(), creases.end());
-    std::vector<double> rings_at;  // one per crease, those within 0.03 of each other merged
-    for (double x : creases)
-        if (rings_at.empty() || x - rings_at.back() > 0.03) rings_at.push_back(x);
-    if (int(rings_at.size()) > cells - 1) rings_at.resize(std::max(cells - 1, 0));
+        return creases;
+    };
+    // Creases within 0.03 of each other along different half-lines are one: their mean, and
+    // how many half-lines met it.
+    auto cluster = [](std::vector<double> x, std::vector<double>& mean, std::vector<int>& count) {
+        std::sort(x.begin(), x.end());
+        for (size_t i = 0; i < x.size();) {
+            size_t j = i + 1;
+            while (j < x.size() && x[j] - x[j - 1] <= 0.03) ++j;
+            mean.push_back(std::accumulate(x.begin() + i, x.begin() + j, 0.0) / (j - i));
+            count.push_back(int(j - i));
+            i = j;
+        }
+    };
+    std::vector<double> along_axes, along_diagonals;
+    std::vector<Vec3> p;
+    const Vec3 out[4] = {unit(b), unit(c), -unit(b), -unit(c)};
+    for (const double end : {1.0, -1.0})
+        for (int q = 0; q < 4; ++q) {
+            for (double x : creases_along(out[q], end * unit(axis), p)) along_axes.push_back(x);
+            if (found.meridian.empty()) found.meridian = p;
+            for (double x : creases_along(out[q] + out[(q + 1) % 4], end * unit(axis), p))
+                along_diagonals.push_back(x);
+        }
+    cluster(along_axes, found.radius, found.seen);
+    std::vector<double> diagonal;
+    std::vector<int> diagonal_seen;
+    cluster(along_diagonals, diagonal, diagonal_seen);
+    // The k-th crease out along the diagonals is the k-th along the axes when they are as
+    // many; otherwise each crease is taken for a circle.
+    for (size_t k = 0; k < found.radius.size(); ++k)
+        found.reach.push_back(diagonal.size() == found.radius.size() ? std::sqrt(2.0) * diagonal[k]
+                                                                     : found.radius[k]);
+    return found;
+}
+
+AxialRings fit_axial_rings(const AxialCreases& creases, int axis, int cells, double outer) {
+    std::vector<double> rings_at = creases.radius, reach_at = creases.reach;
+    if (int(rings_at.size()) > cells - 1) {
+        rings_at.resize(std::max(cells - 1, 0));
+        reach_at.resize(rings_at.size());
+    }
     if (rings_at.empty()) return even_axial_rings(axis, cells, outer);
 
     AxialRings rings;
     rings.axis = axis;
     rings.column = std::min(outer / 2, rings_at.front() / 2);
-    const std::vector<double> length = arc_lengths(meridian);
+    const std::vector<double>& w = creases.w;
+    const std::vector<double> length = arc_lengths(creases.meridian);
     std::vector<double> stops = {rings.column};
     stops.insert(stops.end(), rings_at.begin(), rings_at.end());
     stops.push_back(outer);
@@ -181,7 +225,6 @@ AxialRings fit_axial_rings(const ImplicitFunction& body, const Vec3& centre,
     for (size_t i = 0; i + 1 < stops.size(); ++i)
         segment.push_back(interpolate(w, length, stops[i + 1]) - interpolate(w, length, stops[i]));
     const std::vector<int> count = share_cells(segment, cells);
-    int first = 0, last = 0;  // rings on the first and last crease
     rings.radius.push_back(rings.column);
     for (size_t i = 0; i < count.size(); ++i) {
         const double from = interpolate(w, length, stops[i]);
@@ -189,23 +232,31 @@ AxialRings fit_axial_rings(const ImplicitFunction& body, const Vec3& centre,
             const double at = from + segment[i] * s / count[i];
             rings.radius.push_back(s == count[i] ? stops[i + 1] : interpolate(length, w, at));
         }
-        if (i == 0) first = int(rings.radius.size()) - 1;
-        if (i + 2 == count.size()) last = int(rings.radius.size()) - 1;
     }
-    // Round from the first crease's ring to the last; inside and outside, the rings' reach
-    // along the diagonals grows evenly with their radius to the column's and frame's squares.
-    const double root2 = std::sqrt(2.0), first_w = rings.radius[first], last_w = rings.radius[last];
+    // Each ring's reach along the diagonals: the creases' own, and in between it grows evenly
+    // with the radius, from the column's square to the frame's.
+    const double root2 = std::sqrt(2.0);
+    std::vector<double> reach = {root2 * rings.column};
+    reach.insert(reach.end(), reach_at.begin(), reach_at.end());
+    reach.push_back(root2 * outer);
     for (int s = 0; s <= cells; ++s) {
         const double x = rings.radius[s];
-        double reach = x;  // a circle's
-        if (s < first)
-            reach = root2 * rings.column + (first_w - root2 * rings.column) * (x - rings.column) /
-                                               (first_w - rings.column);
-        if (s > last) reach = last_w + (root2 * outer - last_w) * (x - last_w) / (outer - last_w);
-        rings.roundness.push_back(std::clamp((root2 - reach / x) / (root2 - 1), 0.0, 1.0));
+        const double d = interpolate(stops, reach, x);
+        rings.roundness.push_back(std::clamp((root2 - d / x) / (root2 - 1), 0.0, 1.0));
     }
     keep_rings_nested(rings);
     return rings;
+}
+
+int choose_axis(const std::array<AxialCreases, 3>& creases) {
+    int best = -1, best_count = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+        const std::vector<int>& seen = creases[axis].seen;
+        const int count =
+            int(std::count_if(seen.begin(), seen.end(), [](int n) { return n >= 4; }));
+        if (count > best_count) best = axis, best_count = count;
+    }
+    return best;
 }
 
 double axial_frame_edge(int n, int frame) {

@@ -2,6 +2,7 @@
 // with four ring pieces, so circles around that axis can run along grid lines.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <vector>
 
@@ -53,19 +54,36 @@ double axial_frame_edge(int n, int frame);
 // along the axes (a circle reaches less far than a square; fitted rings are held to the same).
 AxialRings even_axial_rings(int axis, int cells, double outer);
 
-// Rings fitted to the body's creases around the axis: along the 8 half-lines from the axis to
-// the edges of the two faces across it (t = w d +- axis, d = +-b, +-c, 0 < w < 1), the rays
-// ray(t) from `centre` are placed on u = 0 and the creases crossed are found (sharp features,
-// surface/implicit_features.h). Each crease inside `outer` then gets a ring through it along
-// those half-lines, round from the first crease to the last (inside and outside, the reach
-// along the diagonals grows evenly to the column's and frame's squares); the column is half the
-// first crease's radius (at most outer / 2); the other rings are spread evenly in arc length along
-// the wall between them. A body without such creases gets even_axial_rings. At most cells - 1
-// creases are fitted, nearest the axis first. Throws std::invalid_argument when a ray misses
-// u = 0 (the body is not star-shaped around the centre).
-AxialRings fit_axial_rings(const ImplicitFunction& body, const Vec3& centre,
-                           const std::function<Vec3(const Vec3&)>& ray, int axis, int cells,
-                           double outer, double length_scale);
+// The creases of a body around an axis, as seen from `centre` by the rays ray(t) through the
+// two cube faces across the axis: along the 8 half-lines t = w d +- axis (d = +-b, +-c,
+// 0 < w < 1) to the faces' edge midpoints, and the 8 half-lines t = v (d + d') +- axis to
+// their corners, the rays are placed on u = 0 (volume/surface_placement.h) and the creases
+// crossed are found (surface/implicit_features.h) and located exactly; those within 0.05 of
+// the axis or of `outer` (the frame, where the patch edges are) are left out. Throws
+// std::invalid_argument when a ray misses u = 0 (the body is not star-shaped).
+struct AxialCreases {
+    std::vector<double> radius;  // w of each crease along the edge-midpoint half-lines, ascending
+    std::vector<double> reach;   // its distance from the axis along the diagonals (t plane)
+    std::vector<int> seen;       // on how many of the 8 edge-midpoint half-lines it lies
+    std::vector<double> w;       // the samples of w
+    std::vector<Vec3> meridian;  // the wall at those samples along the first half-line
+};
+AxialCreases find_axial_creases(const ImplicitFunction& body, const Vec3& centre,
+                                const std::function<Vec3(const Vec3&)>& ray, int axis, double outer,
+                                double length_scale);
+
+// Rings fitted to the creases around the axis: each crease inside `outer` gets a ring through
+// it along the edge-midpoint half-lines, as round as the crease (circle: reach = radius;
+// square: reach = sqrt(2) radius); in between, the rings' reach along the diagonals grows
+// evenly with their radius, from the column's square to the frame's. The column is half the
+// first crease's radius (at most outer / 2); the other rings are spread evenly in arc length
+// along the wall between the creases. At most cells - 1 creases are fitted, nearest the axis
+// first; without creases, even_axial_rings.
+AxialRings fit_axial_rings(const AxialCreases& creases, int axis, int cells, double outer);
+
+// The axis whose creases run around it: the one with the most creases met on at least 4 of
+// their 8 edge-midpoint half-lines (all four of one end, say); -1 when no axis has one.
+int choose_axis(const std::array<AxialCreases, 3>& creases);
 
 // The core O-gridded around the rings' axis, a prism along it over a cross-section of the
 // cube's faces across it: a column (m x m cells, m = n - 2 frame), four ring pieces from the

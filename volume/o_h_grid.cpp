@@ -109,7 +109,52 @@ Block wall_block(const Block& base, const CoreLayout::WallFace& f, const std::ve
     return b;
 }
 
+// The core nodes on its wall faces, in core order (on_wall), and each core node's number
+// among them (-1 inside the core).
+void number_wall_nodes(const CoreLayout& core, std::vector<Id>& number, std::vector<Id>& on_wall) {
+    number.assign(core.t.size(), -1);
+    on_wall.clear();
+    for (const CoreLayout::WallFace& f : core.wall_faces)
+        for_each_face_node(core.blocks[f.block], f.face, [&](Id id) { number[id] = 0; });
+    for (Id id = 0; id < Id(core.t.size()); ++id)
+        if (number[id] == 0) number[id] = Id(on_wall.size()), on_wall.push_back(id);
+}
+
+// A box-like body's corners, one per octant around the centre, near the wall nodes placed
+// along the rays through the bounds' box (or nullopt).
+std::optional<CubeCorners> corners_near_wall(const ImplicitFunction& body, const Vec3& centre,
+                                             const std::vector<Vec3>& wall, double h) {
+    return body_corners_by_octant(centre, body_corners_near(body, wall, h), h);
+}
+
 }  // namespace
+
+int choose_o_h_axis(const ImplicitFunction& body, const OHGridOptions& options) {
+    check_options(options);
+    const int n = options.cells_per_edge;
+    const Vec3 centre = options.centre.value_or(body.bounds().center());
+    const Vec3 half = 0.5 * body.bounds().size();
+    const double h = grid_length_scale(body, n);
+    require_inside(body, centre);
+    const CoreLayout core = one_block_core(n);
+    std::vector<Id> number, on_wall;
+    number_wall_nodes(core, number, on_wall);
+    std::optional<CubeCorners> corners;
+    if (options.patch_corners_on_body_corners) {
+        std::vector<Vec3> wall(on_wall.size());
+        tbb::parallel_for(size_t(0), wall.size(), [&](size_t s) {
+            wall[s] = place_on_surface(body, centre, cube_ray(core.t[on_wall[s]], half), h);
+        });
+        corners = corners_near_wall(body, centre, wall, h);
+    }
+    auto ray = [&](const Vec3& t) { return corners ? cube_ray(t, *corners) : cube_ray(t, half); };
+    std::array<AxialCreases, 3> creases;
+    tbb::parallel_for(0, 3, [&](int axis) {
+        creases[axis] = find_axial_creases(body, centre, ray, axis,
+                                           axial_frame_edge(n, options.frame_cells), h);
+    });
+    return choose_axis(creases);
+}
 
 double grid_length_scale(const ImplicitFunction& body, int cells_per_edge) {
     return body.bounds().diagonal() / (std::sqrt(3.0) * cells_per_edge);
@@ -133,11 +178,8 @@ BlockGrid make_o_h_grid(const ImplicitFunction& body, const OHGridOptions& optio
                           : axial_core(n, options.frame_cells,
                                        even_axial_rings(options.axis, ring_cells, ring_edge));
     const Id core_nodes = Id(core.t.size());
-    std::vector<Id> number(core_nodes, -1), on_wall;  // surface number of each core node
-    for (const CoreLayout::WallFace& f : core.wall_faces)
-        for_each_face_node(core.blocks[f.block], f.face, [&](Id id) { number[id] = 0; });
-    for (Id id = 0; id < core_nodes; ++id)
-        if (number[id] == 0) number[id] = Id(on_wall.size()), on_wall.push_back(id);
+    std::vector<Id> number, on_wall;  // surface number of each core node
+    number_wall_nodes(core, number, on_wall);
     const Id ns = Id(on_wall.size());
     auto node_id = [&](Id core_id, int layer) {
         return layer == 0 ? core_id : core_nodes + (layer - 1) * ns + number[core_id];
@@ -159,7 +201,7 @@ BlockGrid make_o_h_grid(const ImplicitFunction& body, const OHGridOptions& optio
     };
     place_wall();
     if (options.patch_corners_on_body_corners && !options.wall_from) {
-        corners = body_corners_by_octant(centre, body_corners_near(body, wall, h), h);
+        corners = corners_near_wall(body, centre, wall, h);
     } else if (options.patch_corners_on_body_corners) {
         // A given wall keeps the choice of the grid it came from: its 8 patch-corner nodes sit
         // on body corners, one per octant, exactly when that grid's rays spanned them.
@@ -172,9 +214,10 @@ BlockGrid make_o_h_grid(const ImplicitFunction& body, const OHGridOptions& optio
         corners = body_corners_by_octant(centre, at_corners, h);
     }
     if (options.axis >= 0)
-        core =
-            axial_core(n, options.frame_cells,
-                       fit_axial_rings(body, centre, ray, options.axis, ring_cells, ring_edge, h));
+        core = axial_core(
+            n, options.frame_cells,
+            fit_axial_rings(find_axial_creases(body, centre, ray, options.axis, ring_edge, h),
+                            options.axis, ring_cells, ring_edge));
     if ((corners || options.axis >= 0) && !options.wall_from) place_wall();
 
     BlockGrid grid;

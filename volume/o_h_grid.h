@@ -46,6 +46,12 @@ struct OHGridOptions {
 // options or a body that is not star-shaped.
 BlockGrid make_o_h_grid(const ImplicitFunction& body, const OHGridOptions& options);
 
+// The axis to O-grid the core around (OHGridOptions::axis) for these options: the one whose
+// creases, seen through the cube faces across it by the grid's rays, run around it
+// (volume/core_layout.h: find_axial_creases, choose_axis), as a cylinder's circles on a box do;
+// -1 (one core block) for a body without such creases, a smooth one among them.
+int choose_o_h_axis(const ImplicitFunction& body, const OHGridOptions& options);
+
 // Length scale of a grid of the body with n cells per edge: bounds diagonal / (sqrt(3) n).
 double grid_length_scale(const ImplicitFunction& body, int cells_per_edge);
 

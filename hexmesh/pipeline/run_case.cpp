@@ -89,6 +89,19 @@ WallLayers wall_layers(const Case& c) {
             c.boundary_layer->layers};
 }
 
+OHGridOptions o_h_grid_options(const Case& c, const ImplicitFunction& body) {
+    OHGridOptions o;
+    o.cells_per_edge = cells_per_edge(c, body);
+    o.wall_cells = c.grid.wall_cells;
+    o.core_size = c.grid.core_size;
+    o.wall_layers = wall_layers(c);
+    o.centre = c.grid.center;
+    o.axis = c.grid.axis == "none" || c.grid.axis == "auto" ? -1 : c.grid.axis[0] - 'x';
+    o.ring_cells = c.grid.ring_cells;
+    o.frame_cells = c.grid.frame_cells;
+    return o;
+}
+
 BlockGrid build_grid(const Case& c, const ImplicitFunction& body,
                      const std::vector<Vec3>* wall_from) {
     if (c.domain == "exterior") {
@@ -115,16 +128,9 @@ BlockGrid build_grid(const Case& c, const ImplicitFunction& body,
         o.centre = c.grid.center;
         return make_single_block_grid(body, o);
     }
-    OHGridOptions o;
-    o.cells_per_edge = cells_per_edge(c, body);
-    o.wall_cells = c.grid.wall_cells;
-    o.core_size = c.grid.core_size;
-    o.wall_layers = wall_layers(c);
-    o.centre = c.grid.center;
+    OHGridOptions o = o_h_grid_options(c, body);
     o.wall_from = wall_from;
-    o.axis = c.grid.axis.empty() ? -1 : c.grid.axis[0] - 'x';
-    o.ring_cells = c.grid.ring_cells;
-    o.frame_cells = c.grid.frame_cells;
+    if (c.grid.axis == "auto") o.axis = choose_o_h_axis(body, o);
     return make_o_h_grid(body, o);
 }
 
@@ -175,11 +181,18 @@ void surface_pass(const Case& c, const ImplicitFunction& body, BlockGrid& grid, 
 
 }  // namespace
 
-RunResult run_case(const Case& c, const std::string& outdir, const RunOptions& options,
+RunResult run_case(const Case& given, const std::string& outdir, const RunOptions& options,
                    std::ostream& log) {
     PhaseTimer timer(log);
-    const Body body = make_body(c.geometry);
+    const Body body = make_body(given.geometry);
     timer.done("geometry");
+    Case c = given;  // with grid.axis "auto" resolved, once, and written so
+    if (c.domain != "exterior" && c.grid.topology == "o-h" && c.grid.axis == "auto") {
+        const int axis = choose_o_h_axis(*body, o_h_grid_options(c, *body));
+        c.grid.axis = axis < 0 ? "none" : std::string(1, char('x' + axis));
+        if (axis >= 0)
+            log << "  grid axis " << c.grid.axis << ": the body's creases run around it\n";
+    }
     RunResult result;
     result.grid = build_grid(c, *body);
     timer.done("grid", fmt::format("({}, {} blocks, {} cells)",

@@ -6,11 +6,12 @@
 #include <vector>
 
 #include "hexmesh/core/block_grid.h"
+#include "hexmesh/core/triangle_surface.h"
 #include "hexmesh/pipeline/grid_report.h"
 #include "io/case_file.h"
 #include "io/quality_report.h"
-#include "hexmesh/core/triangle_surface.h"
 #include "surface/body.h"
+#include "volume/o_h_grid.h"
 #include "volume/stretching.h"
 
 namespace hexmesh {
@@ -28,9 +29,13 @@ struct RunResult {
 // asks for an absurd number of cells. With `wall_from` (the points of a grid build_grid made
 // for the same case, its wall grid since moved on u = 0), the O-H and O-grid lines are built
 // from those wall nodes instead of the radial projections; the single block has no such
-// construction and throws std::invalid_argument.
+// construction and throws std::invalid_argument. grid.axis "auto" is resolved by
+// choose_o_h_axis (volume/o_h_grid.h) on each call.
 BlockGrid build_grid(const Case& c, const ImplicitFunction& body,
                      const std::vector<Vec3>* wall_from = nullptr);
+
+// The O-H grid options of an interior case (grid.axis "auto" as -1: see choose_o_h_axis).
+OHGridOptions o_h_grid_options(const Case& c, const ImplicitFunction& body);
 
 // The boundary-layer law of the case (layers = 0 without a boundary_layer block).
 WallLayers wall_layers(const Case& c);
@@ -46,7 +51,8 @@ struct RunOptions {
 // projects new wall nodes onto), all or nothing. With c.refinement.levels = N > 1, the grid is
 // level 1 of a nested family: OUTDIR/level_1 ... OUTDIR/level_N each hold those three files,
 // level L + 1 being refine_on_body of level L (its wall law refined_wall_layers), and
-// OUTDIR/family.json the study table. Progress goes to `log`, one line per phase.
+// OUTDIR/family.json the study table. grid.axis "auto" is resolved once (choose_o_h_axis)
+// and written so in grid.case.json. Progress goes to `log`, one line per phase.
 RunResult run_case(const Case& c, const std::string& outdir, const RunOptions& options,
                    std::ostream& log);
 

@@ -106,14 +106,17 @@ INSTANTIATE_TEST_SUITE_P(
     [](const ::testing::TestParamInfo<BlackBoxCase>& info) { return info.param.name; });
 
 // A body with sharp edges: its creases and corners are captured by wall nodes, the grid is
-// valid and its boundary layer is laid. The grid is O-gridded around the cylinder's axis
-// (grid.axis), so the cylinder's two circles run along rings of grid lines.
+// valid and its boundary layer is laid. The grid is O-gridded around the cylinder's axis,
+// which grid.axis "auto" (the default) finds, so the cylinder's two circles run along rings
+// of grid lines; the axis chosen is written with the grid's case.
 TEST(BlackBoxCsg, BoxUnionCylinderIsValidWithItsCreasesCaptured) {
     const fs::path out = scratch("black_box_csg");
     fs::remove_all(out);
     const CommandResult r = run_hexmesh("run cases/box_cylinder/case.json -o '" + out.string() + "'");
     ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
     EXPECT_NE(r.out.find("sharp features:"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("grid axis z"), std::string::npos) << r.out;
+    EXPECT_EQ(json::parse(read_text(out / "grid.case.json")).at("grid").at("axis"), "z");
     const json q = json::parse(read_text(out / "quality.json"));
     EXPECT_TRUE(q.at("valid").get<bool>());
     EXPECT_GT(q.at("min_scaled_jacobian").get<double>(), 0.4);  // 0.244 with one core block

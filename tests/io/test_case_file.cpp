@@ -247,3 +247,40 @@ TEST(CaseFile, CaseToJsonReadsBackTheSameGridAndGeometry) {
     EXPECT_EQ(back.solver.optimize, "lbfgs");
     EXPECT_EQ(back.refinement.levels, 1);  // a run setting, not part of the grid
 }
+
+TEST(CaseFile, GridAxisIsAutoByDefaultAndReadsBack) {
+    const char* sphere = R"({"geometry": {"sphere": {"radius": 1}}})";
+    EXPECT_EQ(parse_case(sphere, "case.json").grid.axis, "auto");
+    const Case c = parse_case(R"({"geometry": {"sphere": {"radius": 1}},
+      "grid": {"cells_per_edge": 12, "axis": "y", "ring_cells": 5, "frame_cells": 2}})",
+                              "case.json");
+    EXPECT_EQ(c.grid.axis, "y");
+    EXPECT_EQ(c.grid.ring_cells, 5);
+    EXPECT_EQ(c.grid.frame_cells, 2);
+    const Case back = parse_case(case_to_json(c), "grid.case.json");
+    EXPECT_EQ(back.grid.axis, "y");
+    EXPECT_EQ(back.grid.ring_cells, 5);
+    EXPECT_EQ(back.grid.frame_cells, 2);
+}
+
+TEST(CaseFile, GridAxisMisusesAreNamed) {
+    EXPECT_NE(error_of(R"({"geometry": {"sphere": {"radius": 1}}, "grid": {"axis": "w"}})")
+                  .find("grid.axis"),
+              std::string::npos);
+    const std::string rings = error_of(
+        R"({"geometry": {"sphere": {"radius": 1}}, "grid": {"axis": "none", "ring_cells": 4}})");
+    EXPECT_NE(rings.find("grid.ring_cells"), std::string::npos) << rings;
+    const std::string frame = error_of(
+        R"({"geometry": {"sphere": {"radius": 1}}, "grid": {"cells_per_edge": 8, "frame_cells": 4}})");
+    EXPECT_NE(frame.find("grid.frame_cells"), std::string::npos) << frame;
+    const std::string single = error_of(
+        R"({"geometry": {"sphere": {"radius": 1}}, "grid": {"topology": "single-block", "axis": "z"}})");
+    EXPECT_NE(single.find("grid.axis"), std::string::npos) << single;
+    const std::string outside = error_of(
+        R"({"geometry": {"sphere": {"radius": 1}}, "domain": "exterior", "grid": {"axis": "z"}})");
+    EXPECT_NE(outside.find("grid.axis"), std::string::npos) << outside;
+    // "auto" goes with any topology and domain: it picks an axis only for an O-H interior.
+    EXPECT_NO_THROW(parse_case(
+        R"({"geometry": {"sphere": {"radius": 1}}, "grid": {"topology": "single-block", "axis": "auto"}})",
+        "case.json"));
+}

@@ -86,14 +86,20 @@ TEST(CoreLayout, RingsAreFittedToTheCirclesOfACylinderOnABox) {
     const Vec3 half(1.0, 1.0, 0.6);
     const auto ray = [&](const Vec3& t) { return cube_ray(t, half); };
     const double outer = axial_frame_edge(16, 1);
-    const AxialRings rings = fit_axial_rings(*body, Vec3::Zero(), ray, 2, 8, outer, 0.05);
+    const AxialCreases creases = find_axial_creases(*body, Vec3::Zero(), ray, 2, outer, 0.05);
+    ASSERT_EQ(creases.radius.size(), 2u);
+    for (int k = 0; k < 2; ++k) {
+        EXPECT_EQ(creases.seen[k], 4);  // the four half-lines of the top face
+        EXPECT_NEAR(creases.reach[k], creases.radius[k], 1e-9);  // circles
+    }
+    const AxialRings rings = fit_axial_rings(creases, 2, 8, outer);
     ASSERT_EQ(rings.cells(), 8);
     EXPECT_DOUBLE_EQ(rings.radius.back(), outer);
     for (const double circle : {0.3, 0.6}) {
         int s = 0;
         while (s < 8 && std::abs(rings.radius[s] - circle) > 1e-9) ++s;
         ASSERT_LT(s, 8) << "no ring on the circle at " << circle;
-        EXPECT_DOUBLE_EQ(rings.roundness[s], 1.0);
+        EXPECT_NEAR(rings.roundness[s], 1.0, 1e-12);
     }
     EXPECT_NEAR(rings.column, 0.15, 0.005);
     for (int s = 0; s < 8; ++s) EXPECT_LT(rings.radius[s], rings.radius[s + 1]);
@@ -102,6 +108,41 @@ TEST(CoreLayout, RingsAreFittedToTheCirclesOfACylinderOnABox) {
 
     // A smooth body has no creases to fit: the rings are even.
     const Sphere sphere(Vec3::Zero(), 1.0);
-    const AxialRings even = fit_axial_rings(sphere, Vec3::Zero(), ray, 2, 8, outer, 0.05);
-    EXPECT_EQ(even.radius, even_axial_rings(2, 8, outer).radius);
+    const AxialCreases none = find_axial_creases(sphere, Vec3::Zero(), ray, 2, outer, 0.05);
+    EXPECT_TRUE(none.radius.empty());
+    EXPECT_EQ(fit_axial_rings(none, 2, 8, outer).radius, even_axial_rings(2, 8, outer).radius);
+}
+
+TEST(CoreLayout, ASquareCreaseGetsASquareRingAndItsAxisIsChosen) {
+    // A smaller box on a box: its square crease (half-width 0.4 at z = 0.6) is a square ring
+    // around z; seen across x or y there is no crease around the axis.
+    const Body body = std::make_shared<Csg>(
+        CsgOp::Union,
+        std::vector<Body>{std::make_shared<Box>(Vec3::Zero(), Vec3(1.0, 1.0, 0.6)),
+                          std::make_shared<Box>(Vec3(0, 0, 0.6), Vec3(0.4, 0.4, 0.3))});
+    const Vec3 half(1.0, 1.0, 0.6);
+    const auto ray = [&](const Vec3& t) { return cube_ray(t, half); };
+    const double outer = axial_frame_edge(16, 1);
+    std::array<AxialCreases, 3> creases;
+    for (int axis = 0; axis < 3; ++axis)
+        creases[axis] = find_axial_creases(*body, Vec3::Zero(), ray, axis, outer, 0.05);
+    EXPECT_EQ(choose_axis(creases), 2);
+    // Seen from the origin through z = 0.6: the top box's top square (z = 0.9) at 0.4 * 0.6 /
+    // 0.9, its base at 0.4.
+    ASSERT_EQ(creases[2].radius.size(), 2u);
+    EXPECT_NEAR(creases[2].radius[0], 0.4 * 0.6 / 0.9, 1e-9);
+    const double w = creases[2].radius[1];
+    EXPECT_NEAR(w, 0.4, 1e-9);
+    for (int k = 0; k < 2; ++k)
+        EXPECT_NEAR(creases[2].reach[k], std::sqrt(2.0) * creases[2].radius[k], 1e-9);
+    const AxialRings rings = fit_axial_rings(creases[2], 2, 8, outer);
+    int s = 0;
+    while (s < 8 && std::abs(rings.radius[s] - w) > 1e-9) ++s;
+    ASSERT_LT(s, 8);
+    EXPECT_EQ(rings.roundness[s], 0.0);
+
+    const Sphere sphere(Vec3::Zero(), 1.0);
+    for (int axis = 0; axis < 3; ++axis)
+        creases[axis] = find_axial_creases(sphere, Vec3::Zero(), ray, axis, outer, 0.05);
+    EXPECT_EQ(choose_axis(creases), -1);
 }
