@@ -251,9 +251,10 @@ AxialRings fit_axial_rings(const AxialCreases& creases, int axis, int cells, dou
 int choose_axis(const std::array<AxialCreases, 3>& creases) {
     int best = -1, best_count = 0;
     for (int axis = 0; axis < 3; ++axis) {
-        const std::vector<int>& seen = creases[axis].seen;
-        const int count =
-            int(std::count_if(seen.begin(), seen.end(), [](int n) { return n >= 4; }));
+        const AxialCreases& c = creases[axis];
+        int count = 0;
+        for (size_t k = 0; k < c.radius.size(); ++k)
+            count += c.seen[k] >= 4 && c.reach[k] < 1.2 * c.radius[k];
         if (count > best_count) best = axis, best_count = count;
     }
     return best;

@@ -81,8 +81,11 @@ AxialCreases find_axial_creases(const ImplicitFunction& body, const Vec3& centre
 // first; without creases, even_axial_rings.
 AxialRings fit_axial_rings(const AxialCreases& creases, int axis, int cells, double outer);
 
-// The axis whose creases run around it: the one with the most creases met on at least 4 of
-// their 8 edge-midpoint half-lines (all four of one end, say); -1 when no axis has one.
+// The axis whose round creases run around it: the one with the most creases met on at least
+// 4 of their 8 edge-midpoint half-lines (all four of one end, say) and reaching along the
+// diagonals less than 1.2 times their radius (circles, not squares: a square crease around an
+// axis runs along the lines of one core block's patch, corners included); -1 when no axis
+// has one.
 int choose_axis(const std::array<AxialCreases, 3>& creases);
 
 // The core O-gridded around the rings' axis, a prism along it over a cross-section of the
