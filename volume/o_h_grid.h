@@ -27,8 +27,9 @@ struct OHGridOptions {
     bool patch_corners_on_body_corners = true;
     // -1: one core block. 0, 1, 2: the core, and the two patches across this axis, O-gridded
     // around the axis through the centre (volume/core_layout.h: axial_core), with rings fitted
-    // to the body's creases around it: for circular edges around the axis (a cylinder on a
-    // box, a body of revolution), which then run along grid lines.
+    // to the body's creases around it (the wall's; the core's nodes lie halfway between those
+    // and even rings): for circular edges around the axis (a cylinder on a box, a body of
+    // revolution), which then run along grid lines. choose_o_h_axis picks one.
     int axis = -1;
     int ring_cells = 0;   // with an axis: cells across the rings (0: (n+1)/2)
     int frame_cells = 1;  // with an axis: cells across the frame along the cube's edges
