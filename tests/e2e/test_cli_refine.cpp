@@ -175,3 +175,31 @@ TEST(CliGci, NonMonotoneValuesAreOneErrorLine) {
     EXPECT_EQ(count_lines(r.err), 1) << r.err;
     EXPECT_NE(r.err.find("not monotone"), std::string::npos) << r.err;
 }
+
+// A family of a body with sharp creases (cases/box_cylinder's body, its axis found): the
+// refined level keeps the thin first cells next to the rims on their side of the creases, and
+// stays valid with a fair minimum scaled Jacobian (448 inverted cells when the interpolation
+// reached across the creases).
+TEST(SharpFamily, BoxWithCylinderRefinesToAValidLevel) {
+    const fs::path dir = scratch("sharp_family");
+    fs::remove_all(dir);
+    std::ofstream(scratch("sharp_family_case.json")) << R"({
+      "geometry": {"union": [
+        {"box": {"center": [0, 0, 0], "size": [2, 2, 1.2]}},
+        {"cylinder": {"center": [0, 0, 0.5], "radius": 0.6, "height": 1.4}}]},
+      "grid": {"cells_per_edge": 12, "wall_cells": 8, "core_size": 0.55},
+      "boundary_layer": {"first_height": 0.005, "growth_ratio": 1.2, "layers": 5},
+      "refinement": {"levels": 2}
+    })";
+    const CommandResult r = run_hexmesh("run '" + scratch("sharp_family_case.json").string() +
+                                        "' -o '" + dir.string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    const json levels = json::parse(read_text(dir / "family.json")).at("levels");
+    ASSERT_EQ(levels.size(), 2u);
+    EXPECT_GT(levels[1].at("min_scaled_jacobian").get<double>(), 0.3);
+    const json level_2 = json::parse(read_text(dir / "level_2" / "quality.json"));
+    EXPECT_TRUE(level_2.at("valid").get<bool>());
+    EXPECT_EQ(level_2.at("inverted_corner_tets").get<long>(), 0);
+    fs::remove_all(dir);
+    fs::remove(scratch("sharp_family_case.json"));
+}
