@@ -1,12 +1,15 @@
-// Shared checks of block grids used by the volume tests.
+// Shared checks of block grids, and a body with sharp creases, used by the volume tests.
 #pragma once
 
 #include <algorithm>
 #include <array>
 #include <map>
+#include <memory>
 
 #include "hexmesh/core/block_grid.h"
 #include "hexmesh/core/reference_hex.h"
+#include "surface/analytic.h"
+#include "surface/csg.h"
 
 namespace hexmesh::test_support {
 
@@ -32,6 +35,15 @@ inline FaceCounts count_faces(const HexMesh& mesh) {
         else ++counts.over_shared;
     }
     return counts;
+}
+
+// The body of cases/box_cylinder centred on its box: the box [-1, 1]^2 x [-0.6, 0.6] and a
+// cylinder of radius 0.6 on the z axis from z = -0.2 to 1.2, whose rim (z = 1.2) and junction
+// with the box (z = 0.6) are circles around the axis.
+inline Body box_with_cylinder() {
+    return std::make_shared<Csg>(
+        CsgOp::Union, std::vector<Body>{std::make_shared<Box>(Vec3::Zero(), Vec3(1.0, 1.0, 0.6)),
+                                        std::make_shared<Cylinder>(Vec3(0, 0, 0.5), 0.6, 0.7)});
 }
 
 }  // namespace hexmesh::test_support

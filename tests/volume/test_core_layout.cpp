@@ -24,13 +24,6 @@ HexMesh core_mesh(const CoreLayout& core) {
     return to_hex_mesh(grid);
 }
 
-// The box of cases/box_cylinder centred at the origin with the cylinder on top: its rim
-// (radius 0.6, z = 1.2) and the circle where it leaves the box (z = 0.6).
-Body box_with_cylinder() {
-    return std::make_shared<Csg>(
-        CsgOp::Union, std::vector<Body>{std::make_shared<Box>(Vec3::Zero(), Vec3(1.0, 1.0, 0.6)),
-                                        std::make_shared<Cylinder>(Vec3(0, 0, 0.5), 0.6, 0.7)});
-}
 
 }  // namespace
 
@@ -82,7 +75,7 @@ TEST(CoreLayout, AxialCoreIsAConformingRightHandedPrismFilledByItsPieces) {
 TEST(CoreLayout, RingsAreFittedToTheCirclesOfACylinderOnABox) {
     // Rays from the origin through the box's top face z = 0.6 at distance w from the axis
     // meet the rim for w = 0.6 * 0.6 / 1.2 = 0.3 and the junction circle at w = 0.6.
-    const Body body = box_with_cylinder();
+    const Body body = test_support::box_with_cylinder();
     const Vec3 half(1.0, 1.0, 0.6);
     const auto ray = [&](const Vec3& t) { return cube_ray(t, half); };
     const double outer = axial_frame_edge(16, 1);

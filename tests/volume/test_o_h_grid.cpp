@@ -177,9 +177,7 @@ TEST(OHGrid, PatchCornersGoToTheCornersOfABoxLikeBody) {
     // The box of cases/box_cylinder with its cylinder on top: the bounds' box reaches up to
     // the cylinder's top, so its diagonals miss the body's upper corners; the body's own
     // corners (one per octant around the bounds' centre) take the patch corners.
-    const Body body = std::make_shared<Csg>(
-        CsgOp::Union, std::vector<Body>{std::make_shared<Box>(Vec3::Zero(), Vec3(1.0, 1.0, 0.6)),
-                                        std::make_shared<Cylinder>(Vec3(0, 0, 0.5), 0.6, 0.7)});
+    const Body body = test_support::box_with_cylinder();
     OHGridOptions o = sphere_options();
     o.core_size = 0.3;
     const BlockGrid grid = make_o_h_grid(*body, o);
@@ -210,9 +208,7 @@ TEST(OHGrid, AnAxialCoreRunsRingsOfWallNodesAlongACylindersCircles) {
     // cases/box_cylinder: the rim (radius 0.6, z = 1.2) and the circle where the cylinder
     // leaves the box (z = 0.6) lie inside the top patch. Around the z axis, each is a ring of
     // wall nodes; with one core block the patch's lattice lines cross them.
-    const Body body = std::make_shared<Csg>(
-        CsgOp::Union, std::vector<Body>{std::make_shared<Box>(Vec3::Zero(), Vec3(1.0, 1.0, 0.6)),
-                                        std::make_shared<Cylinder>(Vec3(0, 0, 0.5), 0.6, 0.7)});
+    const Body body = test_support::box_with_cylinder();
     OHGridOptions o = sphere_options();
     o.core_size = 0.55;
     o.axis = 2;
