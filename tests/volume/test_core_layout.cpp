@@ -24,7 +24,6 @@ HexMesh core_mesh(const CoreLayout& core) {
     return to_hex_mesh(grid);
 }
 
-
 }  // namespace
 
 TEST(CoreLayout, AxialCoreIsAConformingRightHandedPrismFilledByItsPieces) {
