@@ -1,9 +1,11 @@
 #include "io/case_file.h"
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
-#include <fmt/format.h>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -154,18 +156,23 @@ GridSpec parse_grid(const JsonFields& g) {
     grid.ring_cells = g.integer("ring_cells", grid.ring_cells, 0, 4096);
     grid.frame_cells = g.integer("frame_cells", grid.frame_cells, 0, 4096);
     const bool axial = grid.axis != "none";
+    const bool explicit_axis = axial && grid.axis != "auto";
     if (!axial && g.has("ring_cells")) g.fail("ring_cells", "given with an \"axis\" only");
     if (!axial && g.has("frame_cells")) g.fail("frame_cells", "given with an \"axis\" only");
-    if (axial && !(grid.cell_size > 0) && 2 * grid.frame_cells >= grid.cells_per_edge)
+    if ((explicit_axis || g.has("frame_cells")) && !(grid.cell_size > 0) &&
+        2 * grid.frame_cells >= grid.cells_per_edge)
         g.fail("frame_cells", "under half of cells_per_edge");
-    if (grid.topology != "o-h" && axial && grid.axis != "auto")
+    if (grid.topology != "o-h" && explicit_axis)
         g.fail("axis", "\"none\" or \"auto\" (an axis goes with topology o-h)");
-    const long long n = grid.cells_per_edge,
+    // The cells of the grid asked for: with an explicit axis the axial core (column m x m,
+    // m = n - 2 frame, rings r x m, frame) and its end patches; "auto" is counted as one core
+    // block, which it stays unless the body has round creases around an axis.
+    const long long n = grid.cells_per_edge, m = std::max(1LL, n - 2LL * grid.frame_cells),
                     r = grid.ring_cells > 0 ? grid.ring_cells : (n + 1) / 2;
     const long long total =
         grid.topology != "o-h" ? (long long)grid.cells[0] * grid.cells[1] * grid.cells[2]
-        : !axial               ? n * n * n + 6 * n * n * grid.wall_cells
-                               : n * n * (n + 4 * r) + (6 * n * n + 8 * n * r) * grid.wall_cells;
+        : !explicit_axis       ? n * n * n + 6 * n * n * grid.wall_cells
+                         : n * (n * n + 4 * r * m) + (6 * n * n + 8 * r * m) * grid.wall_cells;
     if (total > max_cells) {
         g.fail(grid.topology == "o-h" ? "cells_per_edge" : "cells",
                fmt::format("a grid of at most {} cells (this one has {})", max_cells, total));
@@ -310,7 +317,7 @@ std::string case_to_json(const Case& c) {
     else grid["cells_per_edge"] = c.grid.cells_per_edge;
     if (c.grid.center) grid["center"] = vec3_json(*c.grid.center);
     grid["axis"] = c.grid.axis;
-    if (c.grid.ring_cells > 0) grid["ring_cells"] = c.grid.ring_cells;
+    if (c.grid.axis != "none" && c.grid.ring_cells > 0) grid["ring_cells"] = c.grid.ring_cells;
     if (c.grid.axis != "none") grid["frame_cells"] = c.grid.frame_cells;
     root["grid"] = grid;
     if (c.domain == "exterior") {

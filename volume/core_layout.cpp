@@ -46,10 +46,12 @@ double interpolate(const std::vector<double>& xs, const std::vector<double>& ys,
 // shared in proportion to length (largest remainder).
 std::vector<int> share_cells(const std::vector<double>& lengths, int cells) {
     const int m = int(lengths.size());
-    const double total = std::accumulate(lengths.begin(), lengths.end(), 0.0);
+    double total = 0;
+    for (double x : lengths) total += std::max(x, 0.0);
     std::vector<int> count(m, 1);
     std::vector<double> want(m);
-    for (int i = 0; i < m; ++i) want[i] = (cells - m) * lengths[i] / total;
+    for (int i = 0; i < m; ++i)  // no length at all: shared evenly
+        want[i] = (cells - m) * (total > 0 ? std::max(lengths[i], 0.0) / total : 1.0 / m);
     for (int i = 0; i < m; ++i) count[i] += int(std::floor(want[i]));
     int left = cells - std::accumulate(count.begin(), count.end(), 0);
     std::vector<int> order(m);
@@ -62,10 +64,10 @@ std::vector<int> share_cells(const std::vector<double>& lengths, int cells) {
 }
 
 // Where the half-line t = w d + end (0 < w < 1) meets the crease near the wall point `near`
-// (sampled at w = `sampled`): the crease point nearest `near` (the corner, when `corner`),
-// and the w whose ray passes
-// closest to it. The ray is affine in w (cube_ray is trilinear in t), so that w solves a linear
-// least-squares problem; `sampled` when the crease point cannot be reached from there.
+// (sampled at w = `sampled`): the crease point nearest `near` (the corner, when `corner`), and
+// the w whose ray passes through it, by Gauss-Newton on the ray's direction (cube_ray is
+// trilinear in t: affine in w along the faces' axes, one step; quadratic along their
+// diagonals); `sampled` when that w is not within 0.01 of it.
 double crease_on_half_line(const ImplicitFunction& body, const Vec3& centre,
                            const std::function<Vec3(const Vec3&)>& ray, const Vec3& d,
                            const Vec3& end, const Vec3& near, double sampled, bool corner,
@@ -73,10 +75,15 @@ double crease_on_half_line(const ImplicitFunction& body, const Vec3& centre,
     const Vec3 q = (corner ? snap_to_corner(body, near, length_scale)
                            : project_to_crease(body, near, length_scale)) -
                    centre;
-    const Vec3 base = ray(end), step = ray(d + end) - base;
-    const Vec3 qs = q.cross(step);
-    if (!(qs.squaredNorm() > 0)) return sampled;
-    const double w = -q.cross(base).dot(qs) / qs.squaredNorm();
+    double w = sampled;
+    for (int step = 0; step < 4; ++step) {
+        constexpr double dw = 1e-4;
+        const Vec3 at = ray(w * d + end);
+        const Vec3 slope = (ray((w + dw) * d + end) - ray((w - dw) * d + end)) / (2 * dw);
+        const Vec3 qs = q.cross(slope);  // q x (at + x slope) = 0 in the least-squares sense
+        if (!(qs.squaredNorm() > 0)) return sampled;
+        w -= q.cross(at).dot(qs) / qs.squaredNorm();
+    }
     return std::abs(w - sampled) < 0.01 ? w : sampled;
 }
 
@@ -173,25 +180,33 @@ AxialCreases find_axial_creases(const ImplicitFunction& body, const Vec3& centre
     };
     // Creases within 0.03 of each other along different half-lines are one: their mean, and
     // how many half-lines met it.
-    auto cluster = [](std::vector<double> x, std::vector<double>& mean, std::vector<int>& count) {
+    // (w, half-line) pairs: their clusters' means and how many distinct half-lines met each.
+    using Met = std::pair<double, int>;
+    auto cluster = [](std::vector<Met> x, std::vector<double>& mean, std::vector<int>& count) {
         std::sort(x.begin(), x.end());
         for (size_t i = 0; i < x.size();) {
             size_t j = i + 1;
-            while (j < x.size() && x[j] - x[j - 1] <= 0.03) ++j;
-            mean.push_back(std::accumulate(x.begin() + i, x.begin() + j, 0.0) / (j - i));
-            count.push_back(int(j - i));
+            while (j < x.size() && x[j].first - x[j - 1].first <= 0.03) ++j;
+            double sum = 0;
+            std::vector<int> lines;
+            for (size_t k = i; k < j; ++k) sum += x[k].first, lines.push_back(x[k].second);
+            std::sort(lines.begin(), lines.end());
+            mean.push_back(sum / double(j - i));
+            count.push_back(int(std::unique(lines.begin(), lines.end()) - lines.begin()));
             i = j;
         }
     };
-    std::vector<double> along_axes, along_diagonals;
+    std::vector<Met> along_axes, along_diagonals;
     std::vector<Vec3> p;
     const Vec3 out[4] = {unit(b), unit(c), -unit(b), -unit(c)};
+    int line = 0;
     for (const double end : {1.0, -1.0})
-        for (int q = 0; q < 4; ++q) {
-            for (double x : creases_along(out[q], end * unit(axis), p)) along_axes.push_back(x);
+        for (int q = 0; q < 4; ++q, ++line) {
+            for (double x : creases_along(out[q], end * unit(axis), p))
+                along_axes.push_back({x, line});
             if (found.meridian.empty()) found.meridian = p;
             for (double x : creases_along(out[q] + out[(q + 1) % 4], end * unit(axis), p))
-                along_diagonals.push_back(x);
+                along_diagonals.push_back({x, line});
         }
     cluster(along_axes, found.radius, found.seen);
     std::vector<double> diagonal;
@@ -206,7 +221,15 @@ AxialCreases find_axial_creases(const ImplicitFunction& body, const Vec3& centre
 }
 
 AxialRings fit_axial_rings(const AxialCreases& creases, int axis, int cells, double outer) {
-    std::vector<double> rings_at = creases.radius, reach_at = creases.reach;
+    // Creases strictly inside (0, outer) and increasing, as find_axial_creases gives them.
+    std::vector<double> rings_at, reach_at;
+    for (size_t k = 0; k < creases.radius.size(); ++k) {
+        const double x = creases.radius[k];
+        if (x > 1e-3 * outer && x < outer * (1 - 1e-3) && (rings_at.empty() || x > rings_at.back()))
+            rings_at.push_back(x), reach_at.push_back(creases.reach[k]);
+    }
+    if (creases.meridian.size() < 2 || creases.meridian.size() != creases.w.size())
+        rings_at.clear();
     if (int(rings_at.size()) > cells - 1) {
         rings_at.resize(std::max(cells - 1, 0));
         reach_at.resize(rings_at.size());

@@ -27,7 +27,7 @@ void check_options(const OHGridOptions& o) {
         throw std::invalid_argument("core_size must be in (0, 1)");
     if (o.axis < -1 || o.axis > 2) throw std::invalid_argument("axis must be -1, 0, 1 or 2");
     if (o.ring_cells < 0) throw std::invalid_argument("ring_cells must be 0 or more");
-    if (o.frame_cells < 0 || 2 * o.frame_cells >= o.cells_per_edge)
+    if (o.frame_cells < 0 || (o.axis >= 0 && 2 * o.frame_cells >= o.cells_per_edge))
         throw std::invalid_argument("frame_cells must be 0 or more and under half cells_per_edge");
 }
 
@@ -132,6 +132,7 @@ std::optional<CubeCorners> corners_near_wall(const ImplicitFunction& body, const
 int choose_o_h_axis(const ImplicitFunction& body, const OHGridOptions& options) {
     check_options(options);
     const int n = options.cells_per_edge;
+    if (2 * options.frame_cells >= n) return -1;  // no room for an axial core
     const Vec3 centre = options.centre.value_or(body.bounds().center());
     const Vec3 half = 0.5 * body.bounds().size();
     const double h = grid_length_scale(body, n);
@@ -223,6 +224,8 @@ BlockGrid make_o_h_grid(const ImplicitFunction& body, const OHGridOptions& optio
             n, options.frame_cells,
             fit_axial_rings(find_axial_creases(body, centre, ray, options.axis, ring_edge, h),
                             options.axis, ring_cells, ring_edge));
+    if (Id(core.t.size()) != core_nodes)
+        throw std::logic_error("axial core: the fitted rings changed the core's node count");
     if ((corners || options.axis >= 0) && !options.wall_from) place_wall();
     // The wall follows the fitted rings; the core lies halfway between them and even rings.
     // On the fitted rings alone the core's column is as thin as half the first crease, and

@@ -1,4 +1,5 @@
-// The O-H ("butterfly") interior grid: a core box block plus six wall blocks.
+// The O-H ("butterfly") interior grid: a core box block plus six wall blocks, or a core
+// O-gridded around an axis (column, rings, frame) with its wall blocks.
 #pragma once
 
 #include <optional>
@@ -37,8 +38,10 @@ struct OHGridOptions {
 
 // Grid of the body's interior. Blocks: "core" (n^3 cells) and "wall_xmin", "wall_xmax", ...,
 // "wall_zmax" (n x n x wall_cells cells, k = 0 on the core, k = wall_cells on the wall). With
-// an axis, say z: the core is a column "core" and ring pieces "core_xmin", ..., and the zmin
-// and zmax patches are each a central "wall_zmax" and four "wall_zmax_xmin", ....
+// an axis, say z: the core blocks "core_column", "core_ring_xmax", ..., "core_frame_xmax",
+// ..., "core_frame_xmax_ymax", ... (volume/core_layout.h: axial_core), each end patch the
+// same pieces ("wall_zmax_column", "wall_zmax_ring_xmax", ...), each side the frame's side
+// "wall_xmax" (or ring piece, without a frame) and its two corners ("wall_xmax_frame_xmax_ymax").
 // Every block is right-handed in (i,j,k); the wall blocks' kmax faces form patch "wall". Wall nodes
 // are the cube-sphere (equiangular) directions from the centre, scaled by the body's half extents
 // (or spanning its corners, see patch_corners_on_body_corners), projected radially onto u = 0 (kind

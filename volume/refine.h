@@ -28,7 +28,8 @@ namespace hexmesh {
 // stretching geometric (ratio r becomes ~sqrt(r)), and keeps the lines next to a crease on
 // their side of it. A node shared
 // by blocks takes the value of the first block that reaches it (the blocks agree up to
-// round-off where their lines coincide).
+// round-off where their lines coincide, except next to a crease, where the order of the
+// index directions can change which stencils stop).
 //
 // Kinds: coarse nodes keep theirs. A new node on a block face with patch "wall" is slip
 // (feature_edge when it is the midpoint of a wall edge whose two ends are feature_edge or

@@ -284,3 +284,23 @@ TEST(CaseFile, GridAxisMisusesAreNamed) {
         R"({"geometry": {"sphere": {"radius": 1}}, "grid": {"topology": "single-block", "axis": "auto"}})",
         "case.json"));
 }
+
+TEST(CaseFile, AnAxisResolvedToNoneReadsBackWithoutItsRingSizes) {
+    // "auto" with ring sizes, on a body where it finds no axis: the case written with the
+    // grid says "none" and reads back (hexmesh refine reads it).
+    Case c = parse_case(R"({"geometry": {"sphere": {"radius": 1}},
+      "grid": {"cells_per_edge": 12, "ring_cells": 5, "frame_cells": 2}})",
+                        "case.json");
+    c.grid.axis = "none";
+    const Case back = parse_case(case_to_json(c), "grid.case.json");
+    EXPECT_EQ(back.grid.axis, "none");
+}
+
+TEST(CaseFile, TheCoarsestGridNeedsNoFrame) {
+    // 2 cells per edge leave no room for an axial core's frame; "auto" then keeps one block.
+    EXPECT_EQ(
+        parse_case(R"({"geometry": {"sphere": {"radius": 1}}, "grid": {"cells_per_edge": 2}})",
+                   "case.json")
+            .grid.cells_per_edge,
+        2);
+}

@@ -12,6 +12,7 @@
 #include "hexmesh/core/quality.h"
 #include "surface/analytic.h"
 #include "surface/csg.h"
+#include "surface/transform.h"
 #include "volume/cube_sphere.h"
 #include "volume/o_h_grid.h"
 
@@ -242,6 +243,20 @@ TEST(OHGrid, AnAxialCoreRunsRingsOfWallNodesAlongACylindersCircles) {
     ASSERT_EQ(again.points.size(), grid.points.size());
     for (size_t v = 0; v < grid.points.size(); ++v)
         EXPECT_LT((again.points[v] - grid.points[v]).norm(), 1e-9) << v;
+}
+
+TEST(OHGrid, TheAxisChosenIsTheOneTheCreasesRunAround) {
+    OHGridOptions o = sphere_options();
+    EXPECT_EQ(choose_o_h_axis(*test_support::box_with_cylinder(), o), 2);
+    EXPECT_EQ(choose_o_h_axis(Sphere(Vec3(0.1, -0.2, 0.3), 1.0), o), -1);
+    // Turned to lie along x, the cylinder's circles run around x.
+    const Body along_x = std::make_shared<Transformed>(
+        test_support::box_with_cylinder(), Vec3::Zero(),
+        Eigen::AngleAxisd(0.5 * 3.14159265358979323846, Vec3::UnitY()).toRotationMatrix());
+    EXPECT_EQ(choose_o_h_axis(*along_x, o), 0);
+    o.cells_per_edge = 2;  // no room for a frame: one core block
+    EXPECT_EQ(choose_o_h_axis(*test_support::box_with_cylinder(), o), -1);
+    EXPECT_EQ(make_o_h_grid(*test_support::box_with_cylinder(), o).blocks.size(), 7u);
 }
 
 TEST(OHGrid, RefusesACentreOutsideTheBody) {
