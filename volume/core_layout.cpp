@@ -178,9 +178,8 @@ AxialCreases find_axial_creases(const ImplicitFunction& body, const Vec3& centre
         }
         return creases;
     };
-    // Creases within 0.03 of each other along different half-lines are one: their mean, and
-    // how many half-lines met it.
-    // (w, half-line) pairs: their clusters' means and how many distinct half-lines met each.
+    // Creases met within 0.03 of each other are one: from (w, half-line) pairs, the mean w of
+    // each cluster and how many distinct half-lines met it.
     using Met = std::pair<double, int>;
     auto cluster = [](std::vector<Met> x, std::vector<double>& mean, std::vector<int>& count) {
         std::sort(x.begin(), x.end());
