@@ -16,6 +16,7 @@
 #include "volume/feature_snapping.h"
 #include "volume/surface_placement.h"
 #include "volume/tfi.h"
+#include "volume/wall_lines.h"
 
 namespace hexmesh {
 namespace {
@@ -49,26 +50,6 @@ std::optional<CubeCorners> body_corners_by_octant(const Vec3& centre,
     return corners;
 }
 
-// The node of `block` at (p, q) on `face`, p and q running along the face's two index
-// directions in ascending order.
-Id face_node(const Block& block, BlockFace face, int p, int q) {
-    const int axis = face / 2, axis_p = axis == 0 ? 1 : 0, axis_q = axis == 2 ? 1 : 2;
-    std::array<int, 3> ijk;
-    ijk[axis] = face % 2 ? block.nodes[axis] - 1 : 0;
-    ijk[axis_p] = p;
-    ijk[axis_q] = q;
-    return block.node(ijk[0], ijk[1], ijk[2]);
-}
-
-// Calls f(id) for every node of a block face.
-template <class F>
-void for_each_face_node(const Block& block, BlockFace face, F&& f) {
-    const int axis = face / 2;
-    const int np = block.nodes[axis == 0 ? 1 : 0], nq = block.nodes[axis == 2 ? 1 : 2];
-    for (int q = 0; q < nq; ++q)
-        for (int p = 0; p < np; ++p) f(face_node(block, face, p, q));
-}
-
 // The core node at cube corner c (entry (a > 0) + 2 (b > 0) + 4 (c > 0) as CubeCorners):
 // the wall node furthest towards it.
 Id cube_corner_node(const CoreLayout& core, const std::vector<Id>& on_wall, int c) {
@@ -85,11 +66,11 @@ template <class NodeId>
 Block wall_block(const Block& base, const CoreLayout::WallFace& f, const std::vector<Vec3>& t,
                  int nk, NodeId&& node_id) {
     const CubePatch& patch = cube_patches[f.side];
-    const int axis = f.face / 2;
-    const int np = base.nodes[axis == 0 ? 1 : 0], nq = base.nodes[axis == 2 ? 1 : 2];
-    const Vec3 origin = t[face_node(base, f.face, 0, 0)];
-    const Vec3 along_p = t[face_node(base, f.face, 1, 0)] - origin;
-    const Vec3 along_q = t[face_node(base, f.face, 0, 1)] - origin;
+    const WallFace face = block_face(base, f.face);
+    const int np = face.np, nq = face.nq;
+    const Vec3 origin = t[face.node(0, 0, 0)];
+    const Vec3 along_p = t[face.node(1, 0, 0)] - origin;
+    const Vec3 along_q = t[face.node(0, 1, 0)] - origin;
     const Vec3 outward = (patch.max_side ? 1.0 : -1.0) * Vec3::Unit(patch.axis);
     const bool swap = along_p.cross(along_q).dot(outward) < 0;
     const std::string piece = base.name.size() > 5 ? base.name.substr(5) : "";
@@ -104,8 +85,8 @@ Block wall_block(const Block& base, const CoreLayout::WallFace& f, const std::ve
     for (int k = 0; k <= nk; ++k)
         for (int j = 0; j < b.nodes.nj; ++j)
             for (int i = 0; i < b.nodes.ni; ++i)
-                b.node_ids[b.nodes.flat(i, j, k)] = node_id(
-                    swap ? face_node(base, f.face, j, i) : face_node(base, f.face, i, j), k);
+                b.node_ids[b.nodes.flat(i, j, k)] =
+                    node_id(swap ? face.node(j, i, 0) : face.node(i, j, 0), k);
     return b;
 }
 
@@ -114,8 +95,11 @@ Block wall_block(const Block& base, const CoreLayout::WallFace& f, const std::ve
 void number_wall_nodes(const CoreLayout& core, std::vector<Id>& number, std::vector<Id>& on_wall) {
     number.assign(core.t.size(), -1);
     on_wall.clear();
-    for (const CoreLayout::WallFace& f : core.wall_faces)
-        for_each_face_node(core.blocks[f.block], f.face, [&](Id id) { number[id] = 0; });
+    for (const CoreLayout::WallFace& f : core.wall_faces) {
+        const WallFace face = block_face(core.blocks[f.block], f.face);
+        for (int q = 0; q < face.nq; ++q)
+            for (int p = 0; p < face.np; ++p) number[face.node(p, q, 0)] = 0;
+    }
     for (Id id = 0; id < Id(core.t.size()); ++id)
         if (number[id] == 0) number[id] = Id(on_wall.size()), on_wall.push_back(id);
 }
@@ -273,9 +257,7 @@ BlockGrid make_o_h_grid(const ImplicitFunction& body, const OHGridOptions& optio
         for (const CoreLayout::WallFace& f : core.wall_faces) {
             if (f.side != side) continue;
             const Block& base = grid.blocks[f.block];
-            grid.blocks.push_back(wall_block(base, f, core.t, nk, [&](Id core_id, int layer) {
-                return node_id(core_id, layer);
-            }));
+            grid.blocks.push_back(wall_block(base, f, core.t, nk, node_id));
         }
     return grid;
 }

@@ -39,9 +39,10 @@ void interpolate_line(int coarse_count, At&& at) {
     auto smooth_at = [&](int m) {
         return m > 0 && m + 1 < n && !kinked(sample(m - 1), sample(m), sample(m + 1));
     };
+    bool left = false;  // smooth_at(0); each interval's right end is the next one's left
     for (int m = 0; m + 1 < n; ++m) {
         Vec3& mid = at(2 * m + 1);
-        const bool left = smooth_at(m), right = smooth_at(m + 1);
+        const bool right = smooth_at(m + 1);
         if (left && right) {
             mid = (9 * (sample(m) + sample(m + 1)) - sample(m - 1) - sample(m + 2)) / 16;
         } else if (right) {
@@ -51,6 +52,7 @@ void interpolate_line(int coarse_count, At&& at) {
         } else {
             mid = 0.5 * (sample(m) + sample(m + 1));
         }
+        left = right;
     }
 }
 

@@ -9,13 +9,16 @@
 
 namespace hexmesh {
 
+WallFace block_face(const Block& b, BlockFace face) {
+    const int axis = face / 2, p = axis == 0 ? 1 : 0, q = axis == 2 ? 1 : 2;
+    return {&b, axis, face % 2 == 1, p, q, b.nodes[p], b.nodes[q], b.nodes[axis]};
+}
+
 std::vector<WallFace> wall_faces(const Block& b) {
     std::vector<WallFace> faces;
-    for (int f = imin; f <= kmax; ++f) {
-        const int axis = f / 2, p = axis == 0 ? 1 : 0, q = axis == 2 ? 1 : 2;
-        if (b.face_patch[f] != "wall" || b.nodes[axis] < 2) continue;
-        faces.push_back({&b, axis, f % 2 == 1, p, q, b.nodes[p], b.nodes[q], b.nodes[axis]});
-    }
+    for (int f = imin; f <= kmax; ++f)
+        if (b.face_patch[f] == "wall" && b.nodes[f / 2] >= 2)
+            faces.push_back(block_face(b, BlockFace(f)));
     return faces;
 }
 

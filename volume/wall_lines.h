@@ -29,6 +29,9 @@ struct WallFace {
     Id lines() const { return Id(np) * nq; }
 };
 
+// Any face of a block seen so (whatever its patch).
+WallFace block_face(const Block& block, BlockFace face);
+
 // Wall faces in block order, then BlockFace order; faces one node thick are skipped.
 std::vector<WallFace> wall_faces(const BlockGrid& grid);
 
