@@ -128,10 +128,9 @@ CoreLayout one_block_core(int n) {
 AxialRings even_axial_rings(int axis, int cells, double outer) {
     AxialRings rings;
     rings.axis = axis;
-    rings.column = outer / 2;
+    const double column = outer / 2;
     for (int s = 0; s <= cells; ++s) {
-        rings.radius.push_back(s == cells ? outer
-                                          : rings.column + (outer - rings.column) * s / cells);
+        rings.radius.push_back(s == cells ? outer : column + (outer - column) * s / cells);
         rings.roundness.push_back(s == 0 || s == cells ? 0.0 : std::sin(pi * s / cells));
     }
     keep_rings_nested(rings);
@@ -237,17 +236,17 @@ AxialRings fit_axial_rings(const AxialCreases& creases, int axis, int cells, dou
 
     AxialRings rings;
     rings.axis = axis;
-    rings.column = std::min(outer / 2, rings_at.front() / 2);
+    const double column = std::min(outer / 2, rings_at.front() / 2);
     const std::vector<double>& w = creases.w;
     const std::vector<double> length = arc_lengths(creases.meridian);
-    std::vector<double> stops = {rings.column};
+    std::vector<double> stops = {column};
     stops.insert(stops.end(), rings_at.begin(), rings_at.end());
     stops.push_back(outer);
     std::vector<double> segment;
     for (size_t i = 0; i + 1 < stops.size(); ++i)
         segment.push_back(interpolate(w, length, stops[i + 1]) - interpolate(w, length, stops[i]));
     const std::vector<int> count = share_cells(segment, cells);
-    rings.radius.push_back(rings.column);
+    rings.radius.push_back(column);
     for (size_t i = 0; i < count.size(); ++i) {
         const double from = interpolate(w, length, stops[i]);
         for (int s = 1; s <= count[i]; ++s) {
@@ -258,7 +257,7 @@ AxialRings fit_axial_rings(const AxialCreases& creases, int axis, int cells, dou
     // Each ring's reach along the diagonals: the creases' own, and in between it grows evenly
     // with the radius, from the column's square to the frame's.
     const double root2 = std::sqrt(2.0);
-    std::vector<double> reach = {root2 * rings.column};
+    std::vector<double> reach = {root2 * column};
     reach.insert(reach.end(), reach_at.begin(), reach_at.end());
     reach.push_back(root2 * outer);
     for (int s = 0; s <= cells; ++s) {
@@ -306,7 +305,7 @@ std::vector<SectionPiece> cross_section(int n, int frame, const AxialRings& ring
     SectionPiece column{"column", m + 1, m + 1, {}};
     for (int j = 0; j <= m; ++j)
         for (int i = 0; i <= m; ++i)
-            column.t.push_back(rings.column *
+            column.t.push_back(rings.column() *
                                Vec2(equiangular_index(i, m), equiangular_index(j, m)));
     pieces.push_back(std::move(column));
     // Piece q reaches out along d = +b, +c, -b, -c; `along` (the axis x d) turns around it.

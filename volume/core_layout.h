@@ -32,16 +32,16 @@ CoreLayout one_block_core(int n);
 
 // Rings around `axis` in the two cube faces across it, as the axial core lays them out. In the
 // plane of those faces (the other two cube coordinates, b and c): a central square
-// |b|, |c| <= column, then rings s = 1 .. cells, ring s at distance radius[s] from the axis
-// along b and c. roundness[s] blends ring s from the square |b|, |c| = radius[s] (0) to the
+// |b|, |c| <= column = radius[0], then rings s = 1 .. cells, ring s at distance radius[s] from the
+// axis along b and c. roundness[s] blends ring s from the square |b|, |c| = radius[s] (0) to the
 // circle of that radius (1); the first ring is the column's square, the last the frame's
 // inner square (roundness 0 at both; axial_frame_edge).
 struct AxialRings {
     int axis = 2;
-    double column = 0.5;
-    std::vector<double> radius;     // cells + 1 values, radius[0] = column
+    std::vector<double> radius;     // cells + 1 values, radius[0] the column's half-width
     std::vector<double> roundness;  // cells + 1 values in [0, 1]
     int cells() const { return int(radius.size()) - 1; }
+    double column() const { return radius.front(); }  // the column's half-width
 };
 
 // The inner edge of a frame `frame` cells wide along the edges of a cube face of n cells per

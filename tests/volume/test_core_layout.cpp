@@ -97,7 +97,7 @@ TEST(CoreLayout, RingsAreFittedToTheCirclesOfACylinderOnABox) {
         ASSERT_LT(s, 8) << "no ring on the circle at " << circle;
         EXPECT_NEAR(rings.roundness[s], 1.0, 1e-12);
     }
-    EXPECT_NEAR(rings.column, 0.15, 0.005);
+    EXPECT_NEAR(rings.column(), 0.15, 0.005);
     for (int s = 0; s < 8; ++s) EXPECT_LT(rings.radius[s], rings.radius[s + 1]);
     EXPECT_EQ(rings.roundness.front(), 0.0);
     EXPECT_EQ(rings.roundness.back(), 0.0);
