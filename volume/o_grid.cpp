@@ -1,17 +1,19 @@
 #include "volume/o_grid.h"
 
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 #include <limits>
 #include <queue>
 #include <stdexcept>
 #include <string>
-#include <tbb/parallel_for.h>
 
 #include "volume/cube_sphere.h"
 #include "volume/o_h_grid.h"
 #include "volume/surface_placement.h"
+#include "volume/wall_lines.h"
 
 namespace hexmesh {
 namespace {
@@ -75,38 +77,56 @@ constexpr double bend_per_focal_distance = 2.0;
 // How fast the bend length may grow along the wall away from a concave part (length per
 // length): a bounded slope keeps neighbouring lines bending alike.
 constexpr double bend_slope = 0.25;
+// Every line has turned to its straight direction within this fraction of the body's bounds
+// diagonal from the wall, so the lines of a flat face fan out as soon as those of its edges
+// (which leave along the bisector, 45 degrees out): with the turn spread over the whole line,
+// the cells beside a 4 x 2 x 1 box's edge lines were 10 times wider than their neighbours
+// half-way to the far field (volume ratio 22), and the grid's refinement inverted there.
+constexpr double max_bend_per_diagonal = 0.5;
 
-// A wall-normal line x(tau) = wall + tau m(tau), tau in [0, length] the distance from the
-// wall node, m the unit blend of the wall normal and the straight direction to the far-field
-// node (ramp b = smoothstep(tau / bend)): x(0) = wall, x'(0) = normal, x(length) = far.
+// A wall-normal line x(tau) = wall + tau r(tau) m(tau), tau in [0, length], m the unit blend
+// of the wall normal and the straight direction to the far-field node (ramp b =
+// smoothstep(tau / bend)) and r = (1 - b) reach + b: x(0) = wall, x(length) = far. At a
+// smooth wall reach is 1 and tau the distance from the wall node; at a crease or corner the
+// normal is the bisector of the faces meeting there and reach its length in unit_offset
+// (volume/wall_lines.h), so that near the wall x(tau) lies at distance tau from every face's
+// plane, where the boundary layer is laid; the line turns round as it leaves.
 struct WallNormalLine {
     Vec3 wall, normal, straight;
-    double length, bend;
+    double length, bend, reach;
 
+    double b(double tau) const { return smoothstep(tau / bend); }
+    // The length in the law of a unit length of line at tau: chords are reach times longer
+    // than the law's heights at the wall, as long as them where the line has turned.
+    double speed(double tau) const { return (1 - b(tau)) * reach + b(tau); }
     Vec3 at(double tau) const {
-        const double b = smoothstep(tau / bend);
-        const Vec3 m = (1 - b) * normal + b * straight;
+        const double ramp = b(tau);
+        const Vec3 m = (1 - ramp) * normal + ramp * straight;
         // m vanishes only for a normal pointing straight back to the body: go straight.
         const double norm = m.norm();
-        return wall + tau * (norm > 1e-6 ? Vec3(m / norm) : straight);
+        return wall + tau * speed(tau) * (norm > 1e-6 ? Vec3(m / norm) : straight);
     }
 };
 
-// The nk+1 nodes of a line: the chord |x(k) - x(k-1)| is a(k) - a(k-1) for every cell but
-// the last, a = wall_distances(arc length of the line, nk, law), so the law holds exactly
-// for the cell heights of the bent line too; the last cell ends on the far-field node and
-// takes up the difference between chords and arc (small: the line bends gently there).
-// The arc length is summed over chords of the line sampled 16 times finer than the nodes.
+// The nk+1 nodes of a line: the chord |x(k) - x(k-1)| is (a(k) - a(k-1)) speed for every cell
+// but the last, a = wall_distances(L, nk, law), L the length of the line in the law (its arc
+// length with each piece divided by the speed there, the arc length on a smooth wall), so the
+// law holds exactly for the cell heights of the bent line too; the last cell ends on the
+// far-field node and takes up the difference between chords and arc (small: the line bends
+// gently there). L is summed over chords of the line sampled 16 times finer than the nodes.
 void place_nodes(const WallNormalLine& line, int nk, const WallLayers& law, std::vector<Vec3>& x) {
     constexpr int refine = 16;
     const std::vector<double> d = wall_distances(line.length, nk, law);
     double arc = 0;
     Vec3 previous = line.wall;
+    double previous_tau = 0;
     for (int k = 0; k < nk; ++k)
         for (int r = 1; r <= refine; ++r) {
-            const Vec3 p = line.at(d[k] + (d[k + 1] - d[k]) * r / refine);
-            arc += (p - previous).norm();
+            const double tau = d[k] + (d[k + 1] - d[k]) * r / refine;
+            const Vec3 p = line.at(tau);
+            arc += (p - previous).norm() / line.speed(0.5 * (tau + previous_tau));
             previous = p;
+            previous_tau = tau;
         }
     const std::vector<double> a = wall_distances(arc, nk, law);
 
@@ -116,10 +136,13 @@ void place_nodes(const WallNormalLine& line, int nk, const WallLayers& law, std:
         // The first tau beyond the previous node at the wanted chord: bracket, then regula
         // falsi (Illinois variant), which converges in a few steps on these nearly straight
         // pieces.
-        const double chord = a[k] - a[k - 1];
-        auto excess = [&](double t) { return (line.at(t) - x[k - 1]).norm() - chord; };
-        double lo = tau, hi = std::min(tau + chord, line.length);
-        double f_lo = -chord, f_hi = excess(hi);
+        const double height = a[k] - a[k - 1];
+        auto excess = [&](double t) {
+            return (line.at(t) - x[k - 1]).norm() - height * line.speed(0.5 * (t + tau));
+        };
+        const double tolerance = 1e-14 * height;
+        double lo = tau, hi = std::min(tau + height, line.length);
+        double f_lo = excess(lo), f_hi = excess(hi);
         while (f_hi < 0 && hi < line.length) {
             lo = hi, f_lo = f_hi;
             hi = std::min(tau + 2 * (hi - tau), line.length);
@@ -127,7 +150,7 @@ void place_nodes(const WallNormalLine& line, int nk, const WallLayers& law, std:
         }
         double t = hi, f = f_hi, g_lo = f_lo, g_hi = f_hi;  // g: Illinois-scaled f at lo, hi
         int side = 0;  // which end the last step moved: -1 lo, +1 hi
-        for (int it = 0; it < 100 && std::abs(f) > 1e-14 * chord; ++it) {
+        for (int it = 0; it < 100 && std::abs(f) > tolerance; ++it) {
             t = hi - g_hi * (hi - lo) / (g_hi - g_lo);
             if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
             f = excess(t);
@@ -166,7 +189,8 @@ std::vector<Id> neighbours(const CubeSurfaceLattice& surface, Id s) {
 }
 
 // Distance from the wall over which each wall-normal line turns from the wall normal to its
-// straight direction: the whole line where the wall is convex; bend_per_focal_distance times
+// straight direction (before the cap of max_bend_per_diagonal): the whole line where the wall
+// is convex; bend_per_focal_distance times
 // the focal distance of the normals where they converge (concave wall, measured between
 // neighbouring surface points: features finer than the lattice are not seen); in between,
 // the smallest value of those plus bend_slope times the distance along the lattice.
@@ -222,31 +246,38 @@ BlockGrid make_o_grid(const ImplicitFunction& body, const OGridOptions& options)
     if (options.wall_from && Id(options.wall_from->size()) != (nk + 1) * ns)
         throw std::invalid_argument("wall_from: the points of a grid made with other options");
     std::vector<Vec3> wall(ns), normal(ns), far(ns);
+    std::vector<double> reach(ns);
     tbb::parallel_for(Id(0), ns, [&](Id s) {
         const LatticePoint& p = surface.points[s];
         const Vec3 dir = cube_sphere_ray(p, n, half);
         wall[s] =
             options.wall_from ? (*options.wall_from)[s] : place_on_surface(body, centre, dir, h);
-        const Vec3 g = body.gradient(wall[s]);
+        // At a crease or corner the line leaves along the bisector of the faces meeting there
+        // (the direction the boundary layer is laid along), not along one face's normal.
+        const std::optional<Vec3> offset = unit_offset(body, wall[s], 1.0, 1e-6 * h);
+        const Vec3 g = offset ? *offset : body.gradient(wall[s]);
         normal[s] = g.norm() > 0 ? Vec3(g.normalized()) : Vec3(dir.normalized());
-        if (options.far_field == FarFieldShape::sphere) {
-            far[s] = centre + options.far_field_size * dir.normalized();
-        } else {
-            const Vec3 q = cube_sphere_ray(p, n, Vec3::Ones());
-            far[s] = centre + options.far_field_size * (q / q.cwiseAbs().maxCoeff());
-        }
+        reach[s] = offset ? offset->norm() : 1.0;
+        // The far field's nodes: the cube sphere of the unit cube, whatever the body's
+        // proportions (a cube sphere stretched like the body has cells squeezed flat on a
+        // sphere: min scaled Jacobian 0.05 there round a 4 x 2 x 1 box).
+        const Vec3 q = cube_sphere_ray(p, n, Vec3::Ones());
+        far[s] = centre + options.far_field_size * (options.far_field == FarFieldShape::sphere
+                                                        ? q / q.norm()
+                                                        : q / q.cwiseAbs().maxCoeff());
     });
 
     std::vector<double> length(ns);
     for (Id s = 0; s < ns; ++s) length[s] = (far[s] - wall[s]).norm();
-    const std::vector<double> bend = bend_lengths(surface, wall, normal, length);
+    std::vector<double> bend = bend_lengths(surface, wall, normal, length);
+    for (double& b : bend) b = std::min(b, max_bend_per_diagonal * box.diagonal());
 
     BlockGrid grid;
     grid.points.assign((nk + 1) * ns, Vec3::Zero());
     grid.kinds.assign(grid.points.size(), VertexKind::interior);
     tbb::parallel_for(Id(0), ns, [&](Id s) {
-        const WallNormalLine line{wall[s], normal[s], (far[s] - wall[s]) / length[s], length[s],
-                                  bend[s]};
+        const WallNormalLine line{wall[s],   normal[s], (far[s] - wall[s]) / length[s],
+                                  length[s], bend[s],   reach[s]};
         std::vector<Vec3> x;
         place_nodes(line, nk, options.wall_layers, x);
         for (int k = 1; k < nk; ++k) grid.points[k * ns + s] = x[k];

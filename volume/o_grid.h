@@ -40,18 +40,23 @@ struct OGridOptions {
 //
 // Wall nodes: the equiangular cube-sphere directions from the centre scaled by the body's
 // half extents (as in the O-H grid) projected radially onto u = 0, so the body must be
-// star-shaped around the centre. Far-field nodes: sphere, centre + size * dir / |dir| for
-// the same direction; box, the equiangular cube-sphere point of the box (every block's
-// far-field face is one face of the box).
-// Wall-normal lines: x(tau) = x0 + tau m(tau), tau in [0, |far - x0|], m the normalized
-// blend (1 - b) normal + b straight of the wall normal grad u / |grad u| at x0 and the
-// direction to the far-field node, b = smoothstep(tau / bend): the line leaves the wall
-// along the normal (b(0) = b'(0) = 0) and ends on its far-field node. bend is the whole line
-// where the wall is convex and shorter where it is concave, so that the normals there do not
-// cross (concave features finer than the patch lattice are not seen). Nodes: the cell
-// heights |x_k - x_(k-1)| are a_k - a_(k-1), a = wall_distances(arc length of the line, nk,
-// wall_layers), for every cell but the last: the boundary layer has exactly the law's first
-// height and growth ratio, on bent lines too; the last cell ends on the far-field node.
+// star-shaped around the centre. Far-field nodes: the equiangular cube-sphere points of
+// the unit cube, whatever the body's proportions, on the sphere (centre + size * q / |q|) or
+// the box (every block's far-field face is one face of the box).
+// Wall-normal lines: x(tau) = x0 + tau r(tau) m(tau), tau in [0, |far - x0|], m the
+// normalized blend (1 - b) normal + b straight of the wall normal at x0 and the direction to
+// the far-field node, b = smoothstep(tau / bend): the line leaves the wall along the normal
+// (b(0) = b'(0) = 0) and ends on its far-field node. The wall normal is grad u / |grad u|;
+// at a crease or corner of the body, the bisector of the faces meeting there, and r blends
+// from that step's length in unit_offset (volume/wall_lines.h) to 1, so the line's first
+// nodes lie on the faces' offset planes, where extrude_wall_layers lays the boundary layer.
+// bend is the whole line where the wall is convex, but at most half the body's bounds
+// diagonal (so the lines of flat faces fan out as soon as those of their edges), and shorter
+// where the wall is concave, so that the normals there do not cross (concave features finer
+// than the patch lattice are not seen). Nodes: the cell heights |x_k - x_(k-1)| are (a_k - a_(k-1))
+// r, a = wall_distances(length of the line in the law, nk, wall_layers), for every cell but the
+// last: the boundary layer has exactly the law's first height and growth ratio, on bent lines
+// too; the last cell ends on the far-field node.
 // Throws std::invalid_argument, with a message naming the option, on n < 2, nk < 1, a law
 // that does not fit the lines (wall_layers.layers >= nk, or thicker than a line), a far field
 // that does not enclose the body's bounds with the margin, a centre outside the body, or a

@@ -1,34 +1,14 @@
 #include "volume/wall_extrusion.h"
 
-#include <Eigen/Dense>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
-#include <optional>
-#include <tbb/parallel_for.h>
 
 #include "volume/wall_lines.h"
 
 namespace hexmesh {
 namespace {
-
-// The least-norm step t with n_i . t = 1 for the unit normals n_i (pointing into the grid, side
-// = +1 outside the body, -1 inside) of the distinct smooth pieces of the wall active at x0:
-// x0 + d t lies at distance d from each piece's plane, i.e. on the offset surfaces. One piece:
-// its normal; a crease: along the bisector, 1 / cos(half the angle) long; a corner: the
-// corner of the three offset planes. nullopt where that step would be degenerate (a knife
-// edge) or the wall has no normal.
-std::optional<Vec3> unit_offset(const ImplicitFunction& body, const Vec3& x0, double side,
-                                double tolerance) {
-    std::vector<Vec3> normals;
-    append_wall_normals(body, x0, side, tolerance, normals);
-    if (normals.empty()) return std::nullopt;
-    Eigen::MatrixXd a(normals.size(), 3);
-    for (size_t i = 0; i < normals.size(); ++i) a.row(Eigen::Index(i)) = normals[i].transpose();
-    const Eigen::VectorXd ones = Eigen::VectorXd::Ones(Eigen::Index(normals.size()));
-    const Vec3 t = a.completeOrthogonalDecomposition().solve(ones);
-    if (!t.allFinite() || t.norm() > 4 || (a * t - ones).norm() > 1e-6) return std::nullopt;
-    return t;
-}
 
 // Nodes that lines starting at different wall nodes would both move, or that are one line's
 // wall node and another's inner node (a single block walled on several sides: lines from

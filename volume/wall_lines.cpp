@@ -1,9 +1,11 @@
 #include "volume/wall_lines.h"
 
-#include <algorithm>
-#include <cmath>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
 
 #include "surface/implicit_features.h"
 
@@ -55,6 +57,19 @@ void append_wall_normals(const ImplicitFunction& body, const Vec3& x0, double si
         if (std::none_of(normals.begin(), normals.end(), [&](const Vec3& m) { return m.dot(n) > same; }))
             normals.push_back(n);
     }
+}
+
+std::optional<Vec3> unit_offset(const ImplicitFunction& body, const Vec3& x0, double side,
+                                double tolerance) {
+    std::vector<Vec3> normals;
+    append_wall_normals(body, x0, side, tolerance, normals);
+    if (normals.empty()) return std::nullopt;
+    Eigen::MatrixXd a(normals.size(), 3);
+    for (size_t i = 0; i < normals.size(); ++i) a.row(Eigen::Index(i)) = normals[i].transpose();
+    const Eigen::VectorXd ones = Eigen::VectorXd::Ones(Eigen::Index(normals.size()));
+    const Vec3 t = a.completeOrthogonalDecomposition().solve(ones);
+    if (!t.allFinite() || t.norm() > 4 || (a * t - ones).norm() > 1e-6) return std::nullopt;
+    return t;
 }
 
 }  // namespace hexmesh

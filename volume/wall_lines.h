@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <vector>
 
 #include "hexmesh/core/block_grid.h"
@@ -48,5 +49,13 @@ double grid_side(const WallFace& f, const std::vector<Vec3>& points, const Impli
 // more at a corner. Pieces with a zero or non-finite gradient are skipped.
 void append_wall_normals(const ImplicitFunction& body, const Vec3& x0, double side,
                          double tolerance, std::vector<Vec3>& normals);
+
+// The least-norm step t with n_i . t = 1 for the normals n_i of append_wall_normals at x0:
+// x0 + d t lies at distance d from each active piece's plane, i.e. on the offset surfaces.
+// One piece: its normal; a crease: along the bisector, 1 / cos(half the angle) long; a
+// corner: the corner of the three offset planes. nullopt where that step would be degenerate
+// (a knife edge) or the wall has no normal.
+std::optional<Vec3> unit_offset(const ImplicitFunction& body, const Vec3& x0, double side,
+                                double tolerance);
 
 }  // namespace hexmesh

@@ -57,7 +57,12 @@ LineMeasures measure_line(const WallFace& f, int p, int q, const std::vector<Vec
     append_wall_normals(body, x0, side, 1e-3 * spacing_along_wall, normals);
     for (size_t i = 1; i < normals.size() && m.normal_count < int(m.normals.size()); ++i)
         m.normals[m.normal_count++] = normals[i];
-    m.angle_deg = std::atan2(edge.cross(n).norm(), edge.dot(n)) * 180 / pi;
+    // At a crease or corner the angle is taken from the bisector of the faces meeting there
+    // (the direction of unit_offset), the best a line leaving it can do; elsewhere from n.
+    const std::optional<Vec3> offset =
+        m.normal_count > 1 ? unit_offset(body, x0, side, 1e-3 * spacing_along_wall) : std::nullopt;
+    const Vec3 ideal = offset ? Vec3(offset->normalized()) : n;
+    m.angle_deg = std::atan2(edge.cross(ideal).norm(), edge.dot(ideal)) * 180 / pi;
 
     double spacing = edge.norm();
     for (int e = 1; e <= ratios; ++e) {

@@ -34,7 +34,8 @@ struct WallQuality {
     double growth_ratio_target = 0;            // the law's growth ratio
     double growth_ratio_within_5_percent = 0;  // fraction of ratios within 5 % of target
 
-    // Angle between the first edge of each line and the wall normal, degrees (0 = ideal).
+    // Angle between the first edge of each line and the wall normal, degrees (0 = ideal); at a
+    // crease or corner, the bisector of the faces meeting there.
     double orthogonality_max_deg = 0;
     double orthogonality_mean_deg = 0;
 

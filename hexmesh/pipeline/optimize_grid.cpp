@@ -1,5 +1,6 @@
 #include "hexmesh/pipeline/optimize_grid.h"
 
+#include <Eigen/LU>
 #include <algorithm>
 
 #include "hexmesh/core/quality.h"
@@ -7,6 +8,7 @@
 #include "surface/implicit_features.h"
 #include "surface/projection.h"
 #include "volume/wall_extrusion.h"
+#include "volume/wall_lines.h"
 
 namespace hexmesh {
 namespace {
@@ -35,9 +37,59 @@ struct GridProblem {
     }
 };
 
-// Box targets of the cell's edge lengths in `target_points` (node positions of the grid).
+// Nodes 0 .. last of the wall-normal lines that start on a crease or corner of the body (two
+// or more distinct faces active at the wall node, within 1e-6 of the wall spacing there).
+std::vector<bool> crease_line_nodes(const BlockGrid& grid, const ImplicitFunction& body, int last) {
+    std::vector<bool> marked(grid.points.size(), false);
+    for (const WallFace& f : wall_faces(grid)) {
+        const double side = grid_side(f, grid.points, body);
+        for (int q = 0; q < f.nq; ++q)
+            for (int p = 0; p < f.np; ++p) {
+                const Vec3 x0 = grid.points[f.node(p, q, 0)];
+                const int pn = p + 1 < f.np ? p + 1 : p - 1;
+                const double spacing = (grid.points[f.node(pn, q, 0)] - x0).norm();
+                std::vector<Vec3> normals;
+                append_wall_normals(body, x0, side, 1e-6 * spacing, normals);
+                if (normals.size() < 2) continue;
+                for (int t = 0; t <= std::min(last, f.depth - 1); ++t)
+                    marked[f.node(p, q, t)] = true;
+            }
+    }
+    return marked;
+}
+
+// A cell shaped so is a target where each of its corners has a scaled Jacobian of at least
+// this: a mitred crease cell is (0.4 and more), a cell a crease cuts across is not.
+constexpr double shaped_target_min_sj = 0.2;
+
+// The targets of a cell's 8 corner tets: its own corners in `target_points`; false (nothing
+// added) when one of them has a scaled Jacobian under shaped_target_min_sj there.
+bool add_shaped_hex(untangle::Problem& p, const std::vector<Vec3>& target_points,
+                    const std::array<Id, 8>& nodes, const std::array<Id, 8>& ids) {
+    std::array<untangle::TetTarget, 8> targets;
+    for (int c = 0; c < 8; ++c) {
+        const auto& t = hex_corner_tets[c];
+        Mat3 h;
+        for (int a = 0; a < 3; ++a)
+            h.col(a) = target_points[nodes[t[a + 1]]] - target_points[nodes[t[0]]];
+        const double det = h.determinant();
+        if (!(det >= shaped_target_min_sj * h.col(0).norm() * h.col(1).norm() * h.col(2).norm()))
+            return false;
+        targets[c] = {h.inverse(), det / 6, 1};
+    }
+    for (int c = 0; c < 8; ++c) {
+        const auto& t = hex_corner_tets[c];
+        p.tets.push_back({ids[t[0]], ids[t[1]], ids[t[2]], ids[t[3]]});
+        p.targets.push_back(targets[c]);
+    }
+    return true;
+}
+
+// Box targets of the cell's edge lengths in `target_points` (node positions of the grid); with
+// keep_crease_shapes, the cells on crease lines target their own shapes there.
 GridProblem make_problem(const BlockGrid& grid, const std::vector<Vec3>& target_points,
-                         const ImplicitFunction& body, const std::vector<bool>& held) {
+                         const ImplicitFunction& body, const std::vector<bool>& held,
+                         const GridOptimizationOptions& options) {
     GridProblem g;
     untangle::Problem& p = g.problem;
     // The cells in the functional: all, or those with a node not held (listed once, so the
@@ -74,15 +126,22 @@ GridProblem make_problem(const BlockGrid& grid, const std::vector<Vec3>& target_
     p.hexes.reserve(cells);
     p.hex_edges.reserve(cells);
     double total = 0;
+    // The cells of the laid layers and the first beyond them (node layers + 1 ends them).
+    const std::vector<bool> shaped =
+        options.keep_crease_shapes ? crease_line_nodes(grid, body, options.wall_layers.layers + 1)
+                                   : std::vector<bool>(grid.points.size(), false);
     each_cell([&](const std::array<Id, 8>& nodes) {
         const Vec3 lengths = edge_lengths(target_points, nodes);
         total += lengths.sum();
         std::array<Id, 8> ids = nodes;
         if (!local.empty())
             for (Id& v : ids) v = local[v];
+        if (std::any_of(nodes.begin(), nodes.end(), [&](Id v) { return shaped[v]; }) &&
+            add_shaped_hex(p, target_points, nodes, ids))
+            return;
         p.add_hex(ids, lengths);
     });
-    const double count = double(p.hexes.size());
+    const double count = double(p.hexes.size() + p.tets.size() / 8);
     p.length_scale = count > 0 ? total / (3.0 * count) : 1.0;
     slide_on(body, p);
     return g;
@@ -122,7 +181,7 @@ GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& bo
     const std::vector<Vec3> initial =
         options.wall_layers.layers > 0 ? grid.points : std::vector<Vec3>{};
     {
-        GridProblem g = make_problem(grid, grid.points, body, options.held);
+        GridProblem g = make_problem(grid, grid.points, body, options.held, options);
         result.solve = untangle::untangle_and_optimize(g.problem, options.untangle);
         g.scatter(grid.points);
     }
@@ -151,7 +210,7 @@ GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& bo
             if (!options.held.empty())
                 for (size_t v = 0; v < held.size(); ++v) held[v] = held[v] || options.held[v];
         }
-        GridProblem g = make_problem(grid, initial, body, held);
+        GridProblem g = make_problem(grid, initial, body, held, options);
         untangle::Problem& problem = g.problem;
         for (Id i = 0; i < Id(problem.points.size()); ++i)
             if (placed[g.grid_id(i)]) problem.kinds[i] = VertexKind::fixed;

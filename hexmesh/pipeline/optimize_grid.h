@@ -26,6 +26,12 @@ struct GridOptimizationOptions {
     // none), e.g. the coarse nodes of a refined grid, which keep a family nested. Cells whose
     // 8 nodes are all held are left out of the functional.
     std::vector<bool> held;
+    // Cells with a layer node (or the first node beyond the layers) of a wall-normal line from
+    // a crease or corner of the body take their own initial shape as target instead of a box:
+    // for grids built with those lines along the faces' bisector and the layers on the faces'
+    // offset planes (the exterior O-grid, volume/o_grid.h), whose cells there fan out and are
+    // not boxes.
+    bool keep_crease_shapes = false;
 };
 
 struct GridOptimizationResult {
@@ -48,7 +54,8 @@ void slide_on(const ImplicitFunction& body, untangle::Problem& p);
 // over the grid's points (updated in place). Each cell's target is the box of its own initial
 // edge lengths along i, j and k (mean of the 4 parallel edges), so the boundary-layer cells the
 // grid was built with (thin in the wall-normal direction) stay thin while their angles are
-// driven towards 90 degrees. Nodes move according to grid.kinds: slip nodes slide on
+// driven towards 90 degrees; with keep_crease_shapes, the cells along crease lines keep their
+// initial shapes as targets. Nodes move according to grid.kinds: slip nodes slide on
 // u = 0 of `body` (tangent plane of grad u, then the projection V), feature_edge nodes slide
 // along the body's crease through them (surface/implicit_features.h), corner and fixed
 // nodes stay.

@@ -210,6 +210,7 @@ RunResult run_case(const Case& given, const std::string& outdir, const RunOption
         GridOptimizationOptions o;
         o.untangle = untangle_options(c.solver, log);
         o.wall_layers = wall_layers(c);
+        o.keep_crease_shapes = c.domain == "exterior";  // its lines leave creases mitred
         const GridOptimizationResult r = optimize_grid(result.grid, *body, o);
         log << untangle::format_untangle_summary(r.solve);
         if (o.wall_layers.layers > 0 && r.laid_nodes == 0) {

@@ -95,14 +95,16 @@ TEST_P(BlackBox, GridIsValidAndKeepsTheBoundaryLayer) {
 
 INSTANTIATE_TEST_SUITE_P(
     Cases, BlackBox,
-    ::testing::Values(BlackBoxCase{"sphere", "cases/sphere/case.json", 0.5, 1.0, false},
-                      BlackBoxCase{"ellipsoid", "cases/ellipsoid/case.json", 0.3, 1.0, false},
-                      BlackBoxCase{"bean", "cases/bean/case.json", 0.3, 1.0, true},
-                      // The bisector of a box corner is 54.74 degrees from each face's normal.
-                      BlackBoxCase{"box_cylinder", "cases/box_cylinder/case.json", 0.3, 55.0, false},
-                      BlackBoxCase{"peanut", "", 0.3, 1.0, true},
-                      BlackBoxCase{"sphere_exterior", "cases/sphere_exterior/case.json", 0.5, 5.0, false},
-                      BlackBoxCase{"bean_exterior", "cases/bean_exterior/case.json", 0.3, 5.0, true}),
+    ::testing::Values(
+        BlackBoxCase{"sphere", "cases/sphere/case.json", 0.5, 1.0, false},
+        BlackBoxCase{"ellipsoid", "cases/ellipsoid/case.json", 0.3, 1.0, false},
+        BlackBoxCase{"bean", "cases/bean/case.json", 0.3, 1.0, true},
+        // At creases and corners the angle is taken from the faces' bisector.
+        BlackBoxCase{"box_cylinder", "cases/box_cylinder/case.json", 0.3, 1.0, false},
+        BlackBoxCase{"peanut", "", 0.3, 1.0, true},
+        BlackBoxCase{"sphere_exterior", "cases/sphere_exterior/case.json", 0.5, 5.0, false},
+        BlackBoxCase{"bean_exterior", "cases/bean_exterior/case.json", 0.3, 5.0, true},
+        BlackBoxCase{"box_exterior", "cases/box_exterior/case.json", 0.3, 1.0, false}),
     [](const ::testing::TestParamInfo<BlackBoxCase>& info) { return info.param.name; });
 
 // A body with sharp edges: its creases and corners are captured by wall nodes, the grid is

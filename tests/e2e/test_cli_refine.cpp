@@ -203,3 +203,32 @@ TEST(SharpFamily, BoxWithCylinderRefinesToAValidLevel) {
     fs::remove_all(dir);
     fs::remove(scratch("sharp_family_case.json"));
 }
+
+// The exterior grid of a 4 x 2 x 1 box refines to a valid level: its lines have all turned to
+// the far field within half the box's diagonal, so the cells beside the edges' lines (which
+// leave at 45 degrees) are not ten times wider than their neighbours further out, where the
+// refinement's cubic stencils overshot and inverted 12 792 cells.
+TEST(SharpFamily, BoxExteriorRefinesToAValidLevel) {
+    const fs::path dir = scratch("box_exterior_family");
+    fs::remove_all(dir);
+    std::ofstream(scratch("box_exterior_family_case.json")) << R"({
+      "geometry": {"box": {"center": [0, 0, 0], "size": [4, 2, 1]}},
+      "domain": "exterior",
+      "far_field": {"shape": "sphere", "size": 20},
+      "grid": {"cells_per_edge": 16, "wall_cells": 32},
+      "boundary_layer": {"first_height": 0.01, "growth_ratio": 1.15, "layers": 10},
+      "refinement": {"levels": 2}
+    })";
+    const CommandResult r =
+        run_hexmesh("run '" + scratch("box_exterior_family_case.json").string() + "' -o '" +
+                    dir.string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    const json levels = json::parse(read_text(dir / "family.json")).at("levels");
+    ASSERT_EQ(levels.size(), 2u);
+    EXPECT_GT(levels[0].at("min_scaled_jacobian").get<double>(), 0.5);
+    EXPECT_GT(levels[1].at("min_scaled_jacobian").get<double>(), 0.5);
+    const json level_1 = json::parse(read_text(dir / "level_1" / "quality.json"));
+    EXPECT_LT(level_1.at("max_volume_ratio").get<double>(), 8.0);
+    fs::remove_all(dir);
+    fs::remove(scratch("box_exterior_family_case.json"));
+}

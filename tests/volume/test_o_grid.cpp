@@ -12,6 +12,8 @@
 #include "volume/o_grid.h"
 #include "volume/o_h_grid.h"
 #include "volume/surface_placement.h"
+#include "volume/wall_extrusion.h"
+#include "volume/wall_lines.h"
 
 using namespace hexmesh;
 
@@ -279,6 +281,56 @@ TEST(OGrid, GroovedBodyShellIsValid) {
         EXPECT_LT(w.max_law_error, 1e-9) << "n = " << n;
         EXPECT_LT(w.max_angle_deg, 0.5) << "n = " << n;
     }
+}
+
+TEST(OGrid, BoxShellLeavesItsCreasesOnTheFacesOffsetPlanes) {
+    // A 4 x 2 x 1 box: its patch edges run along the box's edges. The lines from those wall
+    // nodes leave along the bisector of the faces meeting there, their layer nodes at the
+    // law's distances from every such face (sqrt(2), sqrt(3) times further along the line),
+    // so laying the layers again hardly moves anything; with lines along one face's normal (as
+    // grad u has it there) the grid had cells of scaled Jacobian 0.0015 after optimization.
+    // The lines turn towards the far field within half the box's diagonal, the lines next to
+    // the corners sharply: the grid is valid, but cells there are thin (0.004) until the
+    // optimizer evens them out.
+    const Vec3 c(0.3, -0.1, 0.2);
+    const Box box(c, Vec3(1.0, 0.5, 0.25));
+    const OGridOptions o = typical_options();
+    BlockGrid grid = make_o_grid(box, o);
+    const QualityReport q = measure_quality(to_hex_mesh(grid));
+    EXPECT_EQ(q.inverted_corner_tets, 0);
+    EXPECT_GT(q.min_scaled_jacobian, 0);
+    const double h = grid_length_scale(box, o.cells_per_edge);
+    int creases = 0, corners = 0;
+    double worst = 0;  // relative error of a layer node's distance to a face's plane
+    for (const WallFace& f : wall_faces(grid))
+        for (int jq = 0; jq < f.nq; ++jq)
+            for (int ip = 0; ip < f.np; ++ip) {
+                const Vec3 x0 = grid.points[f.node(ip, jq, 0)];
+                std::vector<Vec3> normals;
+                append_wall_normals(box, x0, 1.0, 1e-9 * h, normals);
+                creases += normals.size() == 2;
+                corners += normals.size() == 3;
+                double height = 0, step = o.wall_layers.first_height;
+                for (int m = 1; m <= o.wall_layers.layers;
+                     ++m, step *= o.wall_layers.growth_ratio) {
+                    height += step;
+                    for (const Vec3& n : normals)
+                        worst = std::max(
+                            worst,
+                            std::abs((grid.points[f.node(ip, jq, m)] - x0).dot(n) / height - 1));
+                }
+            }
+    // Every patch edge node of the 6 blocks' walls (each counted once per block it is in).
+    EXPECT_EQ(creases, 6 * 4 * 15);
+    EXPECT_EQ(corners, 6 * 4);
+    // To O(b): the lines start turning towards the far field at once (5e-3 measured).
+    EXPECT_LT(worst, 1e-2);
+    const std::vector<Vec3> built = grid.points;
+    extrude_wall_layers(grid, box, o.wall_layers);
+    double moved = 0;
+    for (size_t v = 0; v < built.size(); ++v)
+        moved = std::max(moved, (grid.points[v] - built[v]).norm());
+    EXPECT_LT(moved, 0.05 * h);  // 0.022 h measured; a line along one face's normal: ~0.5 h
 }
 
 TEST(OGrid, BoxFarFieldNodesLieOnTheBoxFaces) {

@@ -12,6 +12,7 @@
 #include "volume/o_h_grid.h"
 #include "volume/single_block_grid.h"
 #include "volume/wall_extrusion.h"
+#include "volume/wall_lines.h"
 #include "volume/wall_metrics.h"
 
 using namespace hexmesh;
@@ -200,9 +201,24 @@ TEST(WallMetrics, LinesLaidAlongBisectorsAtABoxsCreasesHaveTheLawsHeight) {
     EXPECT_NEAR(w.first_layer_min, 0.01, 1e-9);
     EXPECT_NEAR(w.first_layer_max, 0.01, 1e-9);
     EXPECT_EQ(w.first_layer_within_10_percent, 1.0);
-    // The lines leave the edges at 45 degrees and the corners at acos(1 / sqrt(3)) from the
-    // normal of grad u, which belongs to one face there.
-    EXPECT_NEAR(w.orthogonality_max_deg, std::acos(1 / std::sqrt(3.0)) * 180 / pi, 1e-6);
+    // The lines leave the edges and corners along the bisector of the faces meeting there:
+    // orthogonal to the wall as far as a line there can be.
+    EXPECT_LT(w.orthogonality_max_deg, 1e-6);
+
+    // A corner's line turned onto one face's normal (into the box: the grid is inside) is
+    // acos(1 / sqrt(3)) off the bisector.
+    const auto corner =
+        std::max_element(grid.points.begin(), grid.points.end(),
+                         [](const Vec3& a, const Vec3& b) { return a.sum() < b.sum(); });
+    const Id x0 = Id(corner - grid.points.begin());
+    for (const Block& b : grid.blocks)
+        for (const WallFace& f : wall_faces(b))
+            for (int q = 0; q < f.nq; ++q)
+                for (int p = 0; p < f.np; ++p)
+                    if (f.node(p, q, 0) == x0)
+                        grid.points[f.node(p, q, 1)] = grid.points[x0] - 0.01 * Vec3::UnitX();
+    const WallQuality turned = measure_wall(grid, box, law);
+    EXPECT_NEAR(turned.orthogonality_max_deg, std::acos(1 / std::sqrt(3.0)) * 180 / pi, 1e-6);
 }
 
 TEST(WallMetrics, EveryFaceDirectionInsideAndOutside) {
