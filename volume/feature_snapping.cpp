@@ -109,4 +109,25 @@ FeatureSnapping snap_to_features(BlockGrid& grid, const ImplicitFunction& body, 
     return result;
 }
 
+std::optional<CubeCorners> body_corners_by_octant(const Vec3& centre,
+                                                  const std::vector<Vec3>& found, double h) {
+    if (found.size() != 8) return std::nullopt;
+    CubeCorners corners;
+    std::array<bool, 8> taken{};
+    for (const Vec3& c : found) {
+        const Vec3 r = c - centre;
+        if ((r.cwiseAbs().array() < 1e-3 * h).any()) return std::nullopt;  // on an axis plane
+        const int octant = (r.x() > 0) + 2 * (r.y() > 0) + 4 * (r.z() > 0);
+        if (taken[octant]) return std::nullopt;
+        taken[octant] = true;
+        corners[octant] = r;
+    }
+    return corners;
+}
+
+std::optional<CubeCorners> corners_near_wall(const ImplicitFunction& body, const Vec3& centre,
+                                             const std::vector<Vec3>& wall, double h) {
+    return body_corners_by_octant(centre, body_corners_near(body, wall, h), h);
+}
+
 }  // namespace hexmesh

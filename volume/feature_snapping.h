@@ -1,8 +1,12 @@
 // Sharp creases and corners of the body captured by a grid's wall nodes.
 #pragma once
 
+#include <optional>
+#include <vector>
+
 #include "hexmesh/core/block_grid.h"
 #include "hexmesh/core/implicit_function.h"
+#include "volume/cube_sphere.h"
 
 namespace hexmesh {
 
@@ -25,5 +29,17 @@ FeatureSnapping snap_to_features(BlockGrid& grid, const ImplicitFunction& body,
 // order first found. Empty for a smooth body.
 std::vector<Vec3> body_corners_near(const ImplicitFunction& body, const std::vector<Vec3>& points,
                                     double reach);
+
+// The body's corners `found` as the cube's (relative to `centre`, CubeCorners order), when
+// there is exactly one in each octant around the centre and none within 1e-3 h of an axis
+// plane through it; nullopt otherwise. With them as cube_ray's corners, the patch corners and
+// edges of a grid go to a box-like body's corners and edges.
+std::optional<CubeCorners> body_corners_by_octant(const Vec3& centre,
+                                                  const std::vector<Vec3>& found, double h);
+
+// A box-like body's corners, one per octant around the centre, within h of the wall nodes
+// `wall` (body_corners_near, then body_corners_by_octant); nullopt otherwise.
+std::optional<CubeCorners> corners_near_wall(const ImplicitFunction& body, const Vec3& centre,
+                                             const std::vector<Vec3>& wall, double h);
 
 }  // namespace hexmesh

@@ -3,14 +3,19 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
+#include <Eigen/LU>
+#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <queue>
 #include <stdexcept>
 #include <string>
 
+#include "surface/implicit_features.h"
 #include "volume/cube_sphere.h"
+#include "volume/feature_snapping.h"
 #include "volume/o_h_grid.h"
 #include "volume/surface_placement.h"
 #include "volume/wall_lines.h"
@@ -61,6 +66,19 @@ void check_far_field(const Box3& box, const Vec3& centre, const OGridOptions& o)
             sphere ? "sphere" : "box", sphere ? "radius" : "half-size", o.far_field_size, needed,
             reach, far_field_margin));
     }
+}
+
+// The rotation nearest the affine map that sends the cube's corners (+-1, +-1, +-1) closest
+// to `corners` (least squares): the orthogonal factor of its polar decomposition. The
+// identity for an axis-aligned box; a turned box's turn.
+Mat3 corners_rotation(const CubeCorners& corners) {
+    Mat3 a = Mat3::Zero();  // sum of c s^T / 8: the least-squares map, as sum of s s^T = 8 I
+    for (int c = 0; c < 8; ++c)
+        a += corners[c] * Vec3(c & 1 ? 1 : -1, c & 2 ? 1 : -1, c & 4 ? 1 : -1).transpose() / 8;
+    const Eigen::JacobiSVD<Mat3> svd(a, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    Mat3 u = svd.matrixU();
+    if ((u * svd.matrixV().transpose()).determinant() < 0) u.col(2) *= -1;
+    return u * svd.matrixV().transpose();
 }
 
 // Smooth ramp from 0 to 1 on [0, 1] with zero slope at both ends.
@@ -247,11 +265,38 @@ BlockGrid make_o_grid(const ImplicitFunction& body, const OGridOptions& options)
         throw std::invalid_argument("wall_from: the points of a grid made with other options");
     std::vector<Vec3> wall(ns), normal(ns), far(ns);
     std::vector<double> reach(ns);
+    // The wall nodes: given, or the radial projections of the rays through the bounds' box,
+    // then (box-like bodies, one corner per octant: a box turned by up to about 25 degrees)
+    // through the body's corners, so the patch edges run along its edges.
+    std::optional<CubeCorners> corners;
+    const auto ray = [&](const LatticePoint& p) {
+        return corners ? cube_sphere_ray(p, n, *corners) : cube_sphere_ray(p, n, half);
+    };
+    const auto place_wall = [&] {
+        tbb::parallel_for(Id(0), ns, [&](Id s) {
+            wall[s] = options.wall_from ? (*options.wall_from)[s]
+                                        : place_on_surface(body, centre, ray(surface.points[s]), h);
+        });
+    };
+    place_wall();
+    if (options.patch_corners_on_body_corners && !options.wall_from) {
+        corners = corners_near_wall(body, centre, wall, h);
+        if (corners) place_wall();
+    } else if (options.patch_corners_on_body_corners) {
+        // A given wall keeps the choice of the grid it came from: its 8 patch-corner nodes sit
+        // on body corners, one per octant, exactly when that grid's rays spanned them.
+        std::vector<Vec3> at_corners;
+        for (int c = 0; c < 8; ++c) {
+            const Vec3& x = wall[surface.number_of({c & 1 ? n : 0, c & 2 ? n : 0, c & 4 ? n : 0})];
+            if (classify_surface_point(body, x, 1e-6 * h) == FeatureKind::corner)
+                at_corners.push_back(x);
+        }
+        corners = body_corners_by_octant(centre, at_corners, h);
+    }
+    const Mat3 turn = corners ? corners_rotation(*corners) : Mat3::Identity();
     tbb::parallel_for(Id(0), ns, [&](Id s) {
         const LatticePoint& p = surface.points[s];
-        const Vec3 dir = cube_sphere_ray(p, n, half);
-        wall[s] =
-            options.wall_from ? (*options.wall_from)[s] : place_on_surface(body, centre, dir, h);
+        const Vec3 dir = ray(p);
         // At a crease or corner the line leaves along the bisector of the faces meeting there
         // (the direction the boundary layer is laid along), not along one face's normal.
         const std::optional<Vec3> offset = unit_offset(body, wall[s], 1.0, 1e-6 * h);
@@ -260,11 +305,12 @@ BlockGrid make_o_grid(const ImplicitFunction& body, const OGridOptions& options)
         reach[s] = offset ? offset->norm() : 1.0;
         // The far field's nodes: the cube sphere of the unit cube, whatever the body's
         // proportions (a cube sphere stretched like the body has cells squeezed flat on a
-        // sphere: min scaled Jacobian 0.05 there round a 4 x 2 x 1 box).
+        // sphere: min scaled Jacobian 0.05 there round a 4 x 2 x 1 box), turned like the
+        // patches on a turned body's corners (a far-field box keeps its axes).
         const Vec3 q = cube_sphere_ray(p, n, Vec3::Ones());
         far[s] = centre + options.far_field_size * (options.far_field == FarFieldShape::sphere
-                                                        ? q / q.norm()
-                                                        : q / q.cwiseAbs().maxCoeff());
+                                                        ? Vec3(turn * q / q.norm())
+                                                        : Vec3(q / q.cwiseAbs().maxCoeff()));
     });
 
     std::vector<double> length(ns);

@@ -24,6 +24,10 @@ struct OGridOptions {
     // optimized on u = 0): its wall nodes are taken as they are instead of the radial
     // projections, and the lines built from them. nullptr: radial projection.
     const std::vector<Vec3>* wall_from = nullptr;
+    // A box-like body (one corner in each octant around the centre) gets the patch corners on
+    // its corners (cube_sphere_ray with CubeCorners) instead of the bounds' box, so the patch
+    // edges follow its edges. false: always the bounds' box.
+    bool patch_corners_on_body_corners = true;
 };
 
 // Grid of the shell between the body (u = 0) and a far-field sphere or box around `centre`.
@@ -39,7 +43,8 @@ struct OGridOptions {
 // others interior.
 //
 // Wall nodes: the equiangular cube-sphere directions from the centre scaled by the body's
-// half extents (as in the O-H grid) projected radially onto u = 0, so the body must be
+// half extents (or spanning its corners, see patch_corners_on_body_corners; as in the O-H
+// grid) projected radially onto u = 0, so the body must be
 // star-shaped around the centre. Far-field nodes: the equiangular cube-sphere points of
 // the unit cube, whatever the body's proportions, on the sphere (centre + size * q / |q|) or
 // the box (every block's far-field face is one face of the box).

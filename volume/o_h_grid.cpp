@@ -32,24 +32,6 @@ void check_options(const OHGridOptions& o) {
         throw std::invalid_argument("frame_cells must be 0 or more and under half cells_per_edge");
 }
 
-// The body's corners `found` as the cube's, when there is exactly one in each octant around
-// the centre; nullopt otherwise.
-std::optional<CubeCorners> body_corners_by_octant(const Vec3& centre,
-                                                  const std::vector<Vec3>& found, double h) {
-    if (found.size() != 8) return std::nullopt;
-    CubeCorners corners;
-    std::array<bool, 8> taken{};
-    for (const Vec3& c : found) {
-        const Vec3 r = c - centre;
-        if ((r.cwiseAbs().array() < 1e-3 * h).any()) return std::nullopt;  // on an axis plane
-        const int octant = (r.x() > 0) + 2 * (r.y() > 0) + 4 * (r.z() > 0);
-        if (taken[octant]) return std::nullopt;
-        taken[octant] = true;
-        corners[octant] = r;
-    }
-    return corners;
-}
-
 // The core node at cube corner c (entry (a > 0) + 2 (b > 0) + 4 (c > 0) as CubeCorners):
 // the wall node furthest towards it.
 Id cube_corner_node(const CoreLayout& core, const std::vector<Id>& on_wall, int c) {
@@ -102,13 +84,6 @@ void number_wall_nodes(const CoreLayout& core, std::vector<Id>& number, std::vec
     }
     for (Id id = 0; id < Id(core.t.size()); ++id)
         if (number[id] == 0) number[id] = Id(on_wall.size()), on_wall.push_back(id);
-}
-
-// A box-like body's corners, one per octant around the centre, near the wall nodes placed
-// along the rays through the bounds' box (or nullopt).
-std::optional<CubeCorners> corners_near_wall(const ImplicitFunction& body, const Vec3& centre,
-                                             const std::vector<Vec3>& wall, double h) {
-    return body_corners_by_octant(centre, body_corners_near(body, wall, h), h);
 }
 
 }  // namespace
