@@ -2,6 +2,9 @@
 
 #include <tbb/parallel_for.h>
 
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <map>
 #include <optional>
@@ -109,20 +112,74 @@ FeatureSnapping snap_to_features(BlockGrid& grid, const ImplicitFunction& body, 
     return result;
 }
 
-std::optional<CubeCorners> body_corners_by_octant(const Vec3& centre,
-                                                  const std::vector<Vec3>& found, double h) {
-    if (found.size() != 8) return std::nullopt;
+namespace {
+
+// The corners `found` as the cube's, one per octant of the frame `axes` (columns: where the
+// cube's x, y, z go) around the centre, none within 1e-3 h of its planes; nullopt otherwise.
+std::optional<CubeCorners> by_octant(const Vec3& centre, const std::vector<Vec3>& found,
+                                     const Mat3& axes, double h) {
     CubeCorners corners;
     std::array<bool, 8> taken{};
     for (const Vec3& c : found) {
-        const Vec3 r = c - centre;
-        if ((r.cwiseAbs().array() < 1e-3 * h).any()) return std::nullopt;  // on an axis plane
-        const int octant = (r.x() > 0) + 2 * (r.y() > 0) + 4 * (r.z() > 0);
+        const Vec3 r = c - centre, f = axes.transpose() * r;
+        if ((f.cwiseAbs().array() < 1e-3 * h).any()) return std::nullopt;  // on a frame plane
+        const int octant = (f.x() > 0) + 2 * (f.y() > 0) + 4 * (f.z() > 0);
         if (taken[octant]) return std::nullopt;
         taken[octant] = true;
         corners[octant] = r;
     }
     return corners;
+}
+
+// The edge directions of 8 points that are the corners of a box at any angle: the three
+// mutually orthogonal directions along each of which 4 pairs of the points lie, as far apart
+// (face and body diagonals join fewer pairs), as a right-handed frame, each column the one
+// nearest a world axis and pointing along it; nullopt for other points.
+std::optional<Mat3> box_axes(const std::vector<Vec3>& p, double h) {
+    std::vector<Vec3> edges;  // a direction with its length
+    for (size_t i = 0; i < p.size(); ++i)
+        for (size_t j = i + 1; j < p.size(); ++j) {
+            const Vec3 d = p[j] - p[i];
+            int parallel = 0;
+            for (size_t k = 0; k < p.size(); ++k)
+                for (size_t l = k + 1; l < p.size(); ++l) {
+                    const Vec3 e = p[l] - p[k];
+                    parallel += (e - d).norm() < 1e-3 * h || (e + d).norm() < 1e-3 * h;
+                }
+            const bool known = std::any_of(edges.begin(), edges.end(), [&](const Vec3& e) {
+                return (e - d).norm() < 1e-3 * h || (e + d).norm() < 1e-3 * h;
+            });
+            if (parallel == 4 && !known) edges.push_back(d);
+        }
+    if (edges.size() != 3) return std::nullopt;
+    for (Vec3& e : edges) e.normalize();
+    for (int a = 0; a < 3; ++a)
+        for (int b = a + 1; b < 3; ++b)
+            if (std::abs(edges[a].dot(edges[b])) > 1e-3) return std::nullopt;
+    Mat3 axes;
+    std::array<bool, 3> used{};
+    for (int a = 0; a < 3; ++a) {  // world axis a takes the edge direction nearest it
+        int best = -1;
+        for (int e = 0; e < 3; ++e)
+            if (!used[e] && (best < 0 || std::abs(edges[e][a]) > std::abs(edges[best][a])))
+                best = e;
+        used[best] = true;
+        axes.col(a) = edges[best][a] < 0 ? Vec3(-edges[best]) : edges[best];
+    }
+    if (axes.determinant() < 0) axes.col(2) *= -1;
+    return axes;
+}
+
+}  // namespace
+
+std::optional<CubeCorners> body_corners_by_octant(const Vec3& centre,
+                                                  const std::vector<Vec3>& found, double h) {
+    if (found.size() != 8) return std::nullopt;
+    if (auto corners = by_octant(centre, found, Mat3::Identity(), h)) return corners;
+    // A box at an angle whose corners share the world's octants: those of its own axes.
+    if (const std::optional<Mat3> axes = box_axes(found, h))
+        return by_octant(centre, found, *axes, h);
+    return std::nullopt;
 }
 
 std::optional<CubeCorners> corners_near_wall(const ImplicitFunction& body, const Vec3& centre,

@@ -32,8 +32,10 @@ std::vector<Vec3> body_corners_near(const ImplicitFunction& body, const std::vec
 
 // The body's corners `found` as the cube's (relative to `centre`, CubeCorners order), when
 // there is exactly one in each octant around the centre and none within 1e-3 h of an axis
-// plane through it; nullopt otherwise. With them as cube_ray's corners, the patch corners and
-// edges of a grid go to a box-like body's corners and edges.
+// plane through it; or, for the 8 corners of a box at an angle, one in each octant of the
+// box's own axes (each taken for the world axis nearest it); nullopt otherwise. With them as
+// cube_ray's corners, the patch corners and edges of a grid go to a box-like body's corners
+// and edges.
 std::optional<CubeCorners> body_corners_by_octant(const Vec3& centre,
                                                   const std::vector<Vec3>& found, double h);
 

@@ -336,50 +336,52 @@ TEST(OGrid, BoxShellLeavesItsCreasesOnTheFacesOffsetPlanes) {
     EXPECT_LT(moved, 0.05 * h);  // 0.022 h measured; a line along one face's normal: ~0.5 h
 }
 
-TEST(OGrid, TurnedBoxGetsThePatchCornersOnItsCorners) {
-    // A 4 x 2 x 1 box turned 15 degrees about z still has one corner in each octant: the rays
-    // span its corners, so the 8 patch-corner nodes sit on them and every patch-edge node on
-    // an edge, and the far field turns with them. Through the bounds' box the patch corners
-    // missed the box's corners and the pipeline's grid kept 5 % of its first layer on target
-    // (20 degrees).
-    const Body box = std::make_shared<Transformed>(
-        std::make_shared<Box>(Vec3::Zero(), Vec3(1.0, 0.5, 0.25)), Vec3(0.1, 0.2, -0.1),
-        rotation_from_axis_angle(Vec3::UnitZ(), 15));
-    const OGridOptions o = typical_options();
-    const BlockGrid grid = make_o_grid(*box, o);
-    const double h = grid_length_scale(*box, o.cells_per_edge);
+// Wall nodes of `grid` on the first and last rows of every block's wall at a crease (two or
+// more faces of `body` within 1e-9 h) and at a corner (three).
+std::pair<int, int> patch_edge_nodes_on_features(const BlockGrid& grid,
+                                                 const ImplicitFunction& body, double h) {
     int creases = 0, corners = 0;
     for (const WallFace& f : wall_faces(grid))
         for (int q : {0, f.nq - 1})
             for (int p = 0; p < f.np; ++p) {
                 std::vector<Vec3> normals;
-                append_wall_normals(*box, grid.points[f.node(p, q, 0)], 1.0, 1e-9 * h, normals);
+                append_wall_normals(body, grid.points[f.node(p, q, 0)], 1.0, 1e-9 * h, normals);
                 creases += normals.size() >= 2;
                 corners += normals.size() == 3;
             }
-    EXPECT_EQ(creases, 6 * 2 * 17);  // rows q = 0 and n of every block's wall
-    EXPECT_EQ(corners, 6 * 4);
-    // The far-field sphere's patches are turned with them: the far node of the lattice corner
-    // (n, n, n) lies along the box's turned diagonal direction (1, 1, 1).
-    const Vec3 centre = box->bounds().center();
-    const Mat3 turn = rotation_from_axis_angle(Vec3::UnitZ(), 15);
-    const Id far_corner = Id(grid.points.size()) - 1;  // last node of the last layer: (n, n, n)
-    EXPECT_LT(
-        (grid.points[far_corner] - centre - o.far_field_size * turn * Vec3(1, 1, 1).normalized())
-            .norm(),
-        1e-9 * o.far_field_size);
-    OGridOptions bounds_box = o;
-    bounds_box.patch_corners_on_body_corners = false;
-    const BlockGrid missed = make_o_grid(*box, bounds_box);
-    int missed_corners = 0;
-    for (const WallFace& f : wall_faces(missed))
-        for (int q : {0, f.nq - 1})
-            for (int p = 0; p < f.np; ++p) {
-                std::vector<Vec3> normals;
-                append_wall_normals(*box, missed.points[f.node(p, q, 0)], 1.0, 1e-9 * h, normals);
-                missed_corners += normals.size() == 3;
-            }
-    EXPECT_EQ(missed_corners, 0);
+    return {creases, corners};
+}
+
+TEST(OGrid, TurnedBoxGetsThePatchCornersOnItsCorners) {
+    // A 4 x 2 x 1 box turned 15 degrees about z still has one corner in each octant; turned 45
+    // degrees about z, or 37 about (1, 2, 3), two corners share an octant and the octants are
+    // those of the box's own axes. Either way the rays span its corners, so the 8 patch-corner
+    // nodes sit on them and every patch-edge node on an edge, and the far field turns with
+    // them. Through the bounds' box the patch corners missed the box's corners and the
+    // pipeline's grid kept 5 % of its first layer on target (20 degrees), or had inverted
+    // cells (45 degrees).
+    for (const auto& [axis, degrees] :
+         {std::pair{Vec3(Vec3::UnitZ()), 15.0}, {Vec3::UnitZ(), 45.0}, {Vec3(1, 2, 3), 37.0}}) {
+        SCOPED_TRACE(degrees);
+        const Mat3 turn = rotation_from_axis_angle(axis, degrees);
+        const Body box = std::make_shared<Transformed>(
+            std::make_shared<Box>(Vec3::Zero(), Vec3(1.0, 0.5, 0.25)), Vec3(0.1, 0.2, -0.1), turn);
+        const OGridOptions o = typical_options();
+        const BlockGrid grid = make_o_grid(*box, o);
+        const double h = grid_length_scale(*box, o.cells_per_edge);
+        const auto [creases, corners] = patch_edge_nodes_on_features(grid, *box, h);
+        EXPECT_EQ(creases, 6 * 2 * 17);  // rows q = 0 and n of every block's wall
+        EXPECT_EQ(corners, 6 * 4);
+        // The far-field sphere's patches are turned with them: the far node of the lattice
+        // corner (n, n, n) lies on one of the turned box's diagonal directions.
+        const Vec3 centre = box->bounds().center();
+        const Id far_corner = Id(grid.points.size()) - 1;  // last node of the last layer
+        const Vec3 along = turn.transpose() * (grid.points[far_corner] - centre) / o.far_field_size;
+        EXPECT_LT((along.cwiseAbs() - Vec3::Constant(1 / std::sqrt(3.0))).norm(), 1e-9) << along;
+        OGridOptions bounds_box = o;
+        bounds_box.patch_corners_on_body_corners = false;
+        EXPECT_EQ(patch_edge_nodes_on_features(make_o_grid(*box, bounds_box), *box, h).second, 0);
+    }
 }
 
 TEST(OGrid, BoxFarFieldNodesLieOnTheBoxFaces) {
