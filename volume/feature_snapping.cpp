@@ -170,21 +170,51 @@ std::optional<Mat3> box_axes(const std::vector<Vec3>& p, double h) {
     return axes;
 }
 
+// Whether corners, as the cube's, make a hexahedron whose 8 corner tets are all positive: cube
+// edges on the body's edges, not across its faces (a cube turned 60 degrees about (1, 1, 1)
+// has one corner in each octant, but octants 0 and 1 hold two ends of a face diagonal).
+bool untwisted(const CubeCorners& corners) {
+    for (int c = 0; c < 8; ++c) {
+        Mat3 edges;
+        for (int a = 0; a < 3; ++a) edges.col(a) = corners[c ^ (1 << a)] - corners[c];
+        const int flips = (c & 1) + ((c >> 1) & 1) + ((c >> 2) & 1);  // edges pointing back
+        if (!((flips % 2 == 0 ? 1 : -1) * edges.determinant() > 0)) return false;
+    }
+    return true;
+}
+
 }  // namespace
 
 std::optional<CubeCorners> body_corners_by_octant(const Vec3& centre,
                                                   const std::vector<Vec3>& found, double h) {
     if (found.size() != 8) return std::nullopt;
-    if (auto corners = by_octant(centre, found, Mat3::Identity(), h)) return corners;
-    // A box at an angle whose corners share the world's octants: those of its own axes.
-    if (const std::optional<Mat3> axes = box_axes(found, h))
-        return by_octant(centre, found, *axes, h);
+    std::optional<CubeCorners> corners = by_octant(centre, found, Mat3::Identity(), h);
+    if (corners && untwisted(*corners)) return corners;
+    // A box at an angle whose corners share the world's octants, or fill them twisted: the
+    // octants of its own axes.
+    if (const std::optional<Mat3> axes = box_axes(found, h)) {
+        corners = by_octant(centre, found, *axes, h);
+        if (corners && untwisted(*corners)) return corners;
+    }
     return std::nullopt;
 }
 
 std::optional<CubeCorners> corners_near_wall(const ImplicitFunction& body, const Vec3& centre,
                                              const std::vector<Vec3>& wall, double h) {
     return body_corners_by_octant(centre, body_corners_near(body, wall, h), h);
+}
+
+std::optional<CubeCorners> corners_at_patch_corners(const ImplicitFunction& body,
+                                                    const Vec3& centre,
+                                                    const std::array<Vec3, 8>& at, double h) {
+    CubeCorners corners;
+    for (int c = 0; c < 8; ++c) {
+        if (classify_surface_point(body, at[c], 1e-6 * h) != FeatureKind::corner)
+            return std::nullopt;
+        corners[c] = at[c] - centre;
+    }
+    if (!untwisted(corners)) return std::nullopt;
+    return corners;
 }
 
 }  // namespace hexmesh

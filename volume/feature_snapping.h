@@ -1,6 +1,7 @@
 // Sharp creases and corners of the body captured by a grid's wall nodes.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <vector>
 
@@ -33,7 +34,9 @@ std::vector<Vec3> body_corners_near(const ImplicitFunction& body, const std::vec
 // The body's corners `found` as the cube's (relative to `centre`, CubeCorners order), when
 // there is exactly one in each octant around the centre and none within 1e-3 h of an axis
 // plane through it; or, for the 8 corners of a box at an angle, one in each octant of the
-// box's own axes (each taken for the world axis nearest it); nullopt otherwise. With them as
+// box's own axes (each taken for the world axis nearest it); either way only when the cube's
+// edges go to the body's edges (the hexahedron of the corners in that order has 8 positive
+// corner tets); nullopt otherwise. With them as
 // cube_ray's corners, the patch corners and edges of a grid go to a box-like body's corners
 // and edges.
 std::optional<CubeCorners> body_corners_by_octant(const Vec3& centre,
@@ -43,5 +46,14 @@ std::optional<CubeCorners> body_corners_by_octant(const Vec3& centre,
 // `wall` (body_corners_near, then body_corners_by_octant); nullopt otherwise.
 std::optional<CubeCorners> corners_near_wall(const ImplicitFunction& body, const Vec3& centre,
                                              const std::vector<Vec3>& wall, double h);
+
+// The corners of a grid built with its patch corners on body corners, read back from its wall:
+// `at[c]` is its wall node at cube corner c (CubeCorners order). They are taken as they are
+// (relative to `centre`) when all 8 are corners of `body` (within 1e-6 h) and untwisted, as
+// body_corners_by_octant would have made them; nullopt otherwise (the grid's rays went
+// through the bounds' box).
+std::optional<CubeCorners> corners_at_patch_corners(const ImplicitFunction& body,
+                                                    const Vec3& centre,
+                                                    const std::array<Vec3, 8>& at, double h);
 
 }  // namespace hexmesh

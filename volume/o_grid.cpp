@@ -266,8 +266,8 @@ BlockGrid make_o_grid(const ImplicitFunction& body, const OGridOptions& options)
     std::vector<Vec3> wall(ns), normal(ns), far(ns);
     std::vector<double> reach(ns);
     // The wall nodes: given, or the radial projections of the rays through the bounds' box,
-    // then (box-like bodies, one corner per octant: a box turned by up to about 25 degrees)
-    // through the body's corners, so the patch edges run along its edges.
+    // then (box-like bodies: body_corners_by_octant) through the body's corners, so the patch
+    // edges run along its edges.
     std::optional<CubeCorners> corners;
     const auto ray = [&](const LatticePoint& p) {
         return corners ? cube_sphere_ray(p, n, *corners) : cube_sphere_ray(p, n, half);
@@ -284,14 +284,11 @@ BlockGrid make_o_grid(const ImplicitFunction& body, const OGridOptions& options)
         if (corners) place_wall();
     } else if (options.patch_corners_on_body_corners) {
         // A given wall keeps the choice of the grid it came from: its 8 patch-corner nodes sit
-        // on body corners, one per octant, exactly when that grid's rays spanned them.
-        std::vector<Vec3> at_corners;
-        for (int c = 0; c < 8; ++c) {
-            const Vec3& x = wall[surface.number_of({c & 1 ? n : 0, c & 2 ? n : 0, c & 4 ? n : 0})];
-            if (classify_surface_point(body, x, 1e-6 * h) == FeatureKind::corner)
-                at_corners.push_back(x);
-        }
-        corners = body_corners_by_octant(centre, at_corners, h);
+        // on body corners exactly when that grid's rays spanned them, and they are those.
+        std::array<Vec3, 8> at;
+        for (int c = 0; c < 8; ++c)
+            at[c] = wall[surface.number_of({c & 1 ? n : 0, c & 2 ? n : 0, c & 4 ? n : 0})];
+        corners = corners_at_patch_corners(body, centre, at, h);
     }
     const Mat3 turn = corners ? corners_rotation(*corners) : Mat3::Identity();
     tbb::parallel_for(Id(0), ns, [&](Id s) {

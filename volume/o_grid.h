@@ -24,9 +24,12 @@ struct OGridOptions {
     // optimized on u = 0): its wall nodes are taken as they are instead of the radial
     // projections, and the lines built from them. nullptr: radial projection.
     const std::vector<Vec3>* wall_from = nullptr;
-    // A box-like body (one corner in each octant around the centre) gets the patch corners on
-    // its corners (cube_sphere_ray with CubeCorners) instead of the bounds' box, so the patch
-    // edges follow its edges. false: always the bounds' box.
+    // A box-like body (one corner in each octant around the centre, or a box at any angle:
+    // body_corners_by_octant in volume/feature_snapping.h) gets the patch corners on its
+    // corners (cube_sphere_ray with CubeCorners) instead of the bounds' box, so the patch
+    // edges follow its edges, and a far-field sphere turns with them. With wall_from: when
+    // the given wall's 8 patch-corner nodes are such corners (as that grid made them).
+    // false: always the bounds' box.
     bool patch_corners_on_body_corners = true;
 };
 
@@ -45,9 +48,11 @@ struct OGridOptions {
 // Wall nodes: the equiangular cube-sphere directions from the centre scaled by the body's
 // half extents (or spanning its corners, see patch_corners_on_body_corners; as in the O-H
 // grid) projected radially onto u = 0, so the body must be
-// star-shaped around the centre. Far-field nodes: the equiangular cube-sphere points of
-// the unit cube, whatever the body's proportions, on the sphere (centre + size * q / |q|) or
-// the box (every block's far-field face is one face of the box).
+// star-shaped around the centre. Far-field nodes: the equiangular cube-sphere points q of
+// the unit cube, whatever the body's proportions, on the sphere (centre + size R q / |q|, R
+// the rotation nearest the map of the cube's corners to the body's when the patch corners
+// are on them, else the identity) or the box (every block's far-field face is one face of the
+// box, which keeps the world's axes).
 // Wall-normal lines: x(tau) = x0 + tau r(tau) m(tau), tau in [0, |far - x0|], m the
 // normalized blend (1 - b) normal + b straight of the wall normal at x0 and the direction to
 // the far-field node, b = smoothstep(tau / bend): the line leaves the wall along the normal

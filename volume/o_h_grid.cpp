@@ -169,14 +169,10 @@ BlockGrid make_o_h_grid(const ImplicitFunction& body, const OHGridOptions& optio
         corners = corners_near_wall(body, centre, wall, h);
     } else if (options.patch_corners_on_body_corners) {
         // A given wall keeps the choice of the grid it came from: its 8 patch-corner nodes sit
-        // on body corners, one per octant, exactly when that grid's rays spanned them.
-        std::vector<Vec3> at_corners;
-        for (int c = 0; c < 8; ++c) {
-            const Vec3& x = wall[number[cube_corner_node(core, on_wall, c)]];
-            if (classify_surface_point(body, x, 1e-6 * h) == FeatureKind::corner)
-                at_corners.push_back(x);
-        }
-        corners = body_corners_by_octant(centre, at_corners, h);
+        // on body corners exactly when that grid's rays spanned them, and they are those.
+        std::array<Vec3, 8> at;
+        for (int c = 0; c < 8; ++c) at[c] = wall[number[cube_corner_node(core, on_wall, c)]];
+        corners = corners_at_patch_corners(body, centre, at, h);
     }
     if (options.axis >= 0)
         core = axial_core(

@@ -21,7 +21,8 @@ struct OHGridOptions {
     const std::vector<Vec3>* wall_from = nullptr;
     std::optional<Vec3> centre;  // default: centre of the body's bounds
     // A box-like body, with exactly one sharp corner in each octant around the centre (found
-    // near the wall nodes), gets the patch corners there: the rays span the hexahedron of
+    // near the wall nodes), or a box at any angle (body_corners_by_octant in
+    // volume/feature_snapping.h), gets the patch corners there: the rays span the hexahedron of
     // its corners (cube_sphere_ray with CubeCorners) instead of the bounds' box, so the
     // patch edges can follow its edges. With wall_from: when the given wall's 8 patch-corner
     // nodes are such corners (as that grid made them). false: always the bounds' box.

@@ -54,7 +54,8 @@ void append_wall_normals(const ImplicitFunction& body, const Vec3& x0, double si
 // x0 + d t lies at distance d from each active piece's plane, i.e. on the offset surfaces.
 // One piece: its normal; a crease: along the bisector, 1 / cos(half the angle) long; a
 // corner: the corner of the three offset planes. nullopt where that step would be degenerate
-// (a knife edge) or the wall has no normal.
+// (a knife edge), longer than 4, or inconsistent (four or more pieces whose offset planes do
+// not meet in one point: a pyramid's apex), or the wall has no normal.
 std::optional<Vec3> unit_offset(const ImplicitFunction& body, const Vec3& x0, double side,
                                 double tolerance);
 

@@ -126,7 +126,7 @@ GridProblem make_problem(const BlockGrid& grid, const std::vector<Vec3>& target_
     p.hexes.reserve(cells);
     p.hex_edges.reserve(cells);
     double total = 0;
-    // The cells of the laid layers and the first beyond them (node layers + 1 ends them).
+    // The cells of the laid layers and the two beyond them (those with a node up to layers + 1).
     const std::vector<bool> shaped =
         options.keep_crease_shapes ? crease_line_nodes(grid, body, options.wall_layers.layers + 1)
                                    : std::vector<bool>(grid.points.size(), false);

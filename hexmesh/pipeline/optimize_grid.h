@@ -27,10 +27,11 @@ struct GridOptimizationOptions {
     // 8 nodes are all held are left out of the functional.
     std::vector<bool> held;
     // Cells with a layer node (or the first node beyond the layers) of a wall-normal line from
-    // a crease or corner of the body take their own initial shape as target instead of a box:
-    // for grids built with those lines along the faces' bisector and the layers on the faces'
-    // offset planes (the exterior O-grid, volume/o_grid.h), whose cells there fan out and are
-    // not boxes.
+    // a crease or corner of the body (the laid layers' cells and the two beyond) take their own
+    // initial shape as target instead of a box, unless a corner of that shape has a scaled
+    // Jacobian under 0.2 (a cell a crease cuts across): for grids built with those lines along
+    // the faces' bisector and the layers on the faces' offset planes (the exterior O-grid,
+    // volume/o_grid.h), whose cells there fan out and are not boxes.
     bool keep_crease_shapes = false;
 };
 

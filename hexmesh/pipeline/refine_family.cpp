@@ -147,6 +147,9 @@ Id polish_block(RefinedBlock& piece, const ImplicitFunction& body,
     o.untangle.max_untangle_iterations = 50;
     o.untangle.log = options.log;
     o.held = held;
+    // Box targets even for an exterior grid's crease cells (keep_crease_shapes off): the
+    // sweeps only move the new nodes next to the wall, and keep_no_worse_than below undoes
+    // any that lower the worst cell.
     const std::vector<std::array<Id, 8>> cells = cells_not_held(grid, held);
     const double cells_floor = min_scaled_jacobian(grid, cells);
     optimize_grid(grid, body, o);

@@ -360,12 +360,20 @@ TEST(OGrid, TurnedBoxGetsThePatchCornersOnItsCorners) {
     // them. Through the bounds' box the patch corners missed the box's corners and the
     // pipeline's grid kept 5 % of its first layer on target (20 degrees), or had inverted
     // cells (45 degrees).
-    for (const auto& [axis, degrees] :
-         {std::pair{Vec3(Vec3::UnitZ()), 15.0}, {Vec3::UnitZ(), 45.0}, {Vec3(1, 2, 3), 37.0}}) {
-        SCOPED_TRACE(degrees);
-        const Mat3 turn = rotation_from_axis_angle(axis, degrees);
-        const Body box = std::make_shared<Transformed>(
-            std::make_shared<Box>(Vec3::Zero(), Vec3(1.0, 0.5, 0.25)), Vec3(0.1, 0.2, -0.1), turn);
+    // Also a cube turned 60 degrees about (1, 1, 1): one corner in each octant, but octants 0
+    // and 1 hold the two ends of a face diagonal; taken so, the patches would fold.
+    struct Turned {
+        Vec3 half, axis;
+        double degrees;
+    };
+    for (const Turned& t : {Turned{Vec3(1.0, 0.5, 0.25), Vec3::UnitZ(), 15.0},
+                            Turned{Vec3(1.0, 0.5, 0.25), Vec3::UnitZ(), 45.0},
+                            Turned{Vec3(1.0, 0.5, 0.25), Vec3(1, 2, 3), 37.0},
+                            Turned{Vec3(0.5, 0.5, 0.5), Vec3(1, 1, 1), 60.0}}) {
+        SCOPED_TRACE(t.degrees);
+        const Mat3 turn = rotation_from_axis_angle(t.axis, t.degrees);
+        const Body box = std::make_shared<Transformed>(std::make_shared<Box>(Vec3::Zero(), t.half),
+                                                       Vec3(0.1, 0.2, -0.1), turn);
         const OGridOptions o = typical_options();
         const BlockGrid grid = make_o_grid(*box, o);
         const double h = grid_length_scale(*box, o.cells_per_edge);
@@ -378,9 +386,21 @@ TEST(OGrid, TurnedBoxGetsThePatchCornersOnItsCorners) {
         const Id far_corner = Id(grid.points.size()) - 1;  // last node of the last layer
         const Vec3 along = turn.transpose() * (grid.points[far_corner] - centre) / o.far_field_size;
         EXPECT_LT((along.cwiseAbs() - Vec3::Constant(1 / std::sqrt(3.0))).norm(), 1e-9) << along;
+        // Built again from its own wall (as after the surface pass), it is the same grid: the
+        // patch corners and the far field's turn are read back from the wall's corner nodes.
+        OGridOptions again = o;
+        again.wall_from = &grid.points;
+        const BlockGrid rebuilt = make_o_grid(*box, again);
+        double moved = 0;
+        for (size_t v = 0; v < grid.points.size(); ++v)
+            moved = std::max(moved, (rebuilt.points[v] - grid.points[v]).norm());
+        EXPECT_LT(moved, 1e-9 * o.far_field_size);
         OGridOptions bounds_box = o;
         bounds_box.patch_corners_on_body_corners = false;
-        EXPECT_EQ(patch_edge_nodes_on_features(make_o_grid(*box, bounds_box), *box, h).second, 0);
+        if (t.degrees != 60) {  // the cube's turned corners lie on its bounds' diagonals
+            EXPECT_EQ(patch_edge_nodes_on_features(make_o_grid(*box, bounds_box), *box, h).second,
+                      0);
+        }
     }
 }
 
