@@ -95,8 +95,9 @@ constexpr double bend_per_focal_distance = 2.0;
 // How fast the bend length may grow along the wall away from a concave part (length per
 // length): a bounded slope keeps neighbouring lines bending alike.
 constexpr double bend_slope = 0.25;
-// Every line has turned to its straight direction within this fraction of the body's bounds
-// diagonal from the wall, so the lines of a flat face fan out as soon as those of its edges
+// Round a body with creases, every line has turned to its straight direction within this
+// fraction of the body's bounds diagonal from the wall, so the lines of a flat face fan out
+// as soon as those of its edges
 // (which leave along the bisector, 45 degrees out): with the turn spread over the whole line,
 // the cells beside a 4 x 2 x 1 box's edge lines were 10 times wider than their neighbours
 // half-way to the far field (volume ratio 22), and the grid's refinement inverted there.
@@ -313,7 +314,13 @@ BlockGrid make_o_grid(const ImplicitFunction& body, const OGridOptions& options)
     std::vector<double> length(ns);
     for (Id s = 0; s < ns; ++s) length[s] = (far[s] - wall[s]).norm();
     std::vector<double> bend = bend_lengths(surface, wall, normal, length);
-    for (double& b : bend) b = std::min(b, max_bend_per_diagonal * box.diagonal());
+    // Round a body with creases (a line leaving one along a bisector): on a smooth body the
+    // cap only makes lines from a wall moved by the surface pass turn sooner (sphere at 1 M
+    // cells: 4 Newton steps instead of 3, the same min scaled Jacobian).
+    const bool creases =
+        std::any_of(reach.begin(), reach.end(), [](double r) { return r > 1 + 1e-6; });
+    if (creases)
+        for (double& b : bend) b = std::min(b, max_bend_per_diagonal * box.diagonal());
 
     BlockGrid grid;
     grid.points.assign((nk + 1) * ns, Vec3::Zero());

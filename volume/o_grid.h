@@ -60,13 +60,13 @@ struct OGridOptions {
 // at a crease or corner of the body, the bisector of the faces meeting there, and r blends
 // from that step's length in unit_offset (volume/wall_lines.h) to 1, so the line's first
 // nodes lie on the faces' offset planes, where extrude_wall_layers lays the boundary layer.
-// bend is the whole line where the wall is convex, but at most half the body's bounds
-// diagonal (so the lines of flat faces fan out as soon as those of their edges), and shorter
-// where the wall is concave, so that the normals there do not cross (concave features finer
-// than the patch lattice are not seen). Nodes: the cell heights |x_k - x_(k-1)| are (a_k - a_(k-1))
-// r, a = wall_distances(length of the line in the law, nk, wall_layers), for every cell but the
-// last: the boundary layer has exactly the law's first height and growth ratio, on bent lines
-// too; the last cell ends on the far-field node.
+// bend is the whole line where the wall is convex, but round a body with creases at most
+// half its bounds diagonal (so the lines of flat faces fan out as soon as those of their
+// edges), and shorter where the wall is concave, so that the normals there do not cross
+// (concave features finer than the patch lattice are not seen). Nodes: the cell heights
+// |x_k - x_(k-1)| are (a_k - a_(k-1)) r, a = wall_distances(length of the line in the law,
+// nk, wall_layers), for every cell but the last: the boundary layer has exactly the law's
+// first height and growth ratio, on bent lines too; the last cell ends on the far-field node.
 // Throws std::invalid_argument, with a message naming the option, on n < 2, nk < 1, a law
 // that does not fit the lines (wall_layers.layers >= nk, or thicker than a line), a far field
 // that does not enclose the body's bounds with the margin, a centre outside the body, or a
