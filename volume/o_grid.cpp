@@ -209,10 +209,10 @@ std::vector<Id> neighbours(const CubeSurfaceLattice& surface, Id s) {
 
 // Distance from the wall over which each wall-normal line turns from the wall normal to its
 // straight direction (before the cap of max_bend_per_diagonal): the whole line where the wall
-// is convex; bend_per_focal_distance times
-// the focal distance of the normals where they converge (concave wall, measured between
-// neighbouring surface points: features finer than the lattice are not seen); in between,
-// the smallest value of those plus bend_slope times the distance along the lattice.
+// is convex; bend_per_focal_distance times the focal distance of the normals where they
+// converge (concave wall, measured between neighbouring surface points: features finer than
+// the lattice are not seen); in between, the smallest value of those plus bend_slope times
+// the distance along the lattice.
 std::vector<double> bend_lengths(const CubeSurfaceLattice& surface, const std::vector<Vec3>& wall,
                                  const std::vector<Vec3>& normal,
                                  const std::vector<double>& length) {

@@ -47,12 +47,11 @@ struct OGridOptions {
 //
 // Wall nodes: the equiangular cube-sphere directions from the centre scaled by the body's
 // half extents (or spanning its corners, see patch_corners_on_body_corners; as in the O-H
-// grid) projected radially onto u = 0, so the body must be
-// star-shaped around the centre. Far-field nodes: the equiangular cube-sphere points q of
-// the unit cube, whatever the body's proportions, on the sphere (centre + size R q / |q|, R
-// the rotation nearest the map of the cube's corners to the body's when the patch corners
-// are on them, else the identity) or the box (every block's far-field face is one face of the
-// box, which keeps the world's axes).
+// grid) projected radially onto u = 0, so the body must be star-shaped around the centre.
+// Far-field nodes: the equiangular cube-sphere points q of the unit cube, whatever the body's
+// proportions, on the sphere (centre + size R q / |q|, R the rotation nearest the map of the
+// cube's corners to the body's when the patch corners are on them, else the identity) or the
+// box (every block's far-field face is one face of the box, which keeps the world's axes).
 // Wall-normal lines: x(tau) = x0 + tau r(tau) m(tau), tau in [0, |far - x0|], m the
 // normalized blend (1 - b) normal + b straight of the wall normal at x0 and the direction to
 // the far-field node, b = smoothstep(tau / bend): the line leaves the wall along the normal
