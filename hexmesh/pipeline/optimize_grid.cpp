@@ -85,11 +85,11 @@ bool add_shaped_hex(untangle::Problem& p, const std::vector<Vec3>& target_points
     return true;
 }
 
-// Box targets of the cell's edge lengths in `target_points` (node positions of the grid); with
-// keep_crease_shapes, the cells on crease lines target their own shapes there.
+// Box targets of the cell's edge lengths in `target_points` (node positions of the grid); the
+// cells with a `shaped` node (empty: none) target their own shapes there.
 GridProblem make_problem(const BlockGrid& grid, const std::vector<Vec3>& target_points,
                          const ImplicitFunction& body, const std::vector<bool>& held,
-                         const GridOptimizationOptions& options) {
+                         const std::vector<bool>& shaped) {
     GridProblem g;
     untangle::Problem& p = g.problem;
     // The cells in the functional: all, or those with a node not held (listed once, so the
@@ -126,17 +126,14 @@ GridProblem make_problem(const BlockGrid& grid, const std::vector<Vec3>& target_
     p.hexes.reserve(cells);
     p.hex_edges.reserve(cells);
     double total = 0;
-    // The cells of the laid layers and the two beyond them (those with a node up to layers + 1).
-    const std::vector<bool> shaped =
-        options.keep_crease_shapes ? crease_line_nodes(grid, body, options.wall_layers.layers + 1)
-                                   : std::vector<bool>(grid.points.size(), false);
     each_cell([&](const std::array<Id, 8>& nodes) {
         const Vec3 lengths = edge_lengths(target_points, nodes);
         total += lengths.sum();
         std::array<Id, 8> ids = nodes;
         if (!local.empty())
             for (Id& v : ids) v = local[v];
-        if (std::any_of(nodes.begin(), nodes.end(), [&](Id v) { return shaped[v]; }) &&
+        if (!shaped.empty() &&
+            std::any_of(nodes.begin(), nodes.end(), [&](Id v) { return shaped[v]; }) &&
             add_shaped_hex(p, target_points, nodes, ids))
             return;
         p.add_hex(ids, lengths);
@@ -180,8 +177,13 @@ GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& bo
     // The targets of both passes: the grid as given (kept aside only when a second pass needs it).
     const std::vector<Vec3> initial =
         options.wall_layers.layers > 0 ? grid.points : std::vector<Vec3>{};
+    // The nodes whose cells keep their shapes in both passes: the crease lines' nodes up to
+    // layers + 1 (the laid layers' cells and the two beyond), found once on the grid as given.
+    const std::vector<bool> shaped =
+        options.keep_crease_shapes ? crease_line_nodes(grid, body, options.wall_layers.layers + 1)
+                                   : std::vector<bool>{};
     {
-        GridProblem g = make_problem(grid, grid.points, body, options.held, options);
+        GridProblem g = make_problem(grid, grid.points, body, options.held, shaped);
         result.solve = untangle::untangle_and_optimize(g.problem, options.untangle);
         g.scatter(grid.points);
     }
@@ -210,7 +212,7 @@ GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& bo
             if (!options.held.empty())
                 for (size_t v = 0; v < held.size(); ++v) held[v] = held[v] || options.held[v];
         }
-        GridProblem g = make_problem(grid, initial, body, held, options);
+        GridProblem g = make_problem(grid, initial, body, held, shaped);
         untangle::Problem& problem = g.problem;
         for (Id i = 0; i < Id(problem.points.size()); ++i)
             if (placed[g.grid_id(i)]) problem.kinds[i] = VertexKind::fixed;
