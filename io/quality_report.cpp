@@ -45,6 +45,10 @@ std::string wall_rows(const WallQuality& w) {
                      {fmt::format("{:.2f}", w.orthogonality_max_deg),
                       fmt::format("{:.2f}", w.orthogonality_mean_deg)});
     if (w.hausdorff) out += table_row("Hausdorff distance to surface", {number(*w.hausdorff)});
+    if (w.surface_in_cells_max)
+        out += table_row("surface to wall in wall cells max/p99",
+                         {fmt::format("{:.3f}", *w.surface_in_cells_max),
+                          fmt::format("{:.3f}", w.surface_in_cells_p99.value_or(0))});
     return out;
 }
 
@@ -72,6 +76,9 @@ nlohmann::ordered_json wall_json(const WallQuality& w) {
     if (w.hausdorff) j["hausdorff_distance"] = *w.hausdorff;
     if (w.grid_to_surface) j["grid_to_surface_distance"] = *w.grid_to_surface;
     if (w.surface_to_grid) j["surface_to_grid_distance"] = *w.surface_to_grid;
+    if (w.surface_in_cells_max)
+        j["surface_to_wall_in_cells"] = {{"max", *w.surface_in_cells_max},
+                                         {"p99", w.surface_in_cells_p99.value_or(0)}};
     return j;
 }
 

@@ -24,15 +24,19 @@ Kernel::Point_3 to_cgal(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
 
 struct ExactDistance::Tree {
     Triangles triangles;  // must outlive the tree, which holds iterators into it
+    std::vector<int> index;  // of each in the surface's triangles (degenerate ones are left out)
     AabbTree tree;
 };
 
 ExactDistance::ExactDistance(const TriangleSurface& surface)
     : tree_(std::make_unique<Tree>()), surface_(surface) {
-    for (const auto& t : surface.triangles) {
+    for (size_t i = 0; i < surface.triangles.size(); ++i) {
+        const auto& t = surface.triangles[i];
         const Kernel::Triangle_3 tri(to_cgal(surface.points[t[0]]), to_cgal(surface.points[t[1]]),
                                      to_cgal(surface.points[t[2]]));
-        if (!tri.is_degenerate()) tree_->triangles.push_back(tri);
+        if (tri.is_degenerate()) continue;
+        tree_->triangles.push_back(tri);
+        tree_->index.push_back(int(i));
     }
     if (tree_->triangles.empty())
         throw std::invalid_argument("ExactDistance: no triangle of non-zero area");
@@ -58,6 +62,11 @@ Vec3 ExactDistance::closest_normal(const Vec3& p) const {
     const Kernel::Triangle_3& t = *hit.second;
     const Kernel::Vector_3 n = CGAL::cross_product(t[1] - t[0], t[2] - t[0]);
     return Vec3(n.x(), n.y(), n.z()).normalized();
+}
+
+int ExactDistance::closest_triangle(const Vec3& p) const {
+    const auto hit = tree_->tree.closest_point_and_primitive(to_cgal(p));
+    return tree_->index[size_t(hit.second - tree_->triangles.cbegin())];
 }
 
 double ExactDistance::winding_number(const Vec3& p) const {

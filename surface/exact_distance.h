@@ -23,6 +23,8 @@ public:
     Vec3 closest_point(const Vec3& p) const;
     // Unit normal of the triangle that holds closest_point(p) (orientation as in the file).
     Vec3 closest_normal(const Vec3& p) const;
+    // Index (into the surface's triangles) of the triangle that holds closest_point(p).
+    int closest_triangle(const Vec3& p) const;
 
     // Generalized winding number: the signed solid angle of the triangles seen from p over
     // 4 pi. 1 inside and 0 outside a closed surface oriented counter-clockwise from

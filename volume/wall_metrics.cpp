@@ -216,8 +216,31 @@ HausdorffDistance hausdorff_to_surface(const TriangleSurface& wall,
 
     HausdorffDistance d;
     d.grid_to_surface = max_distance_to(ExactDistance(surface), wall.points);
-    d.surface_to_grid = max_distance_to(ExactDistance(wall), samples);
+    const ExactDistance to_wall(wall);
+    d.surface_to_grid = max_distance_to(to_wall, samples);
     d.hausdorff = std::max(d.grid_to_surface, d.surface_to_grid);
+
+    // The vertices (the first samples) against the size of the wall quad nearest to each.
+    const size_t vertices = samples.size() - surface.triangles.size();
+    std::vector<double> in_cells(vertices);
+    const auto area = [&](size_t t) {
+        const auto& tri = wall.triangles[t];
+        return 0.5 * (wall.points[tri[1]] - wall.points[tri[0]])
+                         .cross(wall.points[tri[2]] - wall.points[tri[0]])
+                         .norm();
+    };
+    tbb::parallel_for(size_t(0), vertices, [&](size_t v) {
+        const size_t quad = size_t(to_wall.closest_triangle(samples[v])) / 2;
+        const double size = std::sqrt(area(2 * quad) + area(2 * quad + 1));
+        in_cells[v] = to_wall.distance(samples[v]) / std::max(size, 1e-300);
+    });
+    if (!in_cells.empty()) {
+        std::sort(in_cells.begin(), in_cells.end());
+        d.surface_in_cells_max = in_cells.back();
+        // Nearest rank: the smallest value at or above 99 % of the vertices.
+        const size_t rank = size_t(std::ceil(0.99 * double(in_cells.size())));
+        d.surface_in_cells_p99 = in_cells[std::clamp<size_t>(rank, 1, in_cells.size()) - 1];
+    }
     return d;
 }
 

@@ -46,6 +46,11 @@ struct HausdorffDistance {
     double grid_to_surface = 0;  // max over the grid's wall nodes of the distance to surface
     double surface_to_grid = 0;  // max over surface samples of the distance to the wall faces
     double hausdorff = 0;        // the larger of the two
+    // Every vertex of the surface's triangles: its distance to the wall over the size of the
+    // wall quad nearest to it (the square root of the quad's area), max and 99th percentile.
+    // Above 0.5 the grid misses part of the body: it bridges a groove or skips a finger.
+    double surface_in_cells_max = 0;
+    double surface_in_cells_p99 = 0;
 };
 
 // Exact distances (CGAL AABB tree) between the grid's wall and a triangle surface. The
@@ -58,7 +63,8 @@ struct HausdorffDistance {
 HausdorffDistance hausdorff_to_surface(const BlockGrid& grid, const TriangleSurface& surface);
 
 // The "wall" faces of one block as triangles (a, b, c), (a, c, d), appended to `wall` (a
-// node shared with an earlier block appears again: distances do not mind).
+// node shared with an earlier block appears again: distances do not mind): triangles 2 q and
+// 2 q + 1 are wall quad q.
 void append_wall_triangles(const BlockGrid& grid, const Block& block, TriangleSurface& wall);
 
 // hausdorff_to_surface with the grid's wall already gathered by append_wall_triangles.

@@ -44,6 +44,10 @@ struct WallQuality {
     std::optional<double> hausdorff;
     std::optional<double> grid_to_surface;
     std::optional<double> surface_to_grid;
+    // Every surface vertex's distance to the wall in sizes of the wall quad nearest to it
+    // (square root of its area): max and 99th percentile.
+    std::optional<double> surface_in_cells_max;
+    std::optional<double> surface_in_cells_p99;
 };
 
 }  // namespace hexmesh

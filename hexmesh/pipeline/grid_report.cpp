@@ -84,6 +84,8 @@ GridReport GridMeter::report() const {
             report.wall->hausdorff = d.hausdorff;
             report.wall->grid_to_surface = d.grid_to_surface;
             report.wall->surface_to_grid = d.surface_to_grid;
+            report.wall->surface_in_cells_max = d.surface_in_cells_max;
+            report.wall->surface_in_cells_p99 = d.surface_in_cells_p99;
         }
     }
     // h: mean length of the hex edges whose two ends lie on the wall (counted once per cell).

@@ -73,6 +73,11 @@ TEST_P(BlackBox, GridIsValidAndKeepsTheBoundaryLayer) {
     EXPECT_EQ(wall.contains("hausdorff_distance"), c.from_surface);
     if (c.from_surface) {  // within about a voxel (0.01) of the STL: its SDF's resolution
         EXPECT_LT(wall.at("hausdorff_distance").get<double>(), 0.015);
+        // Every vertex of the STL within half a wall cell of the grid's wall.
+        const json& in_cells = wall.at("surface_to_wall_in_cells");
+        EXPECT_LT(in_cells.at("max").get<double>(), 0.5);
+        EXPECT_LE(in_cells.at("p99").get<double>(), in_cells.at("max").get<double>());
+        EXPECT_NE(result.out.find("surface to wall in wall cells max/p99"), std::string::npos);
     }
     for (const char* phase : {"geometry", "grid", "optimization", "quality", "write"})
         EXPECT_TRUE(report.at("phases").contains(phase)) << phase;

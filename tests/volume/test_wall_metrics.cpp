@@ -298,3 +298,29 @@ TEST(WallMetrics, HausdorffNeedsAWall) {
     const TriangleSurface uv = test::uv_sphere(Vec3::Zero(), 1.0, 8, 4);
     EXPECT_THROW(hausdorff_to_surface(grid, uv), std::invalid_argument);
 }
+
+TEST(WallMetrics, SurfaceVerticesInWallCellsMeasureAFingerTheGridSkips) {
+    // A wall of two quads, 1 x 1 and 2 x 2, side by side in the plane z = 0, and a surface
+    // whose vertices lie on it but for a spike over each quad: 0.3 above the small one (0.3
+    // cells) and 0.8 above the big one (0.4 cells).
+    TriangleSurface wall;
+    wall.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0),
+                   Vec3(1, -0.5, 0), Vec3(3, -0.5, 0), Vec3(3, 1.5, 0), Vec3(1, 1.5, 0)};
+    wall.triangles = {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}, {4, 6, 7}};
+    TriangleSurface surface;
+    surface.points = {Vec3(0.5, 0.5, 0.3), Vec3(0.2, 0.2, 0), Vec3(0.8, 0.2, 0),
+                      Vec3(2, 0.5, 0.8),   Vec3(1.5, 0, 0),   Vec3(2.5, 0, 0)};
+    surface.triangles = {{0, 1, 2}, {3, 4, 5}};
+    // 94 more vertices on the wall, in slivers along its edge y = 0: 100 in all.
+    for (int k = 0; k < 47; ++k) {
+        const int a = int(surface.points.size());
+        surface.points.push_back(Vec3(0.02 * k, 0, 0));
+        surface.points.push_back(Vec3(0.02 * k + 0.01, 0, 0));
+        surface.triangles.push_back({a, a + 1, 1});
+    }
+    const HausdorffDistance h = hausdorff_to_surface(wall, surface);
+    EXPECT_NEAR(h.surface_in_cells_max, 0.4, 1e-12);
+    EXPECT_NEAR(h.surface_to_grid, 0.8, 1e-12);
+    // The 99th percentile of 100 vertices: the 99th smallest, the small quad's spike.
+    EXPECT_NEAR(h.surface_in_cells_p99, 0.3, 1e-12);
+}
