@@ -50,7 +50,8 @@ void log_line(std::ostream* log, const IterationRecord& r) {
 // that stalls, the continuation restarts from the best state it reached, at the eps that
 // state was found with, and shrinks eps by the safe rule.
 void continuation(Problem& problem, const Assembly& judge, const UntangleOptions& options,
-                  const std::function<double()>& seconds, Best& best, UntangleResult& result) {
+                  const std::function<double()>& seconds, Best& best, UntangleResult& result,
+                  double regularize_below = 0) {
     const Assembly assembly(problem);
     std::vector<Vec3>& x = problem.points;
     ElementStats stats = judge.stats(x);
@@ -62,13 +63,16 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
     double restart_eps = eps;
     int stalled = 0;
     const int first = int(result.history.size()) + 1;
-    for (int it = first; it < first + options.max_untangle_iterations && stats.inverted > options.unrepairable; ++it) {
+    // Regularizing a valid start: the goal is every det above regularize_below instead.
+    const auto done = [&](const ElementStats& e) {
+        return regularize_below > 0 ? e.inverted == 0 && e.min_det >= regularize_below
+                                    : e.inverted <= options.unrepairable;
+    };
+    for (int it = first; it < first + options.max_untangle_iterations && !done(stats); ++it) {
         const EnergyParams p{options.untangle_theta, eps};
         const double e_prev = assembly.energy(x, p);
         // Untangled is the goal of this phase: stop as soon as it is reached.
-        const auto untangled = [&](const std::vector<Vec3>& y) {
-            return judge.stats(y).inverted <= options.unrepairable;
-        };
+        const auto untangled = [&](const std::vector<Vec3>& y) { return done(judge.stats(y)); };
         const MinimizeOutcome m = minimizer.minimize(x, p, options.inner_steps, options.inner_tolerance, untangled);
         stats = judge.stats(x);
         const ElementStats local = assembly.stats(x);
@@ -77,7 +81,7 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
         result.history.push_back(r);
         log_line(options.log, r);
         best.offer(x, stats.inverted, stats.inverted ? infinity : judge.energy(x, {options.theta, 0}));
-        if (stats.inverted < fewest) {
+        if (stats.inverted < fewest || (regularize_below > 0 && stats.inverted == 0)) {
             fewest = stats.inverted, restart = x, restart_eps = eps, stalled = 0;
         } else {
             ++stalled;
@@ -200,6 +204,11 @@ UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& op
         continuation(problem, assembly, global, seconds, best, result);
     }
     x = best.points;
+    if (best.inverted == 0 && options.regularize_below > 0 &&
+        assembly.stats(x).min_det < options.regularize_below) {
+        continuation(problem, assembly, options, seconds, best, result, options.regularize_below);
+        x = best.points;  // the valid state of lowest barrier energy
+    }
 
     // Optimization with the pure barrier, from the best untangled state.
     if (best.inverted == 0) {

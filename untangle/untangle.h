@@ -51,6 +51,12 @@ struct UntangleOptions {
     // Elements known to stay inverted whatever is done (all their vertices fixed): untangling
     // stops once only that many remain.
     Id unrepairable = 0;
+    // A start with no inverted element but some det S below this (target units) is first
+    // evened out by the eps continuation, as if it were tangled, until every det S is above it
+    // or the untangling budget is spent: a one-to-one map whose dets span many orders of
+    // magnitude (Tutte's embedding of a body with legs: 1e-20) leaves the barrier's Newton
+    // steps no room, while with eps > 0 the tiny dets weigh like eps. 0: never.
+    double regularize_below = 0;
 };
 
 // One line of the progress log.
