@@ -363,6 +363,10 @@ Case parse_case(const std::string& text, const std::string& path) {
     c.geometry = parse_geometry(top.at("geometry"), path, "geometry");
     c.domain = top.choice("domain", c.domain, {"interior", "exterior"});
     if (top.has("grid")) c.grid = parse_grid(top.object("grid"));
+    // An exterior grid's lines run from the wall to the far field, 10 body radii out by
+    // default: twice the patch's cells unless given.
+    if (c.domain == "exterior" && !(top.has("grid") && top.object("grid").has("wall_cells")))
+        c.grid.wall_cells = 2 * c.grid.cells_per_edge;
     if (c.domain == "exterior" && c.grid.axis != "none" && c.grid.axis != "auto")
         top.object("grid").fail(
             "axis", "\"none\" or \"auto\" (an exterior domain is gridded by the O-grid)");

@@ -44,7 +44,9 @@ struct GridSpec {
     std::string topology = "o-h";  // "o-h" | "single-block" (interior domain only)
     int cells_per_edge = 20;        // o-h, o-grid: cells along each core/patch edge
     double cell_size = 0;           // > 0: cells_per_edge from the body's size instead
-    int wall_cells = 10;            // o-h: cells from the core to the wall; o-grid: to the far field
+    // o-h: cells from the core to the wall; o-grid: to the far field (default twice
+    // cells_per_edge for an exterior domain)
+    int wall_cells = 10;
     double core_size = 0.45;        // o-h: core half-size / body half extents
     std::array<int, 3> cells = {20, 20, 20};  // single-block
     std::optional<Vec3> center;

@@ -248,16 +248,135 @@ std::vector<double> bend_lengths(const CubeSurfaceLattice& surface, const std::v
     return bend;
 }
 
+// A polyline with its arc length and a level rising along it.
+struct LevelledLine {
+    std::vector<Vec3> x;
+    std::vector<double> arc, level;
+
+    Vec3 at_arc(double a) const {
+        size_t k = std::upper_bound(arc.begin(), arc.end(), a) - arc.begin();
+        k = std::clamp<size_t>(k, 1, x.size() - 1);
+        const double w = std::clamp((a - arc[k - 1]) / std::max(arc[k] - arc[k - 1], 1e-300), 0.0, 1.0);
+        return x[k - 1] + w * (x[k] - x[k - 1]);
+    }
+    double level_at_arc(double a) const {
+        size_t k = std::upper_bound(arc.begin(), arc.end(), a) - arc.begin();
+        k = std::clamp<size_t>(k, 1, x.size() - 1);
+        const double w = std::clamp((a - arc[k - 1]) / std::max(arc[k] - arc[k - 1], 1e-300), 0.0, 1.0);
+        return level[k - 1] + w * (level[k] - level[k - 1]);
+    }
+    // The first point at `c` (the level taken as non-decreasing: its running maximum).
+    Vec3 at_level(double c) const {
+        double running = level[0];
+        for (size_t k = 1; k < x.size(); ++k) {
+            const double next = std::max(running, level[k]);
+            if (next >= c) {
+                const double w = next > running ? (c - running) / (next - running) : 1.0;
+                return x[k - 1] + std::clamp(w, 0.0, 1.0) * (x[k] - x[k - 1]);
+            }
+            running = next;
+        }
+        return x.back();
+    }
+};
+
+// The nk - 1 inner nodes of every path's line (make_o_grid with paths), handed to set_line(s,
+// x) with x[0] the wall node and x[nk] the far-field node.
+template <class SetLine>
+void place_nodes_on_paths(const WallPaths& paths, const std::vector<Vec3>& wall,
+                          const std::vector<Vec3>& far, int nk, const WallLayers& law,
+                          SetLine&& set_line) {
+    const Id ns = Id(wall.size());
+    const int m = std::min(law.layers, nk - 2);  // boundary-layer cells along the path
+    const double growth = law.layers > 0 ? std::max(law.growth_ratio, 1.05) : 1.2;
+    std::vector<LevelledLine> lines(ns);
+    std::vector<double> top(ns);  // each line's level at the top of the boundary layer
+    tbb::parallel_for(Id(0), ns, [&](Id s) {
+        LevelledLine& l = lines[s];
+        l.x = paths.lines[s];
+        l.x.front() = wall[s];
+        l.level = paths.levels[s];
+        l.arc.assign(l.x.size(), 0);
+        for (size_t k = 1; k < l.x.size(); ++k) l.arc[k] = l.arc[k - 1] + (l.x[k] - l.x[k - 1]).norm();
+        top[s] = std::max(l.level_at_arc(m > 0 ? layers_thickness({law.first_height, law.growth_ratio, m}) : 0.0),
+                          1e-12 * paths.far_level);
+    });
+    // Cells between the boundary layer and the far surface, and from there to the far field:
+    // as many growth-ratio steps as each part spans on a typical line.
+    std::vector<double> sorted = top;
+    std::nth_element(sorted.begin(), sorted.begin() + ns / 2, sorted.end());
+    const double typical_top = sorted[ns / 2];
+    double outer = 0, beyond = 0;
+    for (Id s = 0; s < ns; ++s) outer += lines[s].x.back().norm() / double(ns), beyond += (far[s] - lines[s].x.back()).norm() / double(ns);
+    const double level_steps = std::log(paths.far_level / typical_top) / std::log(growth);
+    const double far_steps = std::log1p(beyond / std::max(outer, 1e-300) * (growth - 1)) / std::log(growth) + 1;
+    const int free_cells = nk - m;
+    const int level_cells = std::clamp(int(std::lround(free_cells * level_steps / (level_steps + far_steps))), 1, free_cells - 1);
+    const int k_far = m + level_cells;  // the node on the far surface
+
+    tbb::parallel_for(Id(0), ns, [&](Id s) {
+        const LevelledLine& l = lines[s];
+        std::vector<Vec3> x(nk + 1);
+        x[0] = wall[s];
+        double a = 0;
+        for (int k = 1; k <= m; ++k) {
+            a += law.first_height * std::pow(law.growth_ratio, k - 1);
+            x[k] = l.at_arc(a);
+        }
+        const double lo = std::log(top[s]), hi = std::log(paths.far_level);
+        for (int k = m + 1; k < k_far; ++k)
+            x[k] = l.at_level(std::exp(lo + (hi - lo) * double(k - m) / double(k_far - m)));
+        x[k_far] = l.x.back();
+        // Beyond: geometric from the last cell's height to the far-field node.
+        const double first = std::max((x[k_far] - x[k_far - 1]).norm(), 1e-12);
+        const double rest = (far[s] - x[k_far]).norm();
+        const int cells = nk - k_far;
+        // Cells first q, first q^2, ... adding up to the rest (uniform if even `first` is too
+        // long for them).
+        const bool uniform = first * cells >= rest;
+        const double q = uniform ? 1.0 : geometric_ratio(first, cells, rest);
+        double d = 0, step = uniform ? rest / cells : first * q;
+        for (int k = k_far + 1; k < nk; ++k) {
+            d += step, step *= q;
+            x[k] = x[k_far] + std::min(d / rest, 1.0) * (far[s] - x[k_far]);
+        }
+        x[nk] = far[s];
+        set_line(s, x);
+    });
+}
+
+// The six shell blocks over the node array of make_o_grid: the node of surface point s on
+// layer k has id k ns + s.
+BlockGrid finish_o_grid(BlockGrid grid, const CubeSurfaceLattice& surface, int n, int nk) {
+    const Id ns = surface.size();
+    for (const CubePatch& patch : cube_patches) {
+        Block b{std::string("shell_") + patch.side, {n + 1, n + 1, nk + 1}, {}, {}};
+        b.face_patch[kmin] = "wall";
+        b.face_patch[kmax] = "farfield";
+        b.node_ids.resize(b.nodes.count());
+        for (int k = 0; k <= nk; ++k)
+            for (int j = 0; j <= n; ++j)
+                for (int i = 0; i <= n; ++i)
+                    b.node_ids[b.nodes.flat(i, j, k)] =
+                        k * ns + surface.number_of(surface.patch_point(patch, i, j));
+        grid.blocks.push_back(std::move(b));
+    }
+    return grid;
+}
+
 }  // namespace
 
 BlockGrid make_o_grid(const ImplicitFunction& body, const OGridOptions& options) {
     check_options(options);
     const int n = options.cells_per_edge, nk = options.layers;
     const Box3 box = body.bounds();
-    const Vec3 centre = options.centre.value_or(box.center());
+    const WallPaths* paths = options.paths;
+    if (paths && (paths->cells_per_edge != n || paths->lines.empty()))
+        throw std::invalid_argument("paths: a wall lattice made with other options");
+    const Vec3 centre = paths ? paths->centre : options.centre.value_or(box.center());
     const Vec3 half = 0.5 * box.size();
     const double h = grid_length_scale(body, n);
-    require_inside(body, centre);
+    if (!paths) require_inside(body, centre);  // a continuation's centre needs only see its first level
     check_far_field(box, centre, options);
 
     const CubeSurfaceLattice surface = make_cube_surface_lattice(n);
@@ -276,11 +395,14 @@ BlockGrid make_o_grid(const ImplicitFunction& body, const OGridOptions& options)
     const auto place_wall = [&] {
         tbb::parallel_for(Id(0), ns, [&](Id s) {
             wall[s] = options.wall_from ? (*options.wall_from)[s]
+                      : paths           ? paths->wall(s)
                                         : place_on_surface(body, centre, ray(surface.points[s]), h);
         });
     };
     place_wall();
-    if (options.patch_corners_on_body_corners && !options.wall_from) {
+    if (paths) {
+        // The continuation's patches follow no corner of the body.
+    } else if (options.patch_corners_on_body_corners && !options.wall_from) {
         corners = corners_near_wall(body, centre, wall, h);
         if (corners) place_wall();
     } else if (options.patch_corners_on_body_corners) {
@@ -305,11 +427,30 @@ BlockGrid make_o_grid(const ImplicitFunction& body, const OGridOptions& options)
         // proportions (a cube sphere stretched like the body has cells squeezed flat on a
         // sphere: min scaled Jacobian 0.05 there round a 4 x 2 x 1 box), turned like the
         // patches on a turned body's corners (a far-field box keeps its axes).
-        const Vec3 q = cube_sphere_ray(p, n, Vec3::Ones());
+        // With paths: radially out from each path's end (the far surface is star-shaped around
+        // the centre), where the lattice point's direction has no bearing.
+        const Vec3 q = !paths                          ? cube_sphere_ray(p, n, Vec3::Ones())
+                       : paths->far_directions.empty() ? Vec3(paths->outer(s) - centre)
+                                                       : paths->far_directions[s];
         far[s] = centre + options.far_field_size * (options.far_field == FarFieldShape::sphere
                                                         ? Vec3(turn * q / q.norm())
                                                         : Vec3(q / q.cwiseAbs().maxCoeff()));
     });
+
+    BlockGrid grid;
+    grid.points.assign((nk + 1) * ns, Vec3::Zero());
+    grid.kinds.assign(grid.points.size(), VertexKind::interior);
+    const auto set_line = [&](Id s, const std::vector<Vec3>& x) {
+        for (int k = 1; k < nk; ++k) grid.points[k * ns + s] = x[k];
+        grid.points[s] = wall[s];
+        grid.points[nk * ns + s] = far[s];
+        grid.kinds[s] = VertexKind::slip;
+        grid.kinds[nk * ns + s] = VertexKind::fixed;
+    };
+    if (paths) {
+        place_nodes_on_paths(*paths, wall, far, nk, options.wall_layers, set_line);
+        return finish_o_grid(std::move(grid), surface, n, nk);
+    }
 
     std::vector<double> length(ns);
     for (Id s = 0; s < ns; ++s) length[s] = (far[s] - wall[s]).norm();
@@ -322,34 +463,14 @@ BlockGrid make_o_grid(const ImplicitFunction& body, const OGridOptions& options)
     if (creases)
         for (double& b : bend) b = std::min(b, max_bend_per_diagonal * box.diagonal());
 
-    BlockGrid grid;
-    grid.points.assign((nk + 1) * ns, Vec3::Zero());
-    grid.kinds.assign(grid.points.size(), VertexKind::interior);
     tbb::parallel_for(Id(0), ns, [&](Id s) {
         const WallNormalLine line{wall[s],   normal[s], (far[s] - wall[s]) / length[s],
                                   length[s], bend[s],   reach[s]};
         std::vector<Vec3> x;
         place_nodes(line, nk, options.wall_layers, x);
-        for (int k = 1; k < nk; ++k) grid.points[k * ns + s] = x[k];
-        grid.points[s] = wall[s];
-        grid.points[nk * ns + s] = far[s];
-        grid.kinds[s] = VertexKind::slip;
-        grid.kinds[nk * ns + s] = VertexKind::fixed;
+        set_line(s, x);
     });
-
-    for (const CubePatch& patch : cube_patches) {
-        Block b{std::string("shell_") + patch.side, {n + 1, n + 1, nk + 1}, {}, {}};
-        b.face_patch[kmin] = "wall";
-        b.face_patch[kmax] = "farfield";
-        b.node_ids.resize(b.nodes.count());
-        for (int k = 0; k <= nk; ++k)
-            for (int j = 0; j <= n; ++j)
-                for (int i = 0; i <= n; ++i)
-                    b.node_ids[b.nodes.flat(i, j, k)] =
-                        k * ns + surface.number_of(surface.patch_point(patch, i, j));
-        grid.blocks.push_back(std::move(b));
-    }
-    return grid;
+    return finish_o_grid(std::move(grid), surface, n, nk);
 }
 
 }  // namespace hexmesh

@@ -5,6 +5,7 @@
 
 #include "hexmesh/core/block_grid.h"
 #include "hexmesh/core/implicit_function.h"
+#include "volume/wall_paths.h"
 #include "volume/stretching.h"
 
 namespace hexmesh {
@@ -31,6 +32,12 @@ struct OGridOptions {
     // the given wall's 8 patch-corner nodes are such corners (as that grid made them).
     // false: always the bounds' box.
     bool patch_corners_on_body_corners = true;
+    // The wall lattice carried in from a far star-shaped surface (for a body that is not
+    // star-shaped around the centre: hexmesh/pipeline/wall_continuation.h): its wall is the
+    // grid's (unless wall_from is given), its centre the grid's, and each line follows its
+    // path instead of leaving the wall along its normal (see make_o_grid). nullptr: the radial
+    // construction.
+    const WallPaths* paths = nullptr;
 };
 
 // Grid of the shell between the body (u = 0) and a far-field sphere or box around `centre`.
@@ -66,6 +73,16 @@ struct OGridOptions {
 // |x_k - x_(k-1)| are (a_k - a_(k-1)) r, a = wall_distances(length of the line in the law,
 // nk, wall_layers), for every cell but the last: the boundary layer has exactly the law's
 // first height and growth ratio, on bent lines too; the last cell ends on the far-field node.
+// With `paths` (a body that is not star-shaped), the wall nodes are the paths' and the line of
+// surface point s follows its path from the wall out to the far surface, then the straight
+// segment from there to its far-field node. The boundary layer's nodes lie at the law's
+// distances (arc length) along the path; the next ones, up to the far surface, on surfaces of
+// equal level of the path's potential (geometric in the level, from each line's level at the
+// top of the boundary layer to the far surface's), so the layers do not cross where
+// neighbouring paths have very different lengths (one out of a gap, one off a fin); the rest
+// grow geometrically along the segment to the far field. Cells are split between the level
+// part and the segment by the number of growth-ratio steps each spans. The far-field nodes lie
+// radially out from the paths' ends.
 // Throws std::invalid_argument, with a message naming the option, on n < 2, nk < 1, a law
 // that does not fit the lines (wall_layers.layers >= nk, or thicker than a line), a far field
 // that does not enclose the body's bounds with the margin, a centre outside the body, or a

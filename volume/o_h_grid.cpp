@@ -156,16 +156,23 @@ BlockGrid make_o_h_grid(const ImplicitFunction& body, const OHGridOptions& optio
     // then (box-like bodies) through the body's corners.
     std::optional<CubeCorners> corners;
     auto ray = [&](const Vec3& t) { return corners ? cube_ray(t, *corners) : cube_ray(t, half); };
+    const bool placed = options.wall_nodes || options.core_half;  // the wall is not radial
+    if (placed && options.axis >= 0)
+        throw std::invalid_argument("a wall placed without rays takes one core block (axis -1)");
+    if (options.wall_nodes && Id(options.wall_nodes->size()) != ns)
+        throw std::invalid_argument("wall_nodes: a lattice of another size");
     std::vector<Vec3> wall(ns);
     const auto place_wall = [&] {
         tbb::parallel_for(Id(0), ns, [&](Id s) {
-            wall[s] = options.wall_from
-                          ? (*options.wall_from)[node_id(on_wall[s], nk)]
-                          : place_on_surface(body, centre, ray(core.t[on_wall[s]]), h);
+            wall[s] = options.wall_from    ? (*options.wall_from)[node_id(on_wall[s], nk)]
+                      : options.wall_nodes ? (*options.wall_nodes)[s]
+                                           : place_on_surface(body, centre, ray(core.t[on_wall[s]]), h);
         });
     };
     place_wall();
-    if (options.patch_corners_on_body_corners && !options.wall_from) {
+    if (placed) {
+        // No ray frame: the core is a box of the given half extents.
+    } else if (options.patch_corners_on_body_corners && !options.wall_from) {
         corners = corners_near_wall(body, centre, wall, h);
     } else if (options.patch_corners_on_body_corners) {
         // A given wall keeps the choice of the grid it came from: its 8 patch-corner nodes sit
@@ -193,7 +200,8 @@ BlockGrid make_o_h_grid(const ImplicitFunction& body, const OHGridOptions& optio
     grid.points.assign(core_nodes + nk * ns, Vec3::Zero());
     grid.kinds.assign(grid.points.size(), VertexKind::interior);
     for (Id id = 0; id < core_nodes; ++id)
-        grid.points[id] = centre + options.core_size * ray(inner_t[id]);
+        grid.points[id] = options.core_half ? Vec3(centre + options.core_half->cwiseProduct(inner_t[id]))
+                                            : Vec3(centre + options.core_size * ray(inner_t[id]));
 
     tbb::parallel_for(Id(0), ns, [&](Id s) {
         const Id core_id = on_wall[s];
@@ -201,13 +209,13 @@ BlockGrid make_o_h_grid(const ImplicitFunction& body, const OHGridOptions& optio
         const Vec3 wall_node = wall[s];
         const Vec3 inner = grid.points[core_id];
         const double length = (wall_node - inner).norm();
-        if ((wall_node - inner).dot(dir) <= 0 && options.wall_from) {
+        if ((wall_node - inner).dot(dir) <= 0 && options.wall_from && !placed) {
             throw std::invalid_argument(fmt::format(
                 "the given wall node at ({:.4g}, {:.4g}, {:.4g}) lies behind its core node: its "
                 "line would turn back",
                 wall_node.x(), wall_node.y(), wall_node.z()));
         }
-        if ((wall_node - inner).dot(dir) <= 0) {
+        if ((wall_node - inner).dot(dir) <= 0 && !placed) {
             throw std::invalid_argument(
                 fmt::format("core_size {} puts the core box outside the body near ({:.4g}, {:.4g}, "
                             "{:.4g}); use a smaller core_size",

@@ -35,6 +35,14 @@ struct OHGridOptions {
     int axis = -1;
     int ring_cells = 0;   // with an axis: cells across the rings (0: (n+1)/2)
     int frame_cells = 1;  // with an axis: cells across the frame along the cube's edges
+    // For a body that is not star-shaped around the centre (one core block only): the wall
+    // lattice as placed elsewhere (CubeSurfaceLattice numbering, e.g. through a map of the
+    // surface onto the sphere) instead of the radial projections, and the core box's half
+    // extents in geometry units (instead of core_size times the rays' box). The lines from the
+    // core to such a wall may leave the body or turn back: the optimizer's untangling is left
+    // to straighten them, and no line is refused.
+    const std::vector<Vec3>* wall_nodes = nullptr;
+    std::optional<Vec3> core_half;
 };
 
 // Grid of the body's interior. Blocks: "core" (n^3 cells) and "wall_xmin", "wall_xmax", ...,

@@ -12,9 +12,11 @@
 #include "hexmesh/pipeline/optimize_surface.h"
 #include "hexmesh/pipeline/phase_timer.h"
 #include "hexmesh/pipeline/refine_family.h"
+#include "hexmesh/pipeline/wall_route.h"
 #include "io/export_grid.h"
 #include "io/staged_output.h"
 #include "io/vtk_mesh.h"
+#include "surface/surface_topology.h"
 #include "volume/feature_snapping.h"
 #include "volume/o_grid.h"
 #include "volume/o_h_grid.h"
@@ -45,6 +47,30 @@ int cells_per_edge(const Case& c, const ImplicitFunction& body) {
                                      c.path, c.grid.cell_size, n, body.bounds().diagonal()));
     }
     return std::max(2, int(n));
+}
+
+// Throws InputError for a surface the block structure cannot grid: several pieces, or one with
+// handles (its genus from V - E + F, holes capped); logs an open surface (inside and outside
+// then come from the winding number).
+void refuse_topology(const Case& c, const TriangleSurface& surface, std::ostream& log) {
+    const SurfaceTopology t = surface_topology(surface);
+    const std::string& file = c.geometry.file;
+    if (t.components.size() > 1)
+        throw InputError(fmt::format(
+            "{}: {} separate bodies (the largest has {} triangles, the next {}): hexmesh grids one "
+            "closed body; give each body its own file",
+            file, t.components.size(), t.components[0].triangles, t.components[1].triangles));
+    const SurfaceComponent& s = t.components.at(0);
+    if (s.genus > 0)
+        throw InputError(fmt::format(
+            "{}: genus {}: the surface has {} handle{} (V - E + F = {}{}); hexmesh grids bodies "
+            "without holes through them",
+            file, s.genus, s.genus, s.genus > 1 ? "s" : "", s.euler,
+            s.boundary_loops > 0 ? fmt::format(", {} holes in the surface", s.boundary_loops) : ""));
+    if (s.boundary_edges > 0)
+        log << fmt::format("  the surface is open: {} boundary edges around {} holes; inside and "
+                           "outside come from the winding number\n",
+                           s.boundary_edges, s.boundary_loops);
 }
 
 // Throws (nothing written) when the grid has inverted cells, unless keep_invalid.
@@ -103,7 +129,7 @@ OHGridOptions o_h_grid_options(const Case& c, const ImplicitFunction& body) {
 }
 
 BlockGrid build_grid(const Case& c, const ImplicitFunction& body,
-                     const std::vector<Vec3>* wall_from) {
+                     const std::vector<Vec3>* wall_from, const WallRoute* route) {
     if (c.domain == "exterior") {
         OGridOptions o;
         o.cells_per_edge = cells_per_edge(c, body);
@@ -116,6 +142,15 @@ BlockGrid build_grid(const Case& c, const ImplicitFunction& body,
                                : 10 * (body.bounds().hi - centre).cwiseAbs().cwiseMax(
                                           (body.bounds().lo - centre).cwiseAbs()).norm();
         o.centre = c.grid.center;
+        if (route && !route->radial()) {
+            // The lines from the wall nodes as they are now: up the potential's gradient.
+            const std::vector<Vec3> wall = wall_from ? std::vector<Vec3>(wall_from->begin(),
+                                                                         wall_from->begin() + Id(route->wall->size()))
+                                                     : *route->wall;
+            const WallPaths paths = exterior_paths(*route, wall, o.cells_per_edge);
+            o.paths = &paths;
+            return make_o_grid(body, o);
+        }
         o.wall_from = wall_from;
         return make_o_grid(body, o);
     }
@@ -130,6 +165,13 @@ BlockGrid build_grid(const Case& c, const ImplicitFunction& body,
     }
     OHGridOptions o = o_h_grid_options(c, body);
     o.wall_from = wall_from;
+    if (route && !route->radial()) {
+        o.axis = -1;
+        o.centre = route->centre;
+        o.core_half = route->core_half;
+        if (!wall_from) o.wall_nodes = route->wall.get();
+        return make_o_h_grid(body, o);
+    }
     if (c.grid.axis == "auto") o.axis = choose_o_h_axis(body, o);
     return make_o_h_grid(body, o);
 }
@@ -147,7 +189,8 @@ Id nonpositive_cells(const BlockGrid& grid) {
 // TFI. When the volume built so has more cells with a scaled Jacobian <= 0 than the grid
 // had, or cannot be built (wall nodes that slid far from their lines' core or far-field
 // ends, in deep concavities), the grid as constructed is kept.
-void surface_pass(const Case& c, const ImplicitFunction& body, BlockGrid& grid, std::ostream& log) {
+void surface_pass(const Case& c, const ImplicitFunction& body, const WallRoute* route,
+                  BlockGrid& grid, std::ostream& log) {
     untangle::UntangleOptions surface = untangle_options(c.solver, log);
     surface.max_optimize_iterations = c.solver.surface_iterations;
     log << "  surface grid on u = 0 (2D functional, wall nodes only):\n";
@@ -159,7 +202,7 @@ void surface_pass(const Case& c, const ImplicitFunction& body, BlockGrid& grid, 
                        s.nodes, s.triangles, s.max_move);
     if (c.domain == "exterior" || c.grid.topology != "single-block") {
         try {
-            BlockGrid rebuilt = build_grid(c, body, &grid.points);  // same blocks and node ids
+            BlockGrid rebuilt = build_grid(c, body, &grid.points, route);  // same blocks and node ids
             grid.points = std::move(rebuilt.points);
         } catch (const std::invalid_argument& e) {  // a wall node behind its core node
             log << "  no volume can be built from that wall (" << e.what()
@@ -184,9 +227,19 @@ void surface_pass(const Case& c, const ImplicitFunction& body, BlockGrid& grid, 
 RunResult run_case(const Case& given, const std::string& outdir, const RunOptions& options,
                    std::ostream& log) {
     PhaseTimer timer(log);
+    const std::optional<TriangleSurface> surface = reference_surface(given.geometry);
+    if (surface) refuse_topology(given, *surface, log);
     const Body body = make_body(given.geometry);
     timer.done("geometry");
-    Case c = given;  // with grid.axis "auto" resolved, once, and written so
+    Case c = given;  // with the wall's route and grid.axis "auto" resolved, once, and written so
+    WallRoute route;
+    if (c.domain == "exterior" || c.grid.topology == "o-h") {
+        route = choose_wall_route(c, *body, surface, cells_per_edge(c, *body),
+                                  untangle_options(c.solver, log), log);
+        c.grid.center = route.centre;
+        if (!route.radial()) timer.done("wall (sphere map)");
+    }
+    if (!route.radial() && c.domain != "exterior") c.grid.axis = "none";  // one core block
     if (c.domain != "exterior" && c.grid.topology == "o-h" && c.grid.axis == "auto") {
         const int axis = choose_o_h_axis(*body, o_h_grid_options(c, *body));
         c.grid.axis = axis < 0 ? "none" : std::string(1, char('x' + axis));
@@ -194,17 +247,27 @@ RunResult run_case(const Case& given, const std::string& outdir, const RunOption
             log << "  grid axis " << c.grid.axis << ": the body's creases run around it\n";
     }
     RunResult result;
-    result.grid = build_grid(c, *body);
+    try {
+        result.grid = build_grid(c, *body, nullptr, &route);
+    } catch (const std::invalid_argument& e) {
+        if (route.not_star_shaped.empty()) throw;
+        throw InputError(fmt::format("{}: {}, and the rays from there do not place a wall: {}",
+                                     c.path, route.not_star_shaped, e.what()));
+    }
     timer.done("grid", fmt::format("({}, {} blocks, {} cells)",
                                    c.domain == "exterior" ? "o-grid" : c.grid.topology,
                                    result.grid.blocks.size(), result.grid.num_cells()));
     if (c.solver.optimize_iterations > 0 || measure_quality(result.grid).inverted_cells > 0) {
-        const FeatureSnapping snapped = snap_to_features(result.grid, *body);
-        if (snapped.crease_nodes + snapped.corner_nodes > 0)
-            log << fmt::format("  sharp features: {} wall nodes on creases, {} on corners\n",
-                               snapped.crease_nodes, snapped.corner_nodes);
+        // A wall placed through the sphere map follows no crease: nodes pulled onto creases
+        // across its lines would fold its quads. It slides on u = 0 as a smooth surface.
+        if (route.radial()) {
+            const FeatureSnapping snapped = snap_to_features(result.grid, *body);
+            if (snapped.crease_nodes + snapped.corner_nodes > 0)
+                log << fmt::format("  sharp features: {} wall nodes on creases, {} on corners\n",
+                                   snapped.crease_nodes, snapped.corner_nodes);
+        }
         if (c.solver.surface_iterations > 0) {
-            surface_pass(c, *body, result.grid, log);
+            surface_pass(c, *body, &route, result.grid, log);
             timer.done("surface");
         }
         GridOptimizationOptions o;
@@ -223,7 +286,6 @@ RunResult run_case(const Case& given, const std::string& outdir, const RunOption
         }
         timer.done("optimization");
     }
-    const std::optional<TriangleSurface> surface = reference_surface(c.geometry);
     result.report = measure_grid(result.grid, *body, wall_layers(c), surface ? &*surface : nullptr);
     timer.done("quality");
 

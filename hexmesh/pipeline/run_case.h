@@ -12,6 +12,7 @@
 #include "io/quality_report.h"
 #include "surface/body.h"
 #include "volume/o_h_grid.h"
+#include "hexmesh/pipeline/wall_route.h"
 #include "volume/stretching.h"
 
 namespace hexmesh {
@@ -31,8 +32,12 @@ struct RunResult {
 // from those wall nodes instead of the radial projections; the single block has no such
 // construction and throws std::invalid_argument. grid.axis "auto" is resolved by
 // choose_o_h_axis (volume/o_h_grid.h) on each call.
+// With a route that is not radial (a body that is not star-shaped: hexmesh/pipeline/wall_route.h),
+// the route's wall lattice (or wall_from's) instead of the radial projections, and for the
+// exterior its lines up the route's potential.
 BlockGrid build_grid(const Case& c, const ImplicitFunction& body,
-                     const std::vector<Vec3>* wall_from = nullptr);
+                     const std::vector<Vec3>* wall_from = nullptr,
+                     const WallRoute* route = nullptr);
 
 // The O-H grid options of an interior case (grid.axis "auto" as -1: see choose_o_h_axis).
 OHGridOptions o_h_grid_options(const Case& c, const ImplicitFunction& body);

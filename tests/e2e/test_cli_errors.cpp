@@ -51,7 +51,7 @@ TEST(CliErrors, NegativeSize) {
 
 TEST(CliErrors, BodyThatCannotBeGridded) {
     expect_refused("torus", R"({"geometry": {"torus": {"major_radius": 1, "minor_radius": 0.3}}})",
-                   "is not inside the body");
+                   "the body is not star-shaped around its deepest point");
 }
 
 TEST(CliErrors, QualityOfAMissingMesh) {

@@ -163,6 +163,13 @@ TEST(CaseFile, ExteriorDomainWithFarField) {
     EXPECT_EQ(c.far_field.shape, "box");
     EXPECT_DOUBLE_EQ(c.far_field.size, 12);
     EXPECT_DOUBLE_EQ(c.grid.cell_size, 0.1);
+    EXPECT_EQ(c.grid.wall_cells, 30);
+    // Not given: twice the patch's cells out to the far field, and 10 from a core to the wall.
+    EXPECT_EQ(parse_case(R"({"geometry": {"sphere": {"radius": 1}}, "domain": "exterior",
+                            "grid": {"cells_per_edge": 12}})", "c.json").grid.wall_cells, 24);
+    EXPECT_EQ(parse_case(R"({"geometry": {"sphere": {"radius": 1}}, "domain": "exterior"})", "c.json")
+                  .grid.wall_cells, 40);
+    EXPECT_EQ(parse_case(R"({"geometry": {"sphere": {"radius": 1}}})", "c.json").grid.wall_cells, 10);
 }
 
 TEST(CaseFile, FarFieldNeedsAnExteriorDomain) {

@@ -86,6 +86,6 @@ TEST(RunCase, FailedRunLeavesNoOutput) {
     const fs::path dir = fs::temp_directory_path() / "hexmesh_test_run_case_fail";
     fs::remove_all(dir);
     std::ostringstream log;
-    EXPECT_THROW(run_case(c, dir.string(), RunOptions{}, log), std::invalid_argument);
+    EXPECT_THROW(run_case(c, dir.string(), RunOptions{}, log), InputError);
     EXPECT_FALSE(fs::exists(dir));
 }

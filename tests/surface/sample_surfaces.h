@@ -98,6 +98,25 @@ inline TriangleSurface cylinder_surface(double radius, double height, int segmen
     return s;
 }
 
+// Torus about the z axis through the origin (genus 1): n x m quads split in two.
+inline TriangleSurface torus_surface(double major, double minor, int n, int m) {
+    const double pi = 3.14159265358979323846;
+    TriangleSurface s;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < m; ++j) {
+            const double a = 2 * pi * i / n, b = 2 * pi * j / m;
+            s.points.emplace_back((major + minor * std::cos(b)) * std::cos(a),
+                                  (major + minor * std::cos(b)) * std::sin(a), minor * std::sin(b));
+        }
+    const auto id = [&](int i, int j) { return (i % n) * m + (j % m); };
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < m; ++j) {
+            s.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+            s.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+        }
+    return s;
+}
+
 // Binary STL; the 80-byte header starts with "solid" on purpose (as many exporters do).
 inline void write_stl_binary(const std::string& path, const TriangleSurface& s) {
     std::ofstream out(path, std::ios::binary);

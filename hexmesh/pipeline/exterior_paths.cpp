@@ -1,0 +1,102 @@
+#include "hexmesh/pipeline/exterior_paths.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "volume/cube_sphere.h"
+
+namespace hexmesh {
+namespace {
+
+// The quads of the lattice on the unit sphere, slid there by the 2D functional with the target
+// of each quad's own mean edge lengths: folds untangled, the rest barely moved.
+void untangle_on_sphere(std::vector<Vec3>& directions, int n, const untangle::UntangleOptions& solver) {
+    const CubeSurfaceLattice lattice = make_cube_surface_lattice(n);
+    untangle::Problem p;
+    p.points = directions;
+    p.kinds.assign(p.points.size(), VertexKind::slip);
+    double total = 0;
+    for (const CubePatch& patch : cube_patches)
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i) {
+                const std::array<Id, 4> q{lattice.number_of(lattice.patch_point(patch, i, j)),
+                                          lattice.number_of(lattice.patch_point(patch, i + 1, j)),
+                                          lattice.number_of(lattice.patch_point(patch, i + 1, j + 1)),
+                                          lattice.number_of(lattice.patch_point(patch, i, j + 1))};
+                const auto length = [&](int a, int b) { return (p.points[q[a]] - p.points[q[b]]).norm(); };
+                // Mean lengths of the two pairs of opposite edges: (0-1, 3-2) and (0-3, 1-2).
+                const double first = std::max(0.5 * (length(0, 1) + length(3, 2)), 1e-9);
+                const double second = std::max(0.5 * (length(0, 3) + length(1, 2)), 1e-9);
+                total += first + second;
+                for (int c = 0; c < 4; ++c) {
+                    p.triangles.push_back({q[c], q[(c + 1) % 4], q[(c + 3) % 4]});
+                    p.triangle_targets.push_back(c % 2 == 0 ? untangle::rectangle_corner_target(first, second)
+                                                            : untangle::rectangle_corner_target(second, first));
+                }
+            }
+    p.length_scale = total / (2.0 * 6 * n * n);
+    p.surface_normal = [](Id, const Vec3& x) { return x; };
+    p.project_to_surface = [](Id, const Vec3& x) { return Vec3(x.normalized()); };
+    untangle::UntangleOptions o = solver;
+    o.log = nullptr;
+    o.max_optimize_iterations = std::min(o.max_optimize_iterations, 3);
+    untangle::untangle_and_optimize(p, o);
+    directions = std::move(p.points);
+}
+
+}  // namespace
+
+std::vector<Vec3> gradient_line_up(const ImplicitFunction& potential, Vec3 p, double c0,
+                                   double step, std::vector<double>& levels) {
+    const double longest = 4 * potential.bounds().diagonal();
+    const auto up = [&](const Vec3& x) {
+        const Vec3 g = potential.gradient(x);
+        const double norm = g.norm();
+        return norm > 0 && std::isfinite(norm) ? Vec3(g / norm) : Vec3(Vec3::Zero());
+    };
+    std::vector<Vec3> line = {p};
+    double f = potential.value(p);
+    levels = {std::max(f, 0.0)};
+    for (double travelled = 0; travelled < longest && f < c0; travelled += step) {
+        const Vec3 v = up(p);
+        if (v.squaredNorm() == 0) break;
+        const Vec3 w = up(p + 0.5 * step * v);
+        Vec3 q = p + step * (w.squaredNorm() > 0 ? w : v);
+        const double fq = potential.value(q);
+        if (fq >= c0 && fq > f) q = p + (q - p) * ((c0 - f) / (fq - f));  // land on the level
+        p = q;
+        f = std::min(fq, c0);
+        line.push_back(p);
+        levels.push_back(std::max(f, levels.back()));
+    }
+    return line;
+}
+
+WallPaths exterior_paths(const ImplicitFunction& potential, const std::vector<Vec3>& wall,
+                         double c0, int n, const Vec3& centre, const untangle::UntangleOptions& solver) {
+    WallPaths paths;
+    paths.cells_per_edge = n;
+    paths.centre = centre;
+    paths.far_level = c0;
+    paths.lines.resize(wall.size());
+    paths.levels.resize(wall.size());
+    const double step = 0.25 * potential.bounds().diagonal() / (std::sqrt(3.0) * n);
+    tbb::parallel_for(size_t(0), wall.size(), [&](size_t s) {
+        paths.lines[s] = gradient_line_up(potential, wall[s], c0, step, paths.levels[s]);
+    });
+    std::vector<Vec3> directions(wall.size());
+    for (size_t s = 0; s < wall.size(); ++s) {
+        const Vec3 d = paths.outer(s) - centre;
+        if (!d.allFinite() || !(d.norm() > 0))
+            throw std::runtime_error("the gradient line of a wall node left no finite point");
+        directions[s] = d.normalized();
+    }
+    untangle_on_sphere(directions, n, solver);
+    paths.far_directions = std::move(directions);
+    return paths;
+}
+
+}  // namespace hexmesh

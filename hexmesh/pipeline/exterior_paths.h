@@ -1,0 +1,34 @@
+// The lines of an exterior grid round a body that is not star-shaped: from its wall nodes up
+// the gradient lines of its exterior potential to a level that is star-shaped.
+#pragma once
+
+#include <vector>
+
+#include "hexmesh/core/implicit_function.h"
+#include "untangle/untangle.h"
+#include "volume/wall_paths.h"
+
+namespace hexmesh {
+
+// The gradient line of `potential` from p up to the level F = c0 (the midpoint rule at unit
+// speed, points `step` apart, the last one on the level), and F at its points in `levels`
+// (non-decreasing). It ends early where the gradient vanishes or after 4 bounds diagonals.
+std::vector<Vec3> gradient_line_up(const ImplicitFunction& potential, Vec3 p, double c0,
+                                   double step, std::vector<double>& levels);
+
+// The paths of an exterior grid's lines (volume/wall_paths.h) from the wall lattice `wall`
+// (CubeSurfaceLattice numbering, n cells per patch edge) up `potential` (F = 0 on the body,
+// rising away from it without a local maximum: surface/exterior_potential.h) to its level c0,
+// which must be star-shaped around `centre`; points every quarter of a wall edge. Gradient
+// lines never cross, so the lines of neighbouring wall nodes stay neighbours out to that
+// level. Their far-field directions: from the centre to the paths' ends, the lattice's quads on
+// the unit sphere then untangled and smoothed with the 2D functional (each quad's target the
+// rectangle of its own mean edge lengths; `solver`'s methods), so that a fold the lines carry
+// out (from the wall, or where gradient lines pass a saddle of the potential, as between the
+// legs of an animal) is not fixed in the far field. Throws std::runtime_error when a line
+// leaves no finite point.
+WallPaths exterior_paths(const ImplicitFunction& potential, const std::vector<Vec3>& wall,
+                         double c0, int cells_per_edge, const Vec3& centre,
+                         const untangle::UntangleOptions& solver);
+
+}  // namespace hexmesh

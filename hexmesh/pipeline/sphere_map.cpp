@@ -1,0 +1,326 @@
+#include "hexmesh/pipeline/sphere_map.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/Polygon_mesh_processing/remesh.h>
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
+#include <Eigen/Geometry>
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <unordered_map>
+
+#include "surface/projection.h"
+#include "volume/cube_sphere.h"
+
+namespace hexmesh {
+namespace {
+
+// The surface with points of identical coordinates merged, triangles that lost a corner to
+// that dropped, and each hole capped by a fan around a new point at its centroid.
+TriangleSurface welded_and_capped(const TriangleSurface& in) {
+    TriangleSurface s;
+    std::map<std::array<double, 3>, int> ids;
+    std::vector<int> id(in.points.size());
+    for (size_t i = 0; i < in.points.size(); ++i) {
+        const Vec3& p = in.points[i];
+        const auto [it, added] = ids.emplace(std::array<double, 3>{p.x(), p.y(), p.z()}, int(s.points.size()));
+        if (added) s.points.push_back(p);
+        id[i] = it->second;
+    }
+    for (const auto& t : in.triangles) {
+        const std::array<int, 3> w{id[t[0]], id[t[1]], id[t[2]]};
+        if (w[0] != w[1] && w[1] != w[2] && w[2] != w[0]) s.triangles.push_back(w);
+    }
+    // Boundary edges a -> b (as their one triangle runs them): the cap runs them b -> a.
+    std::unordered_map<std::uint64_t, int> uses;
+    for (const auto& t : s.triangles)
+        for (int e = 0; e < 3; ++e) ++uses[edge_key(t[e], t[(e + 1) % 3])];
+    std::unordered_map<int, int> next;  // along the boundary, reversed
+    for (const auto& t : s.triangles)
+        for (int e = 0; e < 3; ++e)
+            if (uses[edge_key(t[e], t[(e + 1) % 3])] == 1) next[t[(e + 1) % 3]] = t[e];
+    while (!next.empty()) {
+        std::vector<int> loop = {next.begin()->first};
+        while (true) {
+            const auto it = next.find(loop.back());
+            if (it == next.end()) break;
+            const int to = it->second;
+            next.erase(it);
+            if (to == loop.front()) break;
+            loop.push_back(to);
+        }
+        if (loop.size() < 3) continue;
+        Vec3 centre = Vec3::Zero();
+        for (int p : loop) centre += s.points[p] / double(loop.size());
+        const int c = int(s.points.size());
+        s.points.push_back(centre);
+        for (size_t k = 0; k < loop.size(); ++k)
+            s.triangles.push_back({loop[k], loop[(k + 1) % loop.size()], c});
+    }
+    return s;
+}
+
+// The surface remeshed (CGAL's isotropic remeshing: edges split, collapsed and flipped, points
+// relaxed on the surface, the topology kept) to edges of one length, for about `triangles`
+// triangles: the map need not follow the surface's detail, only its shape, and well-shaped
+// triangles of one size keep Tutte's embedding and the map's targets well conditioned (a CAD
+// part's few long slivers do neither).
+TriangleSurface remeshed(const TriangleSurface& s, size_t triangles) {
+    using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+    using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
+    Mesh mesh;
+    std::vector<Mesh::Vertex_index> v;
+    for (const Vec3& p : s.points) v.push_back(mesh.add_vertex(Kernel::Point_3(p.x(), p.y(), p.z())));
+    for (const auto& t : s.triangles)
+        if (mesh.add_face(v[t[0]], v[t[1]], v[t[2]]) == Mesh::null_face()) return s;  // not a manifold
+    double area = 0;
+    for (const auto& t : s.triangles)
+        area += 0.5 * (s.points[t[1]] - s.points[t[0]]).cross(s.points[t[2]] - s.points[t[0]]).norm();
+    // An equilateral triangle of edge e has area sqrt(3) e^2 / 4.
+    const double edge = std::sqrt(4 * area / (std::sqrt(3.0) * double(triangles)));
+    CGAL::Polygon_mesh_processing::isotropic_remeshing(
+        faces(mesh), edge, mesh, CGAL::parameters::number_of_iterations(3));
+    mesh.collect_garbage();
+    TriangleSurface out;
+    for (const auto vi : mesh.vertices()) {
+        const auto& p = mesh.point(vi);
+        out.points.emplace_back(p.x(), p.y(), p.z());
+    }
+    for (const auto f : mesh.faces()) {
+        std::array<int, 3> t;
+        int c = 0;
+        for (const auto vi : mesh.vertices_around_face(mesh.halfedge(f))) t[c++] = int(vi.idx());
+        out.triangles.push_back(t);
+    }
+    return out;
+}
+
+// Tutte's embedding onto the sphere (see map_to_sphere), the pole at point `pole`.
+std::vector<Vec3> tutte_on_sphere(const TriangleSurface& s, int pole) {
+    const int np = int(s.points.size());
+    // The pole's neighbours in order: triangle (pole, a, b) gives a -> b.
+    std::unordered_map<int, int> after;
+    for (const auto& t : s.triangles)
+        for (int c = 0; c < 3; ++c)
+            if (t[c] == pole) after[t[(c + 1) % 3]] = t[(c + 2) % 3];
+    std::vector<int> ring = {after.begin()->first};
+    while (ring.size() <= after.size()) {
+        const int b = after.at(ring.back());
+        if (b == ring.front()) break;
+        ring.push_back(b);
+    }
+    if (ring.size() != after.size())
+        throw std::invalid_argument("the surface is not a manifold at its highest point");
+
+    std::vector<std::vector<int>> neighbours(np);
+    for (const auto& t : s.triangles)
+        for (int c = 0; c < 3; ++c) {
+            neighbours[t[c]].push_back(t[(c + 1) % 3]);
+            neighbours[t[c]].push_back(t[(c + 2) % 3]);
+        }
+    for (auto& n : neighbours) {
+        std::sort(n.begin(), n.end());
+        n.erase(std::unique(n.begin(), n.end()), n.end());
+    }
+    std::vector<Eigen::Vector2d> plane(np, Eigen::Vector2d::Zero());
+    std::vector<int> unknown(np, -1);
+    for (size_t k = 0; k < ring.size(); ++k) {
+        const double a = 2 * M_PI * double(k) / double(ring.size());
+        plane[ring[k]] = Eigen::Vector2d(std::cos(a), std::sin(a));
+        unknown[ring[k]] = -2;
+    }
+    unknown[pole] = -3;
+    int count = 0;
+    for (int p = 0; p < np; ++p)
+        if (unknown[p] == -1) unknown[p] = count++;
+    std::vector<Eigen::Triplet<double>> entries;
+    Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(count, 2);
+    for (int p = 0; p < np; ++p) {
+        const int row = unknown[p];
+        if (row < 0) continue;
+        entries.emplace_back(row, row, double(neighbours[p].size()));
+        for (int q : neighbours[p]) {
+            if (unknown[q] >= 0) entries.emplace_back(row, unknown[q], -1.0);
+            else rhs.row(row) += plane[q].transpose();  // a ring point (the pole is no neighbour)
+        }
+    }
+    Eigen::SparseMatrix<double> laplacian(count, count);
+    laplacian.setFromTriplets(entries.begin(), entries.end());
+    const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(laplacian);
+    if (solver.info() != Eigen::Success)
+        throw std::invalid_argument("the surface's Tutte system is singular: it is not one piece");
+    const Eigen::MatrixX2d solution = solver.solve(rhs);
+    for (int p = 0; p < np; ++p)
+        if (unknown[p] >= 0) plane[p] = solution.row(unknown[p]).transpose();
+
+    // The inverse stereographic projection from the north pole, the ring at latitude where
+    // the disk's radius rho lands: the pole's triangles form a small cap.
+    constexpr double rho = 3;
+    std::vector<Vec3> sphere(np);
+    for (int p = 0; p < np; ++p) {
+        if (p == pole) {
+            sphere[p] = Vec3::UnitZ();
+            continue;
+        }
+        const Eigen::Vector2d q = rho * plane[p];
+        const double r2 = q.squaredNorm();
+        sphere[p] = Vec3(2 * q.x(), 2 * q.y(), r2 - 1) / (1 + r2);
+    }
+    // Seen from outside the projection turns the plane over: mirror when the triangles turn
+    // clockwise (negative signed volume).
+    double volume = 0;
+    for (const auto& t : s.triangles) volume += sphere[t[0]].dot(sphere[t[1]].cross(sphere[t[2]]));
+    if (volume < 0)
+        for (Vec3& p : sphere) p.x() = -p.x();
+    return sphere;
+}
+
+}  // namespace
+
+// Triangles binned by the cells of a uniform lattice over [-1, 1]^3 their spherical triangle
+// may reach.
+struct SphereMap::Locator {
+    static constexpr int m = 24;
+    std::vector<std::vector<int>> cells = std::vector<std::vector<int>>(m * m * m);
+    static int cell_of(double v) { return std::clamp(int((v + 1.02) / 2.04 * m), 0, m - 1); }
+    static int cell(const Vec3& p) { return cell_of(p.x()) + m * (cell_of(p.y()) + m * cell_of(p.z())); }
+};
+
+SphereMap::SphereMap(TriangleSurface surface, std::vector<Vec3> sphere)
+    : surface_(std::move(surface)), sphere_(std::move(sphere)), locator_(std::make_unique<Locator>()) {
+    for (int t = 0; t < int(surface_.triangles.size()); ++t) {
+        const auto& tri = surface_.triangles[t];
+        const Vec3 a = sphere_[tri[0]], b = sphere_[tri[1]], c = sphere_[tri[2]];
+        // The box of points spread over the spherical triangle (its sides bulge out of the
+        // chord's box).
+        Vec3 lo = a.cwiseMin(b).cwiseMin(c), hi = a.cwiseMax(b).cwiseMax(c);
+        constexpr int k = 4;
+        for (int i = 0; i <= k; ++i)
+            for (int j = 0; i + j <= k; ++j) {
+                const Vec3 p = (double(i) * a + double(j) * b + double(k - i - j) * c).normalized();
+                if (p.allFinite()) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+            }
+        const Vec3 pad = 0.05 * (hi - lo) + Vec3::Constant(1e-9);
+        lo -= pad, hi += pad;
+        for (int k = Locator::cell_of(lo.z()); k <= Locator::cell_of(hi.z()); ++k)
+            for (int j = Locator::cell_of(lo.y()); j <= Locator::cell_of(hi.y()); ++j)
+                for (int i = Locator::cell_of(lo.x()); i <= Locator::cell_of(hi.x()); ++i)
+                    locator_->cells[i + Locator::m * (j + Locator::m * k)].push_back(t);
+    }
+}
+
+SphereMap::~SphereMap() = default;
+SphereMap::SphereMap(SphereMap&&) noexcept = default;
+
+Id SphereMap::inverted() const {
+    Id count = 0;
+    for (const auto& t : surface_.triangles)
+        count += !(sphere_[t[0]].dot(sphere_[t[1]].cross(sphere_[t[2]])) > 0);
+    return count;
+}
+
+Vec3 SphereMap::surface_point(const Vec3& q) const {
+    // Barycentric weights of the ray along q in triangle t: the triple products of q with its
+    // edges (all >= 0 inside); the triangle with the largest smallest weight is taken, so a
+    // ray through an edge or a sliver's gap still finds one.
+    int best = -1;
+    double best_min = -1e300;
+    Eigen::Vector3d best_w;
+    const auto consider = [&](int t) {
+        const auto& tri = surface_.triangles[t];
+        const Vec3 &a = sphere_[tri[0]], &b = sphere_[tri[1]], &c = sphere_[tri[2]];
+        const Eigen::Vector3d w(q.dot(b.cross(c)), q.dot(c.cross(a)), q.dot(a.cross(b)));
+        const double sum = w.sum();
+        if (!(sum > 0)) return;
+        const double low = w.minCoeff() / sum;
+        if (low > best_min) best_min = low, best = t, best_w = w / sum;
+    };
+    for (int t : locator_->cells[Locator::cell(q)]) consider(t);
+    if (best_min < 0)  // not inside any binned there: every triangle (a map with a fold)
+        for (int t = 0; t < int(surface_.triangles.size()); ++t) consider(t);
+    if (best < 0) throw std::logic_error("SphereMap: no triangle faces the direction");
+    const auto& tri = surface_.triangles[best];
+    best_w = best_w.cwiseMax(0.0);
+    best_w /= best_w.sum();
+    return best_w[0] * surface_.points[tri[0]] + best_w[1] * surface_.points[tri[1]] +
+           best_w[2] * surface_.points[tri[2]];
+}
+
+SphereMap map_to_sphere(const TriangleSurface& input, const SphereMapOptions& o,
+                        const std::function<Vec3(const Vec3&)>& start) {
+    TriangleSurface s = remeshed(welded_and_capped(input), size_t(o.triangles));
+    if (s.triangles.empty()) throw std::invalid_argument("the surface has no triangle");
+    {
+        std::unordered_map<std::uint64_t, int> edges;
+        for (const auto& t : s.triangles)
+            for (int e = 0; e < 3; ++e) ++edges[edge_key(t[e], t[(e + 1) % 3])];
+        const long long euler = (long long)s.points.size() - (long long)edges.size() + (long long)s.triangles.size();
+        if (euler != 2)
+            throw std::invalid_argument(fmt::format(
+                "the surface is not one closed piece of genus 0 (V - E + F = {})", euler));
+    }
+    int pole = 0;
+    for (int p = 1; p < int(s.points.size()); ++p)
+        if (s.points[p].z() > s.points[pole].z()) pole = p;
+    std::vector<Vec3> sphere(s.points.size());
+    if (start)
+        tbb::parallel_for(size_t(0), sphere.size(), [&](size_t i) { sphere[i] = start(s.points[i]); });
+    else
+        sphere = tutte_on_sphere(s, pole);
+
+    // Targets: each triangle's own shape, scaled so their areas add up to the sphere's.
+    double area = 0;
+    for (const auto& t : s.triangles)
+        area += 0.5 * (s.points[t[1]] - s.points[t[0]]).cross(s.points[t[2]] - s.points[t[0]]).norm();
+    const double scale = std::sqrt(4 * M_PI / area);
+    untangle::Problem p;
+    p.points = sphere;
+    p.kinds.assign(sphere.size(), VertexKind::slip);
+    for (const auto& t : s.triangles) {
+        const Vec3 e1 = scale * (s.points[t[1]] - s.points[t[0]]);
+        const Vec3 e2 = scale * (s.points[t[2]] - s.points[t[0]]);
+        const double l1 = e1.norm(), twice = e1.cross(e2).norm();
+        if (!(twice > 1e-12 * l1 * l1)) continue;  // no shape to keep
+        Eigen::Matrix2d h;
+        h << l1, e1.dot(e2) / l1, 0, twice / l1;
+        untangle::TriangleTarget target;
+        target.inverse = h.inverse();
+        target.weight = twice / 2;
+        p.triangles.push_back({t[0], t[1], t[2]});
+        p.triangle_targets.push_back(target);
+    }
+    p.length_scale = std::sqrt(4 * M_PI / double(s.triangles.size()));
+    p.surface_normal = [](Id, const Vec3& x) { return x; };
+    p.project_to_surface = [](Id, const Vec3& x) { return Vec3(x.normalized()); };
+    untangle::UntangleOptions u;
+    u.optimize_solver = o.solver;
+    u.theta = o.theta;
+    u.max_optimize_iterations = o.iterations;
+    u.regularize_below = 1e-3;
+    u.log = nullptr;
+    const untangle::UntangleResult r = untangle::untangle_and_optimize(p, u);
+    if (o.log) *o.log << untangle::format_untangle_summary(r);
+    return SphereMap(std::move(s), std::move(p.points));
+}
+
+std::vector<Vec3> wall_from_sphere_map(const SphereMap& map, int n, const ImplicitFunction& body) {
+    const CubeSurfaceLattice lattice = make_cube_surface_lattice(n);
+    const double h = body.bounds().diagonal() / (std::sqrt(3.0) * n);
+    std::vector<Vec3> wall(lattice.size());
+    tbb::parallel_for(Id(0), lattice.size(), [&](Id s) {
+        const Vec3 q = cube_sphere_ray(lattice.points[s], n, Vec3::Ones()).normalized();
+        ProjectionOptions o;
+        o.tolerance = 1e-12;
+        wall[s] = project_to_surface(body, map.surface_point(q), h, o).point;
+    });
+    for (const Vec3& x : wall)
+        if (!x.allFinite()) throw std::runtime_error("a wall node placed through the sphere map is not finite");
+    return wall;
+}
+
+}  // namespace hexmesh

@@ -1,0 +1,118 @@
+#include "hexmesh/pipeline/wall_route.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+
+#include "hexmesh/pipeline/exterior_paths.h"
+#include "hexmesh/pipeline/sphere_map.h"
+#include "surface/exact_distance.h"
+#include "surface/exterior_potential.h"
+#include "surface/level_sets.h"
+
+namespace hexmesh {
+namespace {
+
+constexpr int star_rays = 1000;
+constexpr double first_level = 0.9;  // of the exterior potential
+
+
+std::string point(const Vec3& x) { return fmt::format("({:.4g}, {:.4g}, {:.4g})", x.x(), x.y(), x.z()); }
+
+// Whether F = c is star-shaped around `centre` (rays sampled every `step`, angles up to
+// max_angle_deg).
+bool star_shaped(const ImplicitFunction& f, double c, const Vec3& centre, double step,
+                 double max_angle_deg) {
+    static const std::vector<Vec3> directions = sphere_directions(star_rays);
+    const double reach = 1.01 * (f.bounds().size().norm() + (f.bounds().center() - centre).norm());
+    return star_shaped_level(f, c, centre, directions, step, reach, max_angle_deg);
+}
+
+}  // namespace
+
+WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
+                            const std::optional<TriangleSurface>& surface, int cells_per_edge,
+                            const untangle::UntangleOptions& solver, std::ostream& log) {
+    WallRoute route;
+    const Box3 box = body.bounds();
+    const double step = box.size().maxCoeff() / 512;  // finer than a surface file's voxel
+    route.centre = c.grid.center.value_or(box.center());
+    std::string what = c.grid.center ? "grid.center" : "the centre of its bounds";
+    if (c.grid.center && !(body.value(route.centre) < 0))
+        throw InputError(fmt::format("{}: grid.center {} is not inside the body", c.path, point(route.centre)));
+    if (body.value(route.centre) < 0 && star_shaped(body, 0, route.centre, step, 90)) {
+        log << fmt::format("  the body is star-shaped around {} {}: wall placed radially\n", what,
+                           point(route.centre));
+        return route;
+    }
+    if (c.domain != "exterior" && !c.grid.center) {
+        // A surface file's SDF is a distance only within a few voxels of the surface.
+        std::optional<ExactDistance> exact;
+        if (surface) exact.emplace(*surface);
+        const auto depth = [&](const Vec3& x) { return exact ? exact->distance(x) : -body.value(x); };
+        const std::optional<Vec3> deepest = deepest_point(body, box.diagonal() / 60, depth);
+        if (!deepest)
+            throw InputError(fmt::format("{}: no point of the body is inside it (u < 0 nowhere "
+                                         "on a lattice of a hundredth of its diagonal)", c.path));
+        route.centre = *deepest;
+        what = "its deepest point";
+        if (star_shaped(body, 0, route.centre, step, 90)) {
+            log << fmt::format("  the body is star-shaped around its deepest point {}: wall "
+                               "placed radially\n", point(route.centre));
+            return route;
+        }
+    }
+    if (!surface) {
+        // The map onto the sphere takes a surface file: formulas and CSG are placed radially
+        // all the same (the first point each ray meets), as a body whose rays cross u = 0 once
+        // but a few between the lattice's may be.
+        route.not_star_shaped = fmt::format("the body is not star-shaped around {} {}", what, point(route.centre));
+        log << "  " << route.not_star_shaped
+            << " (a surface file's would be mapped onto the sphere): wall placed radially all the same\n";
+        return route;
+    }
+    auto start = std::chrono::steady_clock::now();
+    const auto since = [&start] {
+        const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        start = std::chrono::steady_clock::now();
+        return s;
+    };
+    if (c.domain != "exterior") {
+        const double depth = surface ? ExactDistance(*surface).distance(route.centre) : -body.value(route.centre);
+        route.core_half = Vec3::Constant(0.45 * depth);
+        log << fmt::format("  the body is not star-shaped around {} {} (depth {:.4g}):\n", what,
+                           point(route.centre), depth);
+    } else {
+        auto potential = std::make_shared<ExteriorPotential>(body);
+        log << fmt::format("  the body is not star-shaped around {} {}: exterior potential ({} "
+                           "unknowns, {} iterations, {:.2f} s)\n", what, point(route.centre),
+                           potential->unknowns(), potential->iterations(), since());
+        for (int tenth = 1; tenth <= 9 && route.far_level == 0; ++tenth)
+            if (star_shaped(*potential, 0.1 * tenth, route.centre, potential->spacing() / 2, 80))
+                route.far_level = 0.1 * tenth;
+        if (route.far_level == 0)
+            throw InputError(fmt::format("{}: no level of the exterior potential is star-shaped "
+                                         "around {}: give grid.center near the middle of the body",
+                                         c.path, point(route.centre)));
+        route.potential = std::move(potential);
+    }
+    SphereMapOptions m;
+    m.log = &log;
+    const SphereMap map = map_to_sphere(*surface, m);
+    log << fmt::format("  its surface mapped onto the sphere ({} triangles, {} turned over, {:.2f} s)",
+                       map.surface().triangles.size(), map.inverted(), since())
+        << (route.potential ? fmt::format("; lines out to the potential's level {:.1f}\n", route.far_level)
+                            : fmt::format("; core cube of half-size {:.4g}\n", route.core_half->x()));
+    route.wall = std::make_shared<std::vector<Vec3>>(wall_from_sphere_map(map, cells_per_edge, body));
+    route.solver = solver;
+    route.solver.log = nullptr;
+    return route;
+}
+
+WallPaths exterior_paths(const WallRoute& route, const std::vector<Vec3>& wall, int cells_per_edge) {
+    return exterior_paths(*route.potential, wall, route.far_level, cells_per_edge, route.centre,
+                          route.solver);
+}
+
+}  // namespace hexmesh

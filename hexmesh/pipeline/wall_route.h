@@ -1,0 +1,66 @@
+// How the wall grid of a case's body is placed: radially from a centre the body is
+// star-shaped around, or carried in from a far surface that is.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <ostream>
+
+#include "hexmesh/core/implicit_function.h"
+#include "hexmesh/core/triangle_surface.h"
+#include "io/case_file.h"
+#include "untangle/untangle.h"
+#include "volume/wall_paths.h"
+
+namespace hexmesh {
+
+struct WallRoute {
+    Vec3 centre = Vec3::Zero();
+    // Not radial: the wall lattice (CubeSurfaceLattice numbering) placed through a map of the
+    // body's surface onto the sphere (hexmesh/pipeline/sphere_map.h) and, for an exterior
+    // grid, the potential whose gradient lines carry it out to its level far_level, which is
+    // star-shaped around `centre` (hexmesh/pipeline/wall_continuation.h). Radial: empty, the
+    // builders project rays from `centre`.
+    std::shared_ptr<const std::vector<Vec3>> wall;
+    std::shared_ptr<const ImplicitFunction> potential;
+    double far_level = 0;
+    // Interior: the core box's half extents, around `centre`, inside the body.
+    std::optional<Vec3> core_half;
+    // Radial all the same for a body that is not star-shaped (no surface file to map): why,
+    // for the message of a construction that then fails.
+    std::string not_star_shaped;
+    untangle::UntangleOptions solver;  // of the 2D solves on the far-field sphere
+
+    bool radial() const { return !wall; }
+};
+
+// The route of the case's grid (both domains; the single block keeps its own construction):
+// - radial from grid.center when given, else from the centre of the body's bounds, when the
+//   body is star-shaped around it (every one of 1000 rays crosses u = 0 once): the analytic and
+//   star-shaped bodies keep the grids they had;
+// - interior: else radial from the body's deepest point (smallest u) when it is star-shaped
+//   around that; else the wall lattice through a map of the surface onto the sphere, around a
+//   core cube at the deepest point inside the largest ball there (half-size 0.45 of its
+//   radius), the lines straight from the core to the wall (the optimizer's untangling bends
+//   them into what sticks out); surface files only (see below);
+// - exterior: else the wall lattice through a map of the surface onto the sphere, and the
+//   lines out along the gradient lines of the body's exterior potential
+//   (surface/exterior_potential.h) to its lowest level in 0.1, 0.2, ... 0.9 that is star-shaped
+//   around the centre of the bounds (or grid.center), rays meeting it within 80 degrees of its
+//   normal; surface files only (see below).
+// The choice and why go to `log`, then the continuation's progress, one line per level;
+// `cells_per_edge` and `solver` are those of its wall lattice and 2D solves. Throws InputError
+// naming the case when grid.center is outside the body or when no point of it is inside. A
+// formula or CSG body that is not star-shaped is placed radially all the same (the first point
+// of u = 0 on each ray: fine when only rays between the lattice's cross it again).
+WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
+                            const std::optional<TriangleSurface>& surface, int cells_per_edge,
+                            const untangle::UntangleOptions& solver, std::ostream& log);
+
+// The paths of an exterior grid's lines (volume/wall_paths.h) from these wall nodes (the
+// route's, or the same moved on u = 0) up the route's potential; their far-field directions
+// untangled on the unit sphere. The route must not be radial.
+WallPaths exterior_paths(const WallRoute& route, const std::vector<Vec3>& wall, int cells_per_edge);
+
+}  // namespace hexmesh

@@ -1,0 +1,199 @@
+#include "surface/exterior_potential.h"
+
+#include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace hexmesh {
+namespace {
+
+enum class NodeKind : unsigned char { free, body, box };
+
+// The 6 face neighbours' offsets in the flat node numbering.
+std::array<long long, 6> neighbour_offsets(const std::array<int, 3>& n) {
+    const long long sx = 1, sy = n[0], sz = (long long)n[0] * n[1];
+    return {-sx, sx, -sy, sy, -sz, sz};
+}
+
+// Sum over the flat range of f(index), in parallel, deterministic.
+template <class F>
+double parallel_sum(size_t count, F&& f) {
+    return tbb::parallel_deterministic_reduce(
+        tbb::blocked_range<size_t>(0, count, 1 << 14), 0.0,
+        [&](const tbb::blocked_range<size_t>& r, double s) {
+            for (size_t i = r.begin(); i != r.end(); ++i) s += f(i);
+            return s;
+        },
+        [](double a, double b) { return a + b; });
+}
+
+template <class F>
+void parallel_each(size_t count, F&& f) {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 1 << 14),
+                      [&](const tbb::blocked_range<size_t>& r) {
+                          for (size_t i = r.begin(); i != r.end(); ++i) f(i);
+                      });
+}
+
+// The boundary rule of Gibou et al.: the wall lies at theta h from the free node, towards a
+// neighbour inside the body (u changes sign linearly); the coupling becomes 1 / theta.
+constexpr double min_theta = 0.05;
+
+}  // namespace
+
+ExteriorPotential::ExteriorPotential(const ImplicitFunction& body,
+                                     const ExteriorPotentialOptions& o) {
+    if (!(o.margin > 0) || o.resolution < 8 || !(o.tolerance > 0) || o.max_iterations < 1)
+        throw std::invalid_argument("ExteriorPotential: margin, resolution (>= 8), tolerance and "
+                                    "iterations must be positive");
+    const Box3 b = body.bounds();
+    const double longest = b.size().maxCoeff();
+    h_ = longest / o.resolution;
+    const Vec3 lo = b.lo - Vec3::Constant(o.margin * longest);
+    for (int a = 0; a < 3; ++a)
+        n_[a] = int(std::ceil((b.size()[a] + 2 * o.margin * longest) / h_)) + 1;
+    box_ = {lo, lo + h_ * Vec3(n_[0] - 1, n_[1] - 1, n_[2] - 1)};
+    const size_t count = size_t(n_[0]) * n_[1] * n_[2];
+    const auto at = [&](size_t id) {
+        const int i = int(id % n_[0]), j = int((id / n_[0]) % n_[1]), k = int(id / (size_t(n_[0]) * n_[1]));
+        return std::array<int, 3>{i, j, k};
+    };
+
+    std::vector<double> u(count);
+    std::vector<NodeKind> kind(count);
+    parallel_each(count, [&](size_t id) {
+        const auto [i, j, k] = at(id);
+        u[id] = body.value(lo + h_ * Vec3(i, j, k));
+        const bool face = i == 0 || j == 0 || k == 0 || i == n_[0] - 1 || j == n_[1] - 1 || k == n_[2] - 1;
+        kind[id] = face ? NodeKind::box : u[id] <= 0 ? NodeKind::body : NodeKind::free;
+    });
+    const std::array<long long, 6> step = neighbour_offsets(n_);
+
+    // The operator (A x)_i = diag_i x_i - sum of x over free neighbours, and its right side.
+    std::vector<double> diag(count, 0), rhs(count, 0);
+    parallel_each(count, [&](size_t id) {
+        if (kind[id] != NodeKind::free) return;
+        for (long long s : step) {
+            const size_t m = size_t((long long)id + s);
+            if (kind[m] == NodeKind::body) {
+                diag[id] += 1 / std::max(min_theta, u[id] / (u[id] - u[m]));
+            } else {
+                diag[id] += 1;
+                if (kind[m] == NodeKind::box) rhs[id] += 1;
+            }
+        }
+    });
+    const auto apply = [&](const std::vector<double>& x, std::vector<double>& y) {
+        parallel_each(count, [&](size_t id) {
+            if (kind[id] != NodeKind::free) return void(y[id] = 0);
+            double sum = diag[id] * x[id];
+            for (long long s : step) sum -= x[size_t((long long)id + s)];  // 0 unless free
+            y[id] = sum;
+        });
+    };
+
+    // Preconditioned conjugate gradients (Jacobi), from F = min(1, u / margin).
+    const double margin = o.margin * longest;
+    std::vector<double> x(count, 0), r(count), z(count), p(count), q(count);
+    parallel_each(count, [&](size_t id) {
+        if (kind[id] == NodeKind::free) x[id] = std::min(1.0, u[id] / margin);
+    });
+    apply(x, q);
+    parallel_each(count, [&](size_t id) { r[id] = kind[id] == NodeKind::free ? rhs[id] - q[id] : 0; });
+    const double norm_b = std::sqrt(parallel_sum(count, [&](size_t id) { return rhs[id] * rhs[id]; }));
+    parallel_each(count, [&](size_t id) { z[id] = kind[id] == NodeKind::free ? r[id] / diag[id] : 0; });
+    p = z;
+    double rz = parallel_sum(count, [&](size_t id) { return r[id] * z[id]; });
+    unknowns_ = (long long)std::count(kind.begin(), kind.end(), NodeKind::free);
+    double residual = std::sqrt(parallel_sum(count, [&](size_t id) { return r[id] * r[id]; }));
+    int it = 0;
+    for (; it < o.max_iterations && residual > o.tolerance * norm_b; ++it) {
+        apply(p, q);
+        const double alpha = rz / parallel_sum(count, [&](size_t id) { return p[id] * q[id]; });
+        parallel_each(count, [&](size_t id) {
+            x[id] += alpha * p[id];
+            r[id] -= alpha * q[id];
+            z[id] = kind[id] == NodeKind::free ? r[id] / diag[id] : 0;
+        });
+        const double rz_next = parallel_sum(count, [&](size_t id) { return r[id] * z[id]; });
+        const double beta = rz_next / rz;
+        rz = rz_next;
+        parallel_each(count, [&](size_t id) { p[id] = z[id] + beta * p[id]; });
+        residual = std::sqrt(parallel_sum(count, [&](size_t id) { return r[id] * r[id]; }));
+    }
+    iterations_ = it;
+    if (residual > o.tolerance * norm_b)
+        throw std::runtime_error(fmt::format(
+            "the exterior potential did not converge in {} iterations (relative residual {:.3g})",
+            it, residual / norm_b));
+
+    // Inside the body: u times the slope F / u of the free neighbours (their mean), or of all
+    // nodes next to the body where a node has no free neighbour.
+    values_.assign(count, 1.0);
+    std::vector<double> slope(count, 0);
+    parallel_each(count, [&](size_t id) {
+        if (kind[id] == NodeKind::free) values_[id] = x[id];
+        if (kind[id] != NodeKind::body) return;
+        double sum = 0;
+        int found = 0;
+        for (long long s : step) {
+            const long long m = (long long)id + s;
+            if (m < 0 || m >= (long long)count || kind[m] != NodeKind::free) continue;
+            sum += x[m] / u[m];
+            ++found;
+        }
+        if (found) slope[id] = sum / found;
+    });
+    double total = 0;
+    long long counted = 0;
+    for (size_t id = 0; id < count; ++id)
+        if (slope[id] > 0) total += slope[id], ++counted;
+    const double mean_slope = counted ? total / double(counted) : 1 / margin;
+    parallel_each(count, [&](size_t id) {
+        if (kind[id] == NodeKind::body) values_[id] = u[id] * (slope[id] > 0 ? slope[id] : mean_slope);
+    });
+}
+
+double ExteriorPotential::value(const Vec3& p) const {
+    const Vec3 q = (p - box_.lo) / h_;
+    const Vec3 outside = (box_.lo - p).cwiseMax(p - box_.hi).cwiseMax(0.0);
+    if (outside.squaredNorm() > 0) return 1 + outside.norm();
+    const int i = std::min(int(q.x()), n_[0] - 2), j = std::min(int(q.y()), n_[1] - 2),
+              k = std::min(int(q.z()), n_[2] - 2);
+    const Vec3 t = q - Vec3(i, j, k);
+    double v = 0;
+    for (int c = 0; c < 8; ++c) {
+        const int a = c & 1, b = (c >> 1) & 1, d = c >> 2;
+        v += (a ? t.x() : 1 - t.x()) * (b ? t.y() : 1 - t.y()) * (d ? t.z() : 1 - t.z()) *
+             node(i + a, j + b, k + d);
+    }
+    return v;
+}
+
+Vec3 ExteriorPotential::gradient(const Vec3& p) const {
+    const Vec3 q = (p - box_.lo) / h_;
+    const Vec3 outside = (box_.lo - p).cwiseMax(p - box_.hi).cwiseMax(0.0);
+    if (outside.squaredNorm() > 0) {
+        const Vec3 away = p - p.cwiseMax(box_.lo).cwiseMin(box_.hi);
+        return away.normalized();
+    }
+    const int i = std::min(int(q.x()), n_[0] - 2), j = std::min(int(q.y()), n_[1] - 2),
+              k = std::min(int(q.z()), n_[2] - 2);
+    const Vec3 t = q - Vec3(i, j, k);
+    Vec3 g = Vec3::Zero();
+    for (int c = 0; c < 8; ++c) {
+        const int a = c & 1, b = (c >> 1) & 1, d = c >> 2;
+        const Vec3 w(a ? t.x() : 1 - t.x(), b ? t.y() : 1 - t.y(), d ? t.z() : 1 - t.z());
+        const Vec3 dw(a ? 1 : -1, b ? 1 : -1, d ? 1 : -1);
+        g += node(i + a, j + b, k + d) *
+             Vec3(dw.x() * w.y() * w.z(), w.x() * dw.y() * w.z(), w.x() * w.y() * dw.z());
+    }
+    return g / h_;
+}
+
+}  // namespace hexmesh

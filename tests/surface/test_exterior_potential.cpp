@@ -1,0 +1,73 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "surface/analytic.h"
+#include "surface/csg.h"
+#include "surface/exterior_potential.h"
+#include "surface/level_sets.h"
+
+using namespace hexmesh;
+
+TEST(ExteriorPotential, VanishesOnTheBodyAndRisesToOneAtTheBox) {
+    const Sphere body(Vec3::Zero(), 0.5);
+    ExteriorPotentialOptions o;
+    o.resolution = 48;
+    const ExteriorPotential f(body, o);
+    EXPECT_GT(f.unknowns(), 0);
+    for (const Vec3& d : sphere_directions(50)) {
+        // On the body, between lattice nodes: the zero level within a quarter of a node spacing.
+        EXPECT_LT(std::abs(f.value(0.5 * d)) / f.gradient(0.5 * d).norm(), 0.25 * f.spacing());
+        EXPECT_LT(f.value(0.4 * d), 0);           // inside
+        // Along the ray out of the body: strictly increasing up to the box (no maximum inside).
+        double previous = f.value(0.5 * d);
+        for (double r = 0.52; r < 0.5 + 0.11; r += 0.02) {
+            const double v = f.value(r * d);
+            EXPECT_GT(v, previous);
+            EXPECT_LT(v, 1);
+            previous = v;
+        }
+    }
+    EXPECT_NEAR(f.value(f.bounds().hi), 1, 1e-12);
+    EXPECT_GT(f.value(f.bounds().hi + Vec3::Ones()), 1);  // beyond the box: 1 + the distance
+}
+
+TEST(ExteriorPotential, ItsLevelsAroundASphereAreSpheresNearTheBody) {
+    // Near a small sphere in a large box the potential is the capacitor's, a function of the
+    // radius alone: its level at 0.05 lies at one radius whatever the direction.
+    const Sphere body(Vec3::Zero(), 0.5);
+    ExteriorPotentialOptions o;
+    o.resolution = 32;
+    o.margin = 0.6;
+    const ExteriorPotential f(body, o);
+    double lo = 1e9, hi = 0;
+    for (const Vec3& d : sphere_directions(200)) {
+        double a = 0.5, b = 1.4;  // bisection for f = 0.05 on the ray
+        for (int it = 0; it < 60; ++it) {
+            const double m = 0.5 * (a + b);
+            (f.value(m * d) < 0.05 ? a : b) = m;
+        }
+        lo = std::min(lo, a), hi = std::max(hi, a);
+    }
+    EXPECT_GT(lo, 0.5);
+    EXPECT_LT(hi - lo, 0.02 * lo);
+}
+
+TEST(ExteriorPotential, EntersAGapFromItsOpeningAndItsLevelsAreStarShapedFarOut) {
+    // A U: two bars joined at the bottom. Inside the gap the potential is lower deep down than
+    // at the opening, and its high levels are star-shaped around the centre though the body
+    // is not.
+    const Body left = std::make_shared<Box>(Vec3(-0.4, 0, 0), Vec3(0.1, 0.5, 0.2));
+    const Body right = std::make_shared<Box>(Vec3(0.4, 0, 0), Vec3(0.1, 0.5, 0.2));
+    const Body bottom = std::make_shared<Box>(Vec3(0, -0.4, 0), Vec3(0.5, 0.1, 0.2));
+    const Csg u(CsgOp::Union, {left, right, bottom});
+    ExteriorPotentialOptions o;
+    o.resolution = 40;
+    const ExteriorPotential f(u, o);
+    EXPECT_LT(f.value(Vec3(0, -0.2, 0)), f.value(Vec3(0, 0.2, 0)));
+    EXPECT_LT(f.value(Vec3(0, 0.2, 0)), f.value(Vec3(0, 0.6, 0)));
+    const std::vector<Vec3> rays = sphere_directions(500);
+    const double step = f.spacing() / 2, reach = 2;
+    EXPECT_FALSE(star_shaped_level(u, 0, Vec3(0, -0.4, 0), rays, step, reach, 90));
+    EXPECT_TRUE(star_shaped_level(f, 0.9, Vec3::Zero(), rays, step, reach, 80));
+}
