@@ -9,7 +9,7 @@ namespace hexmesh {
 
 struct ExteriorPotentialOptions {
     double margin = 0.12;       // the box: the body's bounds widened by this many longest sides
-    int resolution = 112;       // nodes along the body's longest side
+    int resolution = 96;        // nodes along the body's longest side
     double tolerance = 1e-8;    // relative residual of the linear solve
     int max_iterations = 4000;  // conjugate-gradient iterations
 };
