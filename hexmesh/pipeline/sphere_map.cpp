@@ -3,6 +3,8 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Count_stop_predicate.h>
+#include <CGAL/Surface_mesh_simplification/edge_collapse.h>
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
@@ -11,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -65,12 +68,13 @@ TriangleSurface welded_and_capped(const TriangleSurface& in) {
     return s;
 }
 
-// The surface remeshed (CGAL's isotropic remeshing: edges split, collapsed and flipped, points
-// relaxed on the surface, the topology kept) to edges of one length, for about `triangles`
-// triangles: the map need not follow the surface's detail, only its shape, and well-shaped
-// triangles of one size keep Tutte's embedding and the map's targets well conditioned (a CAD
-// part's few long slivers do neither).
-TriangleSurface remeshed(const TriangleSurface& s, size_t triangles) {
+// About `triangles` triangles of the surface, for the map: a finer surface simplified (CGAL's
+// edge collapse, Lindstrom-Turk cost and placement, which keep the shape and the topology), a
+// coarser one refined (CGAL's isotropic remeshing to the edge length of that many equilateral
+// triangles: a CAD part's few long slivers are ill-conditioned targets). The map need not
+// follow the surface's detail, only its shape: the wall nodes it places are then projected
+// onto the body.
+TriangleSurface resampled(const TriangleSurface& s, size_t triangles) {
     using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
     using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
     Mesh mesh;
@@ -78,13 +82,19 @@ TriangleSurface remeshed(const TriangleSurface& s, size_t triangles) {
     for (const Vec3& p : s.points) v.push_back(mesh.add_vertex(Kernel::Point_3(p.x(), p.y(), p.z())));
     for (const auto& t : s.triangles)
         if (mesh.add_face(v[t[0]], v[t[1]], v[t[2]]) == Mesh::null_face()) return s;  // not a manifold
-    double area = 0;
-    for (const auto& t : s.triangles)
-        area += 0.5 * (s.points[t[1]] - s.points[t[0]]).cross(s.points[t[2]] - s.points[t[0]]).norm();
-    // An equilateral triangle of edge e has area sqrt(3) e^2 / 4.
-    const double edge = std::sqrt(4 * area / (std::sqrt(3.0) * double(triangles)));
-    CGAL::Polygon_mesh_processing::isotropic_remeshing(
-        faces(mesh), edge, mesh, CGAL::parameters::number_of_iterations(3));
+    if (s.triangles.size() > triangles) {
+        namespace SMS = CGAL::Surface_mesh_simplification;
+        SMS::Count_stop_predicate<Mesh> stop(triangles * 3 / 2);  // a closed surface's edges
+        SMS::edge_collapse(mesh, stop);
+    } else {
+        double area = 0;
+        for (const auto& t : s.triangles)
+            area += 0.5 * (s.points[t[1]] - s.points[t[0]]).cross(s.points[t[2]] - s.points[t[0]]).norm();
+        // An equilateral triangle of edge e has area sqrt(3) e^2 / 4.
+        const double edge = std::sqrt(4 * area / (std::sqrt(3.0) * double(triangles)));
+        CGAL::Polygon_mesh_processing::isotropic_remeshing(
+            faces(mesh), edge, mesh, CGAL::parameters::number_of_iterations(3));
+    }
     mesh.collect_garbage();
     TriangleSurface out;
     for (const auto vi : mesh.vertices()) {
@@ -98,6 +108,34 @@ TriangleSurface remeshed(const TriangleSurface& s, size_t triangles) {
         out.triangles.push_back(t);
     }
     return out;
+}
+
+// The highest point whose neighbours, the boundary of Tutte's disk, are joined by no edge
+// but those around it: an edge across the disk's boundary (a chord) would hold a triangle of
+// three boundary points, flat or turned over in the embedding.
+int chord_free_pole(const TriangleSurface& s) {
+    std::unordered_map<std::uint64_t, int> edges;
+    std::vector<std::vector<int>> around(s.points.size());
+    for (const auto& t : s.triangles)
+        for (int c = 0; c < 3; ++c) {
+            ++edges[edge_key(t[c], t[(c + 1) % 3])];
+            around[t[c]].push_back(t[(c + 1) % 3]);
+            around[t[c]].push_back(t[(c + 2) % 3]);
+        }
+    std::vector<int> order(s.points.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(), [&](int a, int b) { return s.points[a].z() > s.points[b].z(); });
+    for (int p : order) {
+        std::vector<int>& ring = around[p];
+        std::sort(ring.begin(), ring.end());
+        ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+        // Each ring point is joined to its two ring neighbours; any more edges among them are chords.
+        size_t joined = 0;
+        for (size_t a = 0; a < ring.size(); ++a)
+            for (size_t b = a + 1; b < ring.size(); ++b) joined += edges.count(edge_key(ring[a], ring[b]));
+        if (ring.size() >= 3 && joined == ring.size()) return p;
+    }
+    return order.front();
 }
 
 // Tutte's embedding onto the sphere (see map_to_sphere), the pole at point `pole`.
@@ -253,7 +291,7 @@ Vec3 SphereMap::surface_point(const Vec3& q) const {
 
 SphereMap map_to_sphere(const TriangleSurface& input, const SphereMapOptions& o,
                         const std::function<Vec3(const Vec3&)>& start) {
-    TriangleSurface s = remeshed(welded_and_capped(input), size_t(o.triangles));
+    TriangleSurface s = resampled(welded_and_capped(input), size_t(o.triangles));
     if (s.triangles.empty()) throw std::invalid_argument("the surface has no triangle");
     {
         std::unordered_map<std::uint64_t, int> edges;
@@ -264,9 +302,7 @@ SphereMap map_to_sphere(const TriangleSurface& input, const SphereMapOptions& o,
             throw std::invalid_argument(fmt::format(
                 "the surface is not one closed piece of genus 0 (V - E + F = {})", euler));
     }
-    int pole = 0;
-    for (int p = 1; p < int(s.points.size()); ++p)
-        if (s.points[p].z() > s.points[pole].z()) pole = p;
+    const int pole = chord_free_pole(s);
     std::vector<Vec3> sphere(s.points.size());
     if (start)
         tbb::parallel_for(size_t(0), sphere.size(), [&](size_t i) { sphere[i] = start(s.points[i]); });

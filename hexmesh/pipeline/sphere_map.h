@@ -16,7 +16,7 @@ struct SphereMapOptions {
     // (conformal), 1 their areas (a leg keeps its share of the sphere).
     double theta = 0.9;
     int iterations = 60;  // barrier outer iterations
-    // The surface is remeshed first to about this many triangles of one size: the map need
+    // The surface is simplified or refined first to about this many triangles: the map need
     // only place the wall grid's nodes, which are then projected onto the body.
     int triangles = 3000;
     untangle::SolverOptions solver = untangle::loose_solve();
@@ -46,8 +46,8 @@ private:
     std::unique_ptr<Locator> locator_;
 };
 
-// Maps a closed genus-0 surface (one piece; holes are capped by a fan first; remeshed to
-// `triangles` well-shaped triangles) onto the sphere:
+// Maps a closed genus-0 surface (one piece; holes are capped by a fan first; simplified or
+// refined to about `triangles` triangles) onto the sphere:
 // Tutte's embedding of the surface without one point (the highest) in a disk, bounded by that
 // point's neighbours on a circle (one to one: every point the mean of its neighbours), carried
 // onto the sphere by the inverse stereographic projection with the removed point at the north
