@@ -129,7 +129,10 @@ GeometrySpec parse_geometry(const json& value, const std::string& file, const st
     return s;
 }
 
-GridSpec parse_grid(const JsonFields& g) {
+// `exterior`: the lines run from the wall to the far field, 10 body radii out by default, so
+// wall_cells defaults to twice cells_per_edge (run_case resolves it again when cell_size sets
+// cells_per_edge).
+GridSpec parse_grid(const JsonFields& g, bool exterior) {
     g.allow_only({"topology", "cells_per_edge", "cell_size", "wall_cells", "core_size", "cells",
                   "center", "axis", "ring_cells", "frame_cells"});
     GridSpec grid;
@@ -138,7 +141,8 @@ GridSpec parse_grid(const JsonFields& g) {
     if (g.has("cell_size") && g.has("cells_per_edge"))
         g.fail("cell_size", "either cells_per_edge or cell_size, not both");
     grid.cell_size = g.positive_number("cell_size", 0);
-    grid.wall_cells = g.integer("wall_cells", grid.wall_cells, 1, 4096);
+    grid.wall_cells_given = g.has("wall_cells");
+    grid.wall_cells = g.integer("wall_cells", exterior ? 2 * grid.cells_per_edge : grid.wall_cells, 1, 4096);
     grid.core_size = g.number("core_size", grid.core_size);
     if (!(grid.core_size > 0 && grid.core_size < 1)) g.fail("core_size", "a number in (0, 1)");
     if (g.has("cells")) {
@@ -362,11 +366,9 @@ Case parse_case(const std::string& text, const std::string& path) {
     if (!top.has("geometry")) top.fail("geometry", "an object describing the body");
     c.geometry = parse_geometry(top.at("geometry"), path, "geometry");
     c.domain = top.choice("domain", c.domain, {"interior", "exterior"});
-    if (top.has("grid")) c.grid = parse_grid(top.object("grid"));
-    // An exterior grid's lines run from the wall to the far field, 10 body radii out by
-    // default: twice the patch's cells unless given.
-    if (c.domain == "exterior" && !(top.has("grid") && top.object("grid").has("wall_cells")))
-        c.grid.wall_cells = 2 * c.grid.cells_per_edge;
+    static const json no_grid = json::object();
+    c.grid = parse_grid(top.has("grid") ? top.object("grid") : JsonFields(no_grid, path, "grid"),
+                        c.domain == "exterior");
     if (c.domain == "exterior" && c.grid.axis != "none" && c.grid.axis != "auto")
         top.object("grid").fail(
             "axis", "\"none\" or \"auto\" (an exterior domain is gridded by the O-grid)");

@@ -47,6 +47,7 @@ struct GridSpec {
     // o-h: cells from the core to the wall; o-grid: to the far field (default twice
     // cells_per_edge for an exterior domain)
     int wall_cells = 10;
+    bool wall_cells_given = false;
     double core_size = 0.45;        // o-h: core half-size / body half extents
     std::array<int, 3> cells = {20, 20, 20};  // single-block
     std::optional<Vec3> center;

@@ -18,7 +18,8 @@ struct UnionFind {
     void join(int a, int b) { parent[find(a)] = find(b); }
 };
 
-// Point ids with identical coordinates mapped to the first of them.
+}  // namespace
+
 std::vector<int> welded_ids(const std::vector<Vec3>& points) {
     std::map<std::array<double, 3>, int> first;
     std::vector<int> id(points.size());
@@ -28,8 +29,6 @@ std::vector<int> welded_ids(const std::vector<Vec3>& points) {
                     .first->second;
     return id;
 }
-
-}  // namespace
 
 SurfaceTopology surface_topology(const TriangleSurface& surface) {
     SurfaceTopology topology;

@@ -25,6 +25,9 @@ struct SurfaceTopology {
     long long non_manifold_edges = 0;          // used by three or more triangles
 };
 
+// For each point, the first point with the same coordinates (itself when none comes before).
+std::vector<int> welded_ids(const std::vector<Vec3>& points);
+
 // Components by union-find over the triangles' points; for each, V - E + F and the boundary
 // loops (a boundary point with more than two boundary edges closes several loops, each
 // counted). Zero-area triangles count like any other.

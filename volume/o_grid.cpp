@@ -44,6 +44,10 @@ void check_options(const OGridOptions& o) {
             "layer needs at least one cell beyond it to reach the far field; use fewer wall "
             "layers or more cells",
             law.layers, o.layers));
+    if (o.paths && o.layers < 2)
+        throw std::invalid_argument(fmt::format(
+            "layers is {}: lines along paths need at least 2 cells, one to the far surface and "
+            "one beyond it to the far field", o.layers));
 }
 
 // Throws unless the far field encloses the bounds with the margin.
@@ -254,16 +258,19 @@ struct LevelledLine {
     std::vector<double> arc, level;
 
     Vec3 at_arc(double a) const {
-        size_t k = std::upper_bound(arc.begin(), arc.end(), a) - arc.begin();
-        k = std::clamp<size_t>(k, 1, x.size() - 1);
-        const double w = std::clamp((a - arc[k - 1]) / std::max(arc[k] - arc[k - 1], 1e-300), 0.0, 1.0);
+        const auto [k, w] = segment_at(a);
         return x[k - 1] + w * (x[k] - x[k - 1]);
     }
     double level_at_arc(double a) const {
+        const auto [k, w] = segment_at(a);
+        return level[k - 1] + w * (level[k] - level[k - 1]);
+    }
+    // The segment [k - 1, k] holding arc length a and the weight of x[k] there (a line has at
+    // least two points: exterior_paths refuses shorter ones).
+    std::pair<size_t, double> segment_at(double a) const {
         size_t k = std::upper_bound(arc.begin(), arc.end(), a) - arc.begin();
         k = std::clamp<size_t>(k, 1, x.size() - 1);
-        const double w = std::clamp((a - arc[k - 1]) / std::max(arc[k] - arc[k - 1], 1e-300), 0.0, 1.0);
-        return level[k - 1] + w * (level[k] - level[k - 1]);
+        return {k, std::clamp((a - arc[k - 1]) / std::max(arc[k] - arc[k - 1], 1e-300), 0.0, 1.0)};
     }
     // The first point at `c` (the level taken as non-decreasing: its running maximum).
     Vec3 at_level(double c) const {
@@ -307,7 +314,7 @@ void place_nodes_on_paths(const WallPaths& paths, const std::vector<Vec3>& wall,
     std::nth_element(sorted.begin(), sorted.begin() + ns / 2, sorted.end());
     const double typical_top = sorted[ns / 2];
     double outer = 0, beyond = 0;
-    for (Id s = 0; s < ns; ++s) outer += lines[s].x.back().norm() / double(ns), beyond += (far[s] - lines[s].x.back()).norm() / double(ns);
+    for (Id s = 0; s < ns; ++s) outer += (lines[s].x.back() - paths.centre).norm() / double(ns), beyond += (far[s] - lines[s].x.back()).norm() / double(ns);
     const double level_steps = std::log(paths.far_level / typical_top) / std::log(growth);
     const double far_steps = std::log1p(beyond / std::max(outer, 1e-300) * (growth - 1)) / std::log(growth) + 1;
     const int free_cells = nk - m;
@@ -328,8 +335,8 @@ void place_nodes_on_paths(const WallPaths& paths, const std::vector<Vec3>& wall,
             x[k] = l.at_level(std::exp(lo + (hi - lo) * double(k - m) / double(k_far - m)));
         x[k_far] = l.x.back();
         // Beyond: geometric from the last cell's height to the far-field node.
-        const double first = std::max((x[k_far] - x[k_far - 1]).norm(), 1e-12);
         const double rest = (far[s] - x[k_far]).norm();
+        const double first = std::max((x[k_far] - x[k_far - 1]).norm(), 1e-9 * rest);
         const int cells = nk - k_far;
         // Cells first q, first q^2, ... adding up to the rest (uniform if even `first` is too
         // long for them).

@@ -33,7 +33,7 @@ struct OGridOptions {
     // false: always the bounds' box.
     bool patch_corners_on_body_corners = true;
     // The wall lattice carried in from a far star-shaped surface (for a body that is not
-    // star-shaped around the centre: hexmesh/pipeline/wall_continuation.h): its wall is the
+    // star-shaped around the centre: hexmesh/pipeline/exterior_paths.h): its wall is the
     // grid's (unless wall_from is given), its centre the grid's, and each line follows its
     // path instead of leaving the wall along its normal (see make_o_grid). nullptr: the radial
     // construction.

@@ -11,7 +11,7 @@ namespace hexmesh {
 // path of each of its nodes out to a far surface, star-shaped around `centre`: lines[s] is the
 // polyline of surface point s from the wall (front) to the far surface (back), along which a
 // potential rises from 0 on the wall to `far_level` (levels[s], one value per point,
-// increasing), e.g. a gradient line (hexmesh/pipeline/wall_continuation.h makes them). The
+// increasing), e.g. a gradient line (hexmesh/pipeline/exterior_paths.h makes them). The
 // surfaces of equal level are nested: grid layers laid along them do not cross.
 struct WallPaths {
     int cells_per_edge = 0;

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <fmt/format.h>
+
 #include "volume/cube_sphere.h"
 
 namespace hexmesh {
@@ -89,6 +91,13 @@ WallPaths exterior_paths(const ImplicitFunction& potential, const std::vector<Ve
     });
     std::vector<Vec3> directions(wall.size());
     for (size_t s = 0; s < wall.size(); ++s) {
+        // A line that stopped short of the far level (the gradient vanished: a saddle of the
+        // potential, or it wandered four diagonals) would pile its nodes on its last point.
+        if (paths.lines[s].size() < 2 || paths.levels[s].back() < (1 - 1e-9) * c0)
+            throw std::runtime_error(fmt::format(
+                "the exterior potential's gradient line from the wall point ({:.4g}, {:.4g}, {:.4g}) "
+                "stops at level {:.3g} short of the far level {:.3g} (the gradient vanishes there)",
+                wall[s].x(), wall[s].y(), wall[s].z(), paths.levels[s].back(), c0));
         const Vec3 d = paths.outer(s) - centre;
         if (!d.allFinite() || !(d.norm() > 0))
             throw std::runtime_error("the gradient line of a wall node left no finite point");

@@ -232,6 +232,8 @@ RunResult run_case(const Case& given, const std::string& outdir, const RunOption
     const Body body = make_body(given.geometry);
     timer.done("geometry");
     Case c = given;  // with the wall's route and grid.axis "auto" resolved, once, and written so
+    if (c.domain == "exterior" && c.grid.cell_size > 0 && !c.grid.wall_cells_given)
+        c.grid.wall_cells = 2 * cells_per_edge(c, *body);
     WallRoute route;
     if (c.domain == "exterior" || c.grid.topology == "o-h") {
         route = choose_wall_route(c, *body, surface, cells_per_edge(c, *body),

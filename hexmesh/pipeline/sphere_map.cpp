@@ -18,26 +18,25 @@
 #include <unordered_map>
 
 #include "surface/projection.h"
+#include "surface/surface_topology.h"
 #include "volume/cube_sphere.h"
 
 namespace hexmesh {
 namespace {
 
 // The surface with points of identical coordinates merged, triangles that lost a corner to
-// that dropped, and each hole capped by a fan around a new point at its centroid.
+// that and points no triangle uses dropped, and each hole capped by a fan around a new point at
+// its centroid.
 TriangleSurface welded_and_capped(const TriangleSurface& in) {
     TriangleSurface s;
-    std::map<std::array<double, 3>, int> ids;
-    std::vector<int> id(in.points.size());
-    for (size_t i = 0; i < in.points.size(); ++i) {
-        const Vec3& p = in.points[i];
-        const auto [it, added] = ids.emplace(std::array<double, 3>{p.x(), p.y(), p.z()}, int(s.points.size()));
-        if (added) s.points.push_back(p);
-        id[i] = it->second;
-    }
+    const std::vector<int> first = welded_ids(in.points);
+    std::vector<int> id(in.points.size(), -1);
     for (const auto& t : in.triangles) {
-        const std::array<int, 3> w{id[t[0]], id[t[1]], id[t[2]]};
-        if (w[0] != w[1] && w[1] != w[2] && w[2] != w[0]) s.triangles.push_back(w);
+        const std::array<int, 3> w{first[t[0]], first[t[1]], first[t[2]]};
+        if (w[0] == w[1] || w[1] == w[2] || w[2] == w[0]) continue;
+        for (int p : w)
+            if (id[p] < 0) id[p] = int(s.points.size()), s.points.push_back(in.points[p]);
+        s.triangles.push_back({id[w[0]], id[w[1]], id[w[2]]});
     }
     // Boundary edges a -> b (as their one triangle runs them): the cap runs them b -> a.
     std::unordered_map<std::uint64_t, int> uses;
@@ -146,11 +145,12 @@ std::vector<Vec3> tutte_on_sphere(const TriangleSurface& s, int pole) {
     for (const auto& t : s.triangles)
         for (int c = 0; c < 3; ++c)
             if (t[c] == pole) after[t[(c + 1) % 3]] = t[(c + 2) % 3];
+    if (after.empty()) throw std::invalid_argument("the surface's highest point is on no triangle");
     std::vector<int> ring = {after.begin()->first};
     while (ring.size() <= after.size()) {
-        const int b = after.at(ring.back());
-        if (b == ring.front()) break;
-        ring.push_back(b);
+        const auto b = after.find(ring.back());
+        if (b == after.end() || b->second == ring.front()) break;
+        ring.push_back(b->second);
     }
     if (ring.size() != after.size())
         throw std::invalid_argument("the surface is not a manifold at its highest point");
@@ -293,15 +293,11 @@ SphereMap map_to_sphere(const TriangleSurface& input, const SphereMapOptions& o,
                         const std::function<Vec3(const Vec3&)>& start) {
     TriangleSurface s = resampled(welded_and_capped(input), size_t(o.triangles));
     if (s.triangles.empty()) throw std::invalid_argument("the surface has no triangle");
-    {
-        std::unordered_map<std::uint64_t, int> edges;
-        for (const auto& t : s.triangles)
-            for (int e = 0; e < 3; ++e) ++edges[edge_key(t[e], t[(e + 1) % 3])];
-        const long long euler = (long long)s.points.size() - (long long)edges.size() + (long long)s.triangles.size();
-        if (euler != 2)
-            throw std::invalid_argument(fmt::format(
-                "the surface is not one closed piece of genus 0 (V - E + F = {})", euler));
-    }
+    if (const SurfaceTopology t = surface_topology(s);
+        t.components.size() != 1 || t.components[0].euler != 2 || t.components[0].boundary_edges != 0)
+        throw std::invalid_argument(fmt::format("the surface is not one closed piece of genus 0 "
+                                                "({} pieces, the largest with V - E + F = {})",
+                                                t.components.size(), t.components[0].euler));
     const int pole = chord_free_pole(s);
     std::vector<Vec3> sphere(s.points.size());
     if (start)

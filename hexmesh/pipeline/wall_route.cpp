@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 
 #include "hexmesh/pipeline/exterior_paths.h"
 #include "hexmesh/pipeline/sphere_map.h"
@@ -15,8 +16,6 @@ namespace hexmesh {
 namespace {
 
 constexpr int star_rays = 1000;
-constexpr double first_level = 0.9;  // of the exterior potential
-
 
 std::string point(const Vec3& x) { return fmt::format("({:.4g}, {:.4g}, {:.4g})", x.x(), x.y(), x.z()); }
 
@@ -39,22 +38,23 @@ WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
     const double step = box.size().maxCoeff() / 512;  // finer than a surface file's voxel
     route.centre = c.grid.center.value_or(box.center());
     std::string what = c.grid.center ? "grid.center" : "the centre of its bounds";
-    if (c.grid.center && !(body.value(route.centre) < 0))
+    // Outside a surface file's body the centre only needs to see the potential's far level.
+    if (c.grid.center && (c.domain != "exterior" || !surface) && !(body.value(route.centre) < 0))
         throw InputError(fmt::format("{}: grid.center {} is not inside the body", c.path, point(route.centre)));
     if (body.value(route.centre) < 0 && star_shaped(body, 0, route.centre, step, 90)) {
         log << fmt::format("  the body is star-shaped around {} {}: wall placed radially\n", what,
                            point(route.centre));
         return route;
     }
+    // A surface file's SDF is a distance only within a few voxels of the surface.
+    std::optional<ExactDistance> exact;
+    if (surface && c.domain != "exterior") exact.emplace(*surface);
     if (c.domain != "exterior" && !c.grid.center) {
-        // A surface file's SDF is a distance only within a few voxels of the surface.
-        std::optional<ExactDistance> exact;
-        if (surface) exact.emplace(*surface);
         const auto depth = [&](const Vec3& x) { return exact ? exact->distance(x) : -body.value(x); };
         const std::optional<Vec3> deepest = deepest_point(body, box.diagonal() / 60, depth);
         if (!deepest)
             throw InputError(fmt::format("{}: no point of the body is inside it (u < 0 nowhere "
-                                         "on a lattice of a hundredth of its diagonal)", c.path));
+                                         "on a lattice of a sixtieth of its diagonal)", c.path));
         route.centre = *deepest;
         what = "its deepest point";
         if (star_shaped(body, 0, route.centre, step, 90)) {
@@ -79,7 +79,7 @@ WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
         return s;
     };
     if (c.domain != "exterior") {
-        const double depth = surface ? ExactDistance(*surface).distance(route.centre) : -body.value(route.centre);
+        const double depth = exact ? exact->distance(route.centre) : -body.value(route.centre);
         route.core_half = Vec3::Constant(0.45 * depth);
         log << fmt::format("  the body is not star-shaped around {} {} (depth {:.4g}):\n", what,
                            point(route.centre), depth);
@@ -99,7 +99,13 @@ WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
     }
     SphereMapOptions m;
     m.log = &log;
-    const SphereMap map = map_to_sphere(*surface, m);
+    const SphereMap map = [&] {
+        try {
+            return map_to_sphere(*surface, m);
+        } catch (const std::invalid_argument& e) {
+            throw InputError(fmt::format("{}: the surface cannot be mapped onto the sphere: {}", c.path, e.what()));
+        }
+    }();
     log << fmt::format("  its surface mapped onto the sphere ({} triangles, {} turned over, {:.2f} s)",
                        map.surface().triangles.size(), map.inverted(), since())
         << (route.potential ? fmt::format("; lines out to the potential's level {:.1f}\n", route.far_level)

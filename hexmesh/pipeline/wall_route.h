@@ -20,7 +20,7 @@ struct WallRoute {
     // Not radial: the wall lattice (CubeSurfaceLattice numbering) placed through a map of the
     // body's surface onto the sphere (hexmesh/pipeline/sphere_map.h) and, for an exterior
     // grid, the potential whose gradient lines carry it out to its level far_level, which is
-    // star-shaped around `centre` (hexmesh/pipeline/wall_continuation.h). Radial: empty, the
+    // star-shaped around `centre` (hexmesh/pipeline/exterior_paths.h). Radial: empty, the
     // builders project rays from `centre`.
     std::shared_ptr<const std::vector<Vec3>> wall;
     std::shared_ptr<const ImplicitFunction> potential;
@@ -38,7 +38,7 @@ struct WallRoute {
 // The route of the case's grid (both domains; the single block keeps its own construction):
 // - radial from grid.center when given, else from the centre of the body's bounds, when the
 //   body is star-shaped around it (every one of 1000 rays crosses u = 0 once): the analytic and
-//   star-shaped bodies keep the grids they had;
+//   star-shaped bodies are placed as a ray from one centre places them;
 // - interior: else radial from the body's deepest point (smallest u) when it is star-shaped
 //   around that; else the wall lattice through a map of the surface onto the sphere, around a
 //   core cube at the deepest point inside the largest ball there (half-size 0.45 of its
@@ -49,11 +49,12 @@ struct WallRoute {
 //   (surface/exterior_potential.h) to its lowest level in 0.1, 0.2, ... 0.9 that is star-shaped
 //   around the centre of the bounds (or grid.center), rays meeting it within 80 degrees of its
 //   normal; surface files only (see below).
-// The choice and why go to `log`, then the continuation's progress, one line per level;
+// The choice, why, and the time of each step (potential, sphere map) go to `log`;
 // `cells_per_edge` and `solver` are those of its wall lattice and 2D solves. Throws InputError
-// naming the case when grid.center is outside the body or when no point of it is inside. A
-// formula or CSG body that is not star-shaped is placed radially all the same (the first point
-// of u = 0 on each ray: fine when only rays between the lattice's cross it again).
+// naming the case when grid.center is outside the body (interior, or a formula outside) or when
+// no point of it is inside. A formula or CSG body that is not star-shaped is placed radially all
+// the same (the first point of u = 0 on each ray: fine when only rays between the lattice's
+// cross it again).
 WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
                             const std::optional<TriangleSurface>& surface, int cells_per_edge,
                             const untangle::UntangleOptions& solver, std::ostream& log);

@@ -111,6 +111,11 @@ TEST(CaseFile, AbsurdSizesAreRefused) {
     const std::string e = error_of(
         R"({"geometry": {"sphere": {"radius": 1}}, "grid": {"cells_per_edge": 4000, "wall_cells": 4000}})");
     EXPECT_NE(e.find("grid.cells_per_edge: expected a grid of at most"), std::string::npos) << e;
+    // Outside, the lines' default count (twice cells_per_edge) is counted too: 300 per edge
+    // is 27 M cells inside the wall but 324 M outside.
+    const std::string outside = error_of(
+        R"({"geometry": {"sphere": {"radius": 1}}, "domain": "exterior", "grid": {"cells_per_edge": 300}})");
+    EXPECT_NE(outside.find("(this one has 351000000)"), std::string::npos) << outside;
 }
 
 TEST(CaseFile, NanIsNotAcceptedAsANumber) {

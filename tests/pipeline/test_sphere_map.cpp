@@ -62,6 +62,16 @@ TEST(SphereMap, HolesAreCappedAndOnePieceIsRequired) {
     EXPECT_THROW(map_to_sphere(two), std::invalid_argument);
 }
 
+TEST(SphereMap, PointsNoTriangleUsesAreLeftOut) {
+    // OBJ and OFF files may list points no face uses: they are not part of the closed piece.
+    TriangleSurface s = test::uv_sphere(Vec3::Zero(), 1, 16, 8);
+    s.points.push_back(Vec3(5, 5, 5));
+    s.points.push_back(Vec3(-5, 0, 0));
+    const SphereMap map = map_to_sphere(s);
+    EXPECT_EQ(map.inverted(), 0);
+    for (const Vec3& p : map.surface().points) EXPECT_LT(p.norm(), 1 + 1e-9);
+}
+
 TEST(SphereMap, TheWallLatticeOfAUFollowsItsArmsAndStaysUnfolded) {
     const TriangleSurface u = test::u_surface(3);
     MeshSdfOptions o;
