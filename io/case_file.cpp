@@ -143,6 +143,7 @@ GridSpec parse_grid(const JsonFields& g, bool exterior) {
     grid.cell_size = g.positive_number("cell_size", 0);
     grid.wall_cells_given = g.has("wall_cells");
     grid.wall_cells = g.integer("wall_cells", exterior ? 2 * grid.cells_per_edge : grid.wall_cells, 1, 4096);
+    grid.core_size_given = g.has("core_size");
     grid.core_size = g.number("core_size", grid.core_size);
     if (!(grid.core_size > 0 && grid.core_size < 1)) g.fail("core_size", "a number in (0, 1)");
     if (g.has("cells")) {

@@ -49,6 +49,7 @@ struct GridSpec {
     int wall_cells = 10;
     bool wall_cells_given = false;
     double core_size = 0.45;        // o-h: core half-size / body half extents
+    bool core_size_given = false;   // else smaller when 0.45 would reach the wall (run_case)
     std::array<int, 3> cells = {20, 20, 20};  // single-block
     std::optional<Vec3> center;
     // o-h: "x" | "y" | "z": the core and the patches across that axis O-gridded around it;

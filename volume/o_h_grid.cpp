@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -124,7 +125,11 @@ double grid_length_scale(const ImplicitFunction& body, int cells_per_edge) {
     return body.bounds().diagonal() / (std::sqrt(3.0) * cells_per_edge);
 }
 
-BlockGrid make_o_h_grid(const ImplicitFunction& body, const OHGridOptions& options) {
+namespace {
+
+// make_o_h_grid; with `fitted_core_size`, only its wall and rays are laid out and the core
+// size that fits them (core_size_within_wall) is written there, the grid left empty.
+BlockGrid o_h_grid(const ImplicitFunction& body, const OHGridOptions& options, double* fitted_core_size) {
     check_options(options);
     const int n = options.cells_per_edge, nk = options.wall_cells;
     const Box3 box = body.bounds();
@@ -196,6 +201,17 @@ BlockGrid make_o_h_grid(const ImplicitFunction& body, const OHGridOptions& optio
     if (options.axis >= 0)
         for (Id id = 0; id < core_nodes; ++id) inner_t[id] = 0.5 * (inner_t[id] + core.t[id]);
 
+    if (fitted_core_size) {
+        // Node s of the core lies at centre + core_size dir, inside while core_size is below
+        // (wall - centre) . dir / |dir|^2.
+        double nearest = std::numeric_limits<double>::infinity();
+        for (Id s = 0; s < ns && !placed; ++s) {
+            const Vec3 dir = ray(inner_t[on_wall[s]]);
+            nearest = std::min(nearest, (wall[s] - centre).dot(dir) / dir.squaredNorm());
+        }
+        *fitted_core_size = options.core_size > 0.9 * nearest ? 0.5 * nearest : options.core_size;
+        return {};
+    }
     BlockGrid grid;
     grid.points.assign(core_nodes + nk * ns, Vec3::Zero());
     grid.kinds.assign(grid.points.size(), VertexKind::interior);
@@ -239,6 +255,18 @@ BlockGrid make_o_h_grid(const ImplicitFunction& body, const OHGridOptions& optio
             grid.blocks.push_back(wall_block(base, f, core.t, nk, node_id));
         }
     return grid;
+}
+
+}  // namespace
+
+BlockGrid make_o_h_grid(const ImplicitFunction& body, const OHGridOptions& options) {
+    return o_h_grid(body, options, nullptr);
+}
+
+double core_size_within_wall(const ImplicitFunction& body, const OHGridOptions& options) {
+    double fitted = options.core_size;
+    o_h_grid(body, options, &fitted);
+    return fitted;
 }
 
 }  // namespace hexmesh

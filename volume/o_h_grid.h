@@ -65,6 +65,13 @@ BlockGrid make_o_h_grid(const ImplicitFunction& body, const OHGridOptions& optio
 // -1 (one core block) for a body without such creases, a smooth one among them.
 int choose_o_h_axis(const ImplicitFunction& body, const OHGridOptions& options);
 
+// The options' core_size, or half the smallest fraction of the way from the centre to the wall
+// along make_o_h_grid's rays (its wall placed as it places it) when the core box would
+// otherwise reach within a tenth of that way of the wall: the core of a body that is
+// star-shaped but thin or concave near its centre (a cross) then stays inside it. A wall
+// placed without rays (wall_nodes, core_half) keeps core_size.
+double core_size_within_wall(const ImplicitFunction& body, const OHGridOptions& options);
+
 // Length scale of a grid of the body with n cells per edge: bounds diagonal / (sqrt(3) n).
 double grid_length_scale(const ImplicitFunction& body, int cells_per_edge);
 

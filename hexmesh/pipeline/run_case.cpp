@@ -248,6 +248,14 @@ RunResult run_case(const Case& given, const std::string& outdir, const RunOption
         if (axis >= 0)
             log << "  grid axis " << c.grid.axis << ": the body's creases run around it\n";
     }
+    if (c.domain != "exterior" && c.grid.topology == "o-h" && route.radial() && route.not_star_shaped.empty() &&
+        !c.grid.core_size_given) {
+        const double fitted = core_size_within_wall(*body, o_h_grid_options(c, *body));
+        if (fitted < c.grid.core_size)
+            log << fmt::format("  core_size {:.3g}: the default {} would reach the wall near the "
+                               "centre\n", fitted, c.grid.core_size);
+        c.grid.core_size = fitted;
+    }
     RunResult result;
     try {
         result.grid = build_grid(c, *body, nullptr, &route);

@@ -13,8 +13,9 @@ namespace hexmesh {
 
 struct SphereMapOptions {
     // Volume (area) weight of the functional the map minimizes: 0 keeps the triangles' shapes
-    // (conformal), 1 their areas (a leg keeps its share of the sphere).
-    double theta = 0.9;
+    // (conformal), 1 their areas (a leg keeps its share of the sphere). At 0.5 the wall lattice
+    // taken through the map folds about half as often on animals and a hand as at 0.9.
+    double theta = 0.5;
     int iterations = 60;  // barrier outer iterations
     // The surface is simplified or refined first to about this many triangles: the map need
     // only place the wall grid's nodes, which are then projected onto the body.

@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
 
 #include "hexmesh/pipeline/sphere_map.h"
 #include "shape_surfaces.h"
@@ -20,6 +22,19 @@ void expect_round_trip(const SphereMap& map, double tolerance) {
     }
 }
 
+// The share of the sphere taken by the images of the U's right arm (x > 0.3, y > -0.3).
+double right_arm_share(const SphereMap& map) {
+    double arm = 0, total = 0;
+    for (const auto& t : map.surface().triangles) {
+        const Vec3 &a = map.sphere()[t[0]], &b = map.sphere()[t[1]], &c = map.sphere()[t[2]];
+        const double area = 0.5 * (b - a).cross(c - a).norm();
+        total += area;
+        const Vec3 centre = (map.surface().points[t[0]] + map.surface().points[t[1]] + map.surface().points[t[2]]) / 3;
+        if (centre.x() > 0.3 && centre.y() > -0.3) arm += area;
+    }
+    return arm / total;
+}
+
 }  // namespace
 
 TEST(SphereMap, ASphereMapsOneToOne) {
@@ -35,16 +50,8 @@ TEST(SphereMap, ABodyThatIsNotStarShapedMapsOneToOne) {
     const SphereMap map = map_to_sphere(u);
     EXPECT_EQ(map.inverted(), 0);
     expect_round_trip(map, 1e-9);
-    // Area: with the volume weight 0.9 each arm keeps about its share of the sphere.
-    double arm = 0, total = 0;
-    for (const auto& t : map.surface().triangles) {
-        const Vec3 &a = map.sphere()[t[0]], &b = map.sphere()[t[1]], &c = map.sphere()[t[2]];
-        const double area = 0.5 * (b - a).cross(c - a).norm();
-        total += area;
-        const Vec3 centre = (map.surface().points[t[0]] + map.surface().points[t[1]] + map.surface().points[t[2]]) / 3;
-        if (centre.x() > 0.3 && centre.y() > -0.3) arm += area;
-    }
-    EXPECT_GT(arm / total, 0.1);  // the right arm holds about 0.18 of the U's area
+    // Area: with the volume weight 0.5 each arm keeps most of its share of the sphere.
+    EXPECT_GT(right_arm_share(map), 0.1);  // the right arm holds about 0.18 of the U's area
 }
 
 TEST(SphereMap, HolesAreCappedAndOnePieceIsRequired) {

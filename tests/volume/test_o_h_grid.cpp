@@ -270,3 +270,24 @@ TEST(OHGrid, RefusesABoundaryLayerThickerThanTheWallBlock) {
     o.wall_layers = {0.2, 1.5, 6};
     EXPECT_THROW(make_o_h_grid(sphere, o), std::invalid_argument);
 }
+
+// A cross of three bars 0.3 thick is star-shaped around its centre, but the default core box
+// (0.45 of the half extents) reaches out of the bars; the fitted core stays inside. A sphere's
+// default core fits and is kept.
+TEST(OHGrid, ACoreThatWouldReachTheWallIsFittedInside) {
+    const Csg cross(CsgOp::Union,
+                    std::vector<Body>{std::make_shared<Box>(Vec3::Zero(), Vec3(1, 0.15, 0.15)),
+                                      std::make_shared<Box>(Vec3::Zero(), Vec3(0.15, 1, 0.15)),
+                                      std::make_shared<Box>(Vec3::Zero(), Vec3(0.15, 0.15, 1))});
+    OHGridOptions o;
+    o.cells_per_edge = 8;
+    o.wall_cells = 4;
+    EXPECT_THROW(make_o_h_grid(cross, o), std::invalid_argument);
+    o.core_size = core_size_within_wall(cross, o);
+    EXPECT_LT(o.core_size, 0.15);
+    const BlockGrid grid = make_o_h_grid(cross, o);
+    for (Id id = 0; id < 9 * 9 * 9; ++id) EXPECT_LT(cross.value(grid.points[id]), 0) << id;
+
+    OHGridOptions round;
+    EXPECT_EQ(core_size_within_wall(Sphere(Vec3::Zero(), 1), round), 0.45);
+}
