@@ -53,6 +53,8 @@ ExteriorPotential::ExteriorPotential(const ImplicitFunction& body,
                                     "iterations must be positive");
     const Box3 b = body.bounds();
     const double longest = b.size().maxCoeff();
+    if (!(longest > 0 && std::isfinite(longest) && b.lo.allFinite()))
+        throw std::invalid_argument("ExteriorPotential: the body's bounds are empty or not finite");
     h_ = longest / o.resolution;
     const Vec3 lo = b.lo - Vec3::Constant(o.margin * longest);
     for (int a = 0; a < 3; ++a)

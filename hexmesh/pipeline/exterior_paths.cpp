@@ -94,7 +94,7 @@ WallPaths exterior_paths(const ImplicitFunction& potential, const std::vector<Ve
         // A line that stopped short of the far level (the gradient vanished: a saddle of the
         // potential, or it wandered four diagonals) would pile its nodes on its last point.
         if (paths.lines[s].size() < 2 || paths.levels[s].back() < (1 - 1e-9) * c0)
-            throw std::runtime_error(fmt::format(
+            throw std::invalid_argument(fmt::format(
                 "the exterior potential's gradient line from the wall point ({:.4g}, {:.4g}, {:.4g}) "
                 "stops at level {:.3g} short of the far level {:.3g} (the gradient vanishes there)",
                 wall[s].x(), wall[s].y(), wall[s].z(), paths.levels[s].back(), c0));

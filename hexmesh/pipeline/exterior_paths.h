@@ -25,8 +25,9 @@ std::vector<Vec3> gradient_line_up(const ImplicitFunction& potential, Vec3 p, do
 // the unit sphere then untangled and smoothed with the 2D functional (each quad's target the
 // rectangle of its own mean edge lengths; `solver`'s methods), so that a fold the lines carry
 // out (from the wall, or where gradient lines pass a saddle of the potential, as between the
-// legs of an animal) is not fixed in the far field. Throws std::runtime_error when a line
-// leaves no finite point.
+// legs of an animal) is not fixed in the far field. Throws std::invalid_argument, naming the
+// wall point, when a line stops short of c0 (the gradient vanishes: a groove narrower than the
+// potential's lattice), std::runtime_error when a line leaves no finite point.
 WallPaths exterior_paths(const ImplicitFunction& potential, const std::vector<Vec3>& wall,
                          double c0, int cells_per_edge, const Vec3& centre,
                          const untangle::UntangleOptions& solver);

@@ -260,9 +260,11 @@ RunResult run_case(const Case& given, const std::string& outdir, const RunOption
     try {
         result.grid = build_grid(c, *body, nullptr, &route);
     } catch (const std::invalid_argument& e) {
-        if (route.not_star_shaped.empty()) throw;
-        throw InputError(fmt::format("{}: {}, and the rays from there do not place a wall: {}",
-                                     c.path, route.not_star_shaped, e.what()));
+        if (!route.not_star_shaped.empty())
+            throw InputError(fmt::format("{}: {}, and the rays from there do not place a wall: {}",
+                                         c.path, route.not_star_shaped, e.what()));
+        if (!route.radial()) throw InputError(fmt::format("{}: {}", c.path, e.what()));
+        throw;
     }
     timer.done("grid", fmt::format("({}, {} blocks, {} cells)",
                                    c.domain == "exterior" ? "o-grid" : c.grid.topology,
