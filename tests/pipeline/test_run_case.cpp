@@ -89,3 +89,18 @@ TEST(RunCase, FailedRunLeavesNoOutput) {
     EXPECT_THROW(run_case(c, dir.string(), RunOptions{}, log), InputError);
     EXPECT_FALSE(fs::exists(dir));
 }
+
+// Outside, with cell_size instead of cells_per_edge, the lines get twice the cells per edge the
+// size gives (4 for a unit sphere at 0.5), and the case written says so.
+TEST(RunCase, ExteriorWallCellsFollowTheCellSize) {
+    const Case c = parse_case(R"({"geometry": {"sphere": {"radius": 1}}, "domain": "exterior",
+        "grid": {"cell_size": 0.5}, "solver": {"optimize_iterations": 0}})", "s.json");
+    const fs::path dir = fs::temp_directory_path() / "hexmesh_test_run_case_cell_size";
+    fs::remove_all(dir);
+    std::ostringstream log;
+    const RunResult result = run_case(c, dir.string(), RunOptions{}, log);
+    EXPECT_EQ(result.grid.num_cells(), 6 * 4 * 4 * 8);
+    const Case written = read_case((dir / "grid.case.json").string());
+    EXPECT_EQ(written.grid.wall_cells, 8);
+    fs::remove_all(dir);
+}
