@@ -161,13 +161,17 @@ ExteriorPotential::ExteriorPotential(const ImplicitFunction& body,
     });
 }
 
-double ExteriorPotential::value(const Vec3& p) const {
+ExteriorPotential::Cell ExteriorPotential::cell_at(const Vec3& p) const {
     const Vec3 q = (p - box_.lo) / h_;
-    const Vec3 outside = (box_.lo - p).cwiseMax(p - box_.hi).cwiseMax(0.0);
-    if (outside.squaredNorm() > 0) return 1 + outside.norm();
     const int i = std::min(int(q.x()), n_[0] - 2), j = std::min(int(q.y()), n_[1] - 2),
               k = std::min(int(q.z()), n_[2] - 2);
-    const Vec3 t = q - Vec3(i, j, k);
+    return {i, j, k, q - Vec3(i, j, k)};
+}
+
+double ExteriorPotential::value(const Vec3& p) const {
+    const Vec3 outside = (box_.lo - p).cwiseMax(p - box_.hi).cwiseMax(0.0);
+    if (outside.squaredNorm() > 0) return 1 + outside.norm();
+    const auto [i, j, k, t] = cell_at(p);
     double v = 0;
     for (int c = 0; c < 8; ++c) {
         const int a = c & 1, b = (c >> 1) & 1, d = c >> 2;
@@ -178,15 +182,12 @@ double ExteriorPotential::value(const Vec3& p) const {
 }
 
 Vec3 ExteriorPotential::gradient(const Vec3& p) const {
-    const Vec3 q = (p - box_.lo) / h_;
     const Vec3 outside = (box_.lo - p).cwiseMax(p - box_.hi).cwiseMax(0.0);
     if (outside.squaredNorm() > 0) {
         const Vec3 away = p - p.cwiseMax(box_.lo).cwiseMin(box_.hi);
         return away.normalized();
     }
-    const int i = std::min(int(q.x()), n_[0] - 2), j = std::min(int(q.y()), n_[1] - 2),
-              k = std::min(int(q.z()), n_[2] - 2);
-    const Vec3 t = q - Vec3(i, j, k);
+    const auto [i, j, k, t] = cell_at(p);
     Vec3 g = Vec3::Zero();
     for (int c = 0; c < 8; ++c) {
         const int a = c & 1, b = (c >> 1) & 1, d = c >> 2;

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "volume/cube_sphere.h"
+#include "volume/o_h_grid.h"
 
 namespace hexmesh {
 namespace {
@@ -85,7 +86,7 @@ WallPaths exterior_paths(const ImplicitFunction& potential, const std::vector<Ve
     paths.far_level = c0;
     paths.lines.resize(wall.size());
     paths.levels.resize(wall.size());
-    const double step = 0.25 * potential.bounds().diagonal() / (std::sqrt(3.0) * n);
+    const double step = 0.25 * grid_length_scale(potential, n);
     tbb::parallel_for(size_t(0), wall.size(), [&](size_t s) {
         paths.lines[s] = gradient_line_up(potential, wall[s], c0, step, paths.levels[s]);
     });

@@ -20,6 +20,7 @@
 #include "surface/projection.h"
 #include "surface/surface_topology.h"
 #include "volume/cube_sphere.h"
+#include "volume/o_h_grid.h"
 
 namespace hexmesh {
 namespace {
@@ -342,7 +343,7 @@ SphereMap map_to_sphere(const TriangleSurface& input, const SphereMapOptions& o,
 
 std::vector<Vec3> wall_from_sphere_map(const SphereMap& map, int n, const ImplicitFunction& body) {
     const CubeSurfaceLattice lattice = make_cube_surface_lattice(n);
-    const double h = body.bounds().diagonal() / (std::sqrt(3.0) * n);
+    const double h = grid_length_scale(body, n);
     std::vector<Vec3> wall(lattice.size());
     tbb::parallel_for(Id(0), lattice.size(), [&](Id s) {
         const Vec3 q = cube_sphere_ray(lattice.points[s], n, Vec3::Ones()).normalized();
