@@ -22,14 +22,7 @@ double distance_to_box(const Box3& box, const Vec3& p) {
 }
 
 bool has_boundary_edges(const TriangleSurface& s) {
-    std::unordered_map<std::uint64_t, int> uses;
-    uses.reserve(2 * s.triangles.size());
-    for (const auto& t : s.triangles)
-        for (int e = 0; e < 3; ++e) {
-            const int a = t[e], b = t[(e + 1) % 3];
-            ++uses[edge_key(a, b)];
-        }
-    for (const auto& [edge, n] : uses)
+    for (const auto& [edge, n] : edge_uses(s.triangles))
         if (n == 1) return true;
     return false;
 }

@@ -48,12 +48,8 @@ SurfaceTopology surface_topology(const TriangleSurface& surface) {
         return it->second;
     };
 
-    std::unordered_map<std::uint64_t, int> edge_uses;
-    for (const auto& t : tris) {
-        SurfaceComponent& c = comps[component_of(t[0])];
-        ++c.triangles;
-        for (int e = 0; e < 3; ++e) ++edge_uses[edge_key(t[e], t[(e + 1) % 3])];
-    }
+    const std::unordered_map<std::uint64_t, int> edges = edge_uses(tris);
+    for (const auto& t : tris) ++comps[component_of(t[0])].triangles;
     std::vector<char> used(np, 0);
     for (const auto& t : tris)
         for (int p : t) used[p] = 1;
@@ -68,7 +64,7 @@ SurfaceTopology surface_topology(const TriangleSurface& surface) {
     // Boundary loops: the cycle rank E - V + C of each component's graph of boundary edges.
     UnionFind boundary(np);
     std::vector<char> on_boundary(np, 0);
-    for (const auto& [key, uses] : edge_uses) {
+    for (const auto& [key, uses] : edges) {
         const int a = int(key >> 32), b = int(key & 0xffffffffu);
         SurfaceComponent& c = comps[component_of(a)];
         ++c.edges;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 #include "hexmesh/core/types.h"
@@ -22,6 +23,16 @@ struct TriangleSurface {
 // of a surface's edges.
 inline std::uint64_t edge_key(int a, int b) {
     return (std::uint64_t(std::min(a, b)) << 32) | std::uint32_t(std::max(a, b));
+}
+
+// How many triangles use each undirected edge (edge_key): 1 on a boundary, 2 inside a closed
+// manifold surface, more where it is not manifold.
+inline std::unordered_map<std::uint64_t, int> edge_uses(const std::vector<std::array<int, 3>>& triangles) {
+    std::unordered_map<std::uint64_t, int> uses;
+    uses.reserve(2 * triangles.size());
+    for (const auto& t : triangles)
+        for (int e = 0; e < 3; ++e) ++uses[edge_key(t[e], t[(e + 1) % 3])];
+    return uses;
 }
 
 // Axis-aligned bounds of the points (lo = hi = 0 for an empty surface).

@@ -40,9 +40,7 @@ TriangleSurface welded_and_capped(const TriangleSurface& in) {
         s.triangles.push_back({id[w[0]], id[w[1]], id[w[2]]});
     }
     // Boundary edges a -> b (as their one triangle runs them): the cap runs them b -> a.
-    std::unordered_map<std::uint64_t, int> uses;
-    for (const auto& t : s.triangles)
-        for (int e = 0; e < 3; ++e) ++uses[edge_key(t[e], t[(e + 1) % 3])];
+    std::unordered_map<std::uint64_t, int> uses = edge_uses(s.triangles);
     std::unordered_map<int, int> next;  // along the boundary, reversed
     for (const auto& t : s.triangles)
         for (int e = 0; e < 3; ++e)
@@ -114,11 +112,10 @@ TriangleSurface resampled(const TriangleSurface& s, size_t triangles) {
 // but those around it: an edge across the disk's boundary (a chord) would hold a triangle of
 // three boundary points, flat or turned over in the embedding.
 int chord_free_pole(const TriangleSurface& s) {
-    std::unordered_map<std::uint64_t, int> edges;
+    const std::unordered_map<std::uint64_t, int> edges = edge_uses(s.triangles);
     std::vector<std::vector<int>> around(s.points.size());
     for (const auto& t : s.triangles)
         for (int c = 0; c < 3; ++c) {
-            ++edges[edge_key(t[c], t[(c + 1) % 3])];
             around[t[c]].push_back(t[(c + 1) % 3]);
             around[t[c]].push_back(t[(c + 2) % 3]);
         }
