@@ -2,6 +2,7 @@
 // (tetrahedra, and triangles on the surface u = 0).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cassert>
 #include <functional>
@@ -119,6 +120,18 @@ struct Problem {
                                 triangle_targets[r]);
         }
         return tet_det(corners(x, element(e).id), target(e));
+    }
+    // Whether every vertex of element e is held (fixed or corner): nothing can change its det.
+    bool held(Id e) const {
+        const ElementNodes nodes = element(e);
+        return std::all_of(nodes.begin(), nodes.end(), [&](Id v) { return degrees_of_freedom(kinds[v]) == 0; });
+    }
+    // The inverted elements that are held: no solve can repair them.
+    std::vector<Id> blocked_elements() const {
+        std::vector<Id> blocked;
+        for (Id e = 0; e < num_elements(); ++e)
+            if (held(e) && !(det(points, e) > 0)) blocked.push_back(e);
+        return blocked;
     }
     // Adds a hex (its corner tets' targets are those of a box with the given edge lengths).
     void add_hex(const std::array<Id, 8>& nodes, const Vec3& edges) {

@@ -33,6 +33,23 @@ struct Best {
     }
 };
 
+// When the inverted count last fell, over all passes of one untangle_and_optimize call.
+struct Progress {
+    Id fewest = std::numeric_limits<Id>::max();
+    double last_fewer = 0;  // seconds since the call began
+    void offer(Id inverted, double now) {
+        if (inverted < fewest) fewest = inverted, last_fewer = now;
+    }
+    // Whether the count has not fallen for longer than `share` of the time so far.
+    bool crawling(double now, double share) const { return now - last_fewer > share * now; }
+};
+
+void log_note(std::ostream* log, const std::string& note) {
+    if (!log) return;
+    *log << "  " << note << "\n";
+    log->flush();
+}
+
 void log_line(std::ostream* log, const IterationRecord& r) {
     if (!log) return;
     *log << fmt::format("  {:<9} {:4d}  E {:12.6e}  eps {:9.3e}  min det {:+10.3e}  inverted {:7d}  "
@@ -45,30 +62,32 @@ void log_line(std::ostream* log, const IterationRecord& r) {
 
 // The eps continuation on `problem` (DESIGN §4), from x = problem.points, until at most
 // options.unrepairable elements are inverted, the iteration budget is spent or progress
-// stalls. Every outer iteration is logged and offered to `best` (judged on `judge`, the
-// whole problem, since `problem` may be a local part of it). eps first shrinks fast; when
-// that stalls, the continuation restarts from the best state it reached, at the eps that
-// state was found with, and shrinks eps by the safe rule.
+// stalls (then result.stopped says how). Every outer iteration is logged and offered to
+// `best` and `progress` (judged on `judge`, the whole problem, since `problem` may be a
+// local part of it). eps first shrinks fast; when that stalls, the continuation restarts
+// from the best state it reached, at the eps that state was found with, and shrinks eps by
+// the safe rule.
 void continuation(Problem& problem, const Assembly& judge, const UntangleOptions& options,
-                  const std::function<double()>& seconds, Best& best, UntangleResult& result,
-                  double regularize_below = 0) {
+                  const std::function<double()>& seconds, Best& best, Progress& progress,
+                  UntangleResult& result, double regularize_below = 0, double start_eps = 0) {
     const Assembly assembly(problem);
     std::vector<Vec3>& x = problem.points;
     ElementStats stats = judge.stats(x);
     Minimizer minimizer(problem, assembly, options.untangle_solver);
-    double eps = std::sqrt(tiny_eps + 0.04 * stats.min_det * stats.min_det);
+    double eps = std::max(start_eps, std::sqrt(tiny_eps + 0.04 * stats.min_det * stats.min_det));
     bool fast = options.fast_sigma > options.safe_sigma;
     Id fewest = stats.inverted;  // the best state of this continuation, and its eps
     std::vector<Vec3> restart = x;
     double restart_eps = eps;
-    int stalled = 0;
+    int stalled = 0, restart_iteration = 0;
     const int first = int(result.history.size()) + 1;
     // Regularizing a valid start: the goal is every det above regularize_below instead.
     const auto done = [&](const ElementStats& e) {
         return regularize_below > 0 ? e.inverted == 0 && e.min_det >= regularize_below
                                     : e.inverted <= options.unrepairable;
     };
-    for (int it = first; it < first + options.max_untangle_iterations && !done(stats); ++it) {
+    int it = first;
+    for (; it < first + options.max_untangle_iterations && !done(stats); ++it) {
         const EnergyParams p{options.untangle_theta, eps};
         const double e_prev = assembly.energy(x, p);
         // Untangled is the goal of this phase: stop as soon as it is reached.
@@ -81,24 +100,45 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
         result.history.push_back(r);
         log_line(options.log, r);
         best.offer(x, stats.inverted, stats.inverted ? infinity : judge.energy(x, {options.theta, 0}));
+        progress.offer(stats.inverted, r.seconds);
         if (stats.inverted < fewest || (regularize_below > 0 && stats.inverted == 0)) {
-            fewest = stats.inverted, restart = x, restart_eps = eps, stalled = 0;
+            fewest = stats.inverted, restart = x, restart_eps = eps, stalled = 0, restart_iteration = it;
         } else {
             ++stalled;
         }
+        if (done(stats)) break;
         // eps this small (in target units) no longer changes anything but the energy's scale.
         const bool stuck = stalled > 0 && eps < negligible_eps;
-        if (fast && (stalled >= options.fast_stall || stuck) && stats.inverted > options.unrepairable) {
+        const bool crawling = regularize_below == 0 && stalled >= options.stall_minimum &&
+                              progress.crawling(r.seconds, options.stall_share);
+        if (fast && !crawling && (stalled >= options.fast_stall || stuck) && stats.inverted > options.unrepairable) {
             fast = false, stalled = 0;
             x = restart, eps = restart_eps;
             stats = judge.stats(x);
+            log_note(options.log, fmt::format("no fewer inverted elements in {} iterations: back to {} "
+                                              "({} inverted, eps {:.3e}), eps now shrinks by the safe rule",
+                                              options.fast_stall,
+                                              restart_iteration ? fmt::format("iteration {}", restart_iteration)
+                                                                : std::string("the start of this pass"),
+                                              fewest, eps));
             continue;
         }
-        if (stalled >= options.stall_iterations || stuck) break;
+        if (stalled >= options.stall_iterations || stuck || crawling) {
+            result.stopped =
+                stuck ? fmt::format("eps fell to {:.1e} with {} inverted elements left", eps, progress.fewest)
+                      : fmt::format("no fewer than {} inverted elements for {:.1f} s ({:.0f} % of the untangling "
+                                    "time, {} outer iterations of this pass)",
+                                    progress.fewest, r.seconds - progress.last_fewer,
+                                    100 * (r.seconds - progress.last_fewer) / std::max(r.seconds, 1e-9), stalled);
+            return;
+        }
         const double sigma = std::max(1 - m.energy / e_prev, fast ? options.fast_sigma : options.safe_sigma);
         const double mu = (1 - sigma) * chi(local.min_det, eps);
         eps = local.min_det < mu ? 2 * std::sqrt(mu * (mu - local.min_det)) : tiny_eps;
     }
+    if (!done(stats))
+        result.stopped = fmt::format("the budget of {} outer iterations is spent with {} inverted elements left",
+                                     options.max_untangle_iterations, progress.fewest);
 }
 
 // The part of `problem` around its inverted elements: vertices within `rings` element rings
@@ -151,6 +191,56 @@ bool local_part(const Problem& problem, const std::vector<std::vector<Id>>& elem
     return free > 0 && part.num_elements() < ne / 2;
 }
 
+// Where the first `most` inverted elements of `problem` are and how their vertices may move
+// ("at (0.34, -0.09, -0.16): 1 interior, 2 slip, 1 feature_edge"), one per "; ".
+std::string describe_inverted(const Problem& problem, int most) {
+    std::string out;
+    int n = 0;
+    for (Id e = 0; e < problem.num_elements() && n < most; ++e) {
+        if (problem.det(problem.points, e) > 0) continue;
+        const ElementNodes nodes = problem.element(e);
+        Vec3 centre = Vec3::Zero();
+        std::array<int, 5> kinds{};
+        for (Id v : nodes) centre += problem.points[v] / nodes.size, ++kinds[int(problem.kinds[v])];
+        std::string how;
+        for (int k = 0; k < 5; ++k)
+            if (kinds[k]) how += fmt::format("{}{} {}", how.empty() ? "" : ", ", kinds[k], to_string(VertexKind(k)));
+        out += fmt::format("{}{} at ({:.4g}, {:.4g}, {:.4g}): {}", n ? "; " : "",
+                           problem.is_triangle(e) ? "surface triangle" : "tet", centre.x(), centre.y(), centre.z(), how);
+        ++n;
+    }
+    return out;
+}
+
+// Repairs the inverted elements of `problem` (x = best.points) in their neighbourhoods of
+// options.local_rings element rings, doubled while the neighbourhood is less than half the
+// problem and the last round repaired something or grew. Returns whether the last round
+// repaired nothing.
+bool repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
+                              const std::vector<std::vector<Id>>& elements_of, const UntangleOptions& options,
+                              const std::function<double()>& seconds, Best& best, Progress& progress,
+                              UntangleResult& result, double start_eps = 0) {
+    bool stalled = false;
+    if (best.inverted <= options.unrepairable || options.local_rings <= 0) return stalled;
+    // A part no larger than the last one, after a round that repaired nothing, ends this:
+    // more rings add no freedom (few free nodes around cells that cannot be repaired).
+    Id previous = 0, inverted_then = std::numeric_limits<Id>::max();
+    for (int rings = options.local_rings; best.inverted > options.unrepairable && rings < (1 << 20); rings *= 2) {
+        Problem part;
+        if (!local_part(problem, elements_of, rings, part)) break;
+        if (part.num_elements() <= previous && best.inverted >= inverted_then) break;
+        previous = part.num_elements();
+        inverted_then = best.inverted;
+        UntangleOptions local = options;
+        local.max_untangle_iterations = std::min(options.max_untangle_iterations, 50);
+        local.stall_iterations = std::min(options.stall_iterations, 10);  // the global pass follows
+        continuation(part, assembly, local, seconds, best, progress, result, 0, start_eps);
+        stalled = best.inverted >= inverted_then;
+        problem.points = best.points;
+    }
+    return stalled;
+}
+
 }  // namespace
 
 UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& options) {
@@ -169,44 +259,67 @@ UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& op
     result.min_det_before = stats.min_det;
     Best best;
     best.offer(x, stats.inverted, assembly.energy(x, {options.theta, 0}));
+    Progress progress;
+    progress.offer(stats.inverted, 0);
+    result.blocked = Id(problem.blocked_elements().size());
 
     // Untangling. Few inverted elements are first repaired locally, in growing
     // neighbourhoods; what is left (or a widespread tangle) is untangled globally.
-    bool local_stalled = false;  // the last local round repaired nothing
-    if (stats.inverted > options.unrepairable && options.local_rings > 0) {
-        std::vector<std::vector<Id>> elements_of(x.size());
+    std::vector<std::vector<Id>> elements_of;
+    if (options.local_rings > 0) {
+        elements_of.resize(x.size());
         for (Id e = 0; e < problem.num_elements(); ++e)
             for (Id v : problem.element(e)) elements_of[v].push_back(e);
-        // A part no larger than the last one, after a round that repaired nothing, ends this:
-        // more rings add no freedom (few free nodes around cells that cannot be repaired).
-        Id previous = 0, inverted_then = std::numeric_limits<Id>::max();
-        for (int rings = options.local_rings; best.inverted > options.unrepairable && rings < (1 << 20);
-             rings *= 2) {
-            Problem part;
-            if (!local_part(problem, elements_of, rings, part)) break;
-            if (part.num_elements() <= previous && best.inverted >= inverted_then) break;
-            previous = part.num_elements();
-            inverted_then = best.inverted;
-            UntangleOptions local = options;
-            local.max_untangle_iterations = std::min(options.max_untangle_iterations, 50);
-            local.stall_iterations = std::min(options.stall_iterations, 10);  // the global pass follows
-            continuation(part, assembly, local, seconds, best, result);
-            local_stalled = best.inverted >= inverted_then;
-            x = best.points;
-        }
     }
+    const auto repair_locally = [&](double start_eps) {
+        return repair_in_neighbourhoods(problem, assembly, elements_of, options, seconds, best, progress, result,
+                                        start_eps);
+    };
+    const bool local_stalled = repair_locally(0);
     if (best.inverted > options.unrepairable) {
         // When the largest neighbourhood the local repair tried repaired nothing, the global
         // pass gets the local stall budget too: what is left is then almost always blocked
         // (an element held by fixed vertices, or by such a neighbour).
         UntangleOptions global = options;
         if (local_stalled) global.stall_iterations = std::min(options.stall_iterations, 10);
-        continuation(problem, assembly, global, seconds, best, result);
+        continuation(problem, assembly, global, seconds, best, progress, result);
+    }
+    x = best.points;
+    // The few elements the continuation leaves often have det ~ -eps all the way down (each
+    // step of eps is matched by their det): their neighbourhoods start again from room_eps,
+    // where the functional lets them move.
+    if (best.inverted > options.unrepairable && options.room_eps > 0 && options.local_rings > 0) {
+        progress.last_fewer = seconds();  // a new start: the stall clock starts again
+        log_note(options.log, fmt::format("{} inverted elements left: their neighbourhoods start again from eps {}",
+                                          best.inverted, options.room_eps));
+        repair_locally(options.room_eps);
+        x = best.points;
+    }
+    // Last resort: the crease and corner vertices of the elements still inverted slide on the
+    // surface instead (a wall quad folded across a crease cannot unfold while its vertex is
+    // held on the crease line), and the local repair runs again. Their kinds come back after.
+    if (best.inverted > options.unrepairable && options.release_creases && options.local_rings > 0 &&
+        problem.project_to_surface && problem.surface_normal) {
+        const std::vector<VertexKind> kinds = problem.kinds;
+        for (Id e = 0; e < problem.num_elements(); ++e)
+            if (!(problem.det(x, e) > 0))
+                for (Id v : problem.element(e))
+                    if (problem.kinds[v] == VertexKind::feature_edge || problem.kinds[v] == VertexKind::corner)
+                        problem.kinds[v] = VertexKind::slip, ++result.released;
+        if (result.released > 0) {
+            progress.last_fewer = seconds();  // new freedom: the stall clock starts again
+            log_note(options.log, fmt::format("{} crease and corner vertices of the inverted elements now slide on "
+                                              "the surface",
+                                              result.released));
+            repair_locally(options.room_eps);
+            x = best.points;
+        }
+        problem.kinds = kinds;
     }
     x = best.points;
     if (best.inverted == 0 && options.regularize_below > 0 &&
         assembly.stats(x).min_det < options.regularize_below) {
-        continuation(problem, assembly, options, seconds, best, result, options.regularize_below);
+        continuation(problem, assembly, options, seconds, best, progress, result, options.regularize_below);
         x = best.points;  // the valid state of lowest barrier energy
     }
 
@@ -235,6 +348,11 @@ UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& op
 
     x = best.points;
     stats = assembly.stats(x);
+    if (stats.inverted <= options.unrepairable) result.stopped.clear();
+    else if (result.blocked > options.unrepairable)
+        result.stopped = fmt::format("{} inverted elements have every vertex held (fixed): no solve can repair them",
+                                     result.blocked);
+    if (!result.stopped.empty()) result.stopped += "; inverted: " + describe_inverted(problem, 3);
     result.inverted_after = stats.inverted;
     result.min_det_after = stats.min_det;
     result.energy_after = best.energy;
@@ -251,6 +369,9 @@ std::string format_untangle_summary(const UntangleResult& r) {
     for (const IterationRecord& h : r.history) (h.barrier ? optimize_its : untangle_its)++;
     out += fmt::format("  {:<28}{:>28}\n", "outer iterations", fmt::format("{} untangle + {} optimize", untangle_its, optimize_its));
     out += fmt::format("  {:<28}{:>28.2f}\n", "time (s)", r.seconds);
+    if (r.released > 0)
+        out += fmt::format("  {:<28}{:>28}\n", "crease vertices released", fmt::format("{} (slide on the surface)", r.released));
+    if (!r.stopped.empty()) out += fmt::format("  untangling stopped: {}\n", r.stopped);
     return out;
 }
 

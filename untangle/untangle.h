@@ -2,6 +2,7 @@
 #pragma once
 
 #include <ostream>
+#include <string>
 #include <vector>
 
 #include "untangle/problem.h"
@@ -26,6 +27,14 @@ struct UntangleOptions {
     double untangle_theta = 0.1;  // volume weight while untangling: shape first is more robust
     int max_untangle_iterations = 200;  // outer iterations (eps updates)
     int stall_iterations = 40;          // stop untangling after this many without progress
+    // Untangling also stops when the inverted count has not fallen for longer than this share
+    // of the time spent so far, after at least stall_minimum outer iterations of the pass
+    // without fewer (counted again from the switch to the safe rule): a continuation that
+    // crawls or cycles ends, with the reason in UntangleResult::stopped. The safe rule often
+    // raises the count for a few iterations before it falls (an exterior grid of a cross:
+    // 626 -> 728 -> 623 over 6 iterations, then valid): it gets those.
+    double stall_share = 0.15;
+    int stall_minimum = 8;
     // eps continuation speed: eps shrinks as if each inner solve had lowered the energy by at
     // least this share (DESIGN §4's sigma floor). Untangling starts with fast_sigma (about
     // 5x smaller eps per outer iteration) and, after fast_stall iterations without fewer
@@ -37,6 +46,12 @@ struct UntangleOptions {
     // Inverted elements are first repaired in their neighbourhood of this many element
     // rings (doubled until it works or covers half the mesh); 0 untangles globally only.
     int local_rings = 2;
+    // eps (target units) the local repair starts again from when elements stay inverted after
+    // the local and global passes; 0: no second start.
+    double room_eps = 0.1;
+    // When elements stay inverted, the crease and corner vertices among theirs slide on the
+    // surface instead and the local repair runs again (validity before the crease's sharpness).
+    bool release_creases = true;
     int max_optimize_iterations = 20;
     int inner_steps = 30;               // descent steps per outer iteration
     // Relative energy decrease that ends an inner untangling solve. Each eps is one stage of
@@ -70,6 +85,12 @@ struct IterationRecord {
 
 struct UntangleResult {
     Id inverted_before = 0, inverted_after = 0;  // elements with det S <= 0
+    Id blocked = 0;  // inverted elements whose vertices are all held: no solve repairs them
+    Id released = 0;  // crease and corner vertices let slide on the surface (release_creases)
+    // Why untangling ended with inverted elements beyond options.unrepairable, for the user
+    // ("no fewer than 3 inverted elements for 12.1 s, 31 % of the untangling time"); empty
+    // when it reached its goal.
+    std::string stopped;
     double min_det_before = 0, min_det_after = 0;  // in target units (1 = perfect)
     double energy_after = 0;                       // barrier energy, +inf if still tangled
     double seconds = 0;

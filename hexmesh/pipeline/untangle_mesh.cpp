@@ -84,14 +84,11 @@ void add_elements(const VolumeMesh& mesh, bool uniform, untangle::Problem& p, do
 
 std::vector<BlockedElement> find_blocked(const VolumeMesh& mesh, const untangle::Problem& p) {
     std::vector<BlockedElement> blocked;
-    for (Id e = 0; e < p.first_triangle(); ++e) {  // the mesh's cells: corner tets and tets
-        const std::array<Id, 4> t = p.element(e).id;
-        const bool all_fixed =
-            std::all_of(t.begin(), t.end(), [&](Id v) { return degrees_of_freedom(p.kinds[v]) == 0; });
-        if (!all_fixed || p.det(p.points, e) > 0) continue;
+    for (Id e : p.blocked_elements()) {
+        if (p.is_triangle(e)) continue;  // the mesh's cells: corner tets and tets
         const bool hex = p.is_hex_corner(e);
         const Id cell = hex ? e / 8 : e - 8 * mesh.num_hexes();
-        blocked.push_back({cell, hex ? int(e % 8) : 0, p.points[t[0]]});
+        blocked.push_back({cell, hex ? int(e % 8) : 0, p.points[p.element(e)[0]]});
     }
     return blocked;
 }

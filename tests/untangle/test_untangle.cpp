@@ -75,6 +75,31 @@ TEST(Untangle, EndsWhenNoFreeNodeCanRepairTheInvertedCells) {
     const UntangleResult r = untangle_and_optimize(p, o);
     EXPECT_GT(r.inverted_before, 0);
     EXPECT_EQ(r.inverted_after, r.inverted_before);
+    EXPECT_EQ(r.blocked, r.inverted_before);
+    EXPECT_NE(r.stopped.find("have every vertex held"), std::string::npos) << r.stopped;
+    EXPECT_NE(format_untangle_summary(r).find("untangling stopped: "), std::string::npos);
+}
+
+// One free vertex that two tets with fixed bases want on opposite sides of a gap (above
+// z = 0 and below z = -1): impossible, though no inverted tet is held. The continuation
+// must end after a few outer iterations without fewer inverted tets, saying where they are.
+TEST(Untangle, AnImpossibleTangleEndsEarlyWithWhereItIs) {
+    Problem p;
+    p.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, -1}, {1, 0, -1}, {0, 1, -1}, {0.3, 0.3, 0.5}};
+    p.kinds.assign(7, VertexKind::fixed);
+    p.kinds[6] = VertexKind::interior;
+    p.tets = {{0, 1, 2, 6}, {3, 5, 4, 6}};  // needs z > 0, and z < -1
+    p.targets.assign(2, regular_tet_target(1.0));
+    UntangleOptions o = options_for(Method::newton_cg);
+    std::ostringstream log;
+    o.log = &log;
+    const UntangleResult r = untangle_and_optimize(p, o);
+    EXPECT_EQ(r.inverted_before, 1);
+    EXPECT_EQ(r.inverted_after, 1);
+    EXPECT_EQ(r.blocked, 0);
+    EXPECT_LE(r.history.size(), 12u) << log.str();  // the stall budget alone would allow 40 and more
+    EXPECT_NE(r.stopped.find("no fewer than 1 inverted elements"), std::string::npos) << r.stopped;
+    EXPECT_NE(r.stopped.find(": 1 interior, 3 fixed"), std::string::npos) << r.stopped;
 }
 
 TEST(Untangle, ValidInputIsOptimizedTowardsTheTarget) {
