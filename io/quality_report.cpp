@@ -93,6 +93,16 @@ std::string format_quality_table(const GridReport& r) {
     row("inverted cells", fmt::format("{}", q.inverted_cells));
     row("min scaled Jacobian", fmt::format("{:.4f}", q.min_scaled_jacobian));
     row("mean scaled Jacobian", fmt::format("{:.4f}", q.mean_scaled_jacobian));
+    if (q.worst_cell >= 0) {
+        const Vec3& c = q.worst_cell_centre;
+        row("  worst cell at", fmt::format("({:.4g}, {:.4g}, {:.4g})", c.x(), c.y(), c.z()));
+        if (r.worst_cell)
+            row("  block, cell", fmt::format("{} ({}, {}, {}){}", r.worst_cell->block, r.worst_cell->i,
+                                             r.worst_cell->j, r.worst_cell->k,
+                                             r.worst_cell->on_wall ? ", on the wall" : ""));
+        else
+            row("  cell", fmt::format("{}", q.worst_cell));
+    }
     row("max skewness", fmt::format("{:.4f}", q.max_skewness));
     row("max non-orthogonality (deg)", fmt::format("{:.2f}", q.max_non_orthogonality_deg));
     row("max aspect ratio", fmt::format("{:.4g}", q.max_aspect_ratio));
@@ -119,6 +129,17 @@ std::string quality_json(const GridReport& r) {
     j["inverted_cells"] = q.inverted_cells;
     j["min_scaled_jacobian"] = q.min_scaled_jacobian;
     j["mean_scaled_jacobian"] = q.mean_scaled_jacobian;
+    if (q.worst_cell >= 0) {
+        nlohmann::ordered_json w;
+        w["cell"] = q.worst_cell;
+        w["centre"] = {q.worst_cell_centre.x(), q.worst_cell_centre.y(), q.worst_cell_centre.z()};
+        if (r.worst_cell) {
+            w["block"] = r.worst_cell->block;
+            w["ijk"] = {r.worst_cell->i, r.worst_cell->j, r.worst_cell->k};
+            w["on_wall"] = r.worst_cell->on_wall;
+        }
+        j["worst_cell"] = w;
+    }
     j["max_skewness"] = q.max_skewness;
     j["max_non_orthogonality_deg"] = q.max_non_orthogonality_deg;
     j["max_aspect_ratio"] = q.max_aspect_ratio;

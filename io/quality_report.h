@@ -12,8 +12,18 @@
 
 namespace hexmesh {
 
+// Where a cell of a block grid is: its block, its (i, j, k) there, and whether a face of it
+// lies on the wall.
+struct CellPlace {
+    std::string block;
+    int i = 0, j = 0, k = 0;
+    bool on_wall = false;
+};
+
 struct GridReport {
     QualityReport quality;
+    // Where quality.worst_cell is, for a block grid.
+    std::optional<CellPlace> worst_cell;
     // Surface fidelity: max |u| over wall nodes divided by the length scale h (the mean
     // wall-edge length), when the grid was built from a known body.
     std::optional<double> max_surface_distance;

@@ -54,6 +54,10 @@ struct QualityReport {
     // counted inverted, since it has a flat corner tet), which inflates the mean.
     double min_scaled_jacobian = 0;
     double mean_scaled_jacobian = 0;
+    // The cell of min_scaled_jacobian (the lowest id among equals; -1 without cells) and its
+    // centre (OpenFOAM's).
+    Id worst_cell = -1;
+    Vec3 worst_cell_centre = Vec3::Zero();
     double max_skewness = 0;               // OpenFOAM checkMesh definition, all faces
     double max_non_orthogonality_deg = 0;  // OpenFOAM checkMesh definition, internal faces
     double max_aspect_ratio = 0;           // OpenFOAM checkMesh definition (cellClosedness)

@@ -170,13 +170,18 @@ FaceGeometry oriented_face(const Cells& cells, Id c, const CellView& v, int f) {
 // Per-cell reductions of the first pass.
 struct CellStats {
     double min_sj = std::numeric_limits<double>::infinity();
+    Id worst = -1;  // the cell of min_sj (the lowest id among equals), and its centre
+    Vec3 worst_centre = Vec3::Zero();
     double sum_sj = 0;
     double max_aspect = 0;
     double min_volume = std::numeric_limits<double>::infinity();
     Id inverted_tets = 0, inverted_cells = 0;
 
+    void offer_worst(double sj, Id cell, const Vec3& centre) {
+        if (sj < min_sj || (sj == min_sj && cell < worst)) min_sj = sj, worst = cell, worst_centre = centre;
+    }
     void join(const CellStats& o) {
-        min_sj = std::min(min_sj, o.min_sj);
+        if (o.worst >= 0) offer_worst(o.min_sj, o.worst, o.worst_centre);
         sum_sj += o.sum_sj;
         max_aspect = std::max(max_aspect, o.max_aspect);
         min_volume = std::min(min_volume, o.min_volume);
@@ -207,6 +212,8 @@ QualityReport make_report(Id cells, const CellStats& per_cell, const FaceStats& 
     report.inverted_corner_tets = per_cell.inverted_tets;
     report.inverted_cells = per_cell.inverted_cells;
     report.min_scaled_jacobian = per_cell.min_sj;
+    report.worst_cell = per_cell.worst;
+    report.worst_cell_centre = per_cell.worst_centre;
     report.mean_scaled_jacobian = per_cell.sum_sj / static_cast<double>(cells);
     report.max_aspect_ratio = per_cell.max_aspect;
     report.min_volume = per_cell.min_volume;
@@ -219,12 +226,12 @@ QualityReport make_report(Id cells, const CellStats& per_cell, const FaceStats& 
 }
 
 // The per-cell part of the first pass: aspect ratio, volume, scaled Jacobian, validity.
-void add_cell(CellStats& acc, const std::array<FaceGeometry, 6>& faces, const CellGeometry& g,
+void add_cell(CellStats& acc, Id cell, const std::array<FaceGeometry, 6>& faces, const CellGeometry& g,
               const std::array<Vec3, 8>& p) {
     acc.max_aspect = std::max(acc.max_aspect, detail::cell_aspect_ratio(faces, g.volume));
     acc.min_volume = std::min(acc.min_volume, g.volume);
     const double sj = hex_scaled_jacobian(p);
-    acc.min_sj = std::min(acc.min_sj, sj);
+    acc.offer_worst(sj, cell, g.centre);
     acc.sum_sj += sj;
     const int inverted = count_inverted_corner_tets(p);
     acc.inverted_tets += inverted;
@@ -266,7 +273,7 @@ QualityReport measure(const Cells& cells) {
                 volumes[c] = g.volume;
                 std::array<Vec3, 8> p;
                 for (int k = 0; k < 8; ++k) p[k] = points[v.nodes[k]];
-                add_cell(acc, faces, g, p);
+                add_cell(acc, c, faces, g, p);
             }
             return acc;
         },
@@ -406,7 +413,7 @@ void BlockQuality::add(const BlockGrid& grid, const Block& block, const std::vec
                 imax = faces[1];
                 jmax[size_t(i)] = faces[3];
                 if (!stats) continue;
-                add_cell(*stats, faces, g, p);
+                add_cell(*stats, first + Id(at) + Id(plane) * k, faces, g, p);
 
                 // Faces: internal ones from below (i, j, k), then block-boundary ones.
                 for (int f = 0; f < 6; f += 2) {

@@ -62,6 +62,9 @@ GridMeter::GridMeter(const ImplicitFunction& body, const WallLayers& law,
 
 void GridMeter::add(const BlockGrid& grid, const Block& block, const std::vector<Id>* ids) {
     quality_.add(grid, block, ids);
+    Added a{block.name, block.cells(), {}};
+    for (int f = 0; f < 6; ++f) a.wall[f] = block.face_patch[f] == "wall";
+    added_.push_back(std::move(a));
     if (std::find(block.face_patch.begin(), block.face_patch.end(), "wall") !=
         block.face_patch.end()) {
         has_wall_ = true;
@@ -77,6 +80,20 @@ void GridMeter::add(const BlockGrid& grid, const Block& block, const std::vector
 GridReport GridMeter::report() const {
     GridReport report;
     report.quality = quality_.report();
+    Id first = 0;  // the first cell of each block, in to_hex_mesh order
+    for (const Added& a : added_) {
+        const Id c = report.quality.worst_cell - first;
+        if (c >= 0 && c < a.cells.count()) {
+            CellPlace w{a.name, int(c % a.cells.ni), int(c / a.cells.ni % a.cells.nj),
+                        int(c / (Id(a.cells.ni) * a.cells.nj)), false};
+            const std::array<int, 3> at = {w.i, w.j, w.k}, last = {a.cells.ni - 1, a.cells.nj - 1, a.cells.nk - 1};
+            for (int f = 0; f < 6; ++f)
+                w.on_wall = w.on_wall || (a.wall[f] && at[f / 2] == (f % 2 ? last[f / 2] : 0));
+            report.worst_cell = w;
+            break;
+        }
+        first += a.cells.count();
+    }
     if (has_wall_) {
         report.wall = wall_.result();
         if (surface_) {

@@ -38,6 +38,13 @@ private:
     double wall_edge_length_ = 0;     // over the cell edges with two slip ends
     Id wall_edges_ = 0;
     double max_slip_value_ = 0;  // max |u| over slip nodes
+    // The blocks added, in order: to place the worst cell.
+    struct Added {
+        std::string name;
+        Dims cells;
+        std::array<bool, 6> wall;  // BlockFace order
+    };
+    std::vector<Added> added_;
 };
 
 // Quality metrics of `grid`, surface fidelity against `body` over its slip nodes, the

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <stdexcept>
@@ -179,6 +180,34 @@ TEST(Quality, ParallelResultsAreDeterministicAndMatchPerCellValues) {
     EXPECT_EQ(a.max_non_orthogonality_deg, b.max_non_orthogonality_deg);
     EXPECT_GT(a.max_non_orthogonality_deg, 0.0);
     EXPECT_GT(a.max_volume_ratio, 1.0);
+}
+
+// The report names its worst cell (the lowest id among equals) and that cell's centre, the
+// same whether measured as a mesh or block by block.
+TEST(Quality, TheWorstCellIsNamedWithItsCentre) {
+    BlockGrid grid;
+    Block block;
+    block.nodes = {6, 5, 4};
+    for (int k = 0; k < 4; ++k)
+        for (int j = 0; j < 5; ++j)
+            for (int i = 0; i < 6; ++i) {
+                block.node_ids.push_back(Id(grid.points.size()));
+                grid.points.emplace_back(i, j, k);
+            }
+    grid.blocks.push_back(block);
+    grid.points[block.node(3, 2, 1)] += Vec3(0.45, 0.4, 0.3);  // shears its 8 cells, (2, 1, 0) worst
+    const HexMesh mesh = to_hex_mesh(grid);
+    const std::vector<double> sj = scaled_jacobians(mesh);
+    const Id worst = Id(std::min_element(sj.begin(), sj.end()) - sj.begin());
+    EXPECT_LT(sj[worst], 0.9);
+    const QualityReport a = measure_quality(mesh), b = measure_quality(grid);
+    EXPECT_EQ(a.worst_cell, worst);
+    EXPECT_EQ(b.worst_cell, worst);
+    Vec3 mean = Vec3::Zero();
+    for (const Vec3& p : mesh.corners(worst)) mean += p / 8;
+    EXPECT_LT((a.worst_cell_centre - mean).norm(), 0.1);
+    EXPECT_LT((b.worst_cell_centre - a.worst_cell_centre).norm(), 1e-12);
+    EXPECT_EQ(measure_quality(HexMesh{}).worst_cell, -1);
 }
 
 TEST(Quality, FaceSharedByThreeCellsIsRejected) {

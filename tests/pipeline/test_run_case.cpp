@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "hexmesh/core/quality.h"
 #include "hexmesh/pipeline/make_body.h"
 #include "hexmesh/pipeline/run_case.h"
 #include "io/vtk_mesh.h"
@@ -44,6 +45,19 @@ TEST(RunCase, WritesGridAndReportThatReadBack) {
     EXPECT_TRUE(std::any_of(phases.begin(), phases.end(),
                             [](const auto& p) { return p.first == "surface"; }));
     EXPECT_EQ(result.report.quality.inverted_cells, 0);
+    // The report places its worst cell in a block, and on the wall or not.
+    ASSERT_TRUE(result.report.worst_cell);
+    const CellPlace& w = *result.report.worst_cell;
+    const BlockGrid grid = read_vtk_block_grid((dir / "grid.vtm").string());
+    const auto named = std::find_if(grid.blocks.begin(), grid.blocks.end(), [&](const Block& b) { return b.name == w.block; });
+    ASSERT_NE(named, grid.blocks.end()) << w.block;
+    Vec3 mean = Vec3::Zero();
+    for (Id v : cell_nodes(*named, w.i, w.j, w.k)) mean += grid.points[v] / 8;
+    EXPECT_LT((mean - result.report.quality.worst_cell_centre).norm(), 0.05);
+    const std::array<Id, 8> nodes = cell_nodes(*named, w.i, w.j, w.k);
+    std::array<Vec3, 8> p;
+    for (int n = 0; n < 8; ++n) p[n] = grid.points[nodes[n]];
+    EXPECT_NEAR(hex_scaled_jacobian(p), result.report.quality.min_scaled_jacobian, 1e-9);
     fs::remove_all(dir);
 }
 
