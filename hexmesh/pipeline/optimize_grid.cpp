@@ -157,6 +157,60 @@ std::vector<bool> grow_by_cells(const BlockGrid& grid, std::vector<bool> marked,
     return marked;
 }
 
+// The nodes of the corner tets of `points` that are inverted and, with only_placed, have all
+// four nodes placed (no solve could move them).
+std::vector<bool> inverted_tet_nodes(const BlockGrid& grid, const std::vector<Vec3>& points,
+                                     const std::vector<bool>& placed, bool only_placed) {
+    std::vector<bool> hit(points.size(), false);
+    for (const Block& block : grid.blocks)
+        for_each_cell(block, [&](int, int, int, const std::array<Id, 8>& nodes) {
+            if (!std::any_of(nodes.begin(), nodes.end(), [&](Id v) { return placed[v]; })) return;
+            std::array<Vec3, 8> p;
+            for (int n = 0; n < 8; ++n) p[n] = points[nodes[n]];
+            const std::array<double, 8> dets = corner_determinants(p);
+            for (int c = 0; c < 8; ++c) {
+                const auto& t = hex_corner_tets[c];
+                if (dets[c] > 0 ||
+                    (only_placed && !std::all_of(t.begin(), t.end(), [&](int n) { return placed[nodes[n]]; })))
+                    continue;
+                for (int n : t) hit[nodes[n]] = true;
+            }
+        });
+    return hit;
+}
+
+// Gives the wall lines with a `hit` node back to `joint`: all their nodes go back where
+// `joint` had them, and none of them is placed any more. Returns the number of lines.
+Id give_back_lines(BlockGrid& grid, const std::vector<Vec3>& joint, std::vector<bool>& placed,
+                   const std::vector<bool>& hit) {
+    Id given = 0;
+    for (const WallFace& f : wall_faces(grid))
+        for (int q = 0; q < f.nq; ++q)
+            for (int p = 0; p < f.np; ++p) {
+                bool line_hit = false;
+                for (int t = 0; t < f.depth && !line_hit; ++t) line_hit = hit[f.node(p, q, t)] && placed[f.node(p, q, 0)];
+                if (!line_hit) continue;
+                for (int t = 0; t < f.depth; ++t) {
+                    const Id v = f.node(p, q, t);
+                    grid.points[v] = joint[v];
+                    placed[v] = false;
+                }
+                ++given;
+            }
+    return given;
+}
+
+// Gives back to `joint` the wall lines whose laid cells cross: a line with a node in a corner
+// tet that is inverted and has all four nodes placed, until no such tet is left (a line given
+// back can leave its neighbour's cell blocked only through its own nodes, which are no longer
+// placed). Returns the number of lines given back.
+Id give_back_crossing_lines(BlockGrid& grid, const std::vector<Vec3>& joint, std::vector<bool>& placed) {
+    Id given = 0;
+    for (Id more = 1; more > 0; given += more)
+        more = give_back_lines(grid, joint, placed, inverted_tet_nodes(grid, grid.points, placed, true));
+    return given;
+}
+
 }  // namespace
 
 void slide_on(const ImplicitFunction& body, untangle::Problem& p) {
@@ -189,40 +243,53 @@ GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& bo
     }
     if (options.wall_layers.layers > 0) {
         const std::vector<Vec3> joint = grid.points;
-        const std::vector<bool> placed = extrude_wall_layers(grid, body, options.wall_layers, options.relax_rings);
-        result.laid_nodes = Id(std::count(placed.begin(), placed.end(), true));
-        if (result.laid_nodes == 0) return result;  // no line could be laid: nothing changed
+        std::vector<bool> placed = extrude_wall_layers(grid, body, options.wall_layers, options.relax_rings);
         // The layers, the cells below relax_below (scaled Jacobian, once the layers are
         // laid), and the cells up to `relax_rings` rings around both are optimized again; the
         // rest of the grid (already optimized by the joint pass, and unmoved) is held. With
-        // relax_rings <= 0 the whole grid is. Laid layers that cross the grid are rarely
-        // repaired by the rest alone: a short untangling budget, then the joint result is kept.
-        std::vector<bool> held = options.held;
-        if (options.relax_rings > 0) {
-            std::vector<bool> marked = placed;
-            const std::vector<double> sj = scaled_jacobians(grid);
-            size_t c = 0;
-            for (const Block& block : grid.blocks)
-                for_each_cell(block, [&](int, int, int, const std::array<Id, 8>& nodes) {
-                    if (!(sj[c++] >= options.relax_below))
-                        for (Id v : nodes) marked[v] = true;
-                });
-            held = grow_by_cells(grid, marked, options.relax_rings);
-            held.flip();
-            if (!options.held.empty())
-                for (size_t v = 0; v < held.size(); ++v) held[v] = held[v] || options.held[v];
+        // relax_rings <= 0 the whole grid is. Lines whose laid cells cross are given back to
+        // the joint result first; when the pass still leaves inverted cells, the lines through
+        // them are given back too and it runs once more; then the joint result is kept.
+        for (int attempt = 0; attempt < 2; ++attempt) {
+            result.lines_given_back += give_back_crossing_lines(grid, joint, placed);
+            result.laid_nodes = Id(std::count(placed.begin(), placed.end(), true));
+            if (result.laid_nodes == 0) break;  // no line could be laid
+            std::vector<bool> held = options.held;
+            if (options.relax_rings > 0) {
+                std::vector<bool> marked = placed;
+                const std::vector<double> sj = scaled_jacobians(grid);
+                size_t c = 0;
+                for (const Block& block : grid.blocks)
+                    for_each_cell(block, [&](int, int, int, const std::array<Id, 8>& nodes) {
+                        if (!(sj[c++] >= options.relax_below))
+                            for (Id v : nodes) marked[v] = true;
+                    });
+                held = grow_by_cells(grid, marked, options.relax_rings);
+                held.flip();
+                if (!options.held.empty())
+                    for (size_t v = 0; v < held.size(); ++v) held[v] = held[v] || options.held[v];
+            }
+            GridProblem g = make_problem(grid, initial, body, held, shaped);
+            untangle::Problem& problem = g.problem;
+            for (Id i = 0; i < Id(problem.points.size()); ++i)
+                if (placed[g.grid_id(i)]) problem.kinds[i] = VertexKind::fixed;
+            // A cell inverted between held nodes (beyond the relaxed rings) cannot be repaired.
+            result.layers_blocked = Id(problem.blocked_elements().size());
+            if (result.layers_blocked > 0) break;
+            untangle::UntangleOptions short_budget = options.untangle;
+            short_budget.max_untangle_iterations = std::min(short_budget.max_untangle_iterations, 30);
+            short_budget.stall_iterations = std::min(short_budget.stall_iterations, 10);
+            result.layers_held = untangle::untangle_and_optimize(problem, short_budget);
+            result.layers_laid = result.layers_held.inverted_after == 0;
+            if (result.layers_laid) {
+                g.scatter(grid.points);
+                return result;
+            }
+            std::vector<Vec3> tried = grid.points;
+            g.scatter(tried);
+            result.lines_given_back += give_back_lines(grid, joint, placed, inverted_tet_nodes(grid, tried, placed, false));
         }
-        GridProblem g = make_problem(grid, initial, body, held, shaped);
-        untangle::Problem& problem = g.problem;
-        for (Id i = 0; i < Id(problem.points.size()); ++i)
-            if (placed[g.grid_id(i)]) problem.kinds[i] = VertexKind::fixed;
-        untangle::UntangleOptions short_budget = options.untangle;
-        short_budget.max_untangle_iterations = std::min(short_budget.max_untangle_iterations, 30);
-        short_budget.stall_iterations = std::min(short_budget.stall_iterations, 10);
-        result.layers_held = untangle::untangle_and_optimize(problem, short_budget);
-        result.layers_laid = result.layers_held.inverted_after == 0;
-        if (result.layers_laid) g.scatter(grid.points);
-        else grid.points = joint;  // the laid layers cross the rest of the grid: keep the joint result
+        grid.points = joint;  // the laid layers cross the rest of the grid: keep the joint result
     }
     return result;
 }

@@ -41,6 +41,12 @@ struct GridOptimizationResult {
     // Whether the grid keeps the laid layers: false when that pass could not make every cell
     // valid, and the joint optimization's grid was kept instead.
     bool layers_laid = false;
+    // Cells of the laid layers that came out inverted with every node held (laid, or held
+    // beyond the relaxed rings): that pass was then skipped.
+    Id layers_blocked = 0;
+    // Wall lines whose laid cells would have crossed (an inverted corner tet of laid nodes
+    // only): given back the joint optimization's nodes, their layers as it left them.
+    Id lines_given_back = 0;
     // Wall and layer nodes the law placed; 0 when no wall-normal line could be laid alone
     // (volume/wall_extrusion.h) and the second pass was skipped.
     Id laid_nodes = 0;

@@ -78,11 +78,16 @@ void refuse_invalid(const Case& c, const GridReport& report, const std::string& 
                     const RunOptions& options) {
     const Id inverted = report.quality.inverted_cells;
     if (inverted > 0 && !options.keep_invalid) {
+        const Vec3& at = report.quality.worst_cell_centre;
+        const std::optional<CellPlace>& w = report.worst_cell;
         throw std::runtime_error(fmt::format(
-            "{}: the grid {}has {} inverted cells (min scaled Jacobian {:.3g}); nothing written "
-            "(use --keep-invalid to write it as grid_invalid.*)",
+            "{}: the grid {}has {} inverted cells (min scaled Jacobian {:.3g} at ({:.4g}, {:.4g}, {:.4g}){}); "
+            "nothing written (use --keep-invalid to write it as grid_invalid.*)",
             c.path, dir.empty() ? "" : "of " + dir.substr(0, dir.size() - 1) + " ", inverted,
-            report.quality.min_scaled_jacobian));
+            report.quality.min_scaled_jacobian, at.x(), at.y(), at.z(),
+            w ? fmt::format(", block {} cell ({}, {}, {}){}", w->block, w->i, w->j, w->k,
+                            w->on_wall ? " on the wall" : "")
+              : ""));
     }
 }
 
@@ -290,8 +295,18 @@ RunResult run_case(const Case& given, const std::string& outdir, const RunOption
         log << untangle::format_untangle_summary(r.solve);
         if (o.wall_layers.layers > 0 && r.laid_nodes == 0) {
             log << "  boundary layer kept as built (no wall-normal line can be laid alone)\n";
+        } else if (r.layers_blocked > 0) {
+            log << fmt::format("  boundary layer laid along the wall normals crosses the grid ({} corner tets "
+                               "inverted between held nodes): the joint optimization's grid is kept\n",
+                               r.layers_blocked);
         } else if (o.wall_layers.layers > 0) {
-            log << "  boundary layer laid along the wall normals, rest optimized again:\n"
+            log << "  boundary layer laid along the wall normals"
+                << (r.lines_given_back > 0
+                        ? fmt::format(" (but on {} wall lines, whose laid cells would cross: they keep the joint "
+                                      "optimization's)",
+                                      r.lines_given_back)
+                        : std::string())
+                << ", rest optimized again:\n"
                 << untangle::format_untangle_summary(r.layers_held);
             if (!r.layers_laid)
                 log << "  the laid layers left inverted cells: the joint optimization's grid is kept\n";

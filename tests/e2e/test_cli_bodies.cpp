@@ -74,3 +74,37 @@ TEST(CliBodies, TheSharedBodiesWithHandlesOrTwoSolidsAreRefusedAtOnce) {
     expect_refused_at_once(run_file(bodies / "rotor.off", "interior"), "genus 1: the surface has 1 handle");
     expect_refused_at_once(run_file(bodies / "simpleCar.stl", "exterior"), "2 separate bodies");
 }
+
+// Outside a cross, the boundary layer laid along the wall normals crosses itself in the
+// concave corners between its arms: those wall lines keep the joint optimization's nodes, and
+// every other line keeps its laid layers (all lines used to fall back then, with 9 % of the
+// wall on the first-layer target). The grid is valid by the independent checker too.
+TEST(CliBodies, LaidLayersThatWouldCrossAreGivenBackLineByLine) {
+    const fs::path cross = bodies / "cross.off";
+    if (!fs::exists(cross)) GTEST_SKIP() << "shared bodies not beside the project: " << bodies;
+    const fs::path dir = scratch("bodies_cross_layers");
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    std::ofstream(dir / "case.json") << nlohmann::json{
+        {"geometry", {{"file", cross.string()}}},
+        {"domain", "exterior"},
+        {"grid", {{"cells_per_edge", 12}}},
+        {"boundary_layer", {{"first_height", 0.002}, {"growth_ratio", 1.2}, {"layers", 5}}}}.dump();
+    const CommandResult r = run_hexmesh("run '" + (dir / "case.json").string() + "' -o '" + (dir / "out").string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    EXPECT_NE(r.out.find("wall lines, whose laid cells would cross: they keep the joint optimization's"),
+              std::string::npos)
+        << r.out;
+    EXPECT_EQ(r.out.find("the joint optimization's grid is kept"), std::string::npos) << r.out;
+    std::ifstream in(dir / "out" / "quality.json");
+    const nlohmann::json q = nlohmann::json::parse(in);
+    EXPECT_TRUE(q.at("valid").get<bool>());
+    EXPECT_GE(q.at("wall").at("first_layer_thickness").at("fraction_within_10_percent").get<double>(), 0.75);
+    const fs::path checker = fs::path(HEXMESH_SOURCE_DIR) / ".." / "shared" / "tools" / "check_grid.py";
+    ASSERT_TRUE(fs::exists(checker)) << checker;
+    const CommandResult check =
+        run_command("/usr/bin/python3 '" + checker.string() + "' '" + (dir / "out" / "grid.vtm").string() + "' --json");
+    ASSERT_EQ(check.exit_code, 0) << check.out << check.err;
+    EXPECT_EQ(nlohmann::json::parse(check.out).at("inverted").get<long>(), 0);
+    fs::remove_all(dir);
+}
