@@ -97,10 +97,12 @@ TEST(Untangle, FixedBoundaryThatCannotWorkIsExplained) {
     EXPECT_NE(r.out.find("nothing written"), std::string::npos) << r.out;
     EXPECT_FALSE(fs::exists(out));
     // The local repair's largest neighbourhood changes nothing, so the global pass gives up
-    // after the local stall budget: 37 outer iterations, not the 67 of the full budget.
+    // after the local stall budget, and the second start of the neighbourhoods from a larger
+    // eps ends as soon: 53 outer iterations, not the 200 of the full budget.
     const auto at = r.out.find("outer iterations");
     ASSERT_NE(at, std::string::npos) << r.out;
-    EXPECT_LE(std::stoi(r.out.substr(at + 16)), 40) << r.out.substr(at, 60);
+    EXPECT_LE(std::stoi(r.out.substr(at + 16)), 60) << r.out.substr(at, 60);
+    EXPECT_NE(r.out.find("untangling stopped: "), std::string::npos) << r.out;
 }
 
 // A generated tangle that needs no shared data: a 6^3 grid, interior nodes displaced by up
