@@ -1,5 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <functional>
+#include <iostream>
+#include <random>
 #include <sstream>
 
 #include "grid_problem.h"
@@ -50,6 +54,100 @@ INSTANTIATE_TEST_SUITE_P(GlobalSolvers, UntangleStress,
                              for (char& c : name) if (c == '-') c = '_';
                              return name;
                          });
+
+namespace {
+
+// Node distances from 0: `cells` cells, the first `first` thick, each next `ratio` times
+// thicker.
+std::vector<double> graded(int cells, double first, double ratio) {
+    std::vector<double> z = {0};
+    for (int c = 0; c < cells; ++c) z.push_back(z.back() + first * std::pow(ratio, c));
+    return z;
+}
+
+std::vector<double> uniform(int cells) {
+    std::vector<double> x;
+    for (int c = 0; c <= cells; ++c) x.push_back(c);
+    return x;
+}
+
+// A tangled mesh built here whose undisturbed grid is valid, so that it can be untangled.
+struct StressInput {
+    const char* name;
+    std::function<Problem()> make;
+};
+
+std::vector<StressInput> stress_inputs() {
+    return {
+        // 97 336 cells, every interior node moved by up to a cell
+        {"random_46", [] { return test_support::displaced_grid_problem(46, 1.0, 3); }},
+        // 4 096 cells, by up to two cells
+        {"random_16", [] { return test_support::displaced_grid_problem(16, 2.0, 5); }},
+        // a boundary layer (first cell 0.002 thick, growth 1.3, aspect up to 500) twisted by up
+        // to 2.5 rad about its axis, its nodes shaken by 2 of their layer's thicknesses along it
+        {"twisted_layers",
+         [] {
+             Problem p = test_support::tensor_grid_problem(uniform(12), uniform(12), graded(20, 0.002, 1.3));
+             std::mt19937 rng(7);
+             std::uniform_real_distribution<double> u(-2, 2);
+             const double top = p.points.back().z();
+             for (size_t v = 0; v < p.points.size(); ++v) {
+                 if (p.kinds[v] == VertexKind::fixed) continue;
+                 Vec3& x = p.points[v];
+                 const double a = 2.5 * std::sin(3.14159265358979 * x.z() / top);
+                 const Vec3 r = x - Vec3(6, 6, x.z());
+                 x = Vec3(6 + std::cos(a) * r.x() - std::sin(a) * r.y(), 6 + std::sin(a) * r.x() + std::cos(a) * r.y(),
+                          x.z());
+                 const int k = int(v / (13 * 13));
+                 x.z() += u(rng) * 0.002 * std::pow(1.3, k);
+             }
+             return p;
+         }},
+        // 13 824 cells; the middle sheet of nodes pushed 2.6 cells up, through the next two
+        {"folded_sheet",
+         [] {
+             Problem p = test_support::tensor_grid_problem(uniform(24), uniform(24), uniform(24));
+             for (size_t v = 0; v < p.points.size(); ++v)
+                 if (p.kinds[v] != VertexKind::fixed && p.points[v].z() == 12) p.points[v].z() += 2.6;
+             return p;
+         }},
+        // unstructured: 5 patches of 8 x 8 cells (3 cells around the middle square's corners)
+        // over 8 layers, 2 560 cells, every interior node moved by up to 1.5 cells
+        {"o_grid_slab",
+         [] {
+             Problem p = test_support::o_grid_slab_problem(8, 8);
+             std::mt19937 rng(13);
+             std::uniform_real_distribution<double> u(-1.5 / 8, 1.5 / 8);
+             for (size_t v = 0; v < p.points.size(); ++v)
+                 if (p.kinds[v] != VertexKind::fixed) p.points[v] += Vec3(u(rng), u(rng), u(rng));
+             return p;
+         }},
+    };
+}
+
+class UntangleStressInput : public ::testing::TestWithParam<StressInput> {};
+
+}  // namespace
+
+// Each stress input comes out with no inverted element, its fixed nodes unmoved.
+TEST_P(UntangleStressInput, IsUntangled) {
+    Problem p = GetParam().make();
+    const std::vector<Vec3> before = p.points;
+    UntangleOptions o = options_for(Method::newton_cg);
+    std::ostringstream log;
+    o.log = &log;
+    const UntangleResult r = untangle_and_optimize(p, o);
+    EXPECT_GT(r.inverted_before, 0);
+    EXPECT_EQ(r.inverted_after, 0) << format_untangle_summary(r) << log.str();
+    EXPECT_TRUE(r.stopped.empty()) << r.stopped;
+    for (size_t v = 0; v < p.points.size(); ++v)
+        if (p.kinds[v] == VertexKind::fixed) EXPECT_EQ(p.points[v], before[v]);
+    std::cout << "  " << GetParam().name << ": " << p.hexes.size() << " cells, " << r.inverted_before
+              << " inverted corner tets before\n" << format_untangle_summary(r);
+}
+
+INSTANTIATE_TEST_SUITE_P(Built, UntangleStressInput, ::testing::ValuesIn(stress_inputs()),
+                         [](const auto& info) { return std::string(info.param.name); });
 
 TEST(Untangle, NeverReturnsWorseThanItsInput) {
     Problem p = test_support::displaced_grid_problem(5, 1.5, 9);
