@@ -243,13 +243,17 @@ GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& bo
     }
     if (options.wall_layers.layers > 0) {
         const std::vector<Vec3> joint = grid.points;
+        const std::vector<double> joint_sj = scaled_jacobians(grid);
+        const double joint_min_sj = joint_sj.empty() ? 0 : *std::min_element(joint_sj.begin(), joint_sj.end());
+        std::vector<Vec3> first_laid;  // a valid laid grid whose worst cell fell below half the joint's
         std::vector<bool> placed = extrude_wall_layers(grid, body, options.wall_layers, options.relax_rings);
         // The layers, the cells below relax_below (scaled Jacobian, once the layers are
         // laid), and the cells up to `relax_rings` rings around both are optimized again; the
         // rest of the grid (already optimized by the joint pass, and unmoved) is held. With
         // relax_rings <= 0 the whole grid is. Lines whose laid cells cross are given back to
-        // the joint result first; when the pass still leaves inverted cells, the lines through
-        // them are given back too and it runs once more; then the joint result is kept.
+        // the joint result first; when the pass still leaves inverted cells, or cells under half
+        // the joint result's worst scaled Jacobian, the lines through them are given back too
+        // and it runs once more; then the better valid result is kept, else the joint one.
         for (int attempt = 0; attempt < 2; ++attempt) {
             result.lines_given_back += give_back_crossing_lines(grid, joint, placed);
             result.laid_nodes = Id(std::count(placed.begin(), placed.end(), true));
@@ -280,16 +284,33 @@ GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& bo
             short_budget.max_untangle_iterations = std::min(short_budget.max_untangle_iterations, 30);
             short_budget.stall_iterations = std::min(short_budget.stall_iterations, 10);
             result.layers_held = untangle::untangle_and_optimize(problem, short_budget);
-            result.layers_laid = result.layers_held.inverted_after == 0;
-            if (result.layers_laid) {
-                g.scatter(grid.points);
-                return result;
+            BlockGrid tried = grid;
+            g.scatter(tried.points);
+            std::vector<bool> hit;
+            if (result.layers_held.inverted_after == 0) {
+                const std::vector<double> sj = scaled_jacobians(tried);
+                const double floor = 0.5 * joint_min_sj;
+                if (attempt > 0 || !(*std::min_element(sj.begin(), sj.end()) < floor)) {
+                    grid.points = std::move(tried.points);
+                    result.layers_laid = true;
+                    return result;
+                }
+                first_laid = tried.points;
+                hit.assign(grid.points.size(), false);
+                size_t c = 0;
+                for (const Block& block : grid.blocks)
+                    for_each_cell(block, [&](int, int, int, const std::array<Id, 8>& nodes) {
+                        if (sj[c++] < floor)
+                            for (Id v : nodes) hit[v] = true;
+                    });
+            } else {
+                hit = inverted_tet_nodes(grid, tried.points, placed, false);
             }
-            std::vector<Vec3> tried = grid.points;
-            g.scatter(tried);
-            result.lines_given_back += give_back_lines(grid, joint, placed, inverted_tet_nodes(grid, tried, placed, false));
+            result.lines_given_back += give_back_lines(grid, joint, placed, hit);
         }
-        grid.points = joint;  // the laid layers cross the rest of the grid: keep the joint result
+        result.layers_laid = !first_laid.empty();
+        // The first valid laid grid, else the joint result (the laid layers cross the rest).
+        grid.points = result.layers_laid ? first_laid : joint;
     }
     return result;
 }

@@ -302,8 +302,8 @@ RunResult run_case(const Case& given, const std::string& outdir, const RunOption
         } else if (o.wall_layers.layers > 0) {
             log << "  boundary layer laid along the wall normals"
                 << (r.lines_given_back > 0
-                        ? fmt::format(" (but on {} wall lines, whose laid cells would cross: they keep the joint "
-                                      "optimization's)",
+                        ? fmt::format(" (but on {} wall lines, whose laid cells would cross or fall under half "
+                                      "the worst scaled Jacobian before: they keep the joint optimization's)",
                                       r.lines_given_back)
                         : std::string())
                 << ", rest optimized again:\n"
