@@ -2,6 +2,7 @@
 #pragma once
 
 #include <algorithm>
+#include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
 #include <unordered_map>
@@ -45,6 +46,21 @@ inline Box3 surface_bounds(const TriangleSurface& s) {
         box.hi = box.hi.cwiseMax(p);
     }
     return box;
+}
+
+// The volume the triangles enclose, signed: > 0 when they face outwards (counter-clockwise
+// seen from outside), < 0 when every one faces inwards (the sum of the tetrahedra from the
+// origin to each triangle; exact for a closed surface, whatever the origin).
+inline double signed_volume(const TriangleSurface& s) {
+    double six_v = 0;
+    for (const auto& t : s.triangles)
+        six_v += s.points[t[0]].dot(s.points[t[1]].cross(s.points[t[2]]));
+    return six_v / 6;
+}
+
+// Turns every triangle over (reverses its point order).
+inline void turn_over(TriangleSurface& s) {
+    for (auto& t : s.triangles) std::swap(t[1], t[2]);
 }
 
 }  // namespace hexmesh

@@ -46,6 +46,10 @@ std::optional<TriangleSurface> reference_surface(const GeometrySpec& spec) {
     TriangleSurface surface = read_surface(spec.file);
     const Mat3 rotation = rotation_from_axis_angle(spec.rotate_axis, spec.rotate_degrees);
     for (Vec3& p : surface.points) p = spec.translate + spec.scale * (rotation * p);
+    // Triangles that all face inwards (some writers' convention, e.g. marching cubes on a
+    // distance field) would map the surface onto the sphere mirrored, and the wall grid built
+    // through that map inside out: they are turned over.
+    if (signed_volume(surface) < 0) turn_over(surface);
     return surface;
 }
 

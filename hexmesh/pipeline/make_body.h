@@ -13,7 +13,8 @@ namespace hexmesh {
 Body make_body(const GeometrySpec& spec);
 
 // The triangle surface of a geometry that is one surface file (moved by its transform), the
-// reference of the fidelity report; nullopt for formulas and CSG.
+// reference of the fidelity report and of the sphere map, its triangles facing outwards
+// (turned over when they all faced inwards); nullopt for formulas and CSG.
 std::optional<TriangleSurface> reference_surface(const GeometrySpec& spec);
 
 }  // namespace hexmesh

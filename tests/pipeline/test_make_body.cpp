@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 
 #include "hexmesh/pipeline/make_body.h"
 
@@ -31,4 +33,34 @@ TEST(MakeBody, EveryPrimitiveIsNegativeAtItsCentre) {
         const Case c = parse_case(std::string(R"({"geometry": )") + g + "}", "c.json");
         EXPECT_LT(make_body(c.geometry)->value(Vec3(0, 0, 0)), 0.0) << g;
     }
+}
+
+// A closed surface whose triangles all face inwards (as marching cubes on a distance field
+// writes them) is turned over: the sphere map would otherwise place the wall mirrored, and
+// the grid built on it inside out.
+TEST(MakeBody, ASurfaceFacingInwardsIsTurnedOver) {
+    // A tetrahedron, each triangle counter-clockwise seen from inside.
+    const std::string path = (std::filesystem::temp_directory_path() / "hexmesh_inward_tet.stl").string();
+    {
+        std::ofstream out(path);
+        const double p[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+        const int faces[4][3] = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};  // inward
+        out << "solid t\n";
+        for (const auto& f : faces) {
+            out << "facet normal 0 0 0\nouter loop\n";
+            for (int v : f) out << "vertex " << p[v][0] << " " << p[v][1] << " " << p[v][2] << "\n";
+            out << "endloop\nendfacet\n";
+        }
+        out << "endsolid t\n";
+    }
+    GeometrySpec spec;
+    spec.kind = "file";
+    spec.file = path;
+    const std::optional<TriangleSurface> s = reference_surface(spec);
+    ASSERT_TRUE(s);
+    EXPECT_NEAR(signed_volume(*s), 1.0 / 6, 1e-12);
+    TriangleSurface inward = *s;
+    turn_over(inward);
+    EXPECT_NEAR(signed_volume(inward), -1.0 / 6, 1e-12);
+    std::filesystem::remove(path);
 }
