@@ -86,8 +86,7 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
         return regularize_below > 0 ? e.inverted == 0 && e.min_det >= regularize_below
                                     : e.inverted <= options.unrepairable;
     };
-    int it = first;
-    for (; it < first + options.max_untangle_iterations && !done(stats); ++it) {
+    for (int it = first; it < first + options.max_untangle_iterations && !done(stats); ++it) {
         const EnergyParams p{options.untangle_theta, eps};
         const double e_prev = assembly.energy(x, p);
         // Untangled is the goal of this phase: stop as soon as it is reached.
@@ -316,7 +315,6 @@ UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& op
         }
         problem.kinds = kinds;
     }
-    x = best.points;
     if (best.inverted == 0 && options.regularize_below > 0 &&
         assembly.stats(x).min_det < options.regularize_below) {
         continuation(problem, assembly, options, seconds, best, progress, result, options.regularize_below);

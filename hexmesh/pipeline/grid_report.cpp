@@ -64,9 +64,9 @@ void GridMeter::add(const BlockGrid& grid, const Block& block, const std::vector
     quality_.add(grid, block, ids);
     Added a{block.name, block.cells(), {}};
     for (int f = 0; f < 6; ++f) a.wall[f] = block.face_patch[f] == "wall";
+    const bool walled = std::find(a.wall.begin(), a.wall.end(), true) != a.wall.end();
     added_.push_back(std::move(a));
-    if (std::find(block.face_patch.begin(), block.face_patch.end(), "wall") !=
-        block.face_patch.end()) {
+    if (walled) {
         has_wall_ = true;
         wall_.add(grid, block);
         if (surface_) append_wall_triangles(grid, block, wall_triangles_);

@@ -157,6 +157,18 @@ std::vector<bool> grow_by_cells(const BlockGrid& grid, std::vector<bool> marked,
     return marked;
 }
 
+// Marks every node of the cells whose scaled Jacobian (`sj`, in for_each_cell order over the
+// blocks) is not at least `threshold`.
+void mark_cells_below(const BlockGrid& grid, const std::vector<double>& sj, double threshold,
+                      std::vector<bool>& marked) {
+    size_t c = 0;
+    for (const Block& block : grid.blocks)
+        for_each_cell(block, [&](int, int, int, const std::array<Id, 8>& nodes) {
+            if (!(sj[c++] >= threshold))
+                for (Id v : nodes) marked[v] = true;
+        });
+}
+
 // The nodes of the corner tets of `points` that are inverted and, with only_placed, have all
 // four nodes placed (no solve could move them).
 std::vector<bool> inverted_tet_nodes(const BlockGrid& grid, const std::vector<Vec3>& points,
@@ -187,8 +199,9 @@ Id give_back_lines(BlockGrid& grid, const std::vector<Vec3>& joint, std::vector<
     for (const WallFace& f : wall_faces(grid))
         for (int q = 0; q < f.nq; ++q)
             for (int p = 0; p < f.np; ++p) {
+                if (!placed[f.node(p, q, 0)]) continue;  // not laid, or given back already
                 bool line_hit = false;
-                for (int t = 0; t < f.depth && !line_hit; ++t) line_hit = hit[f.node(p, q, t)] && placed[f.node(p, q, 0)];
+                for (int t = 0; t < f.depth && !line_hit; ++t) line_hit = hit[f.node(p, q, t)];
                 if (!line_hit) continue;
                 for (int t = 0; t < f.depth; ++t) {
                     const Id v = f.node(p, q, t);
@@ -261,13 +274,7 @@ GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& bo
             std::vector<bool> held = options.held;
             if (options.relax_rings > 0) {
                 std::vector<bool> marked = placed;
-                const std::vector<double> sj = scaled_jacobians(grid);
-                size_t c = 0;
-                for (const Block& block : grid.blocks)
-                    for_each_cell(block, [&](int, int, int, const std::array<Id, 8>& nodes) {
-                        if (!(sj[c++] >= options.relax_below))
-                            for (Id v : nodes) marked[v] = true;
-                    });
+                mark_cells_below(grid, scaled_jacobians(grid), options.relax_below, marked);
                 held = grow_by_cells(grid, marked, options.relax_rings);
                 held.flip();
                 if (!options.held.empty())
@@ -297,12 +304,7 @@ GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& bo
                 }
                 first_laid = tried.points;
                 hit.assign(grid.points.size(), false);
-                size_t c = 0;
-                for (const Block& block : grid.blocks)
-                    for_each_cell(block, [&](int, int, int, const std::array<Id, 8>& nodes) {
-                        if (sj[c++] < floor)
-                            for (Id v : nodes) hit[v] = true;
-                    });
+                mark_cells_below(grid, sj, floor, hit);
             } else {
                 hit = inverted_tet_nodes(grid, tried.points, placed, false);
             }
