@@ -5,8 +5,32 @@
 
 namespace hexmesh {
 
+namespace {
+
+// Appends the JSON text of `value` to `text` until it is longer than `limit`: nested arrays
+// and objects only as deep as that needs (a value nested 100 000 deep costs a few frames).
+void append_brief(const nlohmann::json& value, std::string& text, size_t limit) {
+    if (text.size() > limit) return;
+    if (value.is_array() || value.is_object()) {
+        text += value.is_array() ? '[' : '{';
+        bool first = true;
+        for (auto it = value.begin(); it != value.end() && text.size() <= limit; ++it) {
+            if (!first) text += ',';
+            first = false;
+            if (value.is_object()) text += nlohmann::json(it.key()).dump() + ':';
+            append_brief(*it, text, limit);
+        }
+        text += value.is_array() ? ']' : '}';
+    } else {
+        text += value.dump();
+    }
+}
+
+}  // namespace
+
 std::string describe(const nlohmann::json& value) {
-    std::string text = value.dump();
+    std::string text;
+    append_brief(value, text, 40);
     if (text.size() > 40) text = text.substr(0, 37) + "...";
     return fmt::format("{} {}", value.type_name(), text);
 }

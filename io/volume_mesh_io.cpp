@@ -42,6 +42,8 @@ VolumeMesh from_vtk(vtkDataSet* data, const std::string& path) {
     for (vtkIdType c = 0; c < data->GetNumberOfCells(); ++c) {
         const int type = data->GetCellType(c);
         data->GetCellPoints(c, ids);
+        if (type == VTK_HEXAHEDRON || type == VTK_VOXEL || type == VTK_TETRA)
+            vtk_support::check_cell_points(ids, type == VTK_TETRA ? 4 : 8, Id(mesh.points.size()), path, c);
         if (type == VTK_HEXAHEDRON || type == VTK_VOXEL) {
             for (int v = 0; v < 8; ++v) mesh.hexes.push_back(ids->GetId(type == VTK_VOXEL ? voxel_to_hex[v] : v));
         } else if (type == VTK_TETRA) {
@@ -54,6 +56,9 @@ VolumeMesh from_vtk(vtkDataSet* data, const std::string& path) {
     if (mesh.hexes.empty() && mesh.tets.empty())
         throw InputError(fmt::format("{}: the file holds no hexahedron or tetrahedron", path));
     if (vtkDataArray* fixed = data->GetPointData()->GetArray("fixed")) {
+        if (fixed->GetNumberOfTuples() != vtkIdType(mesh.points.size()))
+            throw InputError(fmt::format("{}: the point array \"fixed\" has {} values for {} points", path,
+                                         fixed->GetNumberOfTuples(), mesh.points.size()));
         mesh.fixed.resize(mesh.points.size());
         for (vtkIdType m = 0; m < fixed->GetNumberOfTuples(); ++m) mesh.fixed[m] = fixed->GetComponent(m, 0) != 0;
     }

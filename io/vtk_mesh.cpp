@@ -106,6 +106,8 @@ void append_hexes(vtkDataSet* data, const std::string& path, HexMesh& mesh, Poin
     for (vtkIdType m = 0; m < data->GetNumberOfPoints(); ++m) {
         std::array<double, 3> x;
         data->GetPoint(m, x.data());
+        if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
+            throw InputError(fmt::format("{}: point {} has a non-finite coordinate", path, m));
         auto [it, inserted] = point_ids.emplace(x, mesh.num_points());
         if (inserted) mesh.points.emplace_back(x[0], x[1], x[2]);
         local[m] = it->second;
@@ -119,6 +121,7 @@ void append_hexes(vtkDataSet* data, const std::string& path, HexMesh& mesh, Poin
                                          path, c, type));
         }
         data->GetCellPoints(c, ids);
+        vtk_support::check_cell_points(ids, 8, Id(local.size()), path, c);
         static constexpr int voxel_to_hex[8] = {0, 1, 3, 2, 4, 5, 7, 6};
         for (int v = 0; v < 8; ++v)
             mesh.hexes.push_back(local[ids->GetId(type == VTK_VOXEL ? voxel_to_hex[v] : v)]);

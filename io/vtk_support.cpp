@@ -81,6 +81,16 @@ void require_file(const std::string& path) {
         throw InputError(fmt::format("{}: no such mesh file", path));
 }
 
+void check_cell_points(vtkIdList* ids, int count, Id points, const std::string& path, vtkIdType cell) {
+    if (ids->GetNumberOfIds() < count)
+        throw InputError(fmt::format("{}: cell {} has {} point ids where its type takes {}", path, cell,
+                                     ids->GetNumberOfIds(), count));
+    for (int v = 0; v < count; ++v)
+        if (ids->GetId(v) < 0 || ids->GetId(v) >= points)
+            throw InputError(fmt::format("{}: cell {} refers to point {}, but the file has points 0 to {}",
+                                         path, cell, ids->GetId(v), points - 1));
+}
+
 void throw_read_error(const std::string& path, const std::string& why) {
     throw InputError(fmt::format("{}: VTK cannot read it: {}", path, why));
 }

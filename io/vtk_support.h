@@ -2,7 +2,10 @@
 #pragma once
 
 #include <string>
+
+#include "hexmesh/core/types.h"
 #include <vtkDataObject.h>
+#include <vtkIdList.h>
 #include <vtkNew.h>
 #include <vtkSmartPointer.h>
 #include <vtkXMLWriterBase.h>
@@ -29,6 +32,10 @@ void check_written(int status, const std::string& path);
 // saves 30 % of the size for 30 % more write time, zlib 40 % for 10x the time), 64-bit
 // headers for arrays over 4 GB. ParaView and VTK readers read it as any other XML file.
 void configure_xml_writer(vtkXMLWriterBase& writer);
+
+// Throws InputError naming the file and cell when the cell's point ids are fewer than
+// `count` or one is outside [0, points).
+void check_cell_points(vtkIdList* ids, int count, Id points, const std::string& path, vtkIdType cell);
 
 void require_file(const std::string& path);
 [[noreturn]] void throw_read_error(const std::string& path, const std::string& why);

@@ -18,8 +18,17 @@ int main(int argc, char** argv) {
     hexmesh::cli::add_tetmesh_command(app, exit_code);
     try {
         app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
+    } catch (const CLI::Success& e) {  // --help
         return app.exit(e);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        // A wrong argument is a refusal like any other: one line, exit code 1.
+        std::cerr << "hexmesh: error: " << e.what() << " (hexmesh --help lists the commands, "
+                  << "hexmesh COMMAND --help their arguments)\n";
+        return 1;
     } catch (const std::exception& e) {
         std::cerr << "hexmesh: error: " << e.what() << "\n";
         return 1;

@@ -65,3 +65,23 @@ TEST(CliErrors, UnknownSubcommandIsAUsageError) {
     const CommandResult r = run_hexmesh("mesh-it-please");
     EXPECT_NE(r.exit_code, 0);
 }
+
+TEST(CliErrors, ANestedValueHundredThousandDeepIsDescribedInOneShortLine) {
+    const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+    expect_refused("deep", "{\"geometry\": " + deep + ", \"domain\": \"exterior\"}",
+                   "geometry: expected an object, got array [[[[");
+}
+
+TEST(CliErrors, WrongArgumentsAreOneLineWithExitCodeOne) {
+    for (const std::string& args : {std::string("gci a b c"), std::string("quality x.vtm -o y"),
+                                    std::string(""), std::string("no-such-command")}) {
+        const CommandResult r = run_hexmesh(args);
+        EXPECT_EQ(r.exit_code, 1) << args;
+        EXPECT_EQ(count_lines(r.err), 1) << args << ": " << r.err;
+        EXPECT_EQ(r.err.rfind("hexmesh: error: ", 0), 0u) << r.err;
+        EXPECT_NE(r.err.find("--help"), std::string::npos) << r.err;
+    }
+    const CommandResult help = run_hexmesh("run --help");
+    EXPECT_EQ(help.exit_code, 0);
+    EXPECT_NE(help.out.find("case file"), std::string::npos) << help.out;
+}

@@ -2,8 +2,12 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
+
+#include <fmt/format.h>
 
 #include "io/case_file.h"
+#include "io/volume_mesh_io.h"
 #include "io/vtk_mesh.h"
 #include "surface/analytic.h"
 #include "tests/scratch_registry.h"
@@ -62,4 +66,48 @@ TEST(VtkMesh, MissingAndBrokenFilesAreInputErrors) {
     EXPECT_THROW(read_vtk_mesh((dir / "broken.vts").string()), InputError);
     std::ofstream(dir / "mesh.obj") << "v 0 0 0\n";
     EXPECT_THROW(read_vtk_mesh((dir / "mesh.obj").string()), InputError);
+}
+
+namespace {
+
+// A legacy VTK file of one hexahedron over the unit cube's 8 corners, its cell's row given.
+std::string one_hex_vtk(const std::string& cell_row, int row_size) {
+    std::string text = "# vtk DataFile Version 3.0\none hex\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 8 double\n";
+    for (int c = 0; c < 8; ++c) text += fmt::format("{} {} {}\n", c & 1, (c >> 1) & 1, c >> 2);
+    return text + fmt::format("CELLS 1 {}\n{}\nCELL_TYPES 1\n12\n", row_size, cell_row);
+}
+
+std::string input_error(const std::function<void()>& read) {
+    try {
+        read();
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "no InputError";
+}
+
+}  // namespace
+
+TEST(VtkMesh, CellsWithPointIdsOutOfRangeOrTooFewAreRefusedNamingTheCell) {
+    const fs::path dir = temp_dir("bad_ids");
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {one_hex_vtk("8 0 1 3 2 4 5 7 99", 9), "cell 0 refers to point 99, but the file has points 0 to 7"},
+        {one_hex_vtk("8 0 1 3 2 4 5 7 -1", 9), "cell 0 refers to point -1"},
+        {one_hex_vtk("7 0 1 3 2 4 5 7", 8), "cell 0 has 7 point ids where its type takes 8"},
+    };
+    int n = 0;
+    for (const auto& [text, message] : cases) {
+        const std::string path = (dir / fmt::format("bad{}.vtk", n++)).string();
+        std::ofstream(path) << text;
+        for (const std::string& what : {input_error([&] { read_vtk_mesh(path); }),
+                                        input_error([&] { read_volume_mesh(path); })}) {
+            EXPECT_NE(what.find(path), std::string::npos) << what;
+            EXPECT_NE(what.find(message), std::string::npos) << what;
+        }
+    }
+    // The same file with good ids is read.
+    const std::string good = (dir / "good.vtk").string();
+    std::ofstream(good) << one_hex_vtk("8 0 1 3 2 4 5 7 6", 9);
+    EXPECT_EQ(read_vtk_mesh(good).num_cells(), 1);
+    EXPECT_EQ(read_volume_mesh(good).num_hexes(), 1);
 }
