@@ -1,5 +1,7 @@
 #include "io/gmsh_mesh.h"
 
+#include <unordered_map>
+
 #include "io/file_sink.h"
 #include "io/grid_faces.h"
 #include "io/text_tokens.h"
@@ -64,7 +66,15 @@ void write_gmsh_mesh(const BlockGrid& grid, const std::string& path) {
 HexMesh read_gmsh_mesh(const std::string& path) {
     TextTokens in(path);
     HexMesh mesh;
-    std::vector<Id> node_of_tag;  // tag -> index in mesh.points, -1 if unused
+    // Tag -> index in mesh.points: a table when the tags are dense, else a hash map (a max tag
+    // of 3e9 for a handful of nodes must not take 24 GB).
+    std::vector<Id> node_of_tag;
+    std::unordered_map<long long, Id> sparse_node_of_tag;
+    const auto node_of = [&](long long t) -> Id {
+        if (!node_of_tag.empty()) return t >= 1 && t < Id(node_of_tag.size()) ? node_of_tag[t] : -1;
+        const auto it = sparse_node_of_tag.find(t);
+        return it == sparse_node_of_tag.end() ? -1 : it->second;
+    };
     bool seen_format = false;
     while (!in.done()) {
         const std::string section = in.word();
@@ -77,15 +87,21 @@ HexMesh read_gmsh_mesh(const std::string& path) {
         } else if (section == "$Nodes") {
             if (!seen_format) in.fail("$Nodes before $MeshFormat");
             const long long blocks = in.integer("numEntityBlocks");
-            in.integer("numNodes");
+            const long long count = in.integer("numNodes");
             in.integer("minNodeTag");
             const long long max_tag = in.integer("maxNodeTag");
-            node_of_tag.assign(max_tag + 1, -1);
+            // A node takes at least 8 characters (its tag and three coordinates).
+            if (count < 0 || count > (long long)(in.size() / 8) || blocks < 0 || blocks > count)
+                in.fail(fmt::format("{} nodes in {} blocks do not fit in the file's {} bytes", count, blocks, in.size()));
+            if (max_tag < 1 && count > 0) in.fail(fmt::format("maxNodeTag {} is below 1", max_tag));
+            if (max_tag <= 4 * count + 1024) node_of_tag.assign(max_tag + 1, -1);
+            sparse_node_of_tag.reserve(node_of_tag.empty() ? size_t(count) : 0);
             for (long long b = 0; b < blocks; ++b) {
                 in.integer("entityDim");
                 in.integer("entityTag");
                 if (in.integer("parametric") != 0) in.fail("parametric nodes are not supported");
                 const long long n = in.integer("numNodesInBlock");
+                if (n < 0 || n > count) in.fail(fmt::format("a block of {} nodes in a file of {}", n, count));
                 std::vector<long long> tags(n);
                 for (auto& t : tags) {
                     t = in.integer("a node tag");
@@ -93,7 +109,8 @@ HexMesh read_gmsh_mesh(const std::string& path) {
                 }
                 for (long long t : tags) {
                     const double x = in.real("x"), y = in.real("y"), z = in.real("z");
-                    node_of_tag[t] = mesh.num_points();
+                    if (node_of_tag.empty()) sparse_node_of_tag[t] = mesh.num_points();
+                    else node_of_tag[t] = mesh.num_points();
                     mesh.points.emplace_back(x, y, z);
                 }
             }
@@ -115,9 +132,9 @@ HexMesh read_gmsh_mesh(const std::string& path) {
                     }
                     for (int v = 0; v < 8; ++v) {
                         const long long t = in.integer("a node tag");
-                        if (t < 1 || t >= Id(node_of_tag.size()) || node_of_tag[t] < 0)
-                            in.fail(fmt::format("hexahedron uses unknown node {}", t));
-                        mesh.hexes.push_back(node_of_tag[t]);
+                        const Id node = node_of(t);
+                        if (node < 0) in.fail(fmt::format("hexahedron uses unknown node {}", t));
+                        mesh.hexes.push_back(node);
                     }
                 }
             }

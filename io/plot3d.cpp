@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cstdint>
 #include <cstdlib>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -108,6 +109,10 @@ BinaryLayout binary_layout(const std::string& bytes, bool fortran, const std::st
                int_at(bytes, dims_at + 12 * b + 8)};
         if (d.ni < 2 || d.nj < 2 || d.nk < 2)
             throw InputError(fmt::format("{}: block {} has dims {} {} {}; a 3D grid needs >= 2", path, b + 1, d.ni, d.nj, d.nk));
+        // Single-precision coordinates take 12 bytes a point: the file must hold them.
+        if (double(l.points) + double(d.ni) * d.nj * d.nk > double(bytes.size()) / 12)
+            throw InputError(fmt::format("{}: block {} has dims {} {} {}: more coordinates than the file's {} "
+                                         "bytes can hold", path, b + 1, d.ni, d.nj, d.nk, bytes.size()));
         l.points += d.count();
         l.dims.push_back(d);
     }
@@ -186,15 +191,37 @@ BlockGrid read_plot3d(const std::string& path) {
             p = end;
             return v;
         };
-        const int nb = int(next("the block count"));
+        // Counts are checked against what the file can hold before anything is sized by them:
+        // a number takes at least 2 characters.
+        const auto count = [&](const char* what, double lo, double hi) {
+            const double v = next(what);
+            if (!(v >= lo && v <= hi) || v != std::floor(v))
+                throw InputError(fmt::format("{}: {} is {}; expected a whole number in [{}, {}]", path, what, v, lo, hi));
+            return Id(v);
+        };
+        const double room = double(bytes.size()) / 2;
+        const Id nb = count("the block count", 1, room / 3);
         Id total = 0;
-        for (int b = 0; b < nb; ++b) {
-            Dims d{int(next("ni")), int(next("nj")), int(next("nk"))};
+        for (Id b = 0; b < nb; ++b) {
+            Dims d{int(count("ni", 2, room)), int(count("nj", 2, room)), int(count("nk", 2, room))};
+            if (double(d.ni) * d.nj * d.nk * 3 > room)
+                throw InputError(fmt::format("{}: block {} has dims {} {} {}: more coordinates than the file's {} "
+                                             "bytes can hold", path, b + 1, d.ni, d.nj, d.nk, bytes.size()));
             total += d.count();
             dims.push_back(d);
         }
+        if (double(total) * 3 > room)
+            throw InputError(fmt::format("{}: {} points: more coordinates than the file's {} bytes can hold", path,
+                                         total, bytes.size()));
         coords.resize(3 * total);
-        for (double& v : coords) v = next("a coordinate");
+        for (double& v : coords) {
+            v = next("a coordinate");
+            if (!std::isfinite(v)) throw InputError(fmt::format("{}: a coordinate is {} at byte {}", path, v, p - bytes.c_str()));
+        }
+        while (*p && std::isspace(static_cast<unsigned char>(*p))) ++p;
+        if (*p)
+            throw InputError(fmt::format("{}: more data after the {} coordinates the header announces (byte {})",
+                                         path, coords.size(), p - bytes.c_str()));
     } else {
         const bool fortran = format.encoding == Plot3dEncoding::fortran;
         const BinaryLayout l = binary_layout(bytes, fortran, path);

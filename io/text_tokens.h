@@ -26,6 +26,8 @@ public:
         at_ = text_.c_str();
     }
 
+    // The file's length in bytes: what any count it declares must fit in.
+    size_t size() const { return text_.size(); }
     bool done() {
         skip();
         return *at_ == '\0';

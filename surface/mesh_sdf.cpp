@@ -1,5 +1,8 @@
 #include "surface/mesh_sdf.h"
 
+#include <fmt/format.h>
+#include <unistd.h>
+
 #include <dlfcn.h>
 
 #include <algorithm>
@@ -93,6 +96,14 @@ MeshSdf::MeshSdf(const TriangleSurface& surface, const MeshSdfOptions& options)
         throw std::invalid_argument("MeshSdf: voxel size must be positive and at least 1e-5 of "
                                     "the surface's extent");
 
+    const double limit = options.max_bytes > 0 ? options.max_bytes : default_memory_limit();
+    const double needed = sdf_memory_estimate(surface, voxel, options.exterior_band, options.interior_band);
+    if (needed > limit)
+        throw std::invalid_argument(fmt::format(
+            "a distance field of voxel size {:.3g} ({:.0f} voxels along the longest side) would take about "
+            "{:.1f} GB, more than the limit of {:.1f} GB: use a larger voxel size",
+            voxel, extent / voxel, needed / 1e9, limit / 1e9));
+
     Grid& g = *grid_;
     g.voxel = voxel;
     g.origin = bounds_.lo;
@@ -118,6 +129,20 @@ MeshSdf::MeshSdf(const TriangleSurface& surface, const MeshSdfOptions& options)
 }
 
 MeshSdf::~MeshSdf() = default;
+
+double sdf_memory_estimate(const TriangleSurface& surface, double voxel, double exterior_band,
+                           double interior_band) {
+    double area = 0;
+    for (const auto& t : surface.triangles)
+        area += 0.5 * (surface.points[t[1]] - surface.points[t[0]]).cross(surface.points[t[2]] - surface.points[t[0]]).norm();
+    const double voxels = area / (voxel * voxel) * (exterior_band + interior_band + 1);
+    return 2 * 16 * voxels;
+}
+
+double default_memory_limit() {
+    const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+    return pages > 0 && page > 0 ? 0.5 * double(pages) * double(page) : 8e9;
+}
 
 Box3 MeshSdf::bounds() const {
     // The interpolated zero level of a face lying on the box may sit a few 1e-5 voxel outside

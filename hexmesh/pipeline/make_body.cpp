@@ -1,5 +1,7 @@
 #include "hexmesh/pipeline/make_body.h"
 
+#include <fmt/format.h>
+
 #include <memory>
 
 #include "io/sample_readers.h"
@@ -27,7 +29,12 @@ Body make_shape(const GeometrySpec& s) {
         MeshSdfOptions options;
         options.voxel_size = s.voxel_size;
         options.feature_angle = s.feature_angle;
-        return std::make_shared<MeshSdf>(read_surface(s.file), options);
+        const TriangleSurface surface = read_surface(s.file);
+        try {
+            return std::make_shared<MeshSdf>(surface, options);
+        } catch (const std::invalid_argument& e) {  // a voxel size that cannot be
+            throw InputError(fmt::format("{}: {}", s.file, e.what()));
+        }
     }
     if (s.kind == "points") return std::make_shared<PointCloudSdf>(read_point_cloud(s.file));
     if (s.kind == "sections") return std::make_shared<CrossSectionSdf>(read_sections(s.file));

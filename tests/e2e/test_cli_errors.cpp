@@ -85,3 +85,24 @@ TEST(CliErrors, WrongArgumentsAreOneLineWithExitCodeOne) {
     EXPECT_EQ(help.exit_code, 0);
     EXPECT_NE(help.out.find("case file"), std::string::npos) << help.out;
 }
+
+TEST(CliErrors, ADistanceFieldTooLargeForTheMachineIsRefusedBeforeItIsBuilt) {
+    const fs::path dir = scratch("sdf_memory");
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const fs::path cube = dir / "cube.off";
+    std::ofstream(cube) << "OFF\n8 12 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n0 0 1\n1 0 1\n0 1 1\n1 1 1\n"
+                           "3 0 2 1\n3 1 2 3\n3 4 5 6\n3 5 7 6\n3 0 1 4\n3 1 5 4\n"
+                           "3 2 6 3\n3 3 6 7\n3 0 4 2\n3 2 4 6\n3 1 3 5\n3 3 7 5\n";
+    const fs::path out = dir / "cube.vdb";
+    CommandResult r = run_hexmesh("sdf '" + cube.string() + "' --resolution 100000 -o '" + out.string() + "'");
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(cube.string() + ": a distance field of voxel size 1e-05"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("GB, more than the limit of"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+    r = run_hexmesh("sdf '" + cube.string() + "' --resolution 64 -o '" + out.string() + "'");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(fs::exists(out));
+    fs::remove_all(dir);
+}

@@ -1,10 +1,15 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <functional>
+
+#include <fmt/format.h>
 
 #include "export_test_support.h"
 #include "io/case_file.h"
 #include "io/export_grid.h"
+#include "io/gmsh_mesh.h"
+#include "io/plot3d.h"
 #include "io/vtk_mesh.h"
 
 using namespace hexmesh;
@@ -102,4 +107,55 @@ TEST(ExportCli, RunThenExportThenQualityAgree) {
     EXPECT_EQ(bad.exit_code, 1);
     EXPECT_EQ(std::count(bad.output.begin(), bad.output.end(), '\n'), 1) << bad.output;
     EXPECT_NE(bad.output.find("hexmesh: error: "), std::string::npos) << bad.output;
+}
+
+namespace {
+
+std::string input_error(const std::function<void()>& read) {
+    try {
+        read();
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "no InputError";
+}
+
+}  // namespace
+
+TEST(ReadErrors, HeadersPromisingMoreThanTheFileHoldsAreRefusedBeforeAnythingIsSized) {
+    const fs::path dir = scratch("headers");
+    // Gmsh: a max node tag of 3e9 for two nodes is read with a map, not a 24 GB table; a node
+    // count larger than the file is refused at once.
+    const std::string sparse = (dir / "sparse.msh").string();
+    std::ofstream(sparse) << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 2 1 3000000000\n3 1 0 2\n"
+                             "1\n3000000000\n0 0 0\n1 0 0\n$EndNodes\n$Elements\n1 1 1 1\n3 1 5 1\n"
+                             "1 1 3000000000 1 1 1 1 1 1\n$EndElements\n";
+    EXPECT_EQ(read_gmsh_mesh(sparse).num_cells(), 1);
+    const std::string huge = (dir / "huge.msh").string();
+    std::ofstream(huge) << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 2000000000 1 2000000000\n";
+    std::string what = input_error([&] { read_gmsh_mesh(huge); });
+    EXPECT_NE(what.find("2000000000 nodes in 1 blocks do not fit in the file's"), std::string::npos) << what;
+    // Plot3D (ASCII): 99999^3 points, dims 0 0 0, and data beyond what the header announces.
+    const std::vector<std::pair<std::string, std::string>> plot3d = {
+        {"1\n99999 99999 99999\n0 0 0\n", "ni is 99999; expected a whole number in [2, "},
+        {"1\n9 9 9\n" + std::string(300, ' ') + "0 0 0\n", "block 1 has dims 9 9 9: more coordinates than the file's"},
+        {"1\n0 0 0\n1 2 3 4 5 6\n", "ni is 0; expected a whole number in [2,"},
+    };
+    int n = 0;
+    for (const auto& [text, message] : plot3d) {
+        const std::string path = (dir / fmt::format("bad{}.xyz", n++)).string();
+        std::ofstream(path) << text;
+        what = input_error([&] { read_plot3d(path); });
+        EXPECT_NE(what.find(path), std::string::npos) << what;
+        EXPECT_NE(what.find(message), std::string::npos) << what;
+    }
+    std::string cube = "1\n2 2 2\n";
+    for (int a = 0; a < 3; ++a)
+        for (int c = 0; c < 8; ++c) cube += fmt::format("{} ", (c >> a) & 1);
+    const std::string good = (dir / "cube.xyz").string(), longer = (dir / "longer.xyz").string();
+    std::ofstream(good) << cube << "\n";
+    std::ofstream(longer) << cube << "\n7 7 7\n";
+    EXPECT_EQ(read_plot3d(good).num_cells(), 1);
+    what = input_error([&] { read_plot3d(longer); });
+    EXPECT_NE(what.find("more data after the 24 coordinates the header announces"), std::string::npos) << what;
 }
