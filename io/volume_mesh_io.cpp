@@ -102,8 +102,10 @@ VolumeMesh read_volume_mesh(const std::string& path) {
         return VolumeMesh{hexes.points, hexes.hexes, {}, {}};
     }
     vtkSmartPointer<vtkDataObject> data;
-    if (ext == ".vtk") data = vtk_support::read_with<vtkDataSetReader>(path);
-    else if (ext == ".vtu") data = vtk_support::read_with<vtkXMLUnstructuredGridReader>(path);
+    if (ext == ".vtk") {
+        vtk_support::check_legacy_vtk(path);  // before VTK's legacy reader
+        data = vtk_support::read_with<vtkDataSetReader>(path);
+    } else if (ext == ".vtu") data = vtk_support::read_with<vtkXMLUnstructuredGridReader>(path);
     else throw InputError(fmt::format("{}: unknown volume mesh format '{}' (expected .vtk, .vtu or .mesh)", path, ext));
     auto* set = vtkDataSet::SafeDownCast(data);
     if (!set) throw InputError(fmt::format("{}: not a VTK data set", path));

@@ -261,8 +261,10 @@ HexMesh read_vtk_mesh(const std::string& path) {
     vtkSmartPointer<vtkDataObject> data;
     if (ext == ".vts") data = vtk_support::read_with<vtkXMLStructuredGridReader>(path);
     else if (ext == ".vtu") data = vtk_support::read_with<vtkXMLUnstructuredGridReader>(path);
-    else if (ext == ".vtk") data = vtk_support::read_with<vtkDataSetReader>(path);
-    else if (ext == ".vtm") data = vtk_support::read_with<vtkXMLMultiBlockDataReader>(path);
+    else if (ext == ".vtk") {
+        vtk_support::check_legacy_vtk(path);  // before VTK's legacy reader
+        data = vtk_support::read_with<vtkDataSetReader>(path);
+    } else if (ext == ".vtm") data = vtk_support::read_with<vtkXMLMultiBlockDataReader>(path);
     else if (ext == ".msh") return read_gmsh_mesh(path);
     else if (ext == ".mesh") return read_medit_mesh(path);
     else if (is_plot3d_path(path)) return to_hex_mesh(read_plot3d(path));

@@ -1,6 +1,9 @@
 #include "io/vtk_support.h"
 
 #include <filesystem>
+#include <cctype>
+#include <sstream>
+#include <fstream>
 #include <fmt/format.h>
 #include <stdexcept>
 #include <vtkLogger.h>
@@ -89,6 +92,160 @@ void check_cell_points(vtkIdList* ids, int count, Id points, const std::string& 
         if (ids->GetId(v) < 0 || ids->GetId(v) >= points)
             throw InputError(fmt::format("{}: cell {} refers to point {}, but the file has points 0 to {}",
                                          path, cell, ids->GetId(v), points - 1));
+}
+
+namespace {
+
+// A legacy .vtk file read keyword line by keyword line: ASCII numbers as whitespace-separated
+// tokens, binary ones as big-endian values after their keyword line.
+class LegacyVtk {
+public:
+    LegacyVtk(std::string bytes, std::string path) : bytes_(std::move(bytes)), path_(std::move(path)) {}
+
+    [[noreturn]] void fail(const std::string& why) const {
+        throw InputError(fmt::format("{}: {} (byte {})", path_, why, at_));
+    }
+    bool done() {
+        skip_space();
+        return at_ >= bytes_.size();
+    }
+    // The next line, without its end.
+    std::string line() {
+        skip_space();
+        const size_t end = std::min(bytes_.find('\n', at_), bytes_.size());
+        std::string text = bytes_.substr(at_, end - at_);
+        at_ = std::min(end + 1, bytes_.size());
+        if (!text.empty() && text.back() == '\r') text.pop_back();
+        return text;
+    }
+    // The next number: an ASCII token, or a big-endian value of `size` bytes (integer or
+    // floating as `real` says; only integers are returned, reals are skipped as 0).
+    long long number(bool binary, int size, bool real) {
+        if (!binary) {
+            skip_space();
+            const size_t start = at_;
+            while (at_ < bytes_.size() && !std::isspace(static_cast<unsigned char>(bytes_[at_]))) ++at_;
+            if (start == at_) fail("the file ends inside a list");
+            const std::string token = bytes_.substr(start, at_ - start);
+            if (real) return 0;
+            char* end = nullptr;
+            const long long v = std::strtoll(token.c_str(), &end, 10);
+            if (*end) fail(fmt::format("'{}' is not an integer", token));
+            return v;
+        }
+        if (at_ + size > bytes_.size()) fail("the file ends inside a list");
+        unsigned long long v = 0;
+        for (int b = 0; b < size; ++b) v = (v << 8) | static_cast<unsigned char>(bytes_[at_ + b]);
+        at_ += size;
+        if (real) return 0;
+        if (size < 8 && (v >> (8 * size - 1))) v |= ~0ull << (8 * size);  // sign
+        return static_cast<long long>(v);
+    }
+    // Skips `count` values (binary: of `size` bytes), refusing a count the file cannot hold.
+    void skip(bool binary, long long count, int size) {
+        if (count < 0 || double(count) * (binary ? size : 2) > double(bytes_.size() - at_ + 1))
+            fail(fmt::format("a list of {} values does not fit in the rest of the file", count));
+        if (binary) at_ += size_t(count) * size;
+        else
+            for (long long k = 0; k < count; ++k) number(false, 0, true);
+    }
+    size_t position() const { return at_; }
+    void seek(size_t at) { at_ = at; }
+
+private:
+    void skip_space() {
+        while (at_ < bytes_.size() && std::isspace(static_cast<unsigned char>(bytes_[at_]))) ++at_;
+    }
+    std::string bytes_, path_;
+    size_t at_ = 0;
+};
+
+int type_size(const std::string& type) {
+    if (type == "bit" || type == "char" || type == "unsigned_char") return 1;
+    if (type == "short" || type == "unsigned_short") return 2;
+    if (type == "int" || type == "unsigned_int" || type == "float" || type == "vtkIdType" ||
+        type == "vtktypeint32" || type == "vtktypeuint32")
+        return 4;
+    if (type == "long" || type == "unsigned_long" || type == "double" || type == "vtktypeint64" ||
+        type == "vtktypeuint64")
+        return 8;
+    return 0;
+}
+
+}  // namespace
+
+void check_legacy_vtk(const std::string& path) {
+    require_file(path);
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    LegacyVtk f(text.str(), path);
+    if (f.line().rfind("# vtk DataFile", 0) != 0) f.fail("not a legacy VTK file (no '# vtk DataFile' line)");
+    f.line();  // title
+    const std::string encoding = f.line();
+    if (encoding != "ASCII" && encoding != "BINARY") f.fail(fmt::format("encoding '{}': expected ASCII or BINARY", encoding));
+    const bool binary = encoding == "BINARY";
+    std::istringstream dataset(f.line());
+    std::string word, kind;
+    dataset >> word >> kind;
+    if (word != "DATASET") f.fail("expected a DATASET line");
+    if (kind != "UNSTRUCTURED_GRID" && kind != "POLYDATA") return;
+    while (!f.done()) {
+        std::istringstream keyword(f.line());
+        std::string name;
+        keyword >> name;
+        long long a = 0, b = 0;
+        std::string type;
+        if (name == "POINTS") {
+            keyword >> a >> type;
+            if (!keyword || type_size(type) == 0) f.fail("a POINTS line without a count and a known type");
+            f.skip(binary, 3 * a, type_size(type));
+        } else if (name == "METADATA") {
+            while (!f.done() && !f.line().empty()) {}
+        } else if (name == "CELL_TYPES") {
+            keyword >> a;
+            f.skip(binary, a, 4);
+        } else if (name == "CELLS" || name == "POLYGONS" || name == "LINES" || name == "VERTICES" ||
+                   name == "TRIANGLE_STRIPS") {
+            keyword >> a >> b;
+            if (!keyword || a < 0 || b < 0) f.fail(fmt::format("a {} line without its two counts", name));
+            const size_t mark = f.position();
+            std::istringstream next(f.line());
+            std::string offsets;
+            next >> offsets >> type;
+            if (offsets == "OFFSETS") {  // 5.1: a offsets (cells + 1), then b connectivity ids
+                if (type_size(type) == 0) f.fail(fmt::format("{} OFFSETS of unknown type '{}'", name, type));
+                long long previous = 0;
+                for (long long k = 0; k < a; ++k) {
+                    const long long o = f.number(binary, type_size(type), false);
+                    if (o < previous || o > b || (k == 0 && o != 0))
+                        f.fail(fmt::format("{}: offset {} is {}, outside [{}, {}]", name, k, o, previous, b));
+                    previous = o;
+                }
+                if (a > 0 && previous != b)
+                    f.fail(fmt::format("{}: the offsets end at {}, but the line declares {} ids", name, previous, b));
+                std::istringstream connectivity(f.line());
+                connectivity >> offsets >> type;
+                if (offsets != "CONNECTIVITY" || type_size(type) == 0) f.fail(fmt::format("{}: no CONNECTIVITY list", name));
+                f.skip(binary, b, type_size(type));
+            } else {  // rows "count id ...", b values in all (binary: 4-byte integers)
+                f.seek(mark);
+                long long total = 0;
+                for (long long r = 0; r < a; ++r) {
+                    const long long c = f.number(binary, 4, false);
+                    if (c < 0 || total + c + 1 > b)
+                        f.fail(fmt::format("{}: row {} has {} ids, beyond the {} values the line declares", name, r,
+                                           c, b));
+                    f.skip(binary, c, 4);
+                    total += c + 1;
+                }
+                if (total != b)
+                    f.fail(fmt::format("{}: its {} rows hold {} values, but the line declares {}", name, a, total, b));
+            }
+        } else {
+            return;  // attributes: VTK's own checks
+        }
+    }
 }
 
 void throw_read_error(const std::string& path, const std::string& why) {

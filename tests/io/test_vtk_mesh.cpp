@@ -111,3 +111,40 @@ TEST(VtkMesh, CellsWithPointIdsOutOfRangeOrTooFewAreRefusedNamingTheCell) {
     EXPECT_EQ(read_vtk_mesh(good).num_cells(), 1);
     EXPECT_EQ(read_volume_mesh(good).num_hexes(), 1);
 }
+
+TEST(VtkMesh, LegacyCellListsThatDisagreeWithTheirDeclaredSizeAreRefusedBeforeVtkReadsThem) {
+    // VTK's legacy reader corrupts the heap on such lists ("free(): invalid next size").
+    const fs::path dir = temp_dir("cell_lists");
+    const std::vector<std::pair<std::string, std::string>> ascii = {
+        {one_hex_vtk("8 0 1 3 2 4 5 7 6", 5), "CELLS: row 0 has 8 ids, beyond the 5 values the line declares"},
+        {one_hex_vtk("8 0 1 3 2 4 5 7 6", 12), "CELLS: its 1 rows hold 9 values, but the line declares 12"},
+        {one_hex_vtk("12 0 1 3 2 4 5 7 6", 9), "CELLS: row 0 has 12 ids, beyond the 9 values"},
+    };
+    int n = 0;
+    for (const auto& [text, message] : ascii) {
+        const std::string path = (dir / fmt::format("rows{}.vtk", n++)).string();
+        std::ofstream(path) << text;
+        for (const std::string& what : {input_error([&] { read_vtk_mesh(path); }),
+                                        input_error([&] { read_volume_mesh(path); })}) {
+            EXPECT_NE(what.find(path + ": " + message), std::string::npos) << what;
+        }
+    }
+    // Binary, VTK 9's layout (OFFSETS and CONNECTIVITY, 64-bit): as written it reads back; with
+    // its declared connectivity size changed it is refused.
+    VolumeMesh mesh;
+    for (int c = 0; c < 12; ++c) mesh.points.emplace_back(c & 1, (c >> 1) & 1, c >> 2);
+    mesh.hexes = {0, 1, 3, 2, 4, 5, 7, 6, 4, 5, 7, 6, 8, 9, 11, 10};
+    const std::string binary = (dir / "two.vtk").string();
+    write_volume_mesh(mesh, binary);
+    EXPECT_EQ(read_volume_mesh(binary).num_hexes(), 2);
+    EXPECT_EQ(read_vtk_mesh(binary).num_cells(), 2);
+    std::ifstream in(binary, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const size_t at = bytes.find("CELLS 3 16");
+    ASSERT_NE(at, std::string::npos) << "not VTK 9's layout";
+    bytes.replace(at, 10, "CELLS 3 15");
+    const std::string mutated = (dir / "mutated.vtk").string();
+    std::ofstream(mutated, std::ios::binary) << bytes;
+    const std::string what = input_error([&] { read_volume_mesh(mutated); });
+    EXPECT_NE(what.find(mutated + ": CELLS: offset 2 is 16, outside [8, 15]"), std::string::npos) << what;
+}
