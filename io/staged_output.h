@@ -1,18 +1,25 @@
-// Output folders written all-or-nothing: files go to a staging folder, then move into place.
+// Output folders written all-or-nothing: files go to a staging folder, then take the output
+// folder's place in one atomic step.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
 namespace hexmesh {
 
-// Creates OUTDIR (and a hidden staging folder inside it) on construction. path(name) gives
-// where to write an output; commit() moves every staged entry to OUTDIR/name, replacing an
-// older output of the same name. Without commit() (an error on the way), the destructor
-// removes the staging folder, and OUTDIR too if this object created it: no partial output
-// is ever left under a final name. The staging folder is OUTDIR/.staging-HOST-PID; those of
-// earlier runs on this host whose process is gone (killed before cleaning up) are removed on
-// construction. Throws std::runtime_error if OUTDIR cannot be created.
+// Creates OUTDIR on construction (empty while the run works) and locks it: a second process
+// that constructs one for the same folder meanwhile is refused (std::runtime_error naming the
+// folder). path(name) gives where to write an output: in a staging folder beside OUTDIR
+// (OUTDIR/../.NAME.staging-HOST-PID). commit() carries the entries of OUTDIR that this run
+// does not write (a user's notes, another format's export) into the staging folder (hard links,
+// else copies), then swaps it with OUTDIR in one rename (Linux renameat2 RENAME_EXCHANGE) and
+// removes the old contents: at every instant OUTDIR holds the complete previous result or the
+// complete new one. On a file system without that exchange, the entries move one by one.
+// Without commit() (an error on the way), the destructor removes the staging folder, and
+// OUTDIR too if this object created it: no partial output is ever left under a final name.
+// Staging folders of earlier runs on this host whose process is gone (killed before cleaning
+// up) are removed on construction. Throws std::runtime_error if OUTDIR cannot be created.
 class StagedOutput {
 public:
     explicit StagedOutput(std::string outdir);
@@ -25,9 +32,15 @@ public:
     // Moves the staged outputs into place; returns their final paths.
     std::vector<std::string> commit();
 
+    // Tests only: called with "carried" (the staging folder complete) and "exchanged" (the
+    // new result in place, the old one not yet removed) during commit(), e.g. to kill the
+    // process there.
+    static std::function<void(const char* step)> commit_step_hook;
+
 private:
     std::string outdir_, staging_;
     std::vector<std::string> names_;
+    int lock_fd_ = -1;
     bool created_outdir_ = false, committed_ = false;
 };
 

@@ -57,6 +57,7 @@ void add_refine_command(CLI::App& app, int& exit_code) {
         const Case c = case_of_grid(args->grid_path, args->case_path);
         std::cout << fmt::format("hexmesh refine {}\n", args->grid_path);
         PhaseTimer timer(std::cout);
+        StagedOutput out(args->outdir);  // locked from the start: a second run into it is refused
         BlockGrid grid = read_vtk_block_grid(args->grid_path);
         timer.done("read", fmt::format("({} blocks, {} cells)", grid.blocks.size(),
                                        grid.num_cells()));
@@ -71,7 +72,6 @@ void add_refine_command(CLI::App& app, int& exit_code) {
                                              grid.num_cells(), r.projected, r.max_projection));
         }
         const std::optional<TriangleSurface> surface = reference_surface(c.geometry);
-        StagedOutput out(args->outdir);
         GridMeter meter(*body, {}, surface ? &*surface : nullptr);
         VtkGridWriter writer(out.path(grid.blocks.size() == 1 ? "grid.vts" : "grid.vtm"),
                              grid.blocks.size());

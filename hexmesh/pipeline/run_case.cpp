@@ -232,6 +232,7 @@ void surface_pass(const Case& c, const ImplicitFunction& body, const WallRoute* 
 RunResult run_case(const Case& given, const std::string& outdir, const RunOptions& options,
                    std::ostream& log) {
     PhaseTimer timer(log);
+    StagedOutput out(outdir);  // the folder locked from the start: a second run into it is refused
     const std::optional<TriangleSurface> surface = reference_surface(given.geometry);
     if (surface) refuse_topology(given, *surface, log);
     const Body body = make_body(given.geometry);
@@ -317,7 +318,6 @@ RunResult run_case(const Case& given, const std::string& outdir, const RunOption
     timer.done("quality");
 
     if (c.refinement.levels == 1) {
-        StagedOutput out(outdir);
         write_level(c, result.grid, result.report, "", options, timer, out);
         result.report.phase_seconds = timer.phases();
         result.files = out.commit();
@@ -340,7 +340,6 @@ RunResult run_case(const Case& given, const std::string& outdir, const RunOption
         timer.done(fmt::format("quality level {}", level));
         grids.push_back(std::move(r.grid));
     }
-    StagedOutput out(outdir);
     std::vector<FamilyLevel> table;
     for (int level = 1; level <= c.refinement.levels; ++level) {
         const std::string dir = fmt::format("level_{}/", level);

@@ -106,3 +106,27 @@ TEST(CliErrors, ADistanceFieldTooLargeForTheMachineIsRefusedBeforeItIsBuilt) {
     EXPECT_TRUE(fs::exists(out));
     fs::remove_all(dir);
 }
+
+TEST(CliErrors, TwoRunsIntoOneFolderAtOnceOneSucceedsTheOtherIsRefused) {
+    const fs::path dir = scratch("two_runs");
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const fs::path out = dir / "out";
+    const std::string run = std::string("'") + HEXMESH_EXE + "' run cases/sphere/case.json -o '" + out.string() + "'";
+    // Both start together; the sphere takes about a second, the refusal a few milliseconds.
+    const std::string script = "(" + run + " > '" + (dir / "1.out").string() + "' 2> '" + (dir / "1.err").string() +
+                               "'; echo $? > '" + (dir / "1.rc").string() + "') & (" + run + " > '" +
+                               (dir / "2.out").string() + "' 2> '" + (dir / "2.err").string() + "'; echo $? > '" +
+                               (dir / "2.rc").string() + "') & wait";
+    ASSERT_EQ(std::system(script.c_str()), 0);
+    const int rc1 = std::stoi(read_text(dir / "1.rc")), rc2 = std::stoi(read_text(dir / "2.rc"));
+    EXPECT_EQ(std::min(rc1, rc2), 0) << read_text(dir / "1.err") << read_text(dir / "2.err");
+    EXPECT_EQ(std::max(rc1, rc2), 1);
+    const std::string refused = read_text(dir / (rc1 == 1 ? "1.err" : "2.err"));
+    EXPECT_EQ(count_lines(refused), 1) << refused;
+    EXPECT_NE(refused.find(out.string() + ": another hexmesh process is writing into this folder"),
+              std::string::npos) << refused;
+    EXPECT_TRUE(fs::exists(out / "grid.vtm"));
+    EXPECT_TRUE(fs::exists(out / "quality.json"));
+    fs::remove_all(dir);
+}

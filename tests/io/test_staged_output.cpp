@@ -3,6 +3,10 @@
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
+#include <algorithm>
+#include <csignal>
+#include <string>
+#include <vector>
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -65,9 +69,11 @@ TEST(StagedOutput, StagingLeftByAKilledRunOnThisHostIsRemoved) {
     if (child == 0) _exit(0);
     ASSERT_GT(child, 0);
     waitpid(child, nullptr, 0);
-    const fs::path dead = dir / (".staging-" + std::string(host) + "-" + std::to_string(child));
-    const fs::path live = dir / (".staging-" + std::string(host) + "-" + std::to_string(getppid()));
-    const fs::path other_host = dir / (".staging-elsewhere-" + std::to_string(child));
+    // Beside the folder: .NAME.staging-HOST-PID.
+    const std::string stem = "." + dir.filename().string() + ".staging-";
+    const fs::path dead = dir.parent_path() / (stem + std::string(host) + "-" + std::to_string(child));
+    const fs::path live = dir.parent_path() / (stem + std::string(host) + "-" + std::to_string(getppid()));
+    const fs::path other_host = dir.parent_path() / (stem + "elsewhere-" + std::to_string(child));
     for (const fs::path& p : {dead, live, other_host}) {
         fs::create_directories(p);
         std::ofstream(p / "grid.vtm") << "partial";
@@ -81,5 +87,93 @@ TEST(StagedOutput, StagingLeftByAKilledRunOnThisHostIsRemoved) {
     EXPECT_TRUE(fs::exists(live));
     EXPECT_TRUE(fs::exists(other_host));
     EXPECT_TRUE(fs::exists(dir / "quality.json"));
+    for (const fs::path& p : {dir, live, other_host}) fs::remove_all(p);
+}
+
+namespace {
+
+std::string text_of(const fs::path& file) {
+    std::ifstream in(file);
+    std::string text;
+    std::getline(in, text);
+    return text;
+}
+
+// The entries of `dir` (names), sorted.
+std::vector<std::string> entries(const fs::path& dir) {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+}  // namespace
+
+TEST(StagedOutput, AKillAtAnyStepOfTheCommitLeavesTheOldResultOrTheNewOneWhole) {
+    const fs::path dir = fs::temp_directory_path() / "hexmesh_test_staged_kill";
+    for (const std::string kill_at : {"writing", "carried", "exchanged"}) {
+        SCOPED_TRACE(kill_at);
+        fs::remove_all(dir);
+        fs::create_directories(dir / "grid");
+        std::ofstream(dir / "quality.json") << "old";
+        std::ofstream(dir / "grid.vtm") << "old";
+        std::ofstream(dir / "grid" / "block0.vts") << "old";
+        std::ofstream(dir / "notes.txt") << "user file";
+        const pid_t child = fork();
+        if (child == 0) {
+            StagedOutput::commit_step_hook = [&](const char* step) {
+                if (kill_at == step) ::raise(SIGKILL);
+            };
+            StagedOutput out(dir.string());
+            out.write_text("quality.json", "new");
+            out.write_text("grid.vtm", "new");
+            fs::create_directories(fs::path(out.path("grid")));
+            std::ofstream(fs::path(out.path("grid")) / "block0.vts") << "new";
+            if (kill_at == "writing") ::raise(SIGKILL);
+            out.commit();
+            _exit(0);
+        }
+        int status = 0;
+        waitpid(child, &status, 0);
+        ASSERT_TRUE(WIFSIGNALED(status));
+        const std::string seen = text_of(dir / "quality.json");
+        const std::string expected = kill_at == "exchanged" ? "new" : "old";
+        EXPECT_EQ(seen, expected);
+        EXPECT_EQ(text_of(dir / "grid.vtm"), expected);
+        EXPECT_EQ(text_of(dir / "grid" / "block0.vts"), expected);
+        EXPECT_EQ(text_of(dir / "notes.txt"), "user file");
+        EXPECT_EQ(entries(dir), (std::vector<std::string>{"grid", "grid.vtm", "notes.txt", "quality.json"}));
+        // The next run cleans what the killed one left beside the folder, and commits.
+        {
+            StagedOutput out(dir.string());
+            out.write_text("quality.json", "next");
+            out.commit();
+        }
+        EXPECT_EQ(text_of(dir / "quality.json"), "next");
+        EXPECT_EQ(text_of(dir / "grid.vtm"), expected);
+        for (const auto& e : fs::directory_iterator(dir.parent_path()))
+            EXPECT_EQ(e.path().filename().string().rfind(".hexmesh_test_staged_kill.staging-", 0), std::string::npos)
+                << e.path();
+    }
+    fs::remove_all(dir);
+}
+
+TEST(StagedOutput, ASecondWriterOfTheSameFolderIsRefusedWhileTheFirstWorks) {
+    const fs::path dir = fs::temp_directory_path() / "hexmesh_test_staged_lock";
+    fs::remove_all(dir);
+    {
+        StagedOutput first(dir.string());
+        first.write_text("quality.json", "first");
+        try {
+            StagedOutput second(dir.string());
+            FAIL() << "expected a refusal";
+        } catch (const std::runtime_error& e) {
+            EXPECT_NE(std::string(e.what()).find("another hexmesh process is writing into this folder"),
+                      std::string::npos) << e.what();
+        }
+        first.commit();
+    }
+    EXPECT_EQ(text_of(dir / "quality.json"), "first");
+    StagedOutput third(dir.string());  // free again
     fs::remove_all(dir);
 }
