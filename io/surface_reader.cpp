@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <fmt/format.h>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -15,6 +16,8 @@
 
 namespace hexmesh {
 namespace surface_io {
+
+constexpr double max_coordinate = 1e150;
 
 void SurfaceBuilder::fail(Place where, const std::string& message) const {
     if (!where.unit) throw InputError(fmt::format("{}: {}", file_, message));
@@ -24,6 +27,11 @@ void SurfaceBuilder::fail(Place where, const std::string& message) const {
 int SurfaceBuilder::add_point(const Vec3& p, Place where) {
     if (!p.allFinite())
         fail(where, fmt::format("vertex coordinates must be finite numbers, got ({}, {}, {})",
+                                p.x(), p.y(), p.z()));
+    // Beyond 1e150 the products of two coordinates (areas, normals) overflow: the file's units
+    // are wrong, and that, not a degenerate triangle further on, is what to say.
+    if (p.cwiseAbs().maxCoeff() > max_coordinate)
+        fail(where, fmt::format("vertex coordinates up to {:g} are supported, got ({}, {}, {})", max_coordinate,
                                 p.x(), p.y(), p.z()));
     surface_.points.push_back(p);
     return num_points() - 1;
@@ -95,6 +103,9 @@ std::string file_extension(const std::string& path) {
 }
 
 std::string read_file(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw InputError(fmt::format("{}: is a folder, not a surface file", path));
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(fmt::format("{}: cannot open ({})", path, std::strerror(errno)));
     std::ostringstream buffer;

@@ -2,8 +2,10 @@
 // computed on the fine, medium and coarse grids of a family (Celik et al. 2008).
 #include <fmt/format.h>
 
+#include <cmath>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "hexmesh/cli/commands.h"
 #include "hexmesh/pipeline/grid_convergence.h"
@@ -13,7 +15,8 @@ namespace hexmesh::cli {
 
 void add_gci_command(CLI::App& app, int& exit_code) {
     struct Args {
-        double phi1 = 0, phi2 = 0, phi3 = 0, ratio = 2, ratio32 = 0;
+        double phi1 = 0, phi2 = 0, phi3 = 0, ratio = 2;
+        std::optional<double> ratio32;
         bool allow_oscillatory = false;
     };
     auto args = std::make_shared<Args>();
@@ -31,7 +34,14 @@ void add_gci_command(CLI::App& app, int& exit_code) {
         GridConvergenceInput in;
         in.phi1 = args->phi1, in.phi2 = args->phi2, in.phi3 = args->phi3;
         in.r21 = args->ratio;
-        in.r32 = args->ratio32 > 0 ? args->ratio32 : args->ratio;
+        in.r32 = args->ratio32.value_or(args->ratio);
+        // Every number as given: a NaN or a ratio <= 1 is refused, never replaced by a default.
+        const std::pair<const char*, double> given[] = {{"F1", in.phi1}, {"F2", in.phi2}, {"F3", in.phi3},
+                                                        {"--ratio", in.r21}, {"--ratio32", in.r32}};
+        for (const auto& [name, value] : given)
+            if (!std::isfinite(value)) throw InputError(fmt::format("gci: {} is {}: expected a finite number", name, value));
+        for (const auto& [name, value] : {given[3], given[4]})
+            if (!(value > 1)) throw InputError(fmt::format("gci: {} is {}: a refinement ratio must be > 1", name, value));
         GridConvergence g;
         try {
             g = grid_convergence(in);

@@ -130,3 +130,20 @@ TEST(CliErrors, TwoRunsIntoOneFolderAtOnceOneSucceedsTheOtherIsRefused) {
     EXPECT_TRUE(fs::exists(out / "quality.json"));
     fs::remove_all(dir);
 }
+
+TEST(CliErrors, GciRefusesNanAndRatiosNotAboveOneInsteadOfUsingADefault) {
+    const std::pair<std::string, std::string> cases[] = {
+        {"gci 1 1.1 1.3 --ratio32 nan", "gci: --ratio32 is nan: expected a finite number"},
+        {"gci nan 1.1 1.3", "gci: F1 is nan: expected a finite number"},
+        {"gci 1 1.1 1.3 --ratio 0.5", "gci: --ratio is 0.5: a refinement ratio must be > 1"},
+    };
+    for (const auto& [args, message] : cases) {
+        const CommandResult r = run_hexmesh(args);
+        EXPECT_EQ(r.exit_code, 1) << args;
+        EXPECT_EQ(count_lines(r.err), 1) << r.err;
+        EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+    }
+    const CommandResult ok = run_hexmesh("gci 1 1.1 1.3 --ratio32 1.5");
+    EXPECT_EQ(ok.exit_code, 0) << ok.err;
+    EXPECT_NE(ok.out.find("refinement ratios r21, r32          2 1.5"), std::string::npos) << ok.out;
+}

@@ -138,6 +138,16 @@ TEST_F(SurfaceReader, NonFiniteVertexNamesTheLine) {
         << obj;
 }
 
+TEST_F(SurfaceReader, AFolderAndCoordinatesBeyondRangeAreNamedForWhatTheyAre) {
+    std::filesystem::create_directories(path("folder.stl"));
+    const std::string folder = error_of(path("folder.stl"));
+    EXPECT_NE(folder.find("folder.stl: is a folder, not a surface file"), std::string::npos) << folder;
+    const std::string huge = error_of(write("huge.off", "OFF\n3 1 0\n0 0 0\n1e308 0 0\n0 1 0\n3 0 1 2\n"));
+    EXPECT_NE(huge.find("huge.off: line 4: vertex coordinates up to 1e+150 are supported, got (1e+308, 0, 0)"),
+              std::string::npos)
+        << huge;
+}
+
 TEST_F(SurfaceReader, ZeroAreaTriangleIsRefusedUnlessAllowed) {
     const std::string file = write("flat.obj",
                                    "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\n");
