@@ -10,6 +10,11 @@
 namespace hexmesh {
 namespace {
 
+constexpr const char* face_names[6] = {"imin", "imax", "jmin", "jmax", "kmin", "kmax"};
+
+}  // namespace
+namespace {
+
 using FaceKey = std::array<Id, 4>;
 
 FaceKey sorted_key(std::array<Id, 4> nodes) {
@@ -87,7 +92,14 @@ GridFaces make_grid_faces(const BlockGrid& grid) {
             const Id open_faces = std::count(across.begin(), across.end(), Id(-1));
             if (open_faces == 0) continue;
             const std::string& name = grid.blocks[b].face_patch[face];
-            out.face_patch_index[b][face] = patch_index(name.empty() ? "unassigned" : name);
+            // A face without a patch is an interface: every cell face on it meets another
+            // block's, or the blocks do not conform there.
+            if (name.empty())
+                throw std::invalid_argument(fmt::format(
+                    "block grid: face {} of block '{}' is an interface (no patch), but {} of its {} cell "
+                    "faces meet no other block's: the blocks do not conform there",
+                    face_names[face], grid.blocks[b].name, open_faces, across.size()));
+            out.face_patch_index[b][face] = patch_index(name);
             out.boundary_faces += open_faces;
         }
     return out;

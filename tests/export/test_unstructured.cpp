@@ -42,6 +42,32 @@ TEST(GridFaces, CountsMatchEulersFaceBalance) {
     EXPECT_EQ(internal, faces.internal_faces);
 }
 
+TEST(GridFaces, BlocksThatDoNotConformAtAnInterfaceAreRefusedNamingTheFace) {
+    // The O-H grid with one wall block's nodes on the core face moved off its neighbour's:
+    // the interface (no patch) now has cell faces that meet nothing.
+    BlockGrid grid = small_o_h_grid();
+    Block& wall = grid.blocks.back();
+    const Id first = Id(grid.points.size());
+    for (int j = 0; j < wall.nodes.nj; ++j)
+        for (int i = 0; i < wall.nodes.ni; ++i) {
+            Id& id = wall.node_ids[wall.nodes.flat(i, j, 0)];
+            grid.points.push_back(grid.points[id]);  // same place, another node
+            grid.kinds.push_back(grid.kinds[id]);
+            id = Id(grid.points.size()) - 1;
+        }
+    ASSERT_GT(Id(grid.points.size()), first);
+    try {
+        make_grid_faces(grid);
+        FAIL() << "expected a refusal";
+    } catch (const std::invalid_argument& e) {
+        const std::string what = e.what();
+        // The first of the two faces met: the core's side of it.
+        EXPECT_NE(what.find("face kmax of block 'core' is an interface (no patch), but 16 of its 16 cell faces"),
+                  std::string::npos) << what;
+        EXPECT_NE(what.find("meet no other block's: the blocks do not conform there"), std::string::npos) << what;
+    }
+}
+
 TEST(Gmsh, RoundTripThroughOurReader) {
     const BlockGrid grid = small_o_h_grid();
     const fs::path file = scratch("gmsh") / "grid.msh";
