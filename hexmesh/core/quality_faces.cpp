@@ -78,7 +78,7 @@ void pair_equal_faces(std::vector<std::pair<Key, Id>>& faces, F&& pair) {
         while (j < faces.size() && faces[j].first == faces[i].first) ++j;
         if (j - i > 2) {
             std::ostringstream msg;
-            msg << "measure_quality: a face is shared by more than two cells (cells "
+            msg << "a face is shared by more than two cells (cells "
                 << faces[i].second / 6 << ", " << faces[i + 1].second / 6 << ", "
                 << faces[i + 2].second / 6 << "); the mesh is not a valid hex mesh";
             throw std::invalid_argument(msg.str());
@@ -466,7 +466,7 @@ void BlockQuality::add(const BlockGrid& grid, const Block& block, const std::vec
     for (auto& [key, face] : block_faces.open) {
         if (const auto m = st.matched.find(key); m != st.matched.end()) {
             std::ostringstream msg;
-            msg << "measure_quality: a face is shared by more than two cells (cells "
+            msg << "a face is shared by more than two cells (cells "
                 << m->second.first << ", " << m->second.second << ", " << face.cell
                 << "); the mesh is not a valid hex mesh";
             throw std::invalid_argument(msg.str());

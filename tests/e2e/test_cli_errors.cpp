@@ -147,3 +147,27 @@ TEST(CliErrors, GciRefusesNanAndRatiosNotAboveOneInsteadOfUsingADefault) {
     EXPECT_EQ(ok.exit_code, 0) << ok.err;
     EXPECT_NE(ok.out.find("refinement ratios r21, r32          2 1.5"), std::string::npos) << ok.out;
 }
+
+TEST(CliErrors, AMeshWhoseFaceIsSharedByThreeCellsIsRefusedNamingTheFile) {
+    const fs::path dir = scratch("three_cells");
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const fs::path mesh = dir / "three.vtk";
+    std::string text = "# vtk DataFile Version 3.0\nthree hexes\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 8 double\n";
+    for (int c = 0; c < 8; ++c)
+        text += std::to_string(c & 1) + " " + std::to_string((c >> 1) & 1) + " " + std::to_string(c >> 2) + "\n";
+    text += "CELLS 3 27\n";
+    for (int c = 0; c < 3; ++c) text += "8 0 1 3 2 4 5 7 6\n";
+    text += "CELL_TYPES 3\n12\n12\n12\n";
+    std::ofstream(mesh) << text;
+    for (const std::string& command : {"quality '" + mesh.string() + "'",
+                                       "untangle '" + mesh.string() + "' -o '" + (dir / "out.vtu").string() + "'"}) {
+        const CommandResult r = run_hexmesh(command);
+        EXPECT_EQ(r.exit_code, 1) << command;
+        EXPECT_EQ(count_lines(r.err), 1) << r.err;
+        EXPECT_NE(r.err.find(mesh.string() + ": a face is shared by more than two cells (cells 0, 1, 2)"),
+                  std::string::npos) << r.err;
+    }
+    EXPECT_FALSE(fs::exists(dir / "out.vtu"));
+    fs::remove_all(dir);
+}
