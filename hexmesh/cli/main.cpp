@@ -1,5 +1,7 @@
 // hexmesh: structured hexahedral grids for CFD from implicit bodies (command-line entry).
 #include <iostream>
+#include <new>
+#include <stdexcept>
 
 #include "hexmesh/cli/commands.h"
 
@@ -28,6 +30,14 @@ int main(int argc, char** argv) {
         // A wrong argument is a refusal like any other: one line, exit code 1.
         std::cerr << "hexmesh: error: " << e.what() << " (hexmesh --help lists the commands, "
                   << "hexmesh COMMAND --help their arguments)\n";
+        return 1;
+    } catch (const std::bad_alloc&) {
+        std::cerr << "hexmesh: error: out of memory: the job needs more than this machine can give "
+                     "(fewer cells, a coarser surface or a larger voxel size need less)\n";
+        return 1;
+    } catch (const std::length_error& e) {  // a std::vector asked for more than max_size()
+        std::cerr << "hexmesh: error: out of memory: a size beyond any machine was asked for (" << e.what()
+                  << ")\n";
         return 1;
     } catch (const std::exception& e) {
         std::cerr << "hexmesh: error: " << e.what() << "\n";
