@@ -1,12 +1,12 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
-#include <functional>
 
 #include <fmt/format.h>
 
 #include "export_test_support.h"
 #include "io/case_file.h"
+#include "tests/io/scratch_files.h"
 #include "io/export_grid.h"
 #include "io/gmsh_mesh.h"
 #include "io/plot3d.h"
@@ -109,19 +109,6 @@ TEST(ExportCli, RunThenExportThenQualityAgree) {
     EXPECT_NE(bad.output.find("hexmesh: error: "), std::string::npos) << bad.output;
 }
 
-namespace {
-
-std::string input_error(const std::function<void()>& read) {
-    try {
-        read();
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "no InputError";
-}
-
-}  // namespace
-
 TEST(ReadErrors, HeadersPromisingMoreThanTheFileHoldsAreRefusedBeforeAnythingIsSized) {
     const fs::path dir = scratch("headers");
     // Gmsh: a max node tag of 3e9 for two nodes is read with a map, not a 24 GB table; a node
@@ -133,7 +120,7 @@ TEST(ReadErrors, HeadersPromisingMoreThanTheFileHoldsAreRefusedBeforeAnythingIsS
     EXPECT_EQ(read_gmsh_mesh(sparse).num_cells(), 1);
     const std::string huge = (dir / "huge.msh").string();
     std::ofstream(huge) << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 2000000000 1 2000000000\n";
-    std::string what = input_error([&] { read_gmsh_mesh(huge); });
+    std::string what = test::input_error_of(read_gmsh_mesh, huge);
     EXPECT_NE(what.find("2000000000 nodes in 1 blocks do not fit in the file's"), std::string::npos) << what;
     // Plot3D (ASCII): 99999^3 points, dims 0 0 0, and data beyond what the header announces.
     const std::vector<std::pair<std::string, std::string>> plot3d = {
@@ -145,7 +132,7 @@ TEST(ReadErrors, HeadersPromisingMoreThanTheFileHoldsAreRefusedBeforeAnythingIsS
     for (const auto& [text, message] : plot3d) {
         const std::string path = (dir / fmt::format("bad{}.xyz", n++)).string();
         std::ofstream(path) << text;
-        what = input_error([&] { read_plot3d(path); });
+        what = test::input_error_of(read_plot3d, path);
         EXPECT_NE(what.find(path), std::string::npos) << what;
         EXPECT_NE(what.find(message), std::string::npos) << what;
     }
@@ -156,6 +143,6 @@ TEST(ReadErrors, HeadersPromisingMoreThanTheFileHoldsAreRefusedBeforeAnythingIsS
     std::ofstream(good) << cube << "\n";
     std::ofstream(longer) << cube << "\n7 7 7\n";
     EXPECT_EQ(read_plot3d(good).num_cells(), 1);
-    what = input_error([&] { read_plot3d(longer); });
+    what = test::input_error_of(read_plot3d, longer);
     EXPECT_NE(what.find("more data after the 24 coordinates the header announces"), std::string::npos) << what;
 }

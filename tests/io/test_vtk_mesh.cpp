@@ -2,7 +2,6 @@
 
 #include <filesystem>
 #include <fstream>
-#include <functional>
 
 #include <fmt/format.h>
 
@@ -10,6 +9,7 @@
 #include "io/volume_mesh_io.h"
 #include "io/vtk_mesh.h"
 #include "surface/analytic.h"
+#include "tests/io/scratch_files.h"
 #include "tests/scratch_registry.h"
 #include "volume/o_h_grid.h"
 #include "volume/single_block_grid.h"
@@ -77,15 +77,6 @@ std::string one_hex_vtk(const std::string& cell_row, int row_size) {
     return text + fmt::format("CELLS 1 {}\n{}\nCELL_TYPES 1\n12\n", row_size, cell_row);
 }
 
-std::string input_error(const std::function<void()>& read) {
-    try {
-        read();
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "no InputError";
-}
-
 }  // namespace
 
 TEST(VtkMesh, CellsWithPointIdsOutOfRangeOrTooFewAreRefusedNamingTheCell) {
@@ -99,8 +90,8 @@ TEST(VtkMesh, CellsWithPointIdsOutOfRangeOrTooFewAreRefusedNamingTheCell) {
     for (const auto& [text, message] : cases) {
         const std::string path = (dir / fmt::format("bad{}.vtk", n++)).string();
         std::ofstream(path) << text;
-        for (const std::string& what : {input_error([&] { read_vtk_mesh(path); }),
-                                        input_error([&] { read_volume_mesh(path); })}) {
+        for (const std::string& what : {test::input_error_of(read_vtk_mesh, path),
+                                        test::input_error_of(read_volume_mesh, path)}) {
             EXPECT_NE(what.find(path), std::string::npos) << what;
             EXPECT_NE(what.find(message), std::string::npos) << what;
         }
@@ -124,8 +115,8 @@ TEST(VtkMesh, LegacyCellListsThatDisagreeWithTheirDeclaredSizeAreRefusedBeforeVt
     for (const auto& [text, message] : ascii) {
         const std::string path = (dir / fmt::format("rows{}.vtk", n++)).string();
         std::ofstream(path) << text;
-        for (const std::string& what : {input_error([&] { read_vtk_mesh(path); }),
-                                        input_error([&] { read_volume_mesh(path); })}) {
+        for (const std::string& what : {test::input_error_of(read_vtk_mesh, path),
+                                        test::input_error_of(read_volume_mesh, path)}) {
             EXPECT_NE(what.find(path + ": " + message), std::string::npos) << what;
         }
     }
@@ -145,6 +136,6 @@ TEST(VtkMesh, LegacyCellListsThatDisagreeWithTheirDeclaredSizeAreRefusedBeforeVt
     bytes.replace(at, 10, "CELLS 3 15");
     const std::string mutated = (dir / "mutated.vtk").string();
     std::ofstream(mutated, std::ios::binary) << bytes;
-    const std::string what = input_error([&] { read_volume_mesh(mutated); });
+    const std::string what = test::input_error_of(read_volume_mesh, mutated);
     EXPECT_NE(what.find(mutated + ": CELLS: offset 2 is 16, outside [8, 15]"), std::string::npos) << what;
 }
