@@ -93,7 +93,7 @@ MeshSdf::MeshSdf(const TriangleSurface& surface, const MeshSdfOptions& options)
         voxel = extent / options.resolution;
     }
     if (!(voxel > 0) || !std::isfinite(voxel) || extent / voxel > 1e5)
-        throw std::invalid_argument("MeshSdf: voxel size must be positive and at least 1e-5 of "
+        throw std::invalid_argument("the voxel size must be positive and at least 1e-5 of "
                                     "the surface's extent");
 
     const double limit = options.max_bytes > 0 ? options.max_bytes : default_memory_limit();
@@ -120,7 +120,7 @@ MeshSdf::MeshSdf(const TriangleSurface& surface, const MeshSdfOptions& options)
     g.grid = build_sdf_grid(surface, spec);
 
     const std::array<int, 6> box = g.grid->active_box();
-    if (box[0] > box[3]) throw std::invalid_argument("MeshSdf: the conversion produced no voxel");
+    if (box[0] > box[3]) throw std::invalid_argument("the distance field has no voxel near the surface");
     for (int a = 0; a < 3; ++a) {
         g.band_box.lo[a] = g.origin[a] + voxel * box[a];
         g.band_box.hi[a] = g.origin[a] + voxel * box[3 + a];
