@@ -1,7 +1,6 @@
 #include "surface/mesh_sdf.h"
 
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <dlfcn.h>
 
@@ -13,6 +12,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "hexmesh/core/memory_limit.h"
 #include "surface/sdf_grid.h"
 #include "surface/winding_number.h"
 
@@ -96,12 +96,12 @@ MeshSdf::MeshSdf(const TriangleSurface& surface, const MeshSdfOptions& options)
         throw std::invalid_argument("the voxel size must be positive and at least 1e-5 of "
                                     "the surface's extent");
 
-    const double limit = options.max_bytes > 0 ? options.max_bytes : default_memory_limit();
+    const double limit = options.max_bytes > 0 ? options.max_bytes : memory_limit();
     const double needed = sdf_memory_estimate(surface, voxel, options.exterior_band, options.interior_band);
     if (needed > limit)
         throw std::invalid_argument(fmt::format(
             "a distance field of voxel size {:.3g} ({:.0f} voxels along the longest side) would take about "
-            "{:.1f} GB, more than the limit of {:.1f} GB: use a larger voxel size",
+            "{:.3g} GB, more than the limit of {:.3g} GB: use a larger voxel size (or --max-memory)",
             voxel, extent / voxel, needed / 1e9, limit / 1e9));
 
     Grid& g = *grid_;
@@ -139,10 +139,6 @@ double sdf_memory_estimate(const TriangleSurface& surface, double voxel, double 
     return 2 * 16 * voxels;
 }
 
-double default_memory_limit() {
-    const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
-    return pages > 0 && page > 0 ? 0.5 * double(pages) * double(page) : 8e9;
-}
 
 Box3 MeshSdf::bounds() const {
     // The interpolated zero level of a face lying on the box may sit a few 1e-5 voxel outside

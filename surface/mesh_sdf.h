@@ -29,8 +29,9 @@ struct MeshSdfOptions {
     // Edges whose two triangles turn by more than this (degrees) are sharp creases, exposed
     // through active_pieces() (surface/mesh_creases.h); 180: none, the body is smooth.
     double feature_angle = 30;
-    // Refuse a field whose voxels would take more memory than this (bytes; 0: half of the
-    // machine's memory), estimated from the surface's area before anything is allocated.
+    // Refuse a field whose voxels would take more memory than this (bytes; 0: memory_limit(),
+    // hexmesh/core/memory_limit.h), estimated from the surface's area before anything is
+    // allocated.
     double max_bytes = 0;
 };
 
@@ -40,8 +41,6 @@ struct MeshSdfOptions {
 double sdf_memory_estimate(const TriangleSurface& surface, double voxel, double exterior_band,
                            double interior_band);
 
-// Half of this machine's physical memory, in bytes.
-double default_memory_limit();
 
 // u(x): the distance to the surface, negative inside, computed by OpenVDB's mesh-to-volume
 // conversion in a band around the surface and interpolated trilinearly from the voxel

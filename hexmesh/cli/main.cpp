@@ -4,10 +4,17 @@
 #include <stdexcept>
 
 #include "hexmesh/cli/commands.h"
+#include "hexmesh/core/memory_limit.h"
 
 int main(int argc, char** argv) {
     CLI::App app{"hexmesh: structured hexahedral grids for CFD from implicit bodies"};
     app.require_subcommand(1);
+    double max_memory_gb = 0;
+    app.add_option("--max-memory", max_memory_gb,
+                   "largest memory a job may ask for, in GB (default: half of this machine's); "
+                   "before the command")
+        ->check(CLI::PositiveNumber)
+        ->each([](const std::string& gb) { hexmesh::set_memory_limit(std::stod(gb) * 1e9); });
     int exit_code = 0;
     hexmesh::cli::add_run_command(app, exit_code);
     hexmesh::cli::add_quality_command(app, exit_code);

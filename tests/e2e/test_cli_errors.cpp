@@ -99,7 +99,13 @@ TEST(CliErrors, ADistanceFieldTooLargeForTheMachineIsRefusedBeforeItIsBuilt) {
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_EQ(count_lines(r.err), 1) << r.err;
     EXPECT_NE(r.err.find(cube.string() + ": a distance field of voxel size 1e-05"), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("GB, more than the limit of"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(" GB, more than the limit of"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+    // The limit can be set: 1 MB refuses what the default allows.
+    r = run_hexmesh("--max-memory 0.001 sdf '" + cube.string() + "' --resolution 64 -o '" + out.string() + "'");
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_NE(r.err.find("more than the limit of 0.001 GB: use a larger voxel size (or --max-memory)"),
+              std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(out));
     r = run_hexmesh("sdf '" + cube.string() + "' --resolution 64 -o '" + out.string() + "'");
     EXPECT_EQ(r.exit_code, 0) << r.err;

@@ -1,0 +1,12 @@
+// The memory a job may ask for: what large allocations are checked against before they happen.
+#pragma once
+
+namespace hexmesh {
+
+// Bytes: the limit set by set_memory_limit, else half of this machine's physical memory.
+double memory_limit();
+
+// Sets the limit (bytes, > 0); 0 goes back to half of the machine's memory.
+void set_memory_limit(double bytes);
+
+}  // namespace hexmesh
