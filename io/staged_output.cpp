@@ -72,6 +72,8 @@ void step(const char* name) {
 
 StagedOutput::StagedOutput(std::string outdir) : outdir_(std::move(outdir)) {
     std::error_code ec;
+    // A link to a folder: the folder takes the result (the link stays as the user made it).
+    if (fs::is_symlink(outdir_, ec) && fs::is_directory(outdir_, ec)) outdir_ = fs::canonical(outdir_, ec).string();
     if (fs::exists(outdir_, ec) && !fs::is_directory(outdir_, ec))
         throw std::runtime_error(fmt::format("{}: exists and is not a directory", outdir_));
     created_outdir_ = fs::create_directories(outdir_, ec);

@@ -8,14 +8,15 @@
 
 namespace hexmesh {
 
-// Creates OUTDIR on construction (empty while the run works) and locks it: a second process
-// that constructs one for the same folder meanwhile is refused (std::runtime_error naming the
-// folder). path(name) gives where to write an output: in a staging folder beside OUTDIR
-// (OUTDIR/../.NAME.staging-HOST-PID). commit() carries the entries of OUTDIR that this run
-// does not write (a user's notes, another format's export) into the staging folder (hard links,
-// else copies), then swaps it with OUTDIR in one rename (Linux renameat2 RENAME_EXCHANGE) and
-// removes the old contents: at every instant OUTDIR holds the complete previous result or the
-// complete new one. On a file system without that exchange, the entries move one by one.
+// Creates OUTDIR on construction (empty while the run works; a link to a folder stands for
+// that folder) and locks it: a second process that constructs one for the same folder
+// meanwhile is refused (std::runtime_error naming the folder). path(name) gives where to write
+// an output: in a staging folder beside OUTDIR (OUTDIR/../.NAME.staging-HOST-PID). commit()
+// carries the entries of OUTDIR that this run does not write (a user's notes, another
+// format's export) into the staging folder (hard links, else copies), then swaps it with
+// OUTDIR in one rename (Linux renameat2 RENAME_EXCHANGE) and removes the old contents: at
+// every instant OUTDIR holds the complete previous result or the complete new one. On a file
+// system without that exchange, the entries move one by one.
 // Without commit() (an error on the way), the destructor removes the staging folder, and
 // OUTDIR too if this object created it: no partial output is ever left under a final name.
 // Staging folders of earlier runs on this host whose process is gone (killed before cleaning

@@ -177,3 +177,19 @@ TEST(StagedOutput, ASecondWriterOfTheSameFolderIsRefusedWhileTheFirstWorks) {
     StagedOutput third(dir.string());  // free again
     fs::remove_all(dir);
 }
+
+TEST(StagedOutput, ALinkToAFolderStaysALinkAndTheFolderTakesTheResult) {
+    const fs::path base = fs::temp_directory_path() / "hexmesh_test_staged_link";
+    fs::remove_all(base);
+    fs::create_directories(base / "real");
+    fs::create_directory_symlink(base / "real", base / "link");
+    {
+        StagedOutput out((base / "link").string());
+        out.write_text("quality.json", "new");
+        const auto files = out.commit();
+        ASSERT_EQ(files.size(), 1u);
+    }
+    EXPECT_TRUE(fs::is_symlink(base / "link"));
+    EXPECT_EQ(text_of(base / "real" / "quality.json"), "new");
+    fs::remove_all(base);
+}
