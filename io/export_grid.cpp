@@ -83,12 +83,12 @@ std::vector<std::string> export_grid(const BlockGrid& grid, const std::string& f
     std::error_code ec;
     if (format == "openfoam" && fs::is_directory(target, ec)) {
         // An existing case keeps its other files: only constant/polyMesh is replaced.
-        StagedOutput out((target / "constant").string());
+        StagedOutput out((target / "constant").string(), StagedOutput::Scope::named_entries);
         write_openfoam_polymesh(grid, out.path("polyMesh"));
         return out.commit();
     }
     const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
-    StagedOutput out(folder.string());
+    StagedOutput out(folder.string(), StagedOutput::Scope::named_entries);  // the user's folder: one file
     write_grid_format(grid, format, out.path(target.filename().string()));
     return out.commit();
 }

@@ -70,7 +70,7 @@ void step(const char* name) {
 
 }  // namespace
 
-StagedOutput::StagedOutput(std::string outdir) : outdir_(std::move(outdir)) {
+StagedOutput::StagedOutput(std::string outdir, Scope scope) : outdir_(std::move(outdir)), scope_(scope) {
     std::error_code ec;
     // A link to a folder: the folder takes the result (the link stays as the user made it).
     if (fs::is_symlink(outdir_, ec) && fs::is_directory(outdir_, ec)) outdir_ = fs::canonical(outdir_, ec).string();
@@ -78,8 +78,8 @@ StagedOutput::StagedOutput(std::string outdir) : outdir_(std::move(outdir)) {
         throw std::runtime_error(fmt::format("{}: exists and is not a directory", outdir_));
     created_outdir_ = fs::create_directories(outdir_, ec);
     if (ec) throw std::runtime_error(fmt::format("{}: cannot create directory ({})", outdir_, ec.message()));
-    lock_fd_ = ::open(outdir_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (lock_fd_ < 0 || ::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
+    if (scope_ == Scope::whole_folder) lock_fd_ = ::open(outdir_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (scope_ == Scope::whole_folder && (lock_fd_ < 0 || ::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0)) {
         const int error = errno;
         if (lock_fd_ >= 0) ::close(lock_fd_), lock_fd_ = -1;
         if (created_outdir_) fs::remove(outdir_, ec);
@@ -88,15 +88,17 @@ StagedOutput::StagedOutput(std::string outdir) : outdir_(std::move(outdir)) {
                                                    "wait for it or choose another one", outdir_)
                                      : fmt::format("{}: cannot lock the folder ({})", outdir_, std::strerror(error)));
     }
-    const fs::path prefix = staging_prefix(outdir_, host_name());
+    const fs::path prefix = scope_ == Scope::whole_folder ? staging_prefix(outdir_, host_name())
+                                                          : fs::path(outdir_) / (".staging-" + host_name() + "-");
     remove_stale_staging(prefix);
     staging_ = prefix.string() + std::to_string(::getpid());
     fs::remove_all(staging_, ec);
     fs::create_directories(staging_, ec);
     if (ec) {
-        ::close(lock_fd_), lock_fd_ = -1;
+        if (lock_fd_ >= 0) ::close(lock_fd_), lock_fd_ = -1;
         if (created_outdir_) fs::remove(outdir_, ec);
-        throw std::runtime_error(fmt::format("{}: cannot write beside it ({})", outdir_, ec.message()));
+        throw std::runtime_error(fmt::format("{}: cannot write {} it ({})", outdir_,
+                                             scope_ == Scope::whole_folder ? "beside" : "into", ec.message()));
     }
 }
 
@@ -122,17 +124,8 @@ void StagedOutput::write_text(const std::string& name, const std::string& text) 
 
 std::vector<std::string> StagedOutput::commit() {
     std::error_code ec;
-    // What the folder holds that this run does not write stays.
-    for (const auto& entry : fs::directory_iterator(outdir_)) {
-        const fs::path target = fs::path(staging_) / entry.path().filename();
-        if (!fs::exists(target, ec)) carry(entry.path(), target);
-    }
-    step("carried");
-    if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, outdir_.c_str(), RENAME_EXCHANGE) == 0) {
-        step("exchanged");
-        fs::remove_all(staging_, ec);  // the old contents now
-    } else if (errno == EINVAL || errno == ENOSYS || errno == EOPNOTSUPP) {
-        // No atomic exchange here: the entries move one by one.
+    // Each staged entry in place by one rename (a .vtm's pieces folder is one entry).
+    const auto move_entries = [&] {
         for (const auto& entry : fs::directory_iterator(staging_)) {
             const fs::path target = fs::path(outdir_) / entry.path().filename();
             fs::remove_all(target, ec);
@@ -141,9 +134,28 @@ std::vector<std::string> StagedOutput::commit() {
                 throw std::runtime_error(
                     fmt::format("{}: cannot move output into place ({})", target.string(), ec.message()));
         }
+    };
+    if (scope_ == Scope::named_entries) {
+        move_entries();
     } else {
-        throw std::runtime_error(fmt::format("{}: cannot move the output into place ({})", outdir_,
-                                             std::strerror(errno)));
+        // What the folder holds that this run does not write stays.
+        for (const auto& entry : fs::directory_iterator(outdir_)) {
+            const fs::path target = fs::path(staging_) / entry.path().filename();
+            if (entry.path().filename().string().rfind(".staging-", 0) != 0 && !fs::exists(target, ec))
+                carry(entry.path(), target);
+        }
+        step("carried");
+        if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, outdir_.c_str(), RENAME_EXCHANGE) == 0) {
+            step("exchanged");
+            fs::remove_all(staging_, ec);  // the old contents now
+        } else if (errno == EINVAL || errno == ENOSYS || errno == EOPNOTSUPP || errno == EBUSY || errno == EXDEV) {
+            // No atomic exchange here (a file system without it, the current folder, a mount
+            // point): the entries move one by one.
+            move_entries();
+        } else {
+            throw std::runtime_error(fmt::format("{}: cannot move the output into place ({})", outdir_,
+                                                 std::strerror(errno)));
+        }
     }
     std::vector<std::string> finals;
     for (const std::string& name : names_) finals.push_back((fs::path(outdir_) / name).string());

@@ -21,9 +21,13 @@ namespace hexmesh {
 // OUTDIR too if this object created it: no partial output is ever left under a final name.
 // Staging folders of earlier runs on this host whose process is gone (killed before cleaning
 // up) are removed on construction. Throws std::runtime_error if OUTDIR cannot be created.
+// With Scope::named_entries (a file exported into any folder, a case's constant/polyMesh),
+// only the entries written are replaced, each by one rename from a staging folder inside
+// OUTDIR (OUTDIR/.staging-HOST-PID); the rest of the folder is not touched, nor locked.
 class StagedOutput {
 public:
-    explicit StagedOutput(std::string outdir);
+    enum class Scope { whole_folder, named_entries };
+    explicit StagedOutput(std::string outdir, Scope scope = Scope::whole_folder);
     ~StagedOutput();
     StagedOutput(const StagedOutput&) = delete;
     StagedOutput& operator=(const StagedOutput&) = delete;
@@ -41,6 +45,7 @@ public:
 private:
     std::string outdir_, staging_;
     std::vector<std::string> names_;
+    Scope scope_;
     int lock_fd_ = -1;
     bool created_outdir_ = false, committed_ = false;
 };

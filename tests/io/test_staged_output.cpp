@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -192,4 +193,29 @@ TEST(StagedOutput, ALinkToAFolderStaysALinkAndTheFolderTakesTheResult) {
     EXPECT_TRUE(fs::is_symlink(base / "link"));
     EXPECT_EQ(text_of(base / "real" / "quality.json"), "new");
     fs::remove_all(base);
+}
+
+TEST(StagedOutput, NamedEntriesReplaceOnlyWhatIsWrittenAndLeaveTheFolderItself) {
+    // A file exported into a user's folder (or the current one): that folder is not swapped,
+    // locked or copied, only the written entry is replaced.
+    const fs::path dir = fs::temp_directory_path() / "hexmesh_test_staged_entries";
+    fs::remove_all(dir);
+    fs::create_directories(dir / "project");
+    std::ofstream(dir / "grid.msh") << "old";
+    std::ofstream(dir / "project" / "notes.txt") << "user file";
+    struct stat before {};
+    ASSERT_EQ(::stat(dir.c_str(), &before), 0);
+    {
+        StagedOutput first(dir.string(), StagedOutput::Scope::named_entries);
+        StagedOutput second(dir.string(), StagedOutput::Scope::named_entries);  // no lock
+        first.write_text("grid.msh", "new");
+        first.commit();
+    }
+    struct stat after {};
+    ASSERT_EQ(::stat(dir.c_str(), &after), 0);
+    EXPECT_EQ(before.st_ino, after.st_ino);
+    EXPECT_EQ(text_of(dir / "grid.msh"), "new");
+    EXPECT_EQ(text_of(dir / "project" / "notes.txt"), "user file");
+    EXPECT_EQ(entries(dir), (std::vector<std::string>{"grid.msh", "project"}));
+    fs::remove_all(dir);
 }
