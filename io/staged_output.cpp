@@ -139,10 +139,11 @@ std::vector<std::string> StagedOutput::commit() {
         move_entries();
     } else {
         // What the folder holds that this run does not write stays.
+        std::vector<fs::path> carried;
         for (const auto& entry : fs::directory_iterator(outdir_)) {
             const fs::path target = fs::path(staging_) / entry.path().filename();
             if (entry.path().filename().string().rfind(".staging-", 0) != 0 && !fs::exists(target, ec))
-                carry(entry.path(), target);
+                carry(entry.path(), target), carried.push_back(target);
         }
         step("carried");
         if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, outdir_.c_str(), RENAME_EXCHANGE) == 0) {
@@ -150,7 +151,8 @@ std::vector<std::string> StagedOutput::commit() {
             fs::remove_all(staging_, ec);  // the old contents now
         } else if (errno == EINVAL || errno == ENOSYS || errno == EOPNOTSUPP || errno == EBUSY || errno == EXDEV) {
             // No atomic exchange here (a file system without it, the current folder, a mount
-            // point): the entries move one by one.
+            // point): the written entries move one by one; the carried copies go.
+            for (const fs::path& copy : carried) fs::remove_all(copy, ec);
             move_entries();
         } else {
             throw std::runtime_error(fmt::format("{}: cannot move the output into place ({})", outdir_,

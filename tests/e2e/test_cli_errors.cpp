@@ -177,3 +177,23 @@ TEST(CliErrors, AMeshWhoseFaceIsSharedByThreeCellsIsRefusedNamingTheFile) {
     EXPECT_FALSE(fs::exists(dir / "out.vtu"));
     fs::remove_all(dir);
 }
+
+TEST(CliOutput, ARunIntoTheCurrentFolderKeepsItsOtherFiles) {
+    // The current folder cannot take the staged result's place by a rename: the outputs move
+    // in one by one, the folder's own files and folders untouched.
+    const fs::path dir = scratch("current_folder");
+    fs::remove_all(dir);
+    fs::create_directories(dir / "sub");
+    std::ofstream(dir / "sub" / "file.txt") << "keep";
+    std::ofstream(dir / "notes.txt") << "mine";
+    const fs::path case_file = fs::absolute("cases/sphere/case.json");
+    const CommandResult r = run_command("cd '" + dir.string() + "' && '" + HEXMESH_EXE + "' run '" +
+                                        case_file.string() + "' -o .");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(fs::exists(dir / "grid.vtm"));
+    EXPECT_EQ(read_text(dir / "sub" / "file.txt"), "keep");
+    EXPECT_EQ(read_text(dir / "notes.txt"), "mine");
+    for (const auto& e : fs::directory_iterator(dir))
+        EXPECT_EQ(e.path().filename().string().find("staging"), std::string::npos) << e.path();
+    fs::remove_all(dir);
+}
