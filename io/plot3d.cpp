@@ -123,7 +123,7 @@ BinaryLayout binary_layout(const std::string& bytes, bool fortran, const std::st
 bool is_fortran(const std::string& bytes) {
     const std::int32_t nb = int_at(bytes, 4);
     return int_at(bytes, 0) == 4 && int_at(bytes, 8) == 4 && nb > 0 &&
-           int_at(bytes, 12) == 12 * nb;
+           std::int64_t(int_at(bytes, 12)) == 12 * std::int64_t(nb);
 }
 
 }  // namespace

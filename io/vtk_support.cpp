@@ -242,8 +242,10 @@ void check_legacy_vtk(const std::string& path) {
                 if (total != b)
                     f.fail(fmt::format("{}: its {} rows hold {} values, but the line declares {}", name, a, total, b));
             }
-        } else {
+        } else if (name == "POINT_DATA" || name == "CELL_DATA" || name == "FIELD") {
             return;  // attributes: VTK's own checks
+        } else {
+            f.fail(fmt::format("unknown keyword '{}' in the {} section", name, kind));
         }
     }
 }

@@ -146,3 +146,14 @@ TEST(ReadErrors, HeadersPromisingMoreThanTheFileHoldsAreRefusedBeforeAnythingIsS
     what = test::input_error_of(read_plot3d, longer);
     EXPECT_NE(what.find("more data after the 24 coordinates the header announces"), std::string::npos) << what;
 }
+
+// Inputs the fuzz targets (tests/fuzz) found: each is refused with one clear error.
+TEST(ReadErrors, FuzzFindingsAreRefused) {
+    const fs::path dir = fs::path(HEXMESH_SOURCE_DIR) / "tests" / "fuzz" / "regressions";
+    // A Fortran-record header whose block count times 12 overflowed an int (UBSan).
+    std::string what = test::input_error_of(read_plot3d, (dir / "plot3d_fortran_block_count_overflow.xyz").string());
+    EXPECT_NE(what.find("plot3d_fortran_block_count_overflow.xyz: "), std::string::npos) << what;
+    // A legacy VTK file with a misspelt keyword: VTK's reader leaked its cells on it.
+    what = test::input_error_of(read_vtk_mesh, (dir / "vtk_unknown_keyword.vtk").string());
+    EXPECT_NE(what.find("unknown keyword 'CELL$_TYPES' in the UNSTRUCTURED_GRID section"), std::string::npos) << what;
+}
