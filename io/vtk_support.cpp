@@ -1,5 +1,6 @@
 #include "io/vtk_support.h"
 
+#include <cstdlib>
 #include <filesystem>
 #include <cctype>
 #include <sstream>
@@ -180,7 +181,11 @@ void check_legacy_vtk(const std::string& path) {
     std::ostringstream text;
     text << in.rdbuf();
     LegacyVtk f(text.str(), path);
-    if (f.line().rfind("# vtk DataFile", 0) != 0) f.fail("not a legacy VTK file (no '# vtk DataFile' line)");
+    const std::string header = f.line();
+    if (header.rfind("# vtk DataFile", 0) != 0) f.fail("not a legacy VTK file (no '# vtk DataFile' line)");
+    // VTK reads cell lists as offsets and connectivity from version 5 on, as rows before.
+    const size_t version_at = header.find_first_of("0123456789");
+    const bool offsets_layout = version_at != std::string::npos && std::atoi(header.c_str() + version_at) >= 5;
     f.line();  // title
     const std::string encoding = f.line();
     if (encoding != "ASCII" && encoding != "BINARY") f.fail(fmt::format("encoding '{}': expected ASCII or BINARY", encoding));
@@ -213,6 +218,9 @@ void check_legacy_vtk(const std::string& path) {
             std::istringstream next(f.line());
             std::string offsets;
             next >> offsets >> type;
+            if (offsets_layout != (offsets == "OFFSETS"))
+                f.fail(fmt::format("{}: {} in a file of {}", name,
+                                   offsets_layout ? "rows instead of OFFSETS" : "OFFSETS instead of rows", header));
             if (offsets == "OFFSETS") {  // 5.1: a offsets (cells + 1), then b connectivity ids
                 if (type_size(type) == 0) f.fail(fmt::format("{} OFFSETS of unknown type '{}'", name, type));
                 long long previous = 0;

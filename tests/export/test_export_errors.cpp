@@ -156,4 +156,8 @@ TEST(ReadErrors, FuzzFindingsAreRefused) {
     // A legacy VTK file with a misspelt keyword: VTK's reader leaked its cells on it.
     what = test::input_error_of(read_vtk_mesh, (dir / "vtk_unknown_keyword.vtk").string());
     EXPECT_NE(what.find("unknown keyword 'CELL$_TYPES' in the UNSTRUCTURED_GRID section"), std::string::npos) << what;
+    // OFFSETS in a file whose header says version 0.1: VTK reads rows there, and crashed.
+    what = test::input_error_of(read_vtk_mesh, (dir / "vtk_offsets_in_a_version_4_file.vtk").string());
+    EXPECT_NE(what.find("CELLS: OFFSETS instead of rows in a file of # vtk DataFile Version 0.1"), std::string::npos)
+        << what;
 }
