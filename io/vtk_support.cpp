@@ -194,7 +194,11 @@ void check_legacy_vtk(const std::string& path) {
     std::string word, kind;
     dataset >> word >> kind;
     if (word != "DATASET") f.fail("expected a DATASET line");
-    if (kind != "UNSTRUCTURED_GRID" && kind != "POLYDATA") return;
+    if (kind != "UNSTRUCTURED_GRID" && kind != "POLYDATA") {
+        for (const char* known : {"STRUCTURED_POINTS", "STRUCTURED_GRID", "RECTILINEAR_GRID", "FIELD"})
+            if (kind == known) return;
+        f.fail(fmt::format("unknown dataset '{}'", kind));
+    }
     while (!f.done()) {
         std::istringstream keyword(f.line());
         std::string name;
