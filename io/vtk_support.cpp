@@ -1,5 +1,6 @@
 #include "io/vtk_support.h"
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <cctype>
@@ -183,9 +184,12 @@ void check_legacy_vtk(const std::string& path) {
     LegacyVtk f(text.str(), path);
     const std::string header = f.line();
     if (header.rfind("# vtk DataFile", 0) != 0) f.fail("not a legacy VTK file (no '# vtk DataFile' line)");
-    // VTK reads cell lists as offsets and connectivity from version 5 on, as rows before.
-    const size_t version_at = header.find_first_of("0123456789");
-    const bool offsets_layout = version_at != std::string::npos && std::atoi(header.c_str() + version_at) >= 5;
+    // VTK reads cell lists as offsets and connectivity from version 5 on, as rows before; a
+    // version it cannot read as two numbers it takes as old.
+    int major = 0, minor = 0;
+    if (std::sscanf(header.c_str(), "# vtk DataFile Version %d.%d", &major, &minor) != 2)
+        f.fail(fmt::format("'{}': expected a version of two numbers, as '3.0' or '5.1'", header));
+    const bool offsets_layout = major >= 5;
     f.line();  // title
     const std::string encoding = f.line();
     if (encoding != "ASCII" && encoding != "BINARY") f.fail(fmt::format("encoding '{}': expected ASCII or BINARY", encoding));

@@ -163,4 +163,7 @@ TEST(ReadErrors, FuzzFindingsAreRefused) {
     // A dataset kind VTK does not know: its reader leaked on it.
     what = test::input_error_of(read_vtk_mesh, (dir / "vtk_unknown_dataset.vtk").string());
     EXPECT_NE(what.find("unknown dataset 'UNSTRUCTURED_GRIDshort'"), std::string::npos) << what;
+    // Version "5.+": VTK took the cell lists as rows and crashed.
+    what = test::input_error_of(read_vtk_mesh, (dir / "vtk_version_not_a_number.vtk").string());
+    EXPECT_NE(what.find("'# vtk DataFile Version 5.+': expected a version of two numbers"), std::string::npos) << what;
 }
