@@ -42,6 +42,8 @@ VolumeMesh from_vtk(vtkDataSet* data, const std::string& path) {
     for (vtkIdType c = 0; c < data->GetNumberOfCells(); ++c) {
         const int type = data->GetCellType(c);
         data->GetCellPoints(c, ids);
+        // Every cell's ids in range before VTK builds any cell from them (GetCell reads points).
+        vtk_support::check_cell_points(ids, int(ids->GetNumberOfIds()), Id(mesh.points.size()), path, c);
         if (type == VTK_HEXAHEDRON || type == VTK_VOXEL || type == VTK_TETRA)
             vtk_support::check_cell_points(ids, type == VTK_TETRA ? 4 : 8, Id(mesh.points.size()), path, c);
         if (type == VTK_HEXAHEDRON || type == VTK_VOXEL) {

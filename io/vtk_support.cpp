@@ -203,6 +203,7 @@ void check_legacy_vtk(const std::string& path) {
             if (kind == known) return;
         f.fail(fmt::format("unknown dataset '{}'", kind));
     }
+    long long cells = -1;  // as CELLS declares them
     while (!f.done()) {
         std::istringstream keyword(f.line());
         std::string name;
@@ -217,6 +218,8 @@ void check_legacy_vtk(const std::string& path) {
             while (!f.done() && !f.line().empty()) {}
         } else if (name == "CELL_TYPES") {
             keyword >> a;
+            if (cells >= 0 && a != cells)
+                f.fail(fmt::format("CELL_TYPES: {} types for the {} cells of CELLS", a, cells));
             f.skip(binary, a, 4);
         } else if (name == "CELLS" || name == "POLYGONS" || name == "LINES" || name == "VERTICES" ||
                    name == "TRIANGLE_STRIPS") {
@@ -229,6 +232,7 @@ void check_legacy_vtk(const std::string& path) {
             if (offsets_layout != (offsets == "OFFSETS"))
                 f.fail(fmt::format("{}: {} in a file of {}", name,
                                    offsets_layout ? "rows instead of OFFSETS" : "OFFSETS instead of rows", header));
+            if (name == "CELLS") cells = offsets == "OFFSETS" ? std::max(a - 1, 0LL) : a;
             if (offsets == "OFFSETS") {  // 5.1: a offsets (cells + 1), then b connectivity ids
                 if (type_size(type) == 0) f.fail(fmt::format("{} OFFSETS of unknown type '{}'", name, type));
                 long long previous = 0;

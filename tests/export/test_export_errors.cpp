@@ -10,6 +10,7 @@
 #include "io/export_grid.h"
 #include "io/gmsh_mesh.h"
 #include "io/plot3d.h"
+#include "io/volume_mesh_io.h"
 #include "io/vtk_mesh.h"
 
 using namespace hexmesh;
@@ -147,6 +148,15 @@ TEST(ReadErrors, HeadersPromisingMoreThanTheFileHoldsAreRefusedBeforeAnythingIsS
     EXPECT_NE(what.find("more data after the 24 coordinates the header announces"), std::string::npos) << what;
 }
 
+namespace {
+
+HexMesh read_volume_mesh_hexes(const std::string& path) {
+    const VolumeMesh m = read_volume_mesh(path);
+    return HexMesh{m.points, m.hexes};
+}
+
+}  // namespace
+
 // Inputs the fuzz targets (tests/fuzz) found: each is refused with one clear error.
 TEST(ReadErrors, FuzzFindingsAreRefused) {
     const fs::path dir = fs::path(HEXMESH_SOURCE_DIR) / "tests" / "fuzz" / "regressions";
@@ -166,4 +176,12 @@ TEST(ReadErrors, FuzzFindingsAreRefused) {
     // Version "5.+": VTK took the cell lists as rows and crashed.
     what = test::input_error_of(read_vtk_mesh, (dir / "vtk_version_not_a_number.vtk").string());
     EXPECT_NE(what.find("'# vtk DataFile Version 5.+': expected a version of two numbers"), std::string::npos) << what;
+    // A pixel whose ids lie beyond the points: VTK read them building the cell, and crashed.
+    const std::string pixel = (dir / "vtk_pixel_with_ids_beyond_the_points.vtk").string();
+    what = test::input_error_of(read_vtk_mesh, pixel);
+    EXPECT_NE(what.find("cell 0 has VTK type 8; only hexahedra (12) and voxels (11) are supported"), std::string::npos)
+        << what;
+    what = test::input_error_of(read_volume_mesh_hexes, pixel);
+    EXPECT_NE(what.find("cell 0 refers to point 9007199254740999, but the file has points 0 to 7"), std::string::npos)
+        << what;
 }
