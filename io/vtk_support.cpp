@@ -213,6 +213,7 @@ void check_legacy_vtk(const std::string& path) {
         if (name == "POINTS") {
             keyword >> a >> type;
             if (!keyword || type_size(type) == 0) f.fail("a POINTS line without a count and a known type");
+            if (a < 0 || a > (long long)1e15) f.fail(fmt::format("POINTS: a count of {}", a));
             f.skip(binary, 3 * a, type_size(type));
         } else if (name == "METADATA") {
             while (!f.done() && !f.line().empty()) {}
