@@ -86,6 +86,8 @@ HexMesh read_gmsh_mesh(const std::string& path) {
             seen_format = true;
         } else if (section == "$Nodes") {
             if (!seen_format) in.fail("$Nodes before $MeshFormat");
+            if (!node_of_tag.empty() || !sparse_node_of_tag.empty() || mesh.num_points() > 0)
+                in.fail("a second $Nodes section");
             const long long blocks = in.integer("numEntityBlocks");
             const long long count = in.integer("numNodes");
             in.integer("minNodeTag");

@@ -36,6 +36,7 @@ HexMesh read_medit_mesh(const std::string& path) {
     // Number of integers after the vertex ids of an element keyword: 1 (its reference).
     auto skip_elements = [&](int per_element) {
         const long long n = in.integer("an element count");
+        if (n < 0 || n > (long long)in.size()) in.fail(fmt::format("{} elements do not fit in the file", n));
         for (long long e = 0; e < n * per_element; ++e) in.integer("an element entry");
     };
     while (!in.done()) {

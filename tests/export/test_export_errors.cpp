@@ -9,6 +9,7 @@
 #include "tests/io/scratch_files.h"
 #include "io/export_grid.h"
 #include "io/gmsh_mesh.h"
+#include "io/medit_mesh.h"
 #include "io/plot3d.h"
 #include "io/volume_mesh_io.h"
 #include "io/vtk_mesh.h"
@@ -184,4 +185,10 @@ TEST(ReadErrors, FuzzFindingsAreRefused) {
     what = test::input_error_of(read_volume_mesh_hexes, pixel);
     EXPECT_NE(what.find("cell 0 refers to point 9007199254740999, but the file has points 0 to 7"), std::string::npos)
         << what;
+    // Gmsh: a second $Nodes section wrote past the first one's tag table.
+    what = test::input_error_of(read_gmsh_mesh, (dir / "gmsh_second_nodes_section.msh").string());
+    EXPECT_NE(what.find("gmsh_second_nodes_section.msh:92: a second $Nodes section"), std::string::npos) << what;
+    // Medit: an element count times its entries overflowed.
+    what = test::input_error_of(read_medit_mesh, (dir / "medit_element_count_overflow.mesh").string());
+    EXPECT_NE(what.find("elements do not fit in the file"), std::string::npos) << what;
 }
