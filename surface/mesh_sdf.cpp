@@ -132,13 +132,9 @@ MeshSdf::~MeshSdf() = default;
 
 double sdf_memory_estimate(const TriangleSurface& surface, double voxel, double exterior_band,
                            double interior_band) {
-    double area = 0;
-    for (const auto& t : surface.triangles)
-        area += 0.5 * (surface.points[t[1]] - surface.points[t[0]]).cross(surface.points[t[2]] - surface.points[t[0]]).norm();
-    const double voxels = area / (voxel * voxel) * (exterior_band + interior_band + 1);
+    const double voxels = surface_area(surface) / (voxel * voxel) * (exterior_band + interior_band + 1);
     return 2 * 16 * voxels;
 }
-
 
 Box3 MeshSdf::bounds() const {
     // The interpolated zero level of a face lying on the box may sit a few 1e-5 voxel outside

@@ -48,6 +48,14 @@ inline Box3 surface_bounds(const TriangleSurface& s) {
     return box;
 }
 
+// The total area of the triangles.
+inline double surface_area(const TriangleSurface& s) {
+    double area = 0;
+    for (const auto& t : s.triangles)
+        area += 0.5 * (s.points[t[1]] - s.points[t[0]]).cross(s.points[t[2]] - s.points[t[0]]).norm();
+    return area;
+}
+
 // The volume the triangles enclose, signed: > 0 when they face outwards (counter-clockwise
 // seen from outside), < 0 when every one faces inwards (the sum of the tetrahedra from the
 // origin to each triangle; exact for a closed surface, whatever the origin).

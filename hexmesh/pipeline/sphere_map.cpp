@@ -85,11 +85,8 @@ TriangleSurface resampled(const TriangleSurface& s, size_t triangles) {
         SMS::Count_stop_predicate<Mesh> stop(triangles * 3 / 2);  // a closed surface's edges
         SMS::edge_collapse(mesh, stop);
     } else {
-        double area = 0;
-        for (const auto& t : s.triangles)
-            area += 0.5 * (s.points[t[1]] - s.points[t[0]]).cross(s.points[t[2]] - s.points[t[0]]).norm();
         // An equilateral triangle of edge e has area sqrt(3) e^2 / 4.
-        const double edge = std::sqrt(4 * area / (std::sqrt(3.0) * double(triangles)));
+        const double edge = std::sqrt(4 * surface_area(s) / (std::sqrt(3.0) * double(triangles)));
         CGAL::Polygon_mesh_processing::isotropic_remeshing(
             faces(mesh), edge, mesh, CGAL::parameters::number_of_iterations(3));
     }
@@ -304,10 +301,7 @@ SphereMap map_to_sphere(const TriangleSurface& input, const SphereMapOptions& o,
         sphere = tutte_on_sphere(s, pole);
 
     // Targets: each triangle's own shape, scaled so their areas add up to the sphere's.
-    double area = 0;
-    for (const auto& t : s.triangles)
-        area += 0.5 * (s.points[t[1]] - s.points[t[0]]).cross(s.points[t[2]] - s.points[t[0]]).norm();
-    const double scale = std::sqrt(4 * M_PI / area);
+    const double scale = std::sqrt(4 * M_PI / surface_area(s));
     untangle::Problem p;
     p.points = sphere;
     p.kinds.assign(sphere.size(), VertexKind::slip);
