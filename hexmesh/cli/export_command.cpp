@@ -1,7 +1,6 @@
 // `hexmesh export GRID --format F -o OUT`: a block grid written in a CFD solver's format.
 #include <fmt/format.h>
 
-#include <vector>
 #include <iostream>
 #include <memory>
 
@@ -27,13 +26,8 @@ void add_export_command(CLI::App& app, int& exit_code) {
             throw InputError(fmt::format("--format: unknown format '{}' (expected one of: {})",
                                          args->format, export_format_list()));
         const BlockGrid grid = read_block_grid(args->grid_path);
-        std::vector<std::string> written;
-        try {
-            written = export_grid(grid, args->format, args->output);
-        } catch (const std::invalid_argument& e) {  // a grid that is not a valid block grid
-            throw InputError(fmt::format("{}: {}", args->grid_path, e.what()));
-        }
-        for (const std::string& f : written)
+        for (const std::string& f :
+             naming_file(args->grid_path, [&] { return export_grid(grid, args->format, args->output); }))
             std::cout << fmt::format("written: {} ({} blocks, {} cells)\n", f, grid.blocks.size(),
                                      grid.num_cells());
         exit_code = 0;

@@ -67,11 +67,7 @@ void add_quality_command(CLI::App& app, int& exit_code) {
         if (!args->surface.empty()) throw std::invalid_argument("--surface is for tetrahedral meshes");
         GridReport report;
         const HexMesh mesh = read_vtk_mesh(args->mesh_path);
-        try {
-            report.quality = measure_quality(mesh);
-        } catch (const std::invalid_argument& e) {  // not a conforming hex mesh
-            throw InputError(fmt::format("{}: {}", args->mesh_path, e.what()));
-        }
+        report.quality = naming_file(args->mesh_path, [&] { return measure_quality(mesh); });
         if (args->json)
             std::cout << quality_json(report);
         else

@@ -46,13 +46,7 @@ void add_sdf_command(CLI::App& app, int& exit_code) {
         options.sign = args->sign == "flood-fill"       ? SdfSign::flood_fill
                        : args->sign == "winding-number" ? SdfSign::winding_number
                                                         : SdfSign::automatic;
-        const MeshSdf sdf = [&] {
-            try {
-                return MeshSdf(surface, options);
-            } catch (const std::invalid_argument& e) {
-                throw InputError(fmt::format("{}: {}", args->input, e.what()));
-            }
-        }();
+        const MeshSdf sdf = naming_file(args->input, [&] { return MeshSdf(surface, options); });
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         // Written under a temporary name and renamed: no half-written file on failure.

@@ -71,13 +71,7 @@ int run(const Args& args) {
     std::cout << fmt::format("hexmesh untangle {}: {} hexes, {} tets, {} points, boundary {}\n", args.input,
                              mesh.num_hexes(), mesh.num_tets(), mesh.points.size(), args.boundary);
 
-    const UntangleMeshResult r = [&] {
-        try {
-            return untangle_volume_mesh(mesh, options);
-        } catch (const std::invalid_argument& e) {  // not a conforming mesh
-            throw InputError(fmt::format("{}: {}", args.input, e.what()));
-        }
-    }();
+    const UntangleMeshResult r = naming_file(args.input, [&] { return untangle_volume_mesh(mesh, options); });
     std::cout << fmt::format("vertices: {} slip, {} on creases, {} fixed\n", r.slip_vertices,
                              r.feature_vertices, r.fixed_vertices);
     if (!r.blocked.empty()) std::cout << describe_blocked(r.blocked);

@@ -1,7 +1,5 @@
 #include "hexmesh/pipeline/make_body.h"
 
-#include <fmt/format.h>
-
 #include <memory>
 
 #include "io/sample_readers.h"
@@ -30,11 +28,7 @@ Body make_shape(const GeometrySpec& s) {
         options.voxel_size = s.voxel_size;
         options.feature_angle = s.feature_angle;
         const TriangleSurface surface = read_surface(s.file);
-        try {
-            return std::make_shared<MeshSdf>(surface, options);
-        } catch (const std::invalid_argument& e) {  // a voxel size that cannot be
-            throw InputError(fmt::format("{}: {}", s.file, e.what()));
-        }
+        return naming_file(s.file, [&] { return std::make_shared<MeshSdf>(surface, options); });
     }
     if (s.kind == "points") return std::make_shared<PointCloudSdf>(read_point_cloud(s.file));
     if (s.kind == "sections") return std::make_shared<CrossSectionSdf>(read_sections(s.file));
