@@ -43,9 +43,8 @@ VolumeMesh from_vtk(vtkDataSet* data, const std::string& path) {
         const int type = data->GetCellType(c);
         data->GetCellPoints(c, ids);
         // Every cell's ids in range before VTK builds any cell from them (GetCell reads points).
-        vtk_support::check_cell_points(ids, int(ids->GetNumberOfIds()), Id(mesh.points.size()), path, c);
-        if (type == VTK_HEXAHEDRON || type == VTK_VOXEL || type == VTK_TETRA)
-            vtk_support::check_cell_points(ids, type == VTK_TETRA ? 4 : 8, Id(mesh.points.size()), path, c);
+        const int takes = type == VTK_TETRA ? 4 : type == VTK_HEXAHEDRON || type == VTK_VOXEL ? 8 : 0;
+        vtk_support::check_cell_points(ids, takes, Id(mesh.points.size()), path, c);
         if (type == VTK_HEXAHEDRON || type == VTK_VOXEL) {
             for (int v = 0; v < 8; ++v) mesh.hexes.push_back(ids->GetId(type == VTK_VOXEL ? voxel_to_hex[v] : v));
         } else if (type == VTK_TETRA) {

@@ -90,7 +90,7 @@ void check_cell_points(vtkIdList* ids, int count, Id points, const std::string& 
     if (ids->GetNumberOfIds() < count)
         throw InputError(fmt::format("{}: cell {} has {} point ids where its type takes {}", path, cell,
                                      ids->GetNumberOfIds(), count));
-    for (int v = 0; v < count; ++v)
+    for (vtkIdType v = 0; v < ids->GetNumberOfIds(); ++v)
         if (ids->GetId(v) < 0 || ids->GetId(v) >= points)
             throw InputError(fmt::format("{}: cell {} refers to point {}, but the file has points 0 to {}",
                                          path, cell, ids->GetId(v), points - 1));

@@ -33,8 +33,8 @@ void check_written(int status, const std::string& path);
 // headers for arrays over 4 GB. ParaView and VTK readers read it as any other XML file.
 void configure_xml_writer(vtkXMLWriterBase& writer);
 
-// Throws InputError naming the file and cell when the cell's point ids are fewer than
-// `count` or one is outside [0, points).
+// Throws InputError naming the file and cell when the cell has fewer than `count` point ids
+// (what its type takes) or any of them is outside [0, points).
 void check_cell_points(vtkIdList* ids, int count, Id points, const std::string& path, vtkIdType cell);
 
 // Checks the cell lists of a legacy .vtk file (ASCII or binary, the old and the 5.1 layouts)
