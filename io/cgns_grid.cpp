@@ -113,9 +113,8 @@ void write_1to1(const CgnsFile& file, int base, const std::vector<int>& zones,
         donor_range[m] = begin_b[m] + 1;
         donor_range[m + 3] = end_b[m] + 1;
     }
-    static const char* face_names[6] = {"imin", "imax", "jmin", "jmax", "kmin", "kmax"};
     int index = 0;
-    const std::string name = fmt::format("{}_{}_to_{}", names[a], face_names[fa], names[b]).substr(0, 32);
+    const std::string name = fmt::format("{}_{}_to_{}", names[a], block_face_names[fa], names[b]).substr(0, 32);
     file.check(cg_1to1_write(file.fn(), base, zones[a], name.c_str(), names[b].c_str(), range,
                              donor_range, transform, &index));
 }
@@ -160,15 +159,14 @@ void write_cgns_grid(const BlockGrid& grid, const std::string& path) {
             file.check(cg_goto(file.fn(), base, "Zone_t", zones[z], "GridCoordinates_t", 1, "DataArray_t", index, "end"));
             file.check(cg_exponents_write(CGNS_ENUMV(RealSingle), length));
         }
-        static const char* face_names[6] = {"imin", "imax", "jmin", "jmax", "kmin", "kmax"};
-        for (int f = 0; f < 6; ++f) {
+            for (int f = 0; f < 6; ++f) {
             const std::string& patch = b.face_patch[f];
             if (patch.empty()) continue;
             const FaceBox box = face_box(b.nodes, f);
             const cgsize_t range[6] = {box.lo[0] + 1, box.lo[1] + 1, box.lo[2] + 1,
                                        box.hi[0] + 1, box.hi[1] + 1, box.hi[2] + 1};
             int bc = 0;
-            const std::string name = fmt::format("{}_{}", patch, face_names[f]).substr(0, 32);
+            const std::string name = fmt::format("{}_{}", patch, block_face_names[f]).substr(0, 32);
             file.check(cg_boco_write(file.fn(), base, zones[z], name.c_str(), bc_type(patch), CGNS_ENUMV(PointRange), 2, range, &bc));
             file.check(cg_goto(file.fn(), base, "Zone_t", zones[z], "ZoneBC_t", 1, "BC_t", bc, "end"));
             file.check(cg_famname_write(patch.c_str()));

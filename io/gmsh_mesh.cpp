@@ -75,7 +75,7 @@ HexMesh read_gmsh_mesh(const std::string& path) {
         const auto it = sparse_node_of_tag.find(t);
         return it == sparse_node_of_tag.end() ? -1 : it->second;
     };
-    bool seen_format = false;
+    bool seen_format = false, seen_nodes = false;
     while (!in.done()) {
         const std::string section = in.word();
         if (section == "$MeshFormat") {
@@ -86,8 +86,8 @@ HexMesh read_gmsh_mesh(const std::string& path) {
             seen_format = true;
         } else if (section == "$Nodes") {
             if (!seen_format) in.fail("$Nodes before $MeshFormat");
-            if (!node_of_tag.empty() || !sparse_node_of_tag.empty() || mesh.num_points() > 0)
-                in.fail("a second $Nodes section");
+            if (seen_nodes) in.fail("a second $Nodes section");
+            seen_nodes = true;
             const long long blocks = in.integer("numEntityBlocks");
             const long long count = in.integer("numNodes");
             in.integer("minNodeTag");

@@ -10,11 +10,6 @@
 namespace hexmesh {
 namespace {
 
-constexpr const char* face_names[6] = {"imin", "imax", "jmin", "jmax", "kmin", "kmax"};
-
-}  // namespace
-namespace {
-
 using FaceKey = std::array<Id, 4>;
 
 FaceKey sorted_key(std::array<Id, 4> nodes) {
@@ -98,7 +93,7 @@ GridFaces make_grid_faces(const BlockGrid& grid) {
                 throw std::invalid_argument(fmt::format(
                     "block grid: face {} of block '{}' is an interface (no patch), but {} of its {} cell "
                     "faces meet no other block's: the blocks do not conform there",
-                    face_names[face], grid.blocks[b].name, open_faces, across.size()));
+                    block_face_names[face], grid.blocks[b].name, open_faces, across.size()));
             out.face_patch_index[b][face] = patch_index(name);
             out.boundary_faces += open_faces;
         }

@@ -30,6 +30,9 @@ struct Dims {
 // Block faces in the order imin, imax, jmin, jmax, kmin, kmax.
 enum BlockFace { imin, imax, jmin, jmax, kmin, kmax };
 
+// Their names, for files and messages.
+inline constexpr const char* block_face_names[6] = {"imin", "imax", "jmin", "jmax", "kmin", "kmax"};
+
 // A structured block: node dims plus the global id of each of its nodes (flat, i fastest).
 // Neighbouring blocks list the same global ids on their common interface.
 struct Block {
