@@ -78,15 +78,17 @@ StagedOutput::StagedOutput(std::string outdir, Scope scope) : outdir_(std::move(
         throw std::runtime_error(fmt::format("{}: exists and is not a directory", outdir_));
     created_outdir_ = fs::create_directories(outdir_, ec);
     if (ec) throw std::runtime_error(fmt::format("{}: cannot create directory ({})", outdir_, ec.message()));
-    if (scope_ == Scope::whole_folder) lock_fd_ = ::open(outdir_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (scope_ == Scope::whole_folder && (lock_fd_ < 0 || ::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0)) {
-        const int error = errno;
-        if (lock_fd_ >= 0) ::close(lock_fd_), lock_fd_ = -1;
-        if (created_outdir_) fs::remove(outdir_, ec);
-        throw std::runtime_error(error == EWOULDBLOCK
-                                     ? fmt::format("{}: another hexmesh process is writing into this folder; "
-                                                   "wait for it or choose another one", outdir_)
-                                     : fmt::format("{}: cannot lock the folder ({})", outdir_, std::strerror(error)));
+    if (scope_ == Scope::whole_folder) {
+        lock_fd_ = ::open(outdir_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+        if (lock_fd_ < 0 || ::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
+            const int error = errno;
+            if (lock_fd_ >= 0) ::close(lock_fd_), lock_fd_ = -1;
+            if (created_outdir_) fs::remove(outdir_, ec);
+            throw std::runtime_error(error == EWOULDBLOCK
+                                         ? fmt::format("{}: another hexmesh process is writing into this folder; "
+                                                       "wait for it or choose another one", outdir_)
+                                         : fmt::format("{}: cannot lock the folder ({})", outdir_, std::strerror(error)));
+        }
     }
     const fs::path prefix = scope_ == Scope::whole_folder ? staging_prefix(outdir_, host_name())
                                                           : fs::path(outdir_) / (".staging-" + host_name() + "-");
