@@ -244,6 +244,20 @@ FarFieldSpec parse_far_field(const JsonFields& f) {
     return far;
 }
 
+FlowSpec parse_flow(const JsonFields& f) {
+    f.allow_only({"velocity", "density", "viscosity", "turbulence", "turbulence_intensity",
+                  "turbulence_length"});
+    FlowSpec flow;
+    flow.velocity = f.vec3("velocity", flow.velocity);
+    if (!(flow.velocity.norm() > 0)) f.fail("velocity", "a non-zero vector [ux, uy, uz]");
+    flow.density = f.positive_number("density", flow.density);
+    flow.viscosity = f.positive_number("viscosity", flow.viscosity);
+    flow.turbulence = f.choice("turbulence", flow.turbulence, {"laminar", "k-omega-sst"});
+    flow.turbulence_intensity = f.positive_number("turbulence_intensity", flow.turbulence_intensity);
+    flow.turbulence_length = f.positive_number("turbulence_length", 0);
+    return flow;
+}
+
 TetMeshSpec parse_tet_mesh(const JsonFields& f) {
     f.allow_only({"cell_size", "wall_cell_size", "grading", "facet_distance", "feature_angle"});
     TetMeshSpec t;
@@ -333,6 +347,14 @@ std::string case_to_json(const Case& c) {
         root["boundary_layer"] = {{"first_height", c.boundary_layer->first_height},
                                   {"growth_ratio", c.boundary_layer->growth_ratio},
                                   {"layers", c.boundary_layer->layers}};
+    root["flow"] = {{"velocity", vec3_json(c.flow.velocity)},
+                    {"density", c.flow.density},
+                    {"viscosity", c.flow.viscosity},
+                    {"turbulence", c.flow.turbulence}};
+    if (c.flow.turbulence != "laminar") {
+        root["flow"]["turbulence_intensity"] = c.flow.turbulence_intensity;
+        if (c.flow.turbulence_length > 0) root["flow"]["turbulence_length"] = c.flow.turbulence_length;
+    }
     root["solver"] = {{"untangle", c.solver.untangle},
                       {"optimize", c.solver.optimize},
                       {"theta", c.solver.theta},
@@ -361,7 +383,7 @@ Case parse_case(const std::string& text, const std::string& path) {
     }
     const JsonFields top(root, path, "");
     top.allow_only({"geometry", "domain", "grid", "far_field", "boundary_layer", "solver",
-                    "outputs", "refinement", "tet_mesh"});
+                    "outputs", "refinement", "tet_mesh", "flow"});
     Case c;
     c.path = path;
     if (!top.has("geometry")) top.fail("geometry", "an object describing the body");
@@ -390,6 +412,7 @@ Case parse_case(const std::string& text, const std::string& path) {
         c.refinement.levels = r.integer("levels", c.refinement.levels, 1, 5);
     }
     if (top.has("tet_mesh")) c.tet_mesh = parse_tet_mesh(top.object("tet_mesh"));
+    if (top.has("flow")) c.flow = parse_flow(top.object("flow"));
     return c;
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "hexmesh/core/types.h"
+#include "io/flow_spec.h"
 
 namespace hexmesh {
 
@@ -129,6 +130,7 @@ struct Case {
     std::vector<std::string> outputs = {"vtk"};
     RefinementSpec refinement;
     TetMeshSpec tet_mesh;
+    FlowSpec flow;  // what the OpenFOAM output's fields and dictionaries are set up for
 };
 
 // Height of the first cell for a target y+ on a flat plate of length L = reynolds * viscosity /

@@ -159,7 +159,7 @@ void write_cgns_grid(const BlockGrid& grid, const std::string& path) {
             file.check(cg_goto(file.fn(), base, "Zone_t", zones[z], "GridCoordinates_t", 1, "DataArray_t", index, "end"));
             file.check(cg_exponents_write(CGNS_ENUMV(RealSingle), length));
         }
-            for (int f = 0; f < 6; ++f) {
+        for (int f = 0; f < 6; ++f) {
             const std::string& patch = b.face_patch[f];
             if (patch.empty()) continue;
             const FaceBox box = face_box(b.nodes, f);
@@ -167,7 +167,10 @@ void write_cgns_grid(const BlockGrid& grid, const std::string& path) {
                                        box.hi[0] + 1, box.hi[1] + 1, box.hi[2] + 1};
             int bc = 0;
             const std::string name = fmt::format("{}_{}", patch, block_face_names[f]).substr(0, 32);
-            file.check(cg_boco_write(file.fn(), base, zones[z], name.c_str(), bc_type(patch), CGNS_ENUMV(PointRange), 2, range, &bc));
+            // The type lives on the patch's family (FamilyBC_t): readers that take only some BC
+            // types on a BC_t (VTK's, ParaView's) take FamilySpecified with the family's name.
+            file.check(cg_boco_write(file.fn(), base, zones[z], name.c_str(), CGNS_ENUMV(FamilySpecified),
+                                     CGNS_ENUMV(PointRange), 2, range, &bc));
             file.check(cg_goto(file.fn(), base, "Zone_t", zones[z], "ZoneBC_t", 1, "BC_t", bc, "end"));
             file.check(cg_famname_write(patch.c_str()));
         }

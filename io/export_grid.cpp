@@ -62,10 +62,11 @@ std::string export_file_name(const std::string& format, const std::string& stem,
     return stem + "_" + variant + ".xyz";
 }
 
-void write_grid_format(const BlockGrid& grid, const std::string& format, const std::string& path) {
+void write_grid_format(const BlockGrid& grid, const std::string& format, const std::string& path,
+                       const FlowSpec& flow) {
     Plot3dFormat plot3d;
     if (format == "vtk") write_vtk_grid(grid, path);
-    else if (format == "openfoam") write_openfoam_mesh(grid, path);
+    else if (format == "openfoam") write_openfoam_mesh(grid, path, flow);
     else if (format == "cgns") write_cgns_grid(grid, path);
     else if (format == "gmsh") write_gmsh_mesh(grid, path);
     else if (format == "medit") write_medit_mesh(grid, path);
@@ -74,7 +75,7 @@ void write_grid_format(const BlockGrid& grid, const std::string& format, const s
 }
 
 std::vector<std::string> export_grid(const BlockGrid& grid, const std::string& format,
-                                     const std::string& path) {
+                                     const std::string& path, const FlowSpec& flow) {
     if (!is_export_format(format))
         throw InputError(fmt::format("unknown export format '{}' (expected one of: {})", format, export_format_list()));
     const fs::path target(path);
@@ -89,7 +90,7 @@ std::vector<std::string> export_grid(const BlockGrid& grid, const std::string& f
     }
     const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
     StagedOutput out(folder.string(), StagedOutput::Scope::named_entries);  // the user's folder: one file
-    write_grid_format(grid, format, out.path(target.filename().string()));
+    write_grid_format(grid, format, out.path(target.filename().string()), flow);
     return out.commit();
 }
 

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "hexmesh/core/block_grid.h"
+#include "io/flow_spec.h"
 
 namespace hexmesh {
 
@@ -18,14 +19,16 @@ std::string export_format_list();  // the names above, for messages
 // and stem_<variant>.xyz for its other variants (plot3d-c-single -> stem_c_single.xyz).
 std::string export_file_name(const std::string& format, const std::string& stem, const BlockGrid& grid);
 
-// Writes `grid` in `format` at `path` directly (no staging). Plot3D adds PATH.patches.json.
-void write_grid_format(const BlockGrid& grid, const std::string& format, const std::string& path);
+// Writes `grid` in `format` at `path` directly (no staging). Plot3D adds PATH.patches.json;
+// an OpenFOAM case is set up for `flow`.
+void write_grid_format(const BlockGrid& grid, const std::string& format, const std::string& path,
+                       const FlowSpec& flow = {});
 
 // `hexmesh export`: writes into a staging folder beside `path`, then renames into place, so an
 // error (unwritable folder, full disk) leaves nothing under the final name. Returns the final
 // paths written. Throws InputError for an unknown format, std::runtime_error on write errors.
 std::vector<std::string> export_grid(const BlockGrid& grid, const std::string& format,
-                                     const std::string& path);
+                                     const std::string& path, const FlowSpec& flow = {});
 
 // Reads a block grid for export: .vts/.vtm (read_vtk_block_grid) or Plot3D (.xyz .x .p3d .g).
 BlockGrid read_block_grid(const std::string& path);

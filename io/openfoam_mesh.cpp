@@ -1,5 +1,7 @@
 #include "io/openfoam_mesh.h"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <stdexcept>
 
@@ -25,6 +27,18 @@ void write_footer(FileSink& out) {
     out.print(")\n\n// ************************************************************************* //\n");
 }
 
+// Point numbers in the order the blocks first reach them (block by block, i fastest): the same
+// for a grid held in memory and for that grid read back from its VTK files, whose merged
+// points come in another order.
+std::vector<Id> point_numbers(const BlockGrid& grid, std::vector<Id>& order) {
+    std::vector<Id> number(grid.points.size(), -1);
+    order.clear();
+    for (const Block& b : grid.blocks)
+        for (const Id v : b.node_ids)
+            if (number[v] < 0) number[v] = Id(order.size()), order.push_back(v);
+    return number;
+}
+
 }  // namespace
 
 void write_openfoam_polymesh(const BlockGrid& grid, const std::string& polymesh_dir) {
@@ -36,14 +50,19 @@ void write_openfoam_polymesh(const BlockGrid& grid, const std::string& polymesh_
     std::error_code ec;
     fs::create_directories(mesh_dir, ec);
     if (ec) throw std::runtime_error(fmt::format("{}: cannot create directory ({})", mesh_dir.string(), ec.message()));
+    std::vector<Id> order;
+    const std::vector<Id> number = point_numbers(grid, order);
     const std::string note = fmt::format("nPoints:{} nCells:{} nFaces:{} nInternalFaces:{}",
-                                         grid.points.size(), grid.num_cells(), nfaces,
+                                         order.size(), grid.num_cells(), nfaces,
                                          faces.internal_faces);
     {
         FileSink out((mesh_dir / "points").string());
         write_header(out, "vectorField", "points", "");
-        out.print("{}\n(\n", grid.points.size());
-        for (const Vec3& p : grid.points) out.print("({} {} {})\n", p.x(), p.y(), p.z());
+        out.print("{}\n(\n", order.size());
+        for (const Id v : order) {
+            const Vec3& p = grid.points[v];
+            out.print("({} {} {})\n", p.x(), p.y(), p.z());
+        }
         write_footer(out);
         out.close();
     }
@@ -52,7 +71,7 @@ void write_openfoam_polymesh(const BlockGrid& grid, const std::string& polymesh_
         write_header(out, "faceList", "faces", "");
         out.print("{}\n(\n", nfaces);
         auto face = [&](const std::array<Id, 4>& n) {
-            out.print("4({} {} {} {})\n", n[0], n[1], n[2], n[3]);
+            out.print("4({} {} {} {})\n", number[n[0]], number[n[1]], number[n[2]], number[n[3]]);
         };
         for_each_internal_face(grid, faces, [&](Id, Id, const std::array<Id, 4>& n) { face(n); });
         for (int p = 0; p < int(faces.patch_names.size()); ++p)
@@ -98,31 +117,133 @@ void write_openfoam_polymesh(const BlockGrid& grid, const std::string& polymesh_
     }
 }
 
-void write_openfoam_mesh(const BlockGrid& grid, const std::string& case_dir) {
+namespace {
+
+// The far-field values of k and omega for the SST model: k = 1.5 (I |U|)^2, omega =
+// sqrt(k) / (Cmu^(1/4) l), l the mixing length (given, or a tenth of the wall's largest extent).
+struct TurbulenceInflow {
+    double k = 0, omega = 0;
+};
+
+TurbulenceInflow turbulence_inflow(const BlockGrid& grid, const GridFaces& faces, const FlowSpec& flow) {
+    double length = flow.turbulence_length;
+    if (!(length > 0)) {
+        Box3 box{Vec3::Constant(1e300), Vec3::Constant(-1e300)};
+        for (int p = 0; p < int(faces.patch_names.size()); ++p)
+            if (faces.patch_names[p] == "wall")
+                for_each_patch_face(grid, faces, p, [&](Id, const std::array<Id, 4>& n) {
+                    for (Id v : n) box.lo = box.lo.cwiseMin(grid.points[v]), box.hi = box.hi.cwiseMax(grid.points[v]);
+                });
+        length = box.hi.x() >= box.lo.x() ? 0.1 * (box.hi - box.lo).maxCoeff() : 0.1;
+    }
+    TurbulenceInflow t;
+    const double u = flow.turbulence_intensity * flow.velocity.norm();
+    t.k = std::max(1.5 * u * u, 1e-12);
+    t.omega = std::sqrt(t.k) / (std::pow(0.09, 0.25) * length);
+    return t;
+}
+
+// One field file of 0/: the internal value and, per patch, the wall's or the far field's
+// condition ("{value}" in them stands for the internal value).
+std::string field_file(const char* cls, const char* object, const char* dimensions,
+                       const std::string& value, const std::vector<std::string>& patches,
+                       const std::string& wall, const std::string& far) {
+    std::string text = fmt::format("FoamFile\n{{\n    version     2.0;\n    format      ascii;\n"
+                                   "    class       {};\n    location    \"0\";\n    object      {};\n}}\n\n"
+                                   "dimensions      {};\n\ninternalField   uniform {};\n\nboundaryField\n{{\n",
+                                   cls, object, dimensions, value);
+    for (const std::string& patch : patches) {
+        std::string condition = patch == "wall" ? wall : far;
+        for (size_t at; (at = condition.find("{value}")) != std::string::npos;) condition.replace(at, 7, value);
+        text += fmt::format("    {}\n    {{\n{}    }}\n", patch, condition);
+    }
+    return text + "}\n";
+}
+
+std::string dictionary(const char* location, const char* object, const std::string& body) {
+    return fmt::format("FoamFile\n{{\n    version     2.0;\n    format      ascii;\n"
+                       "    class       dictionary;\n    location    \"{}\";\n    object      {};\n}}\n\n{}",
+                       location, object, body);
+}
+
+}  // namespace
+
+void write_openfoam_mesh(const BlockGrid& grid, const std::string& case_dir, const FlowSpec& flow) {
     write_openfoam_polymesh(grid, (fs::path(case_dir) / "constant" / "polyMesh").string());
+    const GridFaces faces = make_grid_faces(grid);
+    const bool sst = flow.turbulence == "k-omega-sst";
     std::error_code ec;
-    fs::create_directories(fs::path(case_dir) / "system", ec);
-    if (ec) throw std::runtime_error(fmt::format("{}/system: cannot create directory ({})", case_dir, ec.message()));
-    // Just enough of system/ for checkMesh and foamToVTK; an existing file is kept.
-    auto write_if_absent = [&](const char* name, const std::string& body) {
-        const fs::path file = fs::path(case_dir) / "system" / name;
+    // Each file is written only where absent: a user's own dictionaries are kept.
+    auto write_if_absent = [&](const std::string& relative, const std::string& text) {
+        const fs::path file = fs::path(case_dir) / relative;
         if (fs::exists(file, ec)) return;
+        fs::create_directories(file.parent_path(), ec);
+        if (ec) throw std::runtime_error(fmt::format("{}: cannot create directory ({})", file.parent_path().string(), ec.message()));
         FileSink out(file.string(), false);
-        out.print("FoamFile\n{{\n    version     2.0;\n    format      ascii;\n"
-                  "    class       dictionary;\n    location    \"system\";\n"
-                  "    object      {};\n}}\n\n{}", name, body);
+        out.print("{}", text);
         out.close();
     };
-    write_if_absent("controlDict",
-                    "application     simpleFoam;\nstartFrom       startTime;\nstartTime       0;\n"
-                    "stopAt          endTime;\nendTime         1;\ndeltaT          1;\n"
-                    "writeControl    timeStep;\nwriteInterval   1;\n");
-    write_if_absent("fvSchemes",
-                    "ddtSchemes { default steadyState; }\ngradSchemes { default Gauss linear; }\n"
-                    "divSchemes { default none; }\n"
-                    "laplacianSchemes { default Gauss linear corrected; }\n"
-                    "interpolationSchemes { default linear; }\nsnGradSchemes { default corrected; }\n");
-    write_if_absent("fvSolution", "solvers {}\n");
+    write_if_absent("system/controlDict",
+                    dictionary("system", "controlDict",
+                               "application     simpleFoam;\nstartFrom       latestTime;\nstartTime       0;\n"
+                               "stopAt          endTime;\nendTime         2000;\ndeltaT          1;\n"
+                               "writeControl    timeStep;\nwriteInterval   200;\npurgeWrite      2;\n"
+                               "writeFormat     ascii;\nwritePrecision  8;\ntimeFormat      general;\n"
+                               "runTimeModifiable true;\n"));
+    write_if_absent("system/fvSchemes",
+                    dictionary("system", "fvSchemes",
+                               "ddtSchemes { default steadyState; }\n"
+                               "gradSchemes { default Gauss linear; grad(U) cellLimited Gauss linear 1; }\n"
+                               "divSchemes\n{\n    default none;\n    div(phi,U) bounded Gauss linearUpwind grad(U);\n"
+                               "    div(phi,k) bounded Gauss upwind;\n    div(phi,omega) bounded Gauss upwind;\n"
+                               "    div((nuEff*dev2(T(grad(U))))) Gauss linear;\n}\n"
+                               "laplacianSchemes { default Gauss linear limited corrected 0.5; }\n"
+                               "interpolationSchemes { default linear; }\n"
+                               "snGradSchemes { default limited corrected 0.5; }\n"
+                               "wallDist { method meshWave; }\n"));
+    write_if_absent("system/fvSolution",
+                    dictionary("system", "fvSolution",
+                               "solvers\n{\n    p { solver GAMG; smoother GaussSeidel; tolerance 1e-7; relTol 0.05; }\n"
+                               "    \"(U|k|omega)\" { solver smoothSolver; smoother symGaussSeidel; tolerance 1e-8; relTol 0.1; }\n}\n"
+                               "SIMPLE\n{\n    nNonOrthogonalCorrectors 1;\n    consistent      yes;\n"
+                               "    pRefCell        0;\n    pRefValue       0;\n"
+                               "    residualControl { p 1e-5; U 1e-6; \"(k|omega)\" 1e-6; }\n}\n"
+                               "relaxationFactors { equations { U 0.9; \".*\" 0.7; } }\n"));
+    write_if_absent("constant/transportProperties",
+                    dictionary("constant", "transportProperties",
+                               fmt::format("transportModel  Newtonian;\nnu              {};\n",
+                                           flow.viscosity / flow.density)));
+    write_if_absent("constant/turbulenceProperties",
+                    dictionary("constant", "turbulenceProperties",
+                               sst ? "simulationType  RAS;\nRAS\n{\n    RASModel        kOmegaSST;\n"
+                                     "    turbulence      on;\n    printCoeffs     on;\n}\n"
+                                   : "simulationType  laminar;\n"));
+    const Vec3& u = flow.velocity;
+    const std::string velocity = fmt::format("({} {} {})", u.x(), u.y(), u.z());
+    const std::vector<std::string>& patches = faces.patch_names;
+    write_if_absent("0/U", field_file("volVectorField", "U", "[0 1 -1 0 0 0 0]", velocity, patches,
+                                      "        type            noSlip;\n",
+                                      "        type            freestreamVelocity;\n"
+                                      "        freestreamValue uniform {value};\n        value           uniform {value};\n"));
+    write_if_absent("0/p", field_file("volScalarField", "p", "[0 2 -2 0 0 0 0]", "0", patches,
+                                      "        type            zeroGradient;\n",
+                                      "        type            freestreamPressure;\n"
+                                      "        freestreamValue uniform {value};\n        value           uniform {value};\n"));
+    if (sst) {
+        const TurbulenceInflow t = turbulence_inflow(grid, faces, flow);
+        const std::string inlet_outlet = "        type            inletOutlet;\n        inletValue      uniform {value};\n"
+                                         "        value           uniform {value};\n";
+        write_if_absent("0/k", field_file("volScalarField", "k", "[0 2 -2 0 0 0 0]", fmt::format("{}", t.k), patches,
+                                          "        type            kqRWallFunction;\n        value           uniform {value};\n",
+                                          inlet_outlet));
+        write_if_absent("0/omega", field_file("volScalarField", "omega", "[0 0 -1 0 0 0 0]", fmt::format("{}", t.omega),
+                                              patches,
+                                              "        type            omegaWallFunction;\n        value           uniform {value};\n",
+                                              inlet_outlet));
+        write_if_absent("0/nut", field_file("volScalarField", "nut", "[0 2 -1 0 0 0 0]", "0", patches,
+                                            "        type            nutkWallFunction;\n        value           uniform 0;\n",
+                                            "        type            calculated;\n        value           uniform 0;\n"));
+    }
 }
 
 }  // namespace hexmesh

@@ -105,7 +105,7 @@ void write_level(const Case& c, const BlockGrid& grid, GridReport report, const 
         if (format != "vtk")
             write_grid_format(
                 grid, format,
-                out.path(dir + export_file_name(format, stem.substr(dir.size()), grid)));
+                out.path(dir + export_file_name(format, stem.substr(dir.size()), grid)), c.flow);
     timer.done(dir.empty() ? "write" : "write " + dir.substr(0, dir.size() - 1));
     report.phase_seconds = timer.phases();
     out.write_text(dir + "quality.json", quality_json(report));

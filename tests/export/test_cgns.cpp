@@ -1,9 +1,16 @@
 #include <gtest/gtest.h>
 
 #include <cgnslib.h>
+#include <fmt/format.h>
 #include <algorithm>
 #include <cstdlib>
 #include <map>
+#include <vtkCGNSReader.h>
+#include <vtkCompositeDataSet.h>
+#include <vtkInformation.h>
+#include <vtkMultiBlockDataSet.h>
+#include <vtkNew.h>
+#include <vtkStructuredGrid.h>
 
 #include "export_test_support.h"
 #include "io/cgns_grid.h"
@@ -73,7 +80,7 @@ TEST(Cgns, LibraryReadsBackCoordinatesBcRangesAndInterfaces) {
             int normal_index[3], ndataset = 0;
             CGNS_ENUMT(DataType_t) normal_type;
             CG(cg_boco_info(fn, 1, z, bc, bc_name, &type, &set, &npnts, normal_index, &normal_size, &normal_type, &ndataset));
-            EXPECT_EQ(type, CGNS_ENUMV(BCWall));
+            EXPECT_EQ(type, CGNS_ENUMV(FamilySpecified));  // the type is on the family
             EXPECT_EQ(set, CGNS_ENUMV(PointRange));
             ASSERT_EQ(npnts, 2);
             cgsize_t range[6];
@@ -92,6 +99,21 @@ TEST(Cgns, LibraryReadsBackCoordinatesBcRangesAndInterfaces) {
         CG(cg_n1to1(fn, 1, z, &n1to1));
         interfaces += n1to1;
     }
+    // The families carry the patches' types.
+    int nfamilies = 0;
+    CG(cg_nfamilies(fn, 1, &nfamilies));
+    std::map<std::string, CGNS_ENUMT(BCType_t)> family_type;
+    for (int f = 1; f <= nfamilies; ++f) {
+        char name[64];
+        int nbc = 0, ngeo = 0;
+        CG(cg_family_read(fn, 1, f, name, &nbc, &ngeo));
+        ASSERT_EQ(nbc, 1) << name;
+        char bc_name[64];
+        CGNS_ENUMT(BCType_t) type;
+        CG(cg_fambc_read(fn, 1, f, 1, bc_name, &type));
+        family_type[name] = type;
+    }
+    EXPECT_EQ(family_type, (std::map<std::string, CGNS_ENUMT(BCType_t)>{{"wall", CGNS_ENUMV(BCWall)}}));
     int patch_faces = 0, open_faces = 0;
     for (const Block& b : grid.blocks)
         for (const std::string& p : b.face_patch) (p.empty() ? open_faces : patch_faces) += 1;
@@ -137,4 +159,46 @@ TEST(Cgns, CgnscheckAcceptsTheFile) {
     EXPECT_EQ(r.exit_code, 0) << r.output;
     EXPECT_EQ(r.output.find("ERROR"), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("WARNING"), std::string::npos) << r.output;
+}
+
+// VTK's (and ParaView's) CGNS reader shows each patch by name under its zone, with the
+// face's cells: it skips BC_t nodes typed BCWall or BCFarfield, but takes FamilySpecified.
+TEST(Cgns, VtkReaderShowsThePatchesByName) {
+    const BlockGrid grid = small_o_h_grid();
+    const fs::path file = scratch("cgns_vtk") / "grid.cgns";
+    write_cgns_grid(grid, file.string());
+    vtkNew<vtkCGNSReader> reader;
+    reader->SetFileName(file.string().c_str());
+    reader->UpdateInformation();
+    reader->EnableAllBases();
+    reader->SetLoadBndPatch(1);
+    reader->Update();
+    vtkMultiBlockDataSet* base = vtkMultiBlockDataSet::SafeDownCast(reader->GetOutput()->GetBlock(0));
+    ASSERT_NE(base, nullptr);
+    ASSERT_EQ(base->GetNumberOfBlocks(), grid.blocks.size());
+    std::map<std::string, Id> faces_of;  // patch name -> cells read
+    std::map<std::string, Id> expected;
+    for (const Block& b : grid.blocks)
+        for (int f = 0; f < 6; ++f)
+            if (!b.face_patch[f].empty()) {
+                const Dims c = b.cells();
+                const int axis = f / 2;
+                expected[fmt::format("{}_{}", b.face_patch[f], block_face_names[f])] +=
+                    Id(c.ni) * c.nj * c.nk / c[axis];
+            }
+    for (unsigned z = 0; z < base->GetNumberOfBlocks(); ++z) {
+        auto* zone = vtkMultiBlockDataSet::SafeDownCast(base->GetBlock(z));
+        ASSERT_NE(zone, nullptr);
+        vtkMultiBlockDataSet* patches = nullptr;
+        for (unsigned k = 0; k < zone->GetNumberOfBlocks(); ++k)
+            if (std::string(zone->GetMetaData(k)->Get(vtkCompositeDataSet::NAME())) == "Patches")
+                patches = vtkMultiBlockDataSet::SafeDownCast(zone->GetBlock(k));
+        ASSERT_NE(patches, nullptr) << "zone " << z << " has no Patches";
+        for (unsigned k = 0; k < patches->GetNumberOfBlocks(); ++k) {
+            auto* patch = vtkStructuredGrid::SafeDownCast(patches->GetBlock(k));
+            ASSERT_NE(patch, nullptr);
+            faces_of[patches->GetMetaData(k)->Get(vtkCompositeDataSet::NAME())] += patch->GetNumberOfCells();
+        }
+    }
+    EXPECT_EQ(faces_of, expected);
 }

@@ -316,3 +316,36 @@ TEST(CaseFile, TheCoarsestGridNeedsNoFrame) {
             .grid.cells_per_edge,
         2);
 }
+
+TEST(CaseFile, FlowDefaultsToLaminarReynolds100AndReadsBack) {
+    const Case d = parse_case(R"({"geometry": {"sphere": {"radius": 1}}})", "case.json");
+    EXPECT_EQ(d.flow.velocity, Vec3(1, 0, 0));
+    EXPECT_EQ(d.flow.density, 1);
+    EXPECT_EQ(d.flow.viscosity, 0.01);
+    EXPECT_EQ(d.flow.turbulence, "laminar");
+    const Case c = parse_case(R"({"geometry": {"sphere": {"radius": 1}},
+      "flow": {"velocity": [0, 30, 0], "density": 1.2, "viscosity": 1.8e-5,
+               "turbulence": "k-omega-sst", "turbulence_intensity": 0.02, "turbulence_length": 0.05}})",
+                              "case.json");
+    const Case back = parse_case(case_to_json(c), "grid.case.json");
+    EXPECT_EQ(back.flow.velocity, Vec3(0, 30, 0));
+    EXPECT_EQ(back.flow.density, 1.2);
+    EXPECT_EQ(back.flow.viscosity, 1.8e-5);
+    EXPECT_EQ(back.flow.turbulence, "k-omega-sst");
+    EXPECT_EQ(back.flow.turbulence_intensity, 0.02);
+    EXPECT_EQ(back.flow.turbulence_length, 0.05);
+}
+
+TEST(CaseFile, FlowMisusesAreNamed) {
+    const std::string sphere = R"({"geometry": {"sphere": {"radius": 1}}, "flow": )";
+    const std::vector<std::pair<std::string, std::string>> bad = {
+        {R"({"velocity": [0, 0, 0]})", "flow.velocity: expected a non-zero vector"},
+        {R"({"viscosity": -1})", "flow.viscosity"},
+        {R"({"turbulence": "k-epsilon"})", "flow.turbulence"},
+        {R"({"speed": 3})", "flow.speed"},
+    };
+    for (const auto& [flow, message] : bad) {
+        const std::string e = error_of(sphere + flow + "}");
+        EXPECT_NE(e.find(message), std::string::npos) << flow << ": " << e;
+    }
+}
