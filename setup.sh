@@ -14,7 +14,7 @@ build_packages=(
   libcli11-dev nlohmann-json3-dev libfmt-dev libcgns-dev
 )
 # Independent readers and checkers the end-to-end tests compare against.
-test_packages=(python3-vtk9 openfoam gmsh cgns-convert)
+test_packages=(python3-vtk9 python3-meshio openfoam gmsh cgns-convert)
 
 install_packages() {
   local missing=()

@@ -6,6 +6,8 @@
 #include "io/case_file.h"
 #include "io/cgns_grid.h"
 #include "io/gmsh_mesh.h"
+#include "io/su2_mesh.h"
+#include "io/ugrid_mesh.h"
 #include "io/medit_mesh.h"
 #include "io/openfoam_mesh.h"
 #include "io/plot3d.h"
@@ -43,11 +45,11 @@ std::string lower_extension(const std::string& path) {
 bool is_export_format(const std::string& format) {
     Plot3dFormat p;
     return format == "vtk" || format == "openfoam" || format == "cgns" || format == "gmsh" ||
-           format == "medit" || parse_plot3d(format, p);
+           format == "medit" || format == "su2" || format == "ugrid" || parse_plot3d(format, p);
 }
 
 std::string export_format_list() {
-    return "vtk, openfoam, cgns, gmsh, medit, plot3d[-fortran|-c|-ascii][-single]";
+    return "vtk, openfoam, cgns, gmsh, medit, su2, ugrid, plot3d[-fortran|-c|-ascii][-single]";
 }
 
 std::string export_file_name(const std::string& format, const std::string& stem, const BlockGrid& grid) {
@@ -56,6 +58,8 @@ std::string export_file_name(const std::string& format, const std::string& stem,
     if (format == "cgns") return stem + ".cgns";
     if (format == "gmsh") return stem + ".msh";
     if (format == "medit") return stem + ".mesh";
+    if (format == "su2") return stem + ".su2";
+    if (format == "ugrid") return stem + ".ugrid";
     if (format == "plot3d") return stem + ".xyz";
     std::string variant = format.substr(std::string("plot3d-").size());
     for (char& c : variant) c = c == '-' ? '_' : c;
@@ -70,6 +74,8 @@ void write_grid_format(const BlockGrid& grid, const std::string& format, const s
     else if (format == "cgns") write_cgns_grid(grid, path);
     else if (format == "gmsh") write_gmsh_mesh(grid, path);
     else if (format == "medit") write_medit_mesh(grid, path);
+    else if (format == "su2") write_su2_mesh(grid, path);
+    else if (format == "ugrid") write_ugrid_mesh(grid, path);
     else if (parse_plot3d(format, plot3d)) write_plot3d(grid, path, plot3d);
     else throw InputError(fmt::format("unknown export format '{}' (expected one of: {})", format, export_format_list()));
 }
@@ -91,6 +97,7 @@ std::vector<std::string> export_grid(const BlockGrid& grid, const std::string& f
     const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
     StagedOutput out(folder.string(), StagedOutput::Scope::named_entries);  // the user's folder: one file
     write_grid_format(grid, format, out.path(target.filename().string()), flow);
+    if (format == "ugrid") out.path(ugrid_mapbc_path(target.filename().string()));  // written beside it
     return out.commit();
 }
 

@@ -105,6 +105,12 @@ TEST(ExportCli, RunThenExportThenQualityAgree) {
         ASSERT_EQ(q.exit_code, 0) << q.output;
         EXPECT_NE(q.output.find("\"cells\": 32000"), std::string::npos) << q.output;
     }
+    // UGRID: the boundary conditions' file is written (and listed) beside the grid.
+    const std::string ugrid = (dir / "grid.ugrid").string();
+    const ToolRun ug = run_tool("'" + exe + "' export '" + grid + "' --format ugrid -o '" + ugrid + "'");
+    ASSERT_EQ(ug.exit_code, 0) << ug.output;
+    EXPECT_NE(ug.output.find("written: " + (dir / "grid.mapbc").string()), std::string::npos) << ug.output;
+    EXPECT_TRUE(fs::exists(dir / "grid.mapbc"));
     const ToolRun bad = run_tool("'" + exe + "' export '" + grid + "' --format gmsh -o /proc/version/grid.msh");
     EXPECT_EQ(bad.exit_code, 1);
     EXPECT_EQ(std::count(bad.output.begin(), bad.output.end(), '\n'), 1) << bad.output;

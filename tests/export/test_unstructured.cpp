@@ -1,5 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
+#include <fstream>
+#include <iterator>
 #include <regex>
 
 #include "export_test_support.h"
@@ -7,6 +11,9 @@
 #include "io/gmsh_mesh.h"
 #include "io/grid_faces.h"
 #include "io/medit_mesh.h"
+#include "io/su2_mesh.h"
+#include "io/ugrid_mesh.h"
+#include "volume/o_grid.h"
 #include "io/vtk_mesh.h"
 
 using namespace hexmesh;
@@ -106,4 +113,94 @@ TEST(Medit, RoundTripThroughOurReader) {
     EXPECT_EQ(q.inverted_cells, 0);
     EXPECT_EQ(q.min_scaled_jacobian, want.min_scaled_jacobian);
     EXPECT_EQ(read_vtk_mesh(file.string()).num_cells(), grid.num_cells());
+}
+
+namespace {
+
+std::string read_text(const fs::path& file) {
+    std::ifstream in(file);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// meshio's summary of a file (tests/export/meshio_summary.py), or "" when meshio is missing.
+std::string meshio_summary(const fs::path& file) {
+    if (run_tool("/usr/bin/python3 -c 'import meshio'").exit_code != 0) return "";
+    const ToolRun r = run_tool("/usr/bin/python3 '" HEXMESH_SOURCE_DIR "/tests/export/meshio_summary.py' '" +
+                               file.string() + "'");
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    const size_t line = r.output.rfind("\n{");  // meshio warns about string tags first
+    return line == std::string::npos ? r.output : r.output.substr(line + 1);
+}
+
+// Boundary faces per patch, in GridFaces order.
+std::vector<Id> patch_face_counts(const BlockGrid& grid) {
+    const GridFaces faces = make_grid_faces(grid);
+    std::vector<Id> counts(faces.patch_names.size(), 0);
+    for (int p = 0; p < int(counts.size()); ++p)
+        for_each_patch_face(grid, faces, p, [&](Id, const std::array<Id, 4>&) { ++counts[p]; });
+    return counts;
+}
+
+// meshio reads `file` with the grid's points, hexahedra (all right-handed) and one tag per patch
+// (1, 2, ... in GridFaces order) with the patch's quads, all facing out of the domain: away from
+// the sphere's centre, but into the sphere on the wall of an exterior grid.
+void expect_meshio_reads(const fs::path& file, const BlockGrid& grid, bool exterior) {
+    const std::string summary = meshio_summary(file);
+    if (summary.empty()) GTEST_SKIP() << "python3-meshio not installed";
+    const std::vector<Id> counts = patch_face_counts(grid);
+    Id quads = 0;
+    std::string per_tag, facing;
+    for (size_t p = 0; p < counts.size(); ++p) {
+        quads += counts[p];
+        per_tag += fmt::format("{}\"{}\": {}", p ? ", " : "", p + 1, counts[p]);
+        const bool inwards = exterior && make_grid_faces(grid).patch_names[p] == "wall";
+        facing += fmt::format("{}\"{}\": {}", p ? ", " : "", p + 1, inwards ? counts[p] : 0);
+    }
+    EXPECT_EQ(summary, fmt::format("{{\"cells\": {{\"hexahedron\": {}, \"quad\": {}}}, \"left_handed_hexes\": 0, "
+                                   "\"points\": {}, \"quads_facing_origin_per_tag\": {{{}}}, \"quads_per_tag\": {{{}}}}}\n",
+                                   grid.num_cells(), quads, grid.points.size(), facing, per_tag));
+}
+
+// The exterior O-grid of the unit sphere: patches wall and farfield.
+BlockGrid small_o_grid() {
+    const Sphere sphere(Vec3::Zero(), 1.0);
+    OGridOptions o;
+    o.cells_per_edge = 4;
+    o.layers = 5;
+    o.far_field_size = 5;
+    return make_o_grid(sphere, o);
+}
+
+}  // namespace
+
+TEST(Su2, MeshioReadsTheCellsPointsAndMarkers) {
+    for (const bool exterior : {false, true}) {
+        const BlockGrid grid = exterior ? small_o_grid() : small_o_h_grid();
+        const fs::path file = scratch("su2") / "grid.su2";
+        write_su2_mesh(grid, file.string());
+        expect_meshio_reads(file, grid, exterior);
+        // Marker names as written (meshio numbers string tags in order).
+        const std::string text = read_text(file);
+        const GridFaces faces = make_grid_faces(grid);
+        size_t at = 0;
+        for (const std::string& name : faces.patch_names) {
+            at = text.find("MARKER_TAG= " + name + "\n", at);
+            EXPECT_NE(at, std::string::npos) << name;
+        }
+        EXPECT_NE(text.find(fmt::format("NMARK= {}\n", faces.patch_names.size())), std::string::npos);
+    }
+}
+
+TEST(Ugrid, MeshioReadsTheCellsPointsAndSurfaceIdsAndTheMapbcNamesThem) {
+    for (const bool exterior : {false, true}) {
+        const BlockGrid grid = exterior ? small_o_grid() : small_o_h_grid();
+        const fs::path file = scratch("ugrid") / "grid.ugrid";
+        write_ugrid_mesh(grid, file.string());
+        expect_meshio_reads(file, grid, exterior);
+        const GridFaces faces = make_grid_faces(grid);
+        std::string mapbc = fmt::format("{}\n", faces.patch_names.size());
+        for (size_t p = 0; p < faces.patch_names.size(); ++p)
+            mapbc += fmt::format("{} {} {}\n", p + 1, faces.patch_names[p] == "wall" ? 4000 : 5050, faces.patch_names[p]);
+        EXPECT_EQ(read_text(file.parent_path() / "grid.mapbc"), mapbc);
+    }
 }
