@@ -5,6 +5,7 @@
 
 #include "io/case_file.h"
 #include "io/cgns_grid.h"
+#include "io/fluent_mesh.h"
 #include "io/gmsh_mesh.h"
 #include "io/su2_mesh.h"
 #include "io/ugrid_mesh.h"
@@ -45,11 +46,11 @@ std::string lower_extension(const std::string& path) {
 bool is_export_format(const std::string& format) {
     Plot3dFormat p;
     return format == "vtk" || format == "openfoam" || format == "cgns" || format == "gmsh" ||
-           format == "medit" || format == "su2" || format == "ugrid" || parse_plot3d(format, p);
+           format == "medit" || format == "su2" || format == "ugrid" || format == "fluent" || parse_plot3d(format, p);
 }
 
 std::string export_format_list() {
-    return "vtk, openfoam, cgns, gmsh, medit, su2, ugrid, plot3d[-fortran|-c|-ascii][-single]";
+    return "vtk, openfoam, cgns, gmsh, medit, su2, ugrid, fluent, plot3d[-fortran|-c|-ascii][-single]";
 }
 
 std::string export_file_name(const std::string& format, const std::string& stem, const BlockGrid& grid) {
@@ -60,6 +61,7 @@ std::string export_file_name(const std::string& format, const std::string& stem,
     if (format == "medit") return stem + ".mesh";
     if (format == "su2") return stem + ".su2";
     if (format == "ugrid") return stem + ".ugrid";
+    if (format == "fluent") return stem + "_fluent.msh";
     if (format == "plot3d") return stem + ".xyz";
     std::string variant = format.substr(std::string("plot3d-").size());
     for (char& c : variant) c = c == '-' ? '_' : c;
@@ -76,6 +78,7 @@ void write_grid_format(const BlockGrid& grid, const std::string& format, const s
     else if (format == "medit") write_medit_mesh(grid, path);
     else if (format == "su2") write_su2_mesh(grid, path);
     else if (format == "ugrid") write_ugrid_mesh(grid, path);
+    else if (format == "fluent") write_fluent_mesh(grid, path);
     else if (parse_plot3d(format, plot3d)) write_plot3d(grid, path, plot3d);
     else throw InputError(fmt::format("unknown export format '{}' (expected one of: {})", format, export_format_list()));
 }

@@ -57,7 +57,7 @@ TEST(ExportErrors, FailureMidWayLeavesNothingUnderTheFinalName) {
 
 TEST(ExportErrors, UnknownFormatIsAnInputError) {
     const BlockGrid grid = small_o_h_grid(3, 2);
-    EXPECT_THROW(export_grid(grid, "fluent", "/tmp/x.msh"), InputError);
+    EXPECT_THROW(export_grid(grid, "tecplot", "/tmp/x.plt"), InputError);
     EXPECT_THROW(export_grid(grid, "plot3d-big-endian", "/tmp/x.xyz"), InputError);
 }
 

@@ -13,6 +13,7 @@
 #include "hexmesh/core/quality.h"
 #include "hexmesh/pipeline/run_case.h"
 #include "io/case_file.h"
+#include "io/fluent_mesh.h"
 #include "io/openfoam_mesh.h"
 #include "volume/o_grid.h"
 
@@ -328,4 +329,41 @@ TEST(OpenFoam, TurbulentFlowFromTheCaseFileRuns) {
     ASSERT_EQ(foam.exit_code, 0) << foam.output;
     EXPECT_EQ(foam.output.find("FOAM FATAL"), std::string::npos) << foam.output;
     EXPECT_EQ(initial_residuals(foam.output, "k").size(), 5u) << foam.output;
+}
+
+// The Fluent mesh of the exterior O-grid through OpenFOAM's own converter (fluent3DMeshToFoam,
+// an independent reader of the format): checkMesh says "Mesh OK." with the grid's cells and the
+// patches wall and farfield, 6 n^2 faces each (a face turned the wrong way would show as
+// wrongly oriented face pyramids and negative volumes).
+TEST(Fluent, OpenFoamsConverterReadsAValidMeshWithThePatches) {
+    if (!have_tool("fluent3DMeshToFoam") || !have_tool("checkMesh"))
+        GTEST_SKIP() << "fluent3DMeshToFoam / checkMesh not installed (Debian package openfoam)";
+    const Sphere sphere(Vec3::Zero(), 1.0);
+    OGridOptions o;
+    o.cells_per_edge = 6;
+    o.layers = 8;
+    o.far_field_size = 10;
+    const BlockGrid grid = make_o_grid(sphere, o);
+    const fs::path dir = scratch("fluent");
+    // The converter needs a case: the dictionaries of an OpenFOAM export.
+    write_openfoam_mesh(grid, (dir / "case").string());
+    fs::remove_all(dir / "case" / "constant" / "polyMesh");
+    write_fluent_mesh(grid, (dir / "grid.msh").string());
+    std::string env;
+    if (!std::getenv("WM_PROJECT_DIR") && fs::exists("/usr/share/openfoam/etc/controlDict"))
+        env = "WM_PROJECT_DIR=/usr/share/openfoam ";
+    const ToolRun convert = run_tool(env + "fluent3DMeshToFoam -case '" + (dir / "case").string() + "' '" +
+                                     (dir / "grid.msh").string() + "'");
+    ASSERT_EQ(convert.exit_code, 0) << convert.output;
+    EXPECT_NE(convert.output.find("Zone: 4 name: wall type: wall"), std::string::npos) << convert.output;
+    EXPECT_NE(convert.output.find("Zone: 5 name: farfield type: pressure-far-field"), std::string::npos) << convert.output;
+    const ToolRun r = run_tool(check_mesh_command(dir / "case"));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("Mesh OK."), std::string::npos) << r.output;
+    EXPECT_EQ(number_after(r.output, "    cells:"), double(grid.num_cells()));
+    const int n = o.cells_per_edge;
+    for (const char* patch : {"wall", "farfield"})
+        EXPECT_TRUE(std::regex_search(r.output, std::regex(std::string(R"(\n\s*)") + patch + R"(\s+)" +
+                                                            std::to_string(6 * n * n) + R"(\s)")))
+            << patch << "\n" << r.output;
 }

@@ -8,6 +8,7 @@
 
 #include "export_test_support.h"
 #include "hexmesh/core/quality.h"
+#include "io/fluent_mesh.h"
 #include "io/gmsh_mesh.h"
 #include "io/grid_faces.h"
 #include "io/medit_mesh.h"
@@ -203,4 +204,18 @@ TEST(Ugrid, MeshioReadsTheCellsPointsAndSurfaceIdsAndTheMapbcNamesThem) {
             mapbc += fmt::format("{} {} {}\n", p + 1, faces.patch_names[p] == "wall" ? 4000 : 5050, faces.patch_names[p]);
         EXPECT_EQ(read_text(file.parent_path() / "grid.mapbc"), mapbc);
     }
+}
+
+// meshio reads a Fluent mesh's nodes and faces (it does not build cells from faces): the
+// grid's points, and every face once, interior and boundary.
+TEST(Fluent, MeshioReadsThePointsAndEveryFace) {
+    const BlockGrid grid = small_o_grid();
+    const fs::path file = scratch("fluent") / "grid.msh";
+    write_fluent_mesh(grid, file.string());
+    const std::string summary = meshio_summary(file);
+    if (summary.empty()) GTEST_SKIP() << "python3-meshio not installed";
+    const GridFaces faces = make_grid_faces(grid);
+    EXPECT_EQ(summary, fmt::format("{{\"cells\": {{\"quad\": {}}}, \"left_handed_hexes\": 0, \"points\": {}, "
+                                   "\"quads_facing_origin_per_tag\": {{}}, \"quads_per_tag\": {{}}}}\n",
+                                   faces.internal_faces + faces.boundary_faces, grid.points.size()));
 }
