@@ -5,6 +5,7 @@
 
 #include "io/case_file.h"
 #include "io/cgns_grid.h"
+#include "io/exodus_mesh.h"
 #include "io/fluent_mesh.h"
 #include "io/gmsh_mesh.h"
 #include "io/su2_mesh.h"
@@ -46,11 +47,11 @@ std::string lower_extension(const std::string& path) {
 bool is_export_format(const std::string& format) {
     Plot3dFormat p;
     return format == "vtk" || format == "openfoam" || format == "cgns" || format == "gmsh" ||
-           format == "medit" || format == "su2" || format == "ugrid" || format == "fluent" || parse_plot3d(format, p);
+           format == "medit" || format == "su2" || format == "ugrid" || format == "fluent" || format == "exodus" || parse_plot3d(format, p);
 }
 
 std::string export_format_list() {
-    return "vtk, openfoam, cgns, gmsh, medit, su2, ugrid, fluent, plot3d[-fortran|-c|-ascii][-single]";
+    return "vtk, openfoam, cgns, gmsh, medit, su2, ugrid, fluent, exodus, plot3d[-fortran|-c|-ascii][-single]";
 }
 
 std::string export_file_name(const std::string& format, const std::string& stem, const BlockGrid& grid) {
@@ -62,6 +63,7 @@ std::string export_file_name(const std::string& format, const std::string& stem,
     if (format == "su2") return stem + ".su2";
     if (format == "ugrid") return stem + ".ugrid";
     if (format == "fluent") return stem + "_fluent.msh";
+    if (format == "exodus") return stem + ".exo";
     if (format == "plot3d") return stem + ".xyz";
     std::string variant = format.substr(std::string("plot3d-").size());
     for (char& c : variant) c = c == '-' ? '_' : c;
@@ -79,6 +81,7 @@ void write_grid_format(const BlockGrid& grid, const std::string& format, const s
     else if (format == "su2") write_su2_mesh(grid, path);
     else if (format == "ugrid") write_ugrid_mesh(grid, path);
     else if (format == "fluent") write_fluent_mesh(grid, path);
+    else if (format == "exodus") write_exodus_mesh(grid, path);
     else if (parse_plot3d(format, plot3d)) write_plot3d(grid, path, plot3d);
     else throw InputError(fmt::format("unknown export format '{}' (expected one of: {})", format, export_format_list()));
 }

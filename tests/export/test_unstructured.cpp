@@ -1,13 +1,26 @@
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <fmt/format.h>
 
 #include <fstream>
+#include <map>
+#include <vtkCell.h>
+#include <vtkCellType.h>
+#include <vtkCompositeDataSet.h>
+#include <vtkDataObjectTreeIterator.h>
+#include <vtkExodusIIReader.h>
+#include <vtkInformation.h>
+#include <vtkMultiBlockDataSet.h>
+#include <vtkNew.h>
+#include <vtkSmartPointer.h>
+#include <vtkUnstructuredGrid.h>
 #include <iterator>
 #include <regex>
 
 #include "export_test_support.h"
 #include "hexmesh/core/quality.h"
+#include "io/exodus_mesh.h"
 #include "io/fluent_mesh.h"
 #include "io/gmsh_mesh.h"
 #include "io/grid_faces.h"
@@ -218,4 +231,52 @@ TEST(Fluent, MeshioReadsThePointsAndEveryFace) {
     EXPECT_EQ(summary, fmt::format("{{\"cells\": {{\"quad\": {}}}, \"left_handed_hexes\": 0, \"points\": {}, "
                                    "\"quads_facing_origin_per_tag\": {{}}, \"quads_per_tag\": {{}}}}\n",
                                    faces.internal_faces + faces.boundary_faces, grid.points.size()));
+}
+
+// The exterior O-grid as Exodus II: meshio reads its points and right-handed hexahedra; VTK's
+// Exodus reader (ParaView's) reads the element block "fluid" and one side set per patch, by
+// name, with the patch's faces, every side facing out of the domain (into the sphere on the
+// wall, away from it on the far field): the sides are numbered as Exodus numbers them.
+TEST(Exodus, MeshioAndVtkReadTheBlockAndOneSideSetPerPatch) {
+    const BlockGrid grid = small_o_grid();
+    const fs::path file = scratch("exodus") / "grid.exo";
+    write_exodus_mesh(grid, file.string());
+    const std::string summary = meshio_summary(file);
+    if (!summary.empty())
+        EXPECT_EQ(summary, fmt::format("{{\"cells\": {{\"hexahedron\": {}}}, \"left_handed_hexes\": 0, \"points\": {}, "
+                                       "\"quads_facing_origin_per_tag\": {{}}, \"quads_per_tag\": {{}}}}\n",
+                                       grid.num_cells(), grid.points.size()));
+    vtkNew<vtkExodusIIReader> reader;
+    reader->SetFileName(file.string().c_str());
+    reader->UpdateInformation();
+    ASSERT_EQ(reader->GetNumberOfObjects(vtkExodusIIReader::ELEM_BLOCK), 1);
+    EXPECT_STREQ(reader->GetObjectName(vtkExodusIIReader::ELEM_BLOCK, 0), "fluid");
+    const GridFaces faces = make_grid_faces(grid);
+    ASSERT_EQ(reader->GetNumberOfObjects(vtkExodusIIReader::SIDE_SET), int(faces.patch_names.size()));
+    for (int s = 0; s < int(faces.patch_names.size()); ++s)
+        reader->SetObjectStatus(vtkExodusIIReader::SIDE_SET, s, 1);
+    reader->Update();
+    const std::vector<Id> counts = patch_face_counts(grid);
+    std::map<std::string, std::pair<Id, Id>> read;  // name -> (cells, cells facing the origin)
+    vtkSmartPointer<vtkDataObjectTreeIterator> it = vtkSmartPointer<vtkDataObjectTreeIterator>::Take(
+        vtkDataObjectTreeIterator::SafeDownCast(reader->GetOutput()->NewIterator()));
+    for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem()) {
+        auto* piece = vtkUnstructuredGrid::SafeDownCast(it->GetCurrentDataObject());
+        ASSERT_NE(piece, nullptr);
+        const std::string name = it->GetCurrentMetaData()->Get(vtkCompositeDataSet::NAME());
+        Id facing = 0;
+        for (vtkIdType c = 0; c < piece->GetNumberOfCells(); ++c) {
+            vtkCell* cell = piece->GetCell(c);
+            if (cell->GetCellType() != VTK_QUAD) continue;
+            Vec3 q[4];
+            for (int m = 0; m < 4; ++m) piece->GetPoint(cell->GetPointId(m), q[m].data());
+            const Vec3 normal = (q[2] - q[0]).cross(q[3] - q[1]);
+            facing += normal.dot(q[0] + q[1] + q[2] + q[3]) < 0;
+        }
+        read[name] = {piece->GetNumberOfCells(), facing};
+    }
+    std::map<std::string, std::pair<Id, Id>> want = {{"fluid", {grid.num_cells(), 0}}};
+    for (size_t p = 0; p < counts.size(); ++p)
+        want[faces.patch_names[p]] = {counts[p], faces.patch_names[p] == "wall" ? counts[p] : 0};
+    EXPECT_EQ(read, want);
 }
