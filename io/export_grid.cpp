@@ -104,6 +104,10 @@ std::vector<std::string> export_grid(const BlockGrid& grid, const std::string& f
     StagedOutput out(folder.string(), StagedOutput::Scope::named_entries);  // the user's folder: one file
     write_grid_format(grid, format, out.path(target.filename().string()), flow);
     if (format == "ugrid") out.path(ugrid_mapbc_path(target.filename().string()));  // written beside it
+    if (format.rfind("plot3d", 0) == 0) {
+        out.path(plot3d_patch_file(target.filename().string()));
+        out.path(plot3d_map_file(target.filename().string()));
+    }
     return out.commit();
 }
 

@@ -14,6 +14,7 @@
 
 #include "io/case_file.h"
 #include "io/file_sink.h"
+#include "io/neutral_map.h"
 
 namespace hexmesh {
 namespace {
@@ -126,9 +127,40 @@ bool is_fortran(const std::string& bytes) {
            std::int64_t(int_at(bytes, 12)) == 12 * std::int64_t(nb);
 }
 
+// The patches of a neutral map file's boundary entries (WALL -> "wall", FARFIELD ->
+// "farfield", any other type as written), whole block faces only.
+void patches_from_map(BlockGrid& grid, const std::string& file) {
+    const NeutralMap map = read_neutral_map(file);
+    if (map.dims.size() != grid.blocks.size())
+        throw InputError(fmt::format("{}: lists {} blocks, the grid has {}", file, map.dims.size(), grid.blocks.size()));
+    for (size_t b = 0; b < map.dims.size(); ++b) {
+        const Dims& d = grid.blocks[b].nodes;
+        if (map.dims[b] != std::array<int, 3>{d.ni, d.nj, d.nk})
+            throw InputError(fmt::format("{}: block {} is {} x {} x {}, the grid's {} x {} x {}", file, b + 1,
+                                         map.dims[b][0], map.dims[b][1], map.dims[b][2], d.ni, d.nj, d.nk));
+    }
+    for (const NmfBoundary& e : map.boundaries) {
+        const NmfFaceRange& r = e.range;
+        const std::array<int, 3>& d = map.dims[size_t(r.block - 1)];
+        const std::array<int, 3> far = nmf_face_node(d, r.face, std::max(r.s1, r.e1), std::max(r.s2, r.e2));
+        const std::array<int, 3> near = nmf_face_node(d, r.face, std::min(r.s1, r.e1), std::min(r.s2, r.e2));
+        const int normal = nmf_face_to_block_face(r.face) / 2;
+        for (int a = 0; a < 3; ++a)
+            if (a != normal && (near[a] != 0 || far[a] != d[a] - 1))
+                throw InputError(fmt::format("{}: '{}' on block {} face {} covers part of the face; only whole "
+                                             "faces are read", file, e.type, r.block, r.face));
+        grid.blocks[size_t(r.block - 1)].face_patch[nmf_face_to_block_face(r.face)] =
+            e.type == "WALL" ? "wall" : e.type == "FARFIELD" ? "farfield" : e.type;
+    }
+}
+
 }  // namespace
 
 std::string plot3d_patch_file(const std::string& path) { return path + ".patches.json"; }
+
+std::string plot3d_map_file(const std::string& path) {
+    return std::filesystem::path(path).replace_extension(".nmf").string();
+}
 
 void write_plot3d(const BlockGrid& grid, const std::string& path, const Plot3dFormat& format) {
     {
@@ -148,6 +180,7 @@ void write_plot3d(const BlockGrid& grid, const std::string& path, const Plot3dFo
     FileSink out(plot3d_patch_file(path), false);
     out.print("{}\n", side.dump(1));
     out.close();
+    write_neutral_map(neutral_map(grid), plot3d_map_file(path));
 }
 
 static Plot3dFormat detect_format(const std::string& bytes, const std::string& path) {
@@ -284,6 +317,7 @@ BlockGrid read_plot3d(const std::string& path) {
         grid.blocks.push_back(std::move(block));
     }
     grid.kinds.assign(grid.points.size(), VertexKind::interior);
+    if (side.is_null() && std::filesystem::exists(plot3d_map_file(path), ec)) patches_from_map(grid, plot3d_map_file(path));
     return grid;
 }
 

@@ -25,14 +25,21 @@ struct Plot3dFormat {
 //    "blocks": [{"name": "core", "dims": [ni, nj, nk],
 //                "face_patch": ["", "", "", "", "", "wall"]}, ...]}
 // one entry per block in file order; face_patch in the order imin imax jmin jmax kmin kmax,
-// "" for a face shared with another block. Throws std::runtime_error on a write error.
+// "" for a face shared with another block. The same patches, and the 1-to-1 interfaces between
+// blocks, go to NASA's Neutral Map File beside it, PATH with extension .nmf
+// (io/neutral_map.h), which other Plot3D tools and solvers read. Throws std::runtime_error on a
+// write error.
 void write_plot3d(const BlockGrid& grid, const std::string& path, const Plot3dFormat& format);
 
 // Path of the patch side file of a Plot3D grid file.
 std::string plot3d_patch_file(const std::string& path);
 
+// Path of the neutral map file of a Plot3D grid file: PATH with extension .nmf.
+std::string plot3d_map_file(const std::string& path);
+
 // Reads any of the variants above (encoding and precision detected from the file), merging
-// points that are exactly equal across blocks into shared nodes. Throws InputError when the
+// points that are exactly equal across blocks into shared nodes; patches from PATH.patches.json,
+// else from the neutral map file (boundary types WALL and FARFIELD as "wall" and "farfield"). Throws InputError when the
 // file is missing, truncated or not a Plot3D whole grid.
 BlockGrid read_plot3d(const std::string& path);
 

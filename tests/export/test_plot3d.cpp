@@ -1,5 +1,10 @@
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
+#include <fstream>
+#include <map>
+
 #include <vtkDataArray.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkMultiBlockPLOT3DReader.h>
@@ -9,7 +14,11 @@
 
 #include "export_test_support.h"
 #include "io/export_grid.h"
+#include "io/neutral_map.h"
 #include "io/plot3d.h"
+#include "tests/io/scratch_files.h"
+#include "volume/o_grid.h"
+#include "volume/o_h_grid.h"
 #include "io/vtk_mesh.h"
 
 using namespace hexmesh;
@@ -136,5 +145,95 @@ TEST(Plot3d, ExportFormatNamesChooseTheVariant) {
         }
         EXPECT_TRUE(fs::exists(plot3d_patch_file(file)));
         EXPECT_EQ(read_vtk_mesh(file).num_cells(), grid.num_cells());  // `quality` reads it too
+    }
+}
+
+namespace {
+
+// Node of point (u, v) of a map face range.
+Id range_node(const BlockGrid& grid, const NmfFaceRange& r, int u, int v) {
+    const Block& b = grid.blocks[size_t(r.block - 1)];
+    const std::array<int, 3> ijk = nmf_face_node({b.nodes.ni, b.nodes.nj, b.nodes.nk}, r.face, u, v);
+    return b.node(ijk[0], ijk[1], ijk[2]);
+}
+
+// The neutral map file beside a Plot3D grid, as our reader reads it: every patched block face
+// once with its type, every interface once, and every point of an interface's first face,
+// carried to the second face by the entry's ranges and Swap as the format defines them, lands
+// on the same grid point.
+void expect_map_describes(const BlockGrid& grid, const fs::path& xyz) {
+    const NeutralMap map = read_neutral_map(plot3d_map_file(xyz.string()));
+    ASSERT_EQ(map.dims.size(), grid.blocks.size());
+    std::map<std::pair<int, int>, std::string> patched, want;
+    for (const NmfBoundary& b : map.boundaries) {
+        EXPECT_TRUE(patched.emplace(std::pair{b.range.block - 1, nmf_face_to_block_face(b.range.face)}, b.type).second);
+    }
+    int open_faces = 0;
+    for (size_t b = 0; b < grid.blocks.size(); ++b)
+        for (int f = 0; f < 6; ++f) {
+            const std::string& p = grid.blocks[b].face_patch[f];
+            if (p.empty()) ++open_faces;
+            else want[{int(b), f}] = p == "wall" ? "WALL" : p == "farfield" ? "FARFIELD" : p;
+        }
+    EXPECT_EQ(patched, want);
+    EXPECT_EQ(2 * map.interfaces.size(), size_t(open_faces));  // each interface joins two open faces
+    for (const NmfInterface& link : map.interfaces) {
+        const NmfFaceRange &a = link.first, &b = link.second;
+        const int step1 = b.e1 >= b.s1 ? 1 : -1, step2 = b.e2 >= b.s2 ? 1 : -1;
+        for (int u = a.s1; u <= a.e1; ++u)
+            for (int v = a.s2; v <= a.e2; ++v) {
+                const int along_u = std::abs(u - a.s1), along_v = std::abs(v - a.s2);
+                const int q1 = b.s1 + step1 * (link.swap ? along_v : along_u);
+                const int q2 = b.s2 + step2 * (link.swap ? along_u : along_v);
+                ASSERT_EQ(grid.points[range_node(grid, a, u, v)], grid.points[range_node(grid, b, q1, q2)])
+                    << "interface block " << a.block << " face " << a.face << " point " << u << ", " << v;
+            }
+    }
+}
+
+}  // namespace
+
+TEST(Plot3d, NeutralMapFileListsPatchesAndInterfacesThatMapPointOntoPoint) {
+    const Sphere sphere(Vec3::Zero(), 1.0);
+    OGridOptions exterior;
+    exterior.cells_per_edge = 4;
+    exterior.layers = 3;
+    exterior.far_field_size = 5;
+    OHGridOptions axis;  // 51 blocks: rings and frames meet in every orientation
+    axis.cells_per_edge = 6;
+    axis.wall_cells = 2;
+    axis.axis = 2;
+    for (const BlockGrid& grid : {small_o_h_grid(), make_o_grid(sphere, exterior), make_o_h_grid(sphere, axis)}) {
+        SCOPED_TRACE(grid.blocks.size());
+        const fs::path xyz = scratch("nmf") / "grid.xyz";
+        write_plot3d(grid, xyz.string(), Plot3dFormat{});
+        expect_map_describes(grid, xyz);
+        // Without the hexmesh side file the grid's patches come from the map.
+        fs::remove(plot3d_patch_file(xyz.string()));
+        const BlockGrid back = read_plot3d(xyz.string());
+        ASSERT_EQ(back.blocks.size(), grid.blocks.size());
+        for (size_t b = 0; b < grid.blocks.size(); ++b) EXPECT_EQ(back.blocks[b].face_patch, grid.blocks[b].face_patch) << b;
+    }
+}
+
+TEST(Plot3d, MalformedNeutralMapFilesAreRefusedNamingTheLine) {
+    const fs::path dir = scratch("nmf_bad");
+    const std::string head = "# blocks\n1\n1 3 3 3\n";
+    const std::vector<std::pair<std::string, std::string>> bad = {
+        {"2\n1 3 3 3\n", "ends before its 2 block sizes"},
+        {head + "'WALL' 1 7 1 3 1 3\n", "line 4: the face is '7'; expected an integer in [1, 6]"},
+        {head + "'WALL' 1 1 1 4 1 3\n", "line 4: E1 is '4'; expected an integer in [1, 3]"},
+        {head + "'WALL' 1 1 1 3\n", "line 4: a boundary line ('WALL') has 7 fields"},
+        {head + "'ONE_TO_ONE' 1 1 1 3 1 3 1 2 1 3 1 3 MAYBE\n", "line 4: Swap is 'MAYBE'"},
+        {head + "'ONE_TO_ONE' 1 1 1 3 1 3 1 2 1 2 1 3 FALSE\n", "different sizes"},
+        {"1\n1 3 x 3\n", "line 2: JDIM is 'x'"},
+    };
+    int n = 0;
+    for (const auto& [text, message] : bad) {
+        const std::string path = (dir / fmt::format("bad{}.nmf", n++)).string();
+        std::ofstream(path) << text;
+        const std::string what = test::input_error_of(read_neutral_map, path);
+        EXPECT_NE(what.find(path), std::string::npos) << what;
+        EXPECT_NE(what.find(message), std::string::npos) << what;
     }
 }
