@@ -16,11 +16,11 @@
 #      exit 1 ("expected a file name to write") having written nothing, so this is the whole
 #      command (start, read, teardown) minus the writer. The median (the lower middle one for an even
 #      count) is the "read" time.
-#   3. For each --formats entry (default: all 13 names of `hexmesh export --help`):
+#   3. For each --formats entry (default: all 17 names of `hexmesh export --help`):
 #        /usr/bin/time -v hexmesh export GRID --format F -o WORK/out/grid.EXT
 #      recording wall ("Elapsed"), CPU (user + sys) and peak RSS ("Maximum resident set
-#      size"); the size of everything written (du -sb of the file, its .patches.json side
-#      file for Plot3D, or the whole case folder for openfoam); then deletes the output.
+#      size"); the size of everything written (du -sb of the file, its .patches.json and .nmf
+#      side files for Plot3D, .mapbc for ugrid, or the whole case folder for openfoam); then deletes the output.
 #      write (s) = wall - read; MB/s = size (10^6 bytes) / write (s). The same with CPU
 #      time (user + sys, the read's median CPU subtracted): "write CPU" and "MB/s per CPU s",
 #      the steadier figure on a shared machine (it leaves out the time spent waiting for a
@@ -61,7 +61,7 @@ HEXMESH="${HEXMESH:-$repo/build/hexmesh/cli/hexmesh}"
 workdir=/tmp/hexmesh_exports
 grid=""
 n=136
-formats="vtk openfoam cgns gmsh medit plot3d plot3d-fortran plot3d-c plot3d-ascii plot3d-single plot3d-fortran-single plot3d-c-single plot3d-ascii-single"
+formats="vtk openfoam cgns gmsh medit su2 ugrid fluent exodus plot3d plot3d-fortran plot3d-c plot3d-ascii plot3d-single plot3d-fortran-single plot3d-c-single plot3d-ascii-single"
 read_runs=3
 keep_grid=0
 timeout_s=1200
@@ -161,6 +161,10 @@ for f in $formats; do
         cgns) target="$out/grid.cgns"; kind=binary ;;
         gmsh) target="$out/grid.msh"; kind=ASCII ;;
         medit) target="$out/grid.mesh"; kind=ASCII ;;
+        su2) target="$out/grid.su2"; kind=ASCII ;;
+        ugrid) target="$out/grid.ugrid"; kind=ASCII ;;
+        fluent) target="$out/grid_fluent.msh"; kind=ASCII ;;
+        exodus) target="$out/grid.exo"; kind=binary ;;
         plot3d*ascii*) target="$out/grid.xyz"; kind=ASCII ;;
         plot3d*) target="$out/grid.xyz"; kind=binary ;;
         *) target="$out/grid.$f"; kind=? ;;
