@@ -106,8 +106,11 @@ VolumeMesh read_volume_mesh(const std::string& path) {
     if (ext == ".vtk") {
         vtk_support::check_legacy_vtk(path);  // before VTK's legacy reader
         data = vtk_support::read_with<vtkDataSetReader>(path);
-    } else if (ext == ".vtu") data = vtk_support::read_with<vtkXMLUnstructuredGridReader>(path);
-    else throw InputError(fmt::format("{}: unknown volume mesh format '{}' (expected .vtk, .vtu or .mesh)", path, ext));
+    } else if (ext == ".vtu") {
+        vtk_support::check_xml_vtk(path);  // before VTK's XML reader
+        data = vtk_support::read_with<vtkXMLUnstructuredGridReader>(path);
+    } else
+        throw InputError(fmt::format("{}: unknown volume mesh format '{}' (expected .vtk, .vtu or .mesh)", path, ext));
     auto* set = vtkDataSet::SafeDownCast(data);
     if (!set) throw InputError(fmt::format("{}: not a VTK data set", path));
     return from_vtk(set, path);

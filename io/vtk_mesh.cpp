@@ -259,6 +259,7 @@ HexMesh read_vtk_mesh(const std::string& path) {
     vtk_support::require_file(path);
     const std::string ext = vtk_support::extension(path);
     vtkSmartPointer<vtkDataObject> data;
+    if (ext == ".vts" || ext == ".vtu" || ext == ".vtm") vtk_support::check_xml_vtk(path);  // before VTK's XML reader
     if (ext == ".vts") data = vtk_support::read_with<vtkXMLStructuredGridReader>(path);
     else if (ext == ".vtu") data = vtk_support::read_with<vtkXMLUnstructuredGridReader>(path);
     else if (ext == ".vtk") {
@@ -294,6 +295,7 @@ BlockGrid read_vtk_block_grid(const std::string& path) {
         throw InputError(fmt::format("{}: no such grid file", path));
     const std::string ext = vtk_support::extension(path);
     vtkSmartPointer<vtkDataObject> data;
+    if (ext == ".vts" || ext == ".vtu" || ext == ".vtm") vtk_support::check_xml_vtk(path);  // before VTK's XML reader
     if (ext == ".vts") data = vtk_support::read_with<vtkXMLStructuredGridReader>(path);
     else if (ext == ".vtm") data = vtk_support::read_with<vtkXMLMultiBlockDataReader>(path);
     else

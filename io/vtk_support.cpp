@@ -1,5 +1,6 @@
 #include "io/vtk_support.h"
 
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -273,6 +274,113 @@ void check_legacy_vtk(const std::string& path) {
 
 void throw_read_error(const std::string& path, const std::string& why) {
     throw InputError(fmt::format("{}: VTK cannot read it: {}", path, why));
+}
+
+}  // namespace hexmesh::vtk_support
+
+namespace hexmesh::vtk_support {
+namespace {
+
+// The value of attribute `name` in the tag text `tag` ("" when absent).
+std::string attribute(const std::string& tag, const std::string& name) {
+    for (size_t at = tag.find(name + "=\""); at != std::string::npos; at = tag.find(name + "=\"", at + 1)) {
+        if (at > 0 && !std::isspace(static_cast<unsigned char>(tag[at - 1]))) continue;  // "xoffset" is no "offset"
+        const size_t start = at + name.size() + 2, end = tag.find('"', start);
+        if (end == std::string::npos) return "";
+        return tag.substr(start, end - start);
+    }
+    return "";
+}
+
+// Reads a little- or big-endian unsigned header of `bytes` (4 or 8) at `at`.
+std::uint64_t header_value(const std::string& data, size_t at, int bytes, bool big_endian) {
+    std::uint64_t v = 0;
+    for (int k = 0; k < bytes; ++k) {
+        const std::uint64_t byte = static_cast<unsigned char>(data[at + size_t(k)]);
+        v |= byte << (8 * (big_endian ? bytes - 1 - k : k));
+    }
+    return v;
+}
+
+}  // namespace
+
+void check_xml_vtk(const std::string& path) {
+    require_file(path);
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream buffer;
+    buffer << in.rdbuf();
+    const std::string data = buffer.str();
+    const auto fail = [&](const std::string& why) { throw InputError(fmt::format("{}: {}", path, why)); };
+    const size_t root = data.find("<VTKFile");
+    if (root == std::string::npos) return;  // VTK's reader says what it is not
+    const std::string root_tag = data.substr(root, data.find('>', root) - root);
+    if (attribute(root_tag, "type") == "vtkMultiBlockDataSet") {
+        // Its pieces, each checked as a file of its own.
+        const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+        for (size_t at = data.find("<DataSet"); at != std::string::npos; at = data.find("<DataSet", at + 1)) {
+            const std::string file = attribute(data.substr(at, data.find('>', at) - at), "file");
+            if (!file.empty() && std::filesystem::is_regular_file(folder / file)) check_xml_vtk((folder / file).string());
+        }
+        return;
+    }
+    const std::string header_type = attribute(root_tag, "header_type");
+    if (!header_type.empty() && header_type != "UInt32" && header_type != "UInt64")
+        fail(fmt::format("header_type is \"{}\"; expected UInt32 or UInt64", header_type));
+    const std::string byte_order = attribute(root_tag, "byte_order");
+    if (!byte_order.empty() && byte_order != "LittleEndian" && byte_order != "BigEndian")
+        fail(fmt::format("byte_order is \"{}\"; expected LittleEndian or BigEndian", byte_order));
+    const int header = header_type == "UInt64" ? 8 : 4;
+    const bool big = byte_order == "BigEndian";
+    const bool compressed = !attribute(root_tag, "compressor").empty();
+    const size_t appended = data.find("<AppendedData");
+    if (appended == std::string::npos) return;  // inline data only
+    const std::string appended_tag = data.substr(appended, data.find('>', appended) - appended);
+    if (attribute(appended_tag, "encoding") != "raw") return;  // base64: VTK decodes and checks it
+    const size_t underscore = data.find('_', appended + appended_tag.size());
+    if (underscore == std::string::npos) fail("its AppendedData has no '_' before the data");
+    const size_t start = underscore + 1;
+    const size_t closing = data.rfind("</AppendedData>");
+    const size_t size = (closing == std::string::npos || closing < start ? data.size() : closing) - start;
+    // Every array stored there: its offset, then its byte count (or, compressed, its block
+    // table), then its bytes, all inside the appended data.
+    for (size_t at = data.find('<'); at < appended; at = data.find('<', at + 1)) {
+        const bool array = data.compare(at, 10, "<DataArray") == 0 || data.compare(at, 7, "<Array ") == 0;
+        if (!array) continue;
+        const std::string tag = data.substr(at, data.find('>', at) - at);
+        if (attribute(tag, "format") != "appended") continue;
+        const std::string name = attribute(tag, "Name"), offset_text = attribute(tag, "offset");
+        char* end = nullptr;
+        const unsigned long long offset = std::strtoull(offset_text.c_str(), &end, 10);
+        if (offset_text.empty() || *end || offset_text[0] == '-')
+            fail(fmt::format("array '{}' has offset \"{}\"; expected a byte offset", name, offset_text));
+        const auto past_end = [&](unsigned long long from, unsigned long long count) {
+            return from > size || count > size - from;
+        };
+        if (!compressed) {
+            if (past_end(offset, header))
+                fail(fmt::format("array '{}' starts at byte {} of the appended data, which has {}", name, offset, size));
+            const std::uint64_t bytes = header_value(data, start + offset, header, big);
+            if (past_end(offset + header, bytes))
+                fail(fmt::format("array '{}' claims {} bytes at byte {} of the appended data, which has {}", name,
+                                 bytes, offset, size));
+            continue;
+        }
+        // Compressed: [blocks][block size][last block size][compressed size of each block].
+        if (past_end(offset, 3ull * header))
+            fail(fmt::format("array '{}' starts at byte {} of the appended data, which has {}", name, offset, size));
+        const std::uint64_t blocks = header_value(data, start + offset, header, big);
+        if (blocks > size / std::uint64_t(header) || past_end(offset + 3ull * header, blocks * header))
+            fail(fmt::format("array '{}' claims {} compressed blocks at byte {} of the appended data, which has {}",
+                             name, blocks, offset, size));
+        std::uint64_t total = 0;
+        for (std::uint64_t b = 0; b < blocks; ++b) {
+            total += header_value(data, start + offset + (3 + b) * header, header, big);
+            if (total > size) break;
+        }
+        if (past_end(offset + (3 + blocks) * header, total))
+            fail(fmt::format("array '{}' claims {} compressed bytes at byte {} of the appended data, which has {}",
+                             name, total, offset, size));
+    }
 }
 
 }  // namespace hexmesh::vtk_support
