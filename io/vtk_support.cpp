@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <cctype>
+#include <set>
 #include <sstream>
 #include <fstream>
 #include <fmt/format.h>
@@ -332,7 +333,18 @@ void check_xml_vtk(const std::string& path) {
     const int header = header_type == "UInt64" ? 8 : 4;
     const bool big = byte_order == "BigEndian";
     const bool compressed = !attribute(root_tag, "compressor").empty();
+    // Every array's type is one VTK knows: for another, its reader builds no array and then
+    // uses it (a crash).
+    static const std::set<std::string> types = {"Int8",   "UInt8",  "Int16",   "UInt16",  "Int32", "UInt32",
+                                                "Int64",  "UInt64", "Float32", "Float64", "String", "Bit"};
     const size_t appended = data.find("<AppendedData");
+    for (size_t at = data.find('<'); at < appended; at = data.find('<', at + 1)) {
+        if (data.compare(at, 10, "<DataArray") != 0 && data.compare(at, 7, "<Array ") != 0) continue;
+        const std::string tag = data.substr(at, data.find('>', at) - at);
+        if (!types.count(attribute(tag, "type")))
+            fail(fmt::format("array '{}' has type \"{}\"; expected one of Int8 ... UInt64, Float32, Float64, String",
+                             attribute(tag, "Name"), attribute(tag, "type")));
+    }
     if (appended == std::string::npos) return;  // inline data only
     const std::string appended_tag = data.substr(appended, data.find('>', appended) - appended);
     if (attribute(appended_tag, "encoding") != "raw") return;  // base64: VTK decodes and checks it

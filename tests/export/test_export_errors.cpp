@@ -197,13 +197,15 @@ TEST(ReadErrors, FuzzFindingsAreRefused) {
     // Medit: an element count times its entries overflowed.
     what = test::input_error_of(read_medit_mesh, (dir / "medit_element_count_overflow.mesh").string());
     EXPECT_NE(what.find("elements do not fit in the file"), std::string::npos) << what;
-    // XML .vts: appended arrays whose byte counts run past the data; VTK's reader ran off the
-    // end of it (a string array) and crashed. Both readers of the format refuse them.
+    // XML .vts: appended arrays whose byte counts run past the data (VTK's reader ran off the
+    // end of a string array) or of a type VTK does not know (it used the array it did not
+    // make): both crashed it. Both readers of the format refuse them.
     for (const auto& [file, message] : std::vector<std::pair<std::string, std::string>>{
              {"vts_string_array_byte_count_garbage.vts",
               "array 'face_patch' claims 6989586621679009822 bytes at byte 13 of the appended data, which has 817"},
              {"vts_array_byte_count_past_the_end.vts",
-              "array 'scaled_jacobian' claims 577004900 bytes at byte 86 of the appended data, which has 817"}}) {
+              "array 'scaled_jacobian' claims 577004900 bytes at byte 86 of the appended data, which has 817"},
+             {"vts_unknown_array_type.vts", "array 'face_patch' has type \"STring\""}}) {
         what = test::input_error_of(read_vtk_block_grid, (dir / file).string());
         EXPECT_NE(what.find(file + ": " + message), std::string::npos) << what;
         what = test::input_error_of(read_vtk_mesh, (dir / file).string());
