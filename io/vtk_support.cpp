@@ -1,5 +1,6 @@
 #include "io/vtk_support.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -375,6 +376,19 @@ void check_xml_vtk(const std::string& path) {
             if (past_end(offset + header, bytes))
                 fail(fmt::format("array '{}' claims {} bytes at byte {} of the appended data, which has {}", name,
                                  bytes, offset, size));
+            if (attribute(tag, "type") == "String") {
+                // As many zero-terminated strings as it declares values: VTK reads that many.
+                const std::string tuples = attribute(tag, "NumberOfTuples"), components = attribute(tag, "NumberOfComponents");
+                const unsigned long long t = std::strtoull(tuples.empty() ? "0" : tuples.c_str(), nullptr, 10);
+                const unsigned long long c = std::max(1ull, std::strtoull(components.empty() ? "1" : components.c_str(), nullptr, 10));
+                // Saturating: a count beyond the bytes cannot be held anyway.
+                const unsigned long long declared = t > bytes || c > bytes || t * c > bytes ? bytes + 1 : t * c;
+                const char* first = data.data() + start + offset + header;
+                const unsigned long long held = std::count(first, first + bytes, '\0');
+                if (held < declared)
+                    fail(fmt::format("string array '{}' declares {} x {} values but holds {}", name, tuples,
+                                     components.empty() ? "1" : components, held));
+            }
             continue;
         }
         // Compressed: [blocks][block size][last block size][compressed size of each block].
