@@ -1,6 +1,7 @@
 #include "io/vtk_support.h"
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -331,6 +332,33 @@ void check_xml_vtk(const std::string& path) {
     const std::string byte_order = attribute(root_tag, "byte_order");
     if (!byte_order.empty() && byte_order != "LittleEndian" && byte_order != "BigEndian")
         fail(fmt::format("byte_order is \"{}\"; expected LittleEndian or BigEndian", byte_order));
+    // Structured pieces: extents of six integers, each range ascending, every piece inside the
+    // whole extent (VTK's reader crashed on a piece whose range ran backwards).
+    const std::string kind = attribute(root_tag, "type");
+    if (kind == "StructuredGrid" || kind == "RectilinearGrid" || kind == "ImageData") {
+        const auto extent = [&](const std::string& text, const char* what) {
+            std::istringstream in(text);
+            std::array<long long, 6> e{};
+            for (long long& v : e)
+                if (!(in >> v)) fail(fmt::format("{} \"{}\": expected six integers", what, text));
+            std::string more;
+            if (in >> more) fail(fmt::format("{} \"{}\": expected six integers", what, text));
+            for (int a = 0; a < 3; ++a)
+                if (e[2 * a] > e[2 * a + 1]) fail(fmt::format("{} \"{}\": a range runs backwards", what, text));
+            return e;
+        };
+        const size_t set = data.find("<" + kind);
+        if (set == std::string::npos) fail(fmt::format("a {} file without its <{}> element", kind, kind));
+        const std::array<long long, 6> whole =
+            extent(attribute(data.substr(set, data.find('>', set) - set), "WholeExtent"), "WholeExtent");
+        for (size_t at = data.find("<Piece"); at != std::string::npos && at < data.find("<AppendedData");
+             at = data.find("<Piece", at + 1)) {
+            const std::array<long long, 6> piece = extent(attribute(data.substr(at, data.find('>', at) - at), "Extent"), "Piece Extent");
+            for (int a = 0; a < 3; ++a)
+                if (piece[2 * a] < whole[2 * a] || piece[2 * a + 1] > whole[2 * a + 1])
+                    fail(fmt::format("a Piece Extent reaches outside the WholeExtent on axis {}", "xyz"[a]));
+        }
+    }
     const int header = header_type == "UInt64" ? 8 : 4;
     const bool big = byte_order == "BigEndian";
     const bool compressed = !attribute(root_tag, "compressor").empty();

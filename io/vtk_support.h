@@ -44,7 +44,8 @@ void check_cell_points(vtkIdList* ids, int count, Id points, const std::string& 
 void check_legacy_vtk(const std::string& path);
 
 // Checks an XML VTK file (.vts, .vtu; a .vtm's pieces) before VTK's XML reader sees it: its
-// header_type and byte_order, every array's type (one VTK knows), and that every array stored in raw appended data (its byte
+// header_type and byte_order, a structured file's extents (six integers, ranges ascending,
+// pieces inside the whole), every array's type (one VTK knows), and that every array stored in raw appended data (its byte
 // count, or its compressed block table) lies inside that data: VTK 9.1's reader runs off the
 // end (a crash) on a string array whose byte count is garbage. Throws InputError naming the
 // file, the array and the fault; returns quietly for inline and base64 data.
