@@ -413,6 +413,8 @@ void check_xml_vtk(const std::string& path) {
                 const unsigned long long declared = t > bytes || c > bytes || t * c > bytes ? bytes + 1 : t * c;
                 const char* first = data.data() + start + offset + header;
                 const unsigned long long held = std::count(first, first + bytes, '\0');
+                if (bytes > 0 && first[bytes - 1] != '\0')
+                    fail(fmt::format("string array '{}' ends inside a string (no terminating zero)", name));
                 if (held < declared)
                     fail(fmt::format("string array '{}' declares {} x {} values but holds {}", name, tuples,
                                      components.empty() ? "1" : components, held));
