@@ -405,7 +405,7 @@ void check_xml_vtk(const std::string& path) {
                 fail(fmt::format("array '{}' claims {} bytes at byte {} of the appended data, which has {}", name,
                                  bytes, offset, size));
             if (attribute(tag, "type") == "String") {
-                // As many zero-terminated strings as it declares values: VTK reads that many.
+                // Exactly as many zero-terminated strings as it declares values.
                 const std::string tuples = attribute(tag, "NumberOfTuples"), components = attribute(tag, "NumberOfComponents");
                 const unsigned long long t = std::strtoull(tuples.empty() ? "0" : tuples.c_str(), nullptr, 10);
                 const unsigned long long c = std::max(1ull, std::strtoull(components.empty() ? "1" : components.c_str(), nullptr, 10));
@@ -415,7 +415,7 @@ void check_xml_vtk(const std::string& path) {
                 const unsigned long long held = std::count(first, first + bytes, '\0');
                 if (bytes > 0 && first[bytes - 1] != '\0')
                     fail(fmt::format("string array '{}' ends inside a string (no terminating zero)", name));
-                if (held < declared)
+                if (held != declared)  // fewer: VTK reads past them; more: it stores past its array
                     fail(fmt::format("string array '{}' declares {} x {} values but holds {}", name, tuples,
                                      components.empty() ? "1" : components, held));
             }

@@ -197,8 +197,8 @@ TEST(ReadErrors, FuzzFindingsAreRefused) {
     // Medit: an element count times its entries overflowed.
     what = test::input_error_of(read_medit_mesh, (dir / "medit_element_count_overflow.mesh").string());
     EXPECT_NE(what.find("elements do not fit in the file"), std::string::npos) << what;
-    // XML .vts: appended arrays whose byte counts run past the data or that hold fewer strings
-    // than they declare (VTK's reader ran off the end of a string array), or of a type VTK does not know (it used the array it did not
+    // XML .vts: appended arrays whose byte counts run past the data or that hold another number
+    // of strings than they declare (VTK's reader ran off the end of a string array), or of a type VTK does not know (it used the array it did not
     // make), or a piece whose extent runs backwards: all crashed it. Both readers of the format refuse them.
     for (const auto& [file, message] : std::vector<std::pair<std::string, std::string>>{
              {"vts_string_array_byte_count_garbage.vts",
@@ -208,7 +208,8 @@ TEST(ReadErrors, FuzzFindingsAreRefused) {
              {"vts_unknown_array_type.vts", "array 'face_patch' has type \"STring\""},
              {"vts_string_array_with_fewer_strings.vts", "string array 'block_name' declares 2 x 1 values but holds 1"},
              {"vts_piece_extent_backwards.vts", "Piece Extent \"5 2 0 2 0 2\": a range runs backwards"},
-             {"vts_string_array_unterminated.vts", "string array 'block_name' ends inside a string"}}) {
+             {"vts_string_array_unterminated.vts", "string array 'block_name' ends inside a string"},
+             {"vts_string_array_with_more_strings.vts", "string array 'face_patch' declares 2 x 1 values but holds 6"}}) {
         what = test::input_error_of(read_vtk_block_grid, (dir / file).string());
         EXPECT_NE(what.find(file + ": " + message), std::string::npos) << what;
         what = test::input_error_of(read_vtk_mesh, (dir / file).string());
