@@ -367,6 +367,21 @@ void check_xml_vtk(const std::string& path) {
     static const std::set<std::string> types = {"Int8",   "UInt8",  "Int16",   "UInt16",  "Int32", "UInt32",
                                                 "Int64",  "UInt64", "Float32", "Float64", "String", "Bit"};
     const size_t appended = data.find("<AppendedData");
+    // The sections of arrays hold arrays only: VTK's reader makes an array of each element in
+    // them, and used the one it could not make (a crash).
+    for (const char* section : {"FieldData", "PointData", "CellData", "Points", "Cells", "Coordinates"}) {
+        const std::string open = std::string("<") + section, close = std::string("</") + section + ">";
+        for (size_t at = data.find(open); at < appended; at = data.find(open, at + 1)) {
+            const char after = data[at + open.size()];
+            if (after != '>' && after != ' ' && after != '/' && !std::isspace(static_cast<unsigned char>(after))) continue;
+            const size_t end = std::min(data.find(close, at), appended);
+            for (size_t e = data.find('<', at + 1); e < end; e = data.find('<', e + 1))
+                if (data.compare(e, 10, "<DataArray") != 0 && data.compare(e, 7, "<Array ") != 0 && data[e + 1] != '/' &&
+                    data[e + 1] != '!')
+                    fail(fmt::format("<{}> holds a <{}> element; expected arrays only", section,
+                                     data.substr(e + 1, std::min<size_t>(data.find_first_of(" />", e + 1), end) - e - 1)));
+        }
+    }
     for (size_t at = data.find('<'); at < appended; at = data.find('<', at + 1)) {
         if (data.compare(at, 10, "<DataArray") != 0 && data.compare(at, 7, "<Array ") != 0) continue;
         const std::string tag = data.substr(at, data.find('>', at) - at);
