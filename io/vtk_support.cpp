@@ -178,14 +178,19 @@ int type_size(const std::string& type) {
     return 0;
 }
 
+// The bytes of an existing file (require_file's message when it is not).
+std::string whole_file(const std::string& path) {
+    require_file(path);
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    return bytes.str();
+}
+
 }  // namespace
 
 void check_legacy_vtk(const std::string& path) {
-    require_file(path);
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    LegacyVtk f(text.str(), path);
+    LegacyVtk f(whole_file(path), path);
     const std::string header = f.line();
     if (header.rfind("# vtk DataFile", 0) != 0) f.fail("not a legacy VTK file (no '# vtk DataFile' line)");
     // VTK reads cell lists as offsets and connectivity from version 5 on, as rows before; a
@@ -308,11 +313,7 @@ std::uint64_t header_value(const std::string& data, size_t at, int bytes, bool b
 }  // namespace
 
 void check_xml_vtk(const std::string& path) {
-    require_file(path);
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    const std::string data = buffer.str();
+    const std::string data = whole_file(path);
     const auto fail = [&](const std::string& why) { throw InputError(fmt::format("{}: {}", path, why)); };
     const size_t root = data.find("<VTKFile");
     if (root == std::string::npos) return;  // VTK's reader says what it is not

@@ -10,6 +10,7 @@
 #include "hexmesh/core/block_grid.h"
 #include "surface/analytic.h"
 #include "tests/scratch_registry.h"
+#include "volume/o_grid.h"
 #include "volume/o_h_grid.h"
 
 namespace hexmesh::test_export {
@@ -32,6 +33,16 @@ inline BlockGrid small_o_h_grid(int cells_per_edge = 4, int wall_cells = 3) {
     o.cells_per_edge = cells_per_edge;
     o.wall_cells = wall_cells;
     return make_o_h_grid(sphere, o);
+}
+
+// The exterior O-grid of the unit sphere (six blocks): patches wall and farfield.
+inline BlockGrid small_o_grid(int cells_per_edge = 4, int layers = 5, double far_field_size = 5) {
+    const Sphere sphere(Vec3::Zero(), 1.0);
+    OGridOptions o;
+    o.cells_per_edge = cells_per_edge;
+    o.layers = layers;
+    o.far_field_size = far_field_size;
+    return make_o_grid(sphere, o);
 }
 
 struct ToolRun {

@@ -338,12 +338,8 @@ TEST(OpenFoam, TurbulentFlowFromTheCaseFileRuns) {
 TEST(Fluent, OpenFoamsConverterReadsAValidMeshWithThePatches) {
     if (!have_tool("fluent3DMeshToFoam") || !have_tool("checkMesh"))
         GTEST_SKIP() << "fluent3DMeshToFoam / checkMesh not installed (Debian package openfoam)";
-    const Sphere sphere(Vec3::Zero(), 1.0);
-    OGridOptions o;
-    o.cells_per_edge = 6;
-    o.layers = 8;
-    o.far_field_size = 10;
-    const BlockGrid grid = make_o_grid(sphere, o);
+    const int n = 6;
+    const BlockGrid grid = small_o_grid(n, 8, 10);
     const fs::path dir = scratch("fluent");
     // The converter needs a case: the dictionaries of an OpenFOAM export.
     write_openfoam_mesh(grid, (dir / "case").string());
@@ -361,7 +357,6 @@ TEST(Fluent, OpenFoamsConverterReadsAValidMeshWithThePatches) {
     ASSERT_EQ(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("Mesh OK."), std::string::npos) << r.output;
     EXPECT_EQ(number_after(r.output, "    cells:"), double(grid.num_cells()));
-    const int n = o.cells_per_edge;
     for (const char* patch : {"wall", "farfield"})
         EXPECT_TRUE(std::regex_search(r.output, std::regex(std::string(R"(\n\s*)") + patch + R"(\s+)" +
                                                             std::to_string(6 * n * n) + R"(\s)")))

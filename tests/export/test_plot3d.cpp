@@ -195,15 +195,11 @@ void expect_map_describes(const BlockGrid& grid, const fs::path& xyz) {
 
 TEST(Plot3d, NeutralMapFileListsPatchesAndInterfacesThatMapPointOntoPoint) {
     const Sphere sphere(Vec3::Zero(), 1.0);
-    OGridOptions exterior;
-    exterior.cells_per_edge = 4;
-    exterior.layers = 3;
-    exterior.far_field_size = 5;
     OHGridOptions axis;  // 51 blocks: rings and frames meet in every orientation
     axis.cells_per_edge = 6;
     axis.wall_cells = 2;
     axis.axis = 2;
-    for (const BlockGrid& grid : {small_o_h_grid(), make_o_grid(sphere, exterior), make_o_h_grid(sphere, axis)}) {
+    for (const BlockGrid& grid : {small_o_h_grid(), small_o_grid(4, 3), make_o_h_grid(sphere, axis)}) {
         SCOPED_TRACE(grid.blocks.size());
         const fs::path xyz = scratch("nmf") / "grid.xyz";
         write_plot3d(grid, xyz.string(), Plot3dFormat{});

@@ -175,16 +175,6 @@ void expect_meshio_reads(const fs::path& file, const BlockGrid& grid, bool exter
                                    grid.num_cells(), quads, grid.points.size(), facing, per_tag));
 }
 
-// The exterior O-grid of the unit sphere: patches wall and farfield.
-BlockGrid small_o_grid() {
-    const Sphere sphere(Vec3::Zero(), 1.0);
-    OGridOptions o;
-    o.cells_per_edge = 4;
-    o.layers = 5;
-    o.far_field_size = 5;
-    return make_o_grid(sphere, o);
-}
-
 }  // namespace
 
 TEST(Su2, MeshioReadsTheCellsPointsAndMarkers) {
