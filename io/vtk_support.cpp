@@ -393,8 +393,11 @@ void check_xml_vtk(const std::string& path) {
     if (appended == std::string::npos) return;  // inline data only
     const std::string appended_tag = data.substr(appended, data.find('>', appended) - appended);
     if (attribute(appended_tag, "encoding") != "raw") return;  // base64: VTK decodes and checks it
-    const size_t underscore = data.find('_', appended + appended_tag.size());
-    if (underscore == std::string::npos) fail("its AppendedData has no '_' before the data");
+    // The data starts after the first '_' with nothing but blanks before it (VTK reads from the
+    // first character that is not blank, and crashed on a file with another one there).
+    const size_t underscore = data.find_first_not_of(" \t\r\n", appended + appended_tag.size() + 1);
+    if (underscore == std::string::npos || data[underscore] != '_')
+        fail("its AppendedData does not start with '_' after the tag");
     const size_t start = underscore + 1;
     const size_t closing = data.rfind("</AppendedData>");
     const size_t size = (closing == std::string::npos || closing < start ? data.size() : closing) - start;

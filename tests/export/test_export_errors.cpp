@@ -200,7 +200,7 @@ TEST(ReadErrors, FuzzFindingsAreRefused) {
     // XML .vts: appended arrays whose byte counts run past the data or that hold another number
     // of strings than they declare (VTK's reader ran off the end of a string array), or of a type VTK does not know (it used the array it did not
     // make), or a piece whose extent runs backwards, or an element that is no array
-    // among the arrays: all crashed it. Both readers of the format refuse them.
+    // among the arrays, or appended data not starting with '_': all crashed it. Both readers of the format refuse them.
     for (const auto& [file, message] : std::vector<std::pair<std::string, std::string>>{
              {"vts_string_array_byte_count_garbage.vts",
               "array 'face_patch' claims 6989586621679009822 bytes at byte 13 of the appended data, which has 817"},
@@ -211,7 +211,8 @@ TEST(ReadErrors, FuzzFindingsAreRefused) {
              {"vts_piece_extent_backwards.vts", "Piece Extent \"5 2 0 2 0 2\": a range runs backwards"},
              {"vts_string_array_unterminated.vts", "string array 'block_name' ends inside a string"},
              {"vts_string_array_with_more_strings.vts", "string array 'face_patch' declares 2 x 1 values but holds 6"},
-             {"vts_field_data_holding_another_element.vts", "<FieldData> holds a <Arrtyyap> element; expected arrays only"}}) {
+             {"vts_field_data_holding_another_element.vts", "<FieldData> holds a <Arrtyyap> element; expected arrays only"},
+             {"vts_appended_data_not_starting_with_underscore.vts", "its AppendedData does not start with '_' after the tag"}}) {
         what = test::input_error_of(read_vtk_block_grid, (dir / file).string());
         EXPECT_NE(what.find(file + ": " + message), std::string::npos) << what;
         what = test::input_error_of(read_vtk_mesh, (dir / file).string());
