@@ -12,6 +12,8 @@
 #include <fstream>
 #include <fmt/format.h>
 #include <stdexcept>
+#include <tuple>
+#include <vector>
 #include <vtkLogger.h>
 #include <vtkObjectFactory.h>
 #include <vtkOutputWindow.h>
@@ -401,6 +403,47 @@ void check_xml_vtk(const std::string& path) {
     const size_t start = underscore + 1;
     const size_t closing = data.rfind("</AppendedData>");
     const size_t size = (closing == std::string::npos || closing < start ? data.size() : closing) - start;
+    // Per piece, its point and cell counts (from its extent or its NumberOfPoints and
+    // NumberOfCells), and where its point and cell arrays lie: a point or cell array must hold
+    // one value (of its components) for each (VTK copied a short one past its end).
+    struct Section {
+        size_t begin, end;
+        unsigned long long tuples;
+        bool points;  // the <Points> coordinates: 3 components
+    };
+    std::vector<Section> sections;
+    for (size_t at = data.find("<Piece"); at < appended; at = data.find("<Piece", at + 1)) {
+        const std::string tag = data.substr(at, data.find('>', at) - at);
+        const size_t end = std::min(data.find("</Piece>", at), appended);
+        unsigned long long points = 0, cells = 0;
+        if (!attribute(tag, "Extent").empty()) {
+            std::istringstream in(attribute(tag, "Extent"));
+            std::array<long long, 6> e{};
+            for (long long& v : e) in >> v;
+            points = cells = 1;
+            for (int a = 0; a < 3; ++a) {
+                points *= (unsigned long long)(e[2 * a + 1] - e[2 * a] + 1);
+                cells *= (unsigned long long)std::max(1ll, e[2 * a + 1] - e[2 * a]);
+            }
+        } else {
+            points = std::strtoull(attribute(tag, "NumberOfPoints").c_str(), nullptr, 10);
+            cells = std::strtoull(attribute(tag, "NumberOfCells").c_str(), nullptr, 10);
+        }
+        for (const auto& [section, tuples, coordinates] :
+             {std::tuple{"PointData", points, false}, std::tuple{"CellData", cells, false}, std::tuple{"Points", points, true}}) {
+            const std::string open = std::string("<") + section + ">", open_with = std::string("<") + section + " ";
+            size_t from = data.find(open, at);
+            if (from >= end) from = data.find(open_with, at);
+            if (from < end) sections.push_back({from, std::min(data.find(std::string("</") + section + ">", from), end), tuples, coordinates});
+        }
+    }
+    const auto value_bytes = [](const std::string& type) -> unsigned long long {
+        if (type == "Int8" || type == "UInt8") return 1;
+        if (type == "Int16" || type == "UInt16") return 2;
+        if (type == "Int32" || type == "UInt32" || type == "Float32") return 4;
+        if (type == "Int64" || type == "UInt64" || type == "Float64") return 8;
+        return 0;  // String, Bit: not sized so
+    };
     // Every array stored there: its offset, then its byte count (or, compressed, its block
     // table), then its bytes, all inside the appended data.
     for (size_t at = data.find('<'); at < appended; at = data.find('<', at + 1)) {
@@ -423,6 +466,20 @@ void check_xml_vtk(const std::string& path) {
             if (past_end(offset + header, bytes))
                 fail(fmt::format("array '{}' claims {} bytes at byte {} of the appended data, which has {}", name,
                                  bytes, offset, size));
+            const std::string components_text = attribute(tag, "NumberOfComponents");
+            const unsigned long long components =
+                components_text.empty() ? 1 : std::strtoull(components_text.c_str(), nullptr, 10);
+            for (const Section& sec : sections) {
+                if (at < sec.begin || at >= sec.end) continue;
+                if (sec.points && components != 3)
+                    fail(fmt::format("the points array '{}' has {} components; expected 3", name,
+                                     components_text.empty() ? "1" : components_text));
+                const unsigned long long size_of = value_bytes(attribute(tag, "type"));
+                if (size_of > 0 && (components == 0 || sec.tuples > bytes || components > bytes ||
+                                    sec.tuples * components * size_of != bytes))
+                    fail(fmt::format("array '{}' holds {} bytes; its piece needs {} values of {} components of {} bytes",
+                                     name, bytes, sec.tuples, components_text.empty() ? "1" : components_text, size_of));
+            }
             if (attribute(tag, "type") == "String") {
                 // Exactly as many zero-terminated strings as it declares values.
                 const std::string tuples = attribute(tag, "NumberOfTuples"), components = attribute(tag, "NumberOfComponents");

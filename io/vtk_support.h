@@ -46,7 +46,8 @@ void check_legacy_vtk(const std::string& path);
 // Checks an XML VTK file (.vts, .vtu; a .vtm's pieces) before VTK's XML reader sees it: its
 // header_type and byte_order, a structured file's extents (six integers, ranges ascending,
 // pieces inside the whole), that the sections of arrays (FieldData, PointData, ...) hold arrays
-// only, every array's type (one VTK knows), and that every array stored in raw appended data (its byte
+// only, every array's type (one VTK knows), that point and cell arrays hold one value for each
+// point or cell of their piece (points: 3 components), and that every array stored in raw appended data (its byte
 // count, or its compressed block table) lies inside that data: VTK 9.1's reader runs off the
 // end (a crash) on a string array whose byte count is garbage, or that holds another number of
 // strings than it declares, or whose last string is not terminated. Throws InputError naming the

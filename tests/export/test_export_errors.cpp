@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <fstream>
+#include <iterator>
 
 #include <fmt/format.h>
 
@@ -200,7 +202,8 @@ TEST(ReadErrors, FuzzFindingsAreRefused) {
     // XML .vts: appended arrays whose byte counts run past the data or that hold another number
     // of strings than they declare (VTK's reader ran off the end of a string array), or of a type VTK does not know (it used the array it did not
     // make), or a piece whose extent runs backwards, or an element that is no array
-    // among the arrays, or appended data not starting with '_': all crashed it. Both readers of the format refuse them.
+    // among the arrays, or appended data not starting with '_', or points of one
+    // component: all crashed it. Both readers of the format refuse them.
     for (const auto& [file, message] : std::vector<std::pair<std::string, std::string>>{
              {"vts_string_array_byte_count_garbage.vts",
               "array 'face_patch' claims 6989586621679009822 bytes at byte 13 of the appended data, which has 817"},
@@ -212,10 +215,43 @@ TEST(ReadErrors, FuzzFindingsAreRefused) {
              {"vts_string_array_unterminated.vts", "string array 'block_name' ends inside a string"},
              {"vts_string_array_with_more_strings.vts", "string array 'face_patch' declares 2 x 1 values but holds 6"},
              {"vts_field_data_holding_another_element.vts", "<FieldData> holds a <Arrtyyap> element; expected arrays only"},
-             {"vts_appended_data_not_starting_with_underscore.vts", "its AppendedData does not start with '_' after the tag"}}) {
+             {"vts_appended_data_not_starting_with_underscore.vts", "its AppendedData does not start with '_' after the tag"},
+             {"vts_points_without_their_component_count.vts", "the points array 'Points' has 1 components; expected 3"}}) {
         what = test::input_error_of(read_vtk_block_grid, (dir / file).string());
         EXPECT_NE(what.find(file + ": " + message), std::string::npos) << what;
         what = test::input_error_of(read_vtk_mesh, (dir / file).string());
         EXPECT_NE(what.find(message), std::string::npos) << what;
     }
+}
+
+// A valid grid's .vts with its cell array declared one value short: refused naming the array,
+// where VTK would copy past the array's end.
+TEST(ReadErrors, AVtsCellArrayShorterThanItsPieceIsRefused) {
+    const BlockGrid grid = small_o_h_grid(2, 1);
+    BlockGrid one;
+    one.points = grid.points;
+    one.kinds = grid.kinds;
+    one.blocks = {grid.blocks[0]};
+    const fs::path dir = scratch("short_array");
+    const fs::path file = dir / "grid.vts";
+    write_vtk_grid(one, file.string());
+    EXPECT_EQ(read_vtk_block_grid(file.string()).num_cells(), one.num_cells());
+    std::ifstream in(file, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), {});
+    // The scaled_jacobian array's byte count (8-byte header) made 8 bytes smaller.
+    const size_t tag = bytes.find("Name=\"scaled_jacobian\"");
+    ASSERT_NE(tag, std::string::npos);
+    const size_t at = bytes.find("offset=\"", tag) + 8;
+    const size_t offset = std::stoull(bytes.substr(at));
+    const size_t data = bytes.find('_', bytes.find("<AppendedData")) + 1;
+    std::uint64_t count = 0;
+    std::memcpy(&count, &bytes[data + offset], 8);
+    count -= 8;
+    std::memcpy(&bytes[data + offset], &count, 8);
+    std::ofstream(file, std::ios::binary) << bytes;
+    const std::string what = test::input_error_of(read_vtk_block_grid, file.string());
+    EXPECT_NE(what.find(fmt::format("array 'scaled_jacobian' holds {} bytes; its piece needs {} values of 1 components of 8 bytes",
+                                    count, one.num_cells())),
+              std::string::npos)
+        << what;
 }
