@@ -304,6 +304,7 @@ std::string attribute(const std::string& tag, const std::string& name) {
 
 // Reads a little- or big-endian unsigned header of `bytes` (4 or 8) at `at`.
 std::uint64_t header_value(const std::string& data, size_t at, int bytes, bool big_endian) {
+    if (at > data.size() || size_t(bytes) > data.size() - at) return UINT64_MAX;  // short read: no such header
     std::uint64_t v = 0;
     for (int k = 0; k < bytes; ++k) {
         const std::uint64_t byte = static_cast<unsigned char>(data[at + size_t(k)]);
@@ -315,7 +316,34 @@ std::uint64_t header_value(const std::string& data, size_t at, int bytes, bool b
 }  // namespace
 
 void check_xml_vtk(const std::string& path) {
-    const std::string data = whole_file(path);
+    require_file(path);
+    // The XML head only (up to the first byte of appended data); the appended bytes are read
+    // where an array's header or strings lie, not all of them (a grid's are hundreds of MB).
+    std::ifstream in(path, std::ios::binary);
+    std::error_code ec;
+    const size_t file_size = size_t(std::filesystem::file_size(path, ec));
+    std::string data;
+    {
+        std::vector<char> chunk(size_t(1) << 20);
+        size_t found = std::string::npos;
+        while (in) {
+            in.read(chunk.data(), std::streamsize(chunk.size()));
+            const size_t searched = data.size();
+            data.append(chunk.data(), size_t(in.gcount()));
+            if (found == std::string::npos) found = data.find("<AppendedData", searched > 16 ? searched - 16 : 0);
+            if (found == std::string::npos) continue;
+            const size_t tag_end = data.find('>', found);
+            if (tag_end != std::string::npos && data.find_first_not_of(" \t\r\n", tag_end + 1) != std::string::npos) break;
+        }
+    }
+    const auto bytes_at = [&](size_t at, size_t count) {
+        std::string bytes(count, '\0');
+        in.clear();
+        in.seekg(std::streamoff(at));
+        in.read(bytes.data(), std::streamsize(count));
+        bytes.resize(size_t(in.gcount()));
+        return bytes;
+    };
     const auto fail = [&](const std::string& why) { throw InputError(fmt::format("{}: {}", path, why)); };
     const size_t root = data.find("<VTKFile");
     if (root == std::string::npos) return;  // VTK's reader says what it is not
@@ -401,8 +429,11 @@ void check_xml_vtk(const std::string& path) {
     if (underscore == std::string::npos || data[underscore] != '_')
         fail("its AppendedData does not start with '_' after the tag");
     const size_t start = underscore + 1;
-    const size_t closing = data.rfind("</AppendedData>");
-    const size_t size = (closing == std::string::npos || closing < start ? data.size() : closing) - start;
+    const size_t tail_at = file_size > 4096 ? file_size - 4096 : 0;
+    const size_t in_tail = bytes_at(tail_at, file_size - tail_at).rfind("</AppendedData>");
+    const size_t closing = in_tail == std::string::npos ? file_size : tail_at + in_tail;
+    if (start > file_size) fail("its appended data starts after the end of the file");
+    const size_t size = (closing < start ? file_size : closing) - start;
     // Per piece, its point and cell counts (from its extent or its NumberOfPoints and
     // NumberOfCells), and where its point and cell arrays lie: a point or cell array must hold
     // one value (of its components) for each (VTK copied a short one past its end).
@@ -462,7 +493,7 @@ void check_xml_vtk(const std::string& path) {
         if (!compressed) {
             if (past_end(offset, header))
                 fail(fmt::format("array '{}' starts at byte {} of the appended data, which has {}", name, offset, size));
-            const std::uint64_t bytes = header_value(data, start + offset, header, big);
+            const std::uint64_t bytes = header_value(bytes_at(start + offset, header), 0, header, big);
             if (past_end(offset + header, bytes))
                 fail(fmt::format("array '{}' claims {} bytes at byte {} of the appended data, which has {}", name,
                                  bytes, offset, size));
@@ -487,9 +518,9 @@ void check_xml_vtk(const std::string& path) {
                 const unsigned long long c = std::max(1ull, std::strtoull(components.empty() ? "1" : components.c_str(), nullptr, 10));
                 // Saturating: a count beyond the bytes cannot be held anyway.
                 const unsigned long long declared = t > bytes || c > bytes || t * c > bytes ? bytes + 1 : t * c;
-                const char* first = data.data() + start + offset + header;
-                const unsigned long long held = std::count(first, first + bytes, '\0');
-                if (bytes > 0 && first[bytes - 1] != '\0')
+                const std::string strings = bytes_at(start + offset + header, bytes);
+                const unsigned long long held = std::count(strings.begin(), strings.end(), '\0');
+                if (bytes > 0 && strings.back() != '\0')
                     fail(fmt::format("string array '{}' ends inside a string (no terminating zero)", name));
                 if (held != declared)  // fewer: VTK reads past them; more: it stores past its array
                     fail(fmt::format("string array '{}' declares {} x {} values but holds {}", name, tuples,
@@ -500,13 +531,15 @@ void check_xml_vtk(const std::string& path) {
         // Compressed: [blocks][block size][last block size][compressed size of each block].
         if (past_end(offset, 3ull * header))
             fail(fmt::format("array '{}' starts at byte {} of the appended data, which has {}", name, offset, size));
-        const std::uint64_t blocks = header_value(data, start + offset, header, big);
+        const std::string table_head = bytes_at(start + offset, header);
+        const std::uint64_t blocks = header_value(table_head, 0, header, big);
         if (blocks > size / std::uint64_t(header) || past_end(offset + 3ull * header, blocks * header))
             fail(fmt::format("array '{}' claims {} compressed blocks at byte {} of the appended data, which has {}",
                              name, blocks, offset, size));
         std::uint64_t total = 0;
+        const std::string table = bytes_at(start + offset + 3 * header, blocks * header);
         for (std::uint64_t b = 0; b < blocks; ++b) {
-            total += header_value(data, start + offset + (3 + b) * header, header, big);
+            total += header_value(table, b * header, header, big);
             if (total > size) break;
         }
         if (past_end(offset + (3 + blocks) * header, total))
