@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -360,5 +362,45 @@ TEST(Fluent, OpenFoamsConverterReadsAValidMeshWithThePatches) {
     for (const char* patch : {"wall", "farfield"})
         EXPECT_TRUE(std::regex_search(r.output, std::regex(std::string(R"(\n\s*)") + patch + R"(\s+)" +
                                                             std::to_string(6 * n * n) + R"(\s)")))
+            << patch << "\n" << r.output;
+}
+
+// Ten patches: Fluent zones 4 to 13, hexadecimal (4 .. d) in the face sections' headers and
+// decimal in the zone names' section; OpenFOAM's converter pairs every zone with its name.
+TEST(Fluent, ZonesBeyondNineKeepTheirNames) {
+    if (!have_tool("fluent3DMeshToFoam") || !have_tool("checkMesh"))
+        GTEST_SKIP() << "fluent3DMeshToFoam / checkMesh not installed (Debian package openfoam)";
+    // Two blocks of 2 x 2 x 2 cells side by side along x, each outer face its own patch.
+    BlockGrid grid;
+    for (int k = 0; k <= 2; ++k)
+        for (int j = 0; j <= 2; ++j)
+            for (int i = 0; i <= 4; ++i) grid.points.emplace_back(i, j, k);
+    grid.kinds.assign(grid.points.size(), VertexKind::interior);
+    for (int b = 0; b < 2; ++b) {
+        Block block;
+        block.name = fmt::format("b{}", b);
+        block.nodes = Dims{3, 3, 3};
+        for (int k = 0; k <= 2; ++k)
+            for (int j = 0; j <= 2; ++j)
+                for (int i = 0; i <= 2; ++i) block.node_ids.push_back(Id(2 * b + i + 5 * (j + 3 * k)));
+        for (int f = 0; f < 6; ++f) block.face_patch[f] = fmt::format("p{}", 6 * b + f);
+        block.face_patch[b == 0 ? 1 : 0] = "";  // the shared face
+        grid.blocks.push_back(block);
+    }
+    const fs::path dir = scratch("fluent_zones");
+    write_openfoam_mesh(grid, (dir / "case").string());
+    fs::remove_all(dir / "case" / "constant" / "polyMesh");
+    write_fluent_mesh(grid, (dir / "grid.msh").string());
+    std::string env;
+    if (!std::getenv("WM_PROJECT_DIR") && fs::exists("/usr/share/openfoam/etc/controlDict"))
+        env = "WM_PROJECT_DIR=/usr/share/openfoam ";
+    const ToolRun convert = run_tool(env + "fluent3DMeshToFoam -case '" + (dir / "case").string() + "' '" +
+                                     (dir / "grid.msh").string() + "'");
+    ASSERT_EQ(convert.exit_code, 0) << convert.output;
+    const ToolRun r = run_tool(check_mesh_command(dir / "case"));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("Mesh OK."), std::string::npos) << r.output;
+    for (const char* patch : {"p0", "p2", "p3", "p4", "p5", "p7", "p8", "p9", "p10", "p11"})
+        EXPECT_TRUE(std::regex_search(r.output, std::regex(std::string(R"(\n\s*)") + patch + R"(\s+4\s)")))
             << patch << "\n" << r.output;
 }
