@@ -29,9 +29,9 @@ void write_fluent_mesh(const BlockGrid& grid, const std::string& path) {
         out.print("))\n");
         first += faces.internal_faces;
     }
+    const std::vector<Id> counts = patch_face_counts(grid, faces);
     for (int p = 0; p < npatches; ++p) {
-        Id count = 0;
-        for_each_patch_face(grid, faces, p, [&](Id, const std::array<Id, 4>&) { ++count; });
+        const Id count = counts[size_t(p)];
         out.print("(13 ({:x} {:x} {:x} {:x} 4)(\n", 4 + p, first, first + count - 1,
                   faces.patch_names[p] == "wall" ? 3 : 9);
         for_each_patch_face(grid, faces, p, [&](Id o, const std::array<Id, 4>& f) { face(f, o, -1); });

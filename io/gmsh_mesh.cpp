@@ -41,9 +41,7 @@ void write_gmsh_mesh(const BlockGrid& grid, const std::string& path) {
     for (const Vec3& p : grid.points) out.print("{} {} {}\n", p.x(), p.y(), p.z());
     out.print("$EndNodes\n");
 
-    std::vector<Id> patch_faces(npatches, 0);
-    for (int p = 0; p < npatches; ++p)
-        for_each_patch_face(grid, faces, p, [&](Id, const std::array<Id, 4>&) { ++patch_faces[p]; });
+    const std::vector<Id> patch_faces = patch_face_counts(grid, faces);
     const Id elements = cells + faces.boundary_faces;
     out.print("$Elements\n{} {} 1 {}\n", npatches + 1, elements, elements);
     out.print("3 1 5 {}\n", cells);

@@ -100,4 +100,14 @@ GridFaces make_grid_faces(const BlockGrid& grid) {
     return out;
 }
 
+std::vector<Id> patch_face_counts(const BlockGrid& grid, const GridFaces& faces) {
+    std::vector<Id> counts(faces.patch_names.size(), 0);
+    for (size_t b = 0; b < grid.blocks.size(); ++b) {
+        const Dims c = grid.blocks[b].cells();
+        for (int face = 0; face < 6; ++face)
+            if (const int p = faces.face_patch_index[b][face]; p >= 0) counts[size_t(p)] += c.count() / c[face / 2];
+    }
+    return counts;
+}
+
 }  // namespace hexmesh

@@ -31,6 +31,9 @@ struct GridFaces {
 // if one face is shared by more than two cells.
 GridFaces make_grid_faces(const BlockGrid& grid);
 
+// Boundary faces per patch, in GridFaces::patch_names order (what for_each_patch_face visits).
+std::vector<Id> patch_face_counts(const BlockGrid& grid, const GridFaces& faces);
+
 // Position of the cell face at cell (i,j,k) of block face `face` in GridFaces::across.
 inline Id face_cell_index(const Dims& cells, int face, int i, int j, int k) {
     const int axis = face / 2;

@@ -102,9 +102,9 @@ void write_openfoam_polymesh(const BlockGrid& grid, const std::string& polymesh_
         write_header(out, "polyBoundaryMesh", "boundary", "");
         out.print("{}\n(\n", faces.patch_names.size());
         Id start = faces.internal_faces;
+        const std::vector<Id> counts = patch_face_counts(grid, faces);
         for (int p = 0; p < int(faces.patch_names.size()); ++p) {
-            Id count = 0;
-            for_each_patch_face(grid, faces, p, [&](Id, const std::array<Id, 4>&) { ++count; });
+            const Id count = counts[size_t(p)];
             const std::string& name = faces.patch_names[p];
             const char* type = name == "wall" ? "wall" : "patch";
             out.print("    {}\n    {{\n        type            {};\n", name, type);

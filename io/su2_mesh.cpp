@@ -21,10 +21,9 @@ void write_su2_mesh(const BlockGrid& grid, const std::string& path) {
         out.print("{} {} {} {}\n", p.x(), p.y(), p.z(), v);
     }
     out.print("NMARK= {}\n", faces.patch_names.size());
+    const std::vector<Id> counts = patch_face_counts(grid, faces);
     for (int p = 0; p < int(faces.patch_names.size()); ++p) {
-        Id count = 0;
-        for_each_patch_face(grid, faces, p, [&](Id, const std::array<Id, 4>&) { ++count; });
-        out.print("MARKER_TAG= {}\nMARKER_ELEMS= {}\n", faces.patch_names[p], count);
+        out.print("MARKER_TAG= {}\nMARKER_ELEMS= {}\n", faces.patch_names[p], counts[size_t(p)]);
         for_each_patch_face(grid, faces, p, [&](Id, const std::array<Id, 4>& n) {
             out.print("9 {} {} {} {}\n", n[0], n[1], n[2], n[3]);
         });

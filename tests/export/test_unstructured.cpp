@@ -146,7 +146,8 @@ std::string meshio_summary(const fs::path& file) {
     return line == std::string::npos ? r.output : r.output.substr(line + 1);
 }
 
-// Boundary faces per patch, in GridFaces order.
+// Boundary faces per patch, in GridFaces order, counted face by face (not by
+// patch_face_counts, whose result the writers use).
 std::vector<Id> patch_face_counts(const BlockGrid& grid) {
     const GridFaces faces = make_grid_faces(grid);
     std::vector<Id> counts(faces.patch_names.size(), 0);
