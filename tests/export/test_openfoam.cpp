@@ -31,13 +31,16 @@ double number_after(const std::string& text, const std::string& label) {
     return std::strtod(text.c_str() + at + label.size(), nullptr);
 }
 
-// checkMesh, with WM_PROJECT_DIR pointing at Debian's OpenFOAM etc/ folder when the
-// environment has not set it (the package's binaries need it and nothing else).
-std::string check_mesh_command(const fs::path& case_dir) {
-    std::string env;
+// An OpenFOAM command line, with WM_PROJECT_DIR pointing at Debian's OpenFOAM etc/ folder when
+// the environment has not set it (the package's binaries need it and nothing else).
+std::string openfoam_command(const std::string& command) {
     if (!std::getenv("WM_PROJECT_DIR") && fs::exists("/usr/share/openfoam/etc/controlDict"))
-        env = "WM_PROJECT_DIR=/usr/share/openfoam ";
-    return env + "checkMesh -case '" + case_dir.string() + "'";
+        return "WM_PROJECT_DIR=/usr/share/openfoam " + command;
+    return command;
+}
+
+std::string check_mesh_command(const fs::path& case_dir) {
+    return openfoam_command("checkMesh -case '" + case_dir.string() + "'");
 }
 
 // The number token after `label` in checkMesh's output, as printed ("" if absent).
@@ -259,10 +262,18 @@ ToolRun simple_foam(const fs::path& case_dir, int steps) {
     std::string text = file_text(control);
     text = std::regex_replace(text, std::regex(R"(endTime\s+\d+;)"), "endTime         " + std::to_string(steps) + ";");
     std::ofstream(control) << text;
-    std::string env;
-    if (!std::getenv("WM_PROJECT_DIR") && fs::exists("/usr/share/openfoam/etc/controlDict"))
-        env = "WM_PROJECT_DIR=/usr/share/openfoam ";
-    return run_tool(env + "simpleFoam -case '" + case_dir.string() + "'");
+    return run_tool(openfoam_command("simpleFoam -case '" + case_dir.string() + "'"));
+}
+
+
+// The grid written as a Fluent mesh DIR/grid.msh, then converted by OpenFOAM's
+// fluent3DMeshToFoam into the case DIR/case (whose dictionaries an OpenFOAM export provides).
+ToolRun fluent_through_openfoam(const BlockGrid& grid, const fs::path& dir) {
+    write_openfoam_mesh(grid, (dir / "case").string());
+    fs::remove_all(dir / "case" / "constant" / "polyMesh");
+    write_fluent_mesh(grid, (dir / "grid.msh").string());
+    return run_tool(openfoam_command("fluent3DMeshToFoam -case '" + (dir / "case").string() + "' '" +
+                                     (dir / "grid.msh").string() + "'"));
 }
 
 }  // namespace
@@ -343,15 +354,7 @@ TEST(Fluent, OpenFoamsConverterReadsAValidMeshWithThePatches) {
     const int n = 6;
     const BlockGrid grid = small_o_grid(n, 8, 10);
     const fs::path dir = scratch("fluent");
-    // The converter needs a case: the dictionaries of an OpenFOAM export.
-    write_openfoam_mesh(grid, (dir / "case").string());
-    fs::remove_all(dir / "case" / "constant" / "polyMesh");
-    write_fluent_mesh(grid, (dir / "grid.msh").string());
-    std::string env;
-    if (!std::getenv("WM_PROJECT_DIR") && fs::exists("/usr/share/openfoam/etc/controlDict"))
-        env = "WM_PROJECT_DIR=/usr/share/openfoam ";
-    const ToolRun convert = run_tool(env + "fluent3DMeshToFoam -case '" + (dir / "case").string() + "' '" +
-                                     (dir / "grid.msh").string() + "'");
+    const ToolRun convert = fluent_through_openfoam(grid, dir);
     ASSERT_EQ(convert.exit_code, 0) << convert.output;
     EXPECT_NE(convert.output.find("Zone: 4 name: wall type: wall"), std::string::npos) << convert.output;
     EXPECT_NE(convert.output.find("Zone: 5 name: farfield type: pressure-far-field"), std::string::npos) << convert.output;
@@ -388,14 +391,7 @@ TEST(Fluent, ZonesBeyondNineKeepTheirNames) {
         grid.blocks.push_back(block);
     }
     const fs::path dir = scratch("fluent_zones");
-    write_openfoam_mesh(grid, (dir / "case").string());
-    fs::remove_all(dir / "case" / "constant" / "polyMesh");
-    write_fluent_mesh(grid, (dir / "grid.msh").string());
-    std::string env;
-    if (!std::getenv("WM_PROJECT_DIR") && fs::exists("/usr/share/openfoam/etc/controlDict"))
-        env = "WM_PROJECT_DIR=/usr/share/openfoam ";
-    const ToolRun convert = run_tool(env + "fluent3DMeshToFoam -case '" + (dir / "case").string() + "' '" +
-                                     (dir / "grid.msh").string() + "'");
+    const ToolRun convert = fluent_through_openfoam(grid, dir);
     ASSERT_EQ(convert.exit_code, 0) << convert.output;
     const ToolRun r = run_tool(check_mesh_command(dir / "case"));
     ASSERT_EQ(r.exit_code, 0) << r.output;
