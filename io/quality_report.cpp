@@ -91,6 +91,9 @@ std::string format_quality_table(const GridReport& r) {
     row("cells", fmt::format("{}", q.cells));
     row("inverted corner tets", fmt::format("{}", q.inverted_corner_tets));
     row("inverted cells", fmt::format("{}", q.inverted_cells));
+    row("negative face pyramids", fmt::format("{}", q.negative_pyramids));
+    row("faces at 90 deg or more", fmt::format("{}", q.faces_over_90_deg));
+    row("cells of volume <= 0", fmt::format("{}", q.nonpositive_volumes));
     row("min scaled Jacobian", fmt::format("{:.4f}", q.min_scaled_jacobian));
     row("mean scaled Jacobian", fmt::format("{:.4f}", q.mean_scaled_jacobian));
     if (q.worst_cell >= 0) {
@@ -123,10 +126,13 @@ std::string format_quality_table(const GridReport& r) {
 std::string quality_json(const GridReport& r) {
     const QualityReport& q = r.quality;
     nlohmann::ordered_json j;
-    j["valid"] = q.inverted_corner_tets == 0;
+    j["valid"] = q.solver_valid();
     j["cells"] = q.cells;
     j["inverted_corner_tets"] = q.inverted_corner_tets;
     j["inverted_cells"] = q.inverted_cells;
+    j["negative_face_pyramids"] = q.negative_pyramids;
+    j["faces_over_90_deg"] = q.faces_over_90_deg;
+    j["nonpositive_volume_cells"] = q.nonpositive_volumes;
     j["min_scaled_jacobian"] = q.min_scaled_jacobian;
     j["mean_scaled_jacobian"] = q.mean_scaled_jacobian;
     if (q.worst_cell >= 0) {

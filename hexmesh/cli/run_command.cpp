@@ -38,7 +38,7 @@ void add_run_command(CLI::App& app, int& exit_code) {
                       << format_family_table(table) << "\n";
         }
         for (const std::string& f : result.files) std::cout << "written: " << f << "\n";
-        exit_code = result.report.quality.inverted_corner_tets == 0 ? 0 : 3;
+        exit_code = result.report.quality.solver_valid() ? 0 : 3;
     });
 }
 

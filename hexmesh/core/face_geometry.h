@@ -16,6 +16,7 @@ namespace hexmesh::detail {
 
 inline constexpr double foam_vsmall = 1.0e-300;
 inline constexpr double foam_rootvsmall = 1.0e-150;
+inline constexpr double foam_small = 1.0e-15;  // OpenFOAM's SMALL
 
 struct FaceGeometry {
     Vec3 centre = Vec3::Zero();

@@ -50,8 +50,9 @@ struct QualityReport {
     Id cells = 0;
     Id inverted_corner_tets = 0;  // corner tets with det <= 0, by exact orientation predicate
     Id inverted_cells = 0;        // cells with at least one such corner tet
-    // Verdict values as they are: a cell with a zero-length edge scores +1e30 (and is also
-    // counted inverted, since it has a flat corner tet), which inflates the mean.
+    // Verdict values: a cell with a zero-length edge scores +1e30 (and is also counted
+    // inverted, since it has a flat corner tet); the mean takes each cell's value clamped to
+    // [-1, 1], so that such a cell does not swamp it.
     double min_scaled_jacobian = 0;
     double mean_scaled_jacobian = 0;
     // The cell of min_scaled_jacobian (the lowest id among equals; -1 without cells) and its
@@ -63,7 +64,26 @@ struct QualityReport {
     double max_aspect_ratio = 0;           // OpenFOAM checkMesh definition (cellClosedness)
     double max_volume_ratio = 0;           // max over internal faces of V_big / V_small
     double min_volume = 0;                 // OpenFOAM's cell volume (pyramid decomposition)
+    // What a finite-volume solver refuses although every corner tet is positive (a cell
+    // turned inside out at its centre, a face warped past its cell's centre), counted as
+    // OpenFOAM's checkMesh counts it: face pyramids (each face against the centre of each of
+    // its cells) of negative volume, internal faces whose non-orthogonality is 90 degrees or
+    // more, cells of zero or negative volume.
+    Id negative_pyramids = 0;
+    Id faces_over_90_deg = 0;
+    Id nonpositive_volumes = 0;
+    // No inverted corner tet and none of the above: a grid that checkMesh does not fail for
+    // its cells' shapes (it may still warn about skewness or aspect ratio).
+    bool solver_valid() const {
+        return inverted_corner_tets == 0 && negative_pyramids == 0 && faces_over_90_deg == 0 &&
+               nonpositive_volumes == 0;
+    }
 };
+
+// The cells that fail a check of QualityReport::solver_valid (an inverted corner tet, a face
+// pyramid of negative volume, volume <= 0, a face at 90 degrees or more: both its cells),
+// ascending.
+std::vector<Id> find_refused_cells(const HexMesh& mesh);
 
 // Every metric above over all cells. Faces are matched between cells by their node ids; the
 // owner of an internal face is the lower cell id. A face shared by more than two cells

@@ -176,6 +176,7 @@ struct CellStats {
     double max_aspect = 0;
     double min_volume = std::numeric_limits<double>::infinity();
     Id inverted_tets = 0, inverted_cells = 0;
+    Id negative_pyramids = 0, nonpositive_volumes = 0;
 
     void offer_worst(double sj, Id cell, const Vec3& centre) {
         if (sj < min_sj || (sj == min_sj && cell < worst)) min_sj = sj, worst = cell, worst_centre = centre;
@@ -187,6 +188,8 @@ struct CellStats {
         min_volume = std::min(min_volume, o.min_volume);
         inverted_tets += o.inverted_tets;
         inverted_cells += o.inverted_cells;
+        negative_pyramids += o.negative_pyramids;
+        nonpositive_volumes += o.nonpositive_volumes;
     }
 };
 
@@ -195,8 +198,10 @@ struct FaceStats {
     double min_ortho = 1;  // cosine of the largest non-orthogonality angle
     double max_skew = 0;
     double max_volume_ratio = 1;
+    Id over_90_deg = 0;  // internal faces whose cosine is at most OpenFOAM's SMALL
 
     void join(const FaceStats& o) {
+        over_90_deg += o.over_90_deg;
         min_ortho = std::min(min_ortho, o.min_ortho);
         max_skew = std::max(max_skew, o.max_skew);
         max_volume_ratio = std::max(max_volume_ratio, o.max_volume_ratio);
@@ -222,6 +227,9 @@ QualityReport make_report(Id cells, const CellStats& per_cell, const FaceStats& 
     report.max_non_orthogonality_deg =
         std::acos(std::clamp(per_face.min_ortho, -1.0, 1.0)) * 180.0 / pi;
     report.max_volume_ratio = per_face.max_volume_ratio;
+    report.negative_pyramids = per_cell.negative_pyramids;
+    report.faces_over_90_deg = per_face.over_90_deg;
+    report.nonpositive_volumes = per_cell.nonpositive_volumes;
     return report;
 }
 
@@ -230,9 +238,14 @@ void add_cell(CellStats& acc, Id cell, const std::array<FaceGeometry, 6>& faces,
               const std::array<Vec3, 8>& p) {
     acc.max_aspect = std::max(acc.max_aspect, detail::cell_aspect_ratio(faces, g.volume));
     acc.min_volume = std::min(acc.min_volume, g.volume);
+    acc.nonpositive_volumes += !(g.volume >= detail::foam_vsmall);
+    // checkMesh's face pyramids: each face (outward area vector, centre) against this cell's
+    // centre, a third of area . (face centre - cell centre) at least -SMALL.
+    for (const FaceGeometry& f : faces)
+        acc.negative_pyramids += !(f.area.dot(f.centre - g.centre) / 3 >= -detail::foam_small);
     const double sj = hex_scaled_jacobian(p);
     acc.offer_worst(sj, cell, g.centre);
-    acc.sum_sj += sj;
+    acc.sum_sj += std::clamp(sj, -1.0, 1.0);  // Verdict's 1e30 for a zero-length edge would swamp the mean
     const int inverted = count_inverted_corner_tets(p);
     acc.inverted_tets += inverted;
     acc.inverted_cells += inverted > 0;
@@ -242,7 +255,9 @@ void add_cell(CellStats& acc, Id cell, const std::array<FaceGeometry, 6>& faces,
 void add_internal_face(FaceStats& acc, const std::array<Vec3, 4>& p, const FaceGeometry& g,
                        const Vec3& own_cc, const Vec3& nei_cc, double own_volume,
                        double nei_volume) {
-    acc.min_ortho = std::min(acc.min_ortho, detail::face_orthogonality(own_cc, nei_cc, g.area));
+    const double ortho = detail::face_orthogonality(own_cc, nei_cc, g.area);
+    acc.min_ortho = std::min(acc.min_ortho, ortho);
+    acc.over_90_deg += !(ortho > detail::foam_small);
     acc.max_skew = std::max(acc.max_skew, detail::face_skewness(p, g, own_cc, nei_cc));
     const double vo = std::abs(own_volume), vn = std::abs(nei_volume);
     const double ratio = std::max(vo, vn) / std::max(std::min(vo, vn), detail::foam_rootvsmall);
@@ -491,6 +506,55 @@ QualityReport BlockQuality::report() const {
             per_face.max_skew,
             detail::boundary_face_skewness(face.p, detail::quad_geometry(face.p), face.centre));
     return make_report(st.cells, st.per_cell, per_face);
+}
+
+namespace {
+
+// The cells of `cells` failing a check of QualityReport::solver_valid, ascending: a corner tet
+// inverted, a face pyramid of negative volume against its own centre, volume <= 0, or a face
+// at 90 degrees or more with a neighbour (then both cells).
+template <class Cells>
+std::vector<Id> refused(const Cells& cells) {
+    const Id n = cells.num_cells();
+    const std::vector<Vec3>& points = cells.points();
+    std::vector<Vec3> centres(static_cast<size_t>(n));
+    std::vector<char> bad(static_cast<size_t>(n), 0);
+    tbb::parallel_for(tbb::blocked_range<Id>(0, n, cells_per_task), [&](const tbb::blocked_range<Id>& r) {
+        for (Id c = r.begin(); c != r.end(); ++c) {
+            const CellView v = cells.cell(c);
+            std::array<FaceGeometry, 6> faces;
+            for (int f = 0; f < 6; ++f) faces[f] = oriented_face(cells, c, v, f);
+            const CellGeometry g = detail::cell_geometry(faces);
+            centres[c] = g.centre;
+            CellStats one;
+            std::array<Vec3, 8> p;
+            for (int k = 0; k < 8; ++k) p[k] = points[v.nodes[k]];
+            add_cell(one, c, faces, g, p);
+            bad[c] = one.inverted_tets + one.negative_pyramids + one.nonpositive_volumes > 0;
+        }
+    });
+    for (Id c = 0; c < n; ++c) {  // 90 degrees: each internal face once, from its owner
+        const CellView v = cells.cell(c);
+        for (int f = 0; f < 6; ++f) {
+            const Id other = v.partner[f];
+            if (other == no_partner || !is_owner_side(6 * c + f, other)) continue;
+            const FaceGeometry g = detail::quad_geometry(points_of(points, v.nodes, hex_faces[f]));
+            if (!(detail::face_orthogonality(centres[c], centres[other / 6], g.area) > detail::foam_small))
+                bad[c] = bad[other / 6] = 1;
+        }
+    }
+    std::vector<Id> ids;
+    for (Id c = 0; c < n; ++c)
+        if (bad[c]) ids.push_back(c);
+    return ids;
+}
+
+}  // namespace
+
+std::vector<Id> find_refused_cells(const HexMesh& mesh) {
+    if (6 * mesh.num_cells() <= Id(std::numeric_limits<std::int32_t>::max()))
+        return refused(MeshCells<std::int32_t>(mesh));
+    return refused(MeshCells<Id>(mesh));
 }
 
 QualityReport measure_quality(const HexMesh& mesh) {

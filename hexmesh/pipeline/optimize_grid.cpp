@@ -317,4 +317,81 @@ GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& bo
     return result;
 }
 
+namespace {
+
+// How a grid ranks in the polish: fewer cells a solver refuses (inverted, or failing
+// checkMesh's cell checks), then a higher worst scaled Jacobian.
+struct PolishRank {
+    Id refused = 0;
+    double min_sj = 0;
+    explicit PolishRank(const QualityReport& q)
+        : refused(q.inverted_cells + q.negative_pyramids + q.faces_over_90_deg + q.nonpositive_volumes),
+          min_sj(q.min_scaled_jacobian) {}
+    bool better_than(const PolishRank& o) const {
+        return refused < o.refused || (refused == o.refused && min_sj > o.min_sj);
+    }
+};
+
+}  // namespace
+
+std::vector<bool> wall_layer_nodes(const BlockGrid& grid, int layers) {
+    std::vector<bool> marked(grid.points.size(), false);
+    for (const WallFace& f : wall_faces(grid))
+        for (int q = 0; q < f.nq; ++q)
+            for (int p = 0; p < f.np; ++p)
+                for (int t = 0; t <= std::min(layers, f.depth - 1); ++t) marked[f.node(p, q, t)] = true;
+    return marked;
+}
+
+PolishResult polish_worst_cells(BlockGrid& grid, const ImplicitFunction& body, const PolishOptions& options) {
+    PolishResult result;
+    const QualityReport first = measure_quality(grid);
+    result.min_sj_before = result.min_sj_after = first.min_scaled_jacobian;
+    result.refused_before = result.refused_after = PolishRank(first).refused;
+    // The cells to polish, in for_each_cell order over the blocks.
+    const auto to_polish = [&] {
+        std::vector<bool> cells(size_t(grid.num_cells()), false);
+        if (options.refused_only) {
+            for (Id c : find_refused_cells(to_hex_mesh(grid))) cells[c] = true;
+        } else {
+            const std::vector<double> sj = scaled_jacobians(grid);
+            for (size_t c = 0; c < sj.size(); ++c) cells[c] = !(sj[c] >= options.below);
+        }
+        return cells;
+    };
+    std::vector<bool> cells = to_polish();
+    result.cells = result.cells_after = Id(std::count(cells.begin(), cells.end(), true));
+    std::vector<Vec3> best = grid.points;
+    PolishRank best_rank(first);
+    for (int round = 0; round < options.rounds && std::count(cells.begin(), cells.end(), true) > 0; ++round) {
+        std::vector<bool> marked(grid.points.size(), false);
+        size_t c = 0;
+        for (const Block& block : grid.blocks)
+            for_each_cell(block, [&](int, int, int, const std::array<Id, 8>& nodes) {
+                if (cells[c++])
+                    for (Id v : nodes) marked[v] = true;
+            });
+        std::vector<bool> held = grow_by_cells(grid, marked, options.rings);
+        held.flip();
+        if (!options.held.empty())
+            for (size_t v = 0; v < held.size(); ++v) held[v] = held[v] || options.held[v];
+        GridProblem g = make_problem(grid, grid.points, body, held, {});
+        const untangle::UntangleResult r = untangle::untangle_and_optimize(g.problem, options.untangle);
+        ++result.rounds;
+        result.seconds += r.seconds;
+        if (r.inverted_after > 0) break;  // the next round would start from worse
+        g.scatter(grid.points);  // the next round starts here, even if this one ranks lower
+        cells = to_polish();
+        const PolishRank rank(measure_quality(grid));
+        if (rank.better_than(best_rank)) {
+            best = grid.points, best_rank = rank;
+            result.cells_after = Id(std::count(cells.begin(), cells.end(), true));
+        }
+    }
+    grid.points = std::move(best);
+    result.min_sj_after = best_rank.min_sj;
+    result.refused_after = best_rank.refused;
+    return result;
+}
+
 }  // namespace hexmesh

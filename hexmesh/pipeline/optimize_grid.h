@@ -70,4 +70,34 @@ void slide_on(const ImplicitFunction& body, untangle::Problem& p);
 GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& body,
                                      const GridOptimizationOptions& options);
 
+struct PolishOptions {
+    untangle::UntangleOptions untangle;
+    double below = 0.3;  // cells whose scaled Jacobian (Verdict's, centre frame included) is under this
+    int rings = 2;       // and the cells within this many rings of them are optimized again
+    int rounds = 4;      // at most this many times
+    // Instead of the cells under `below`, those a solver refuses (find_refused_cells).
+    bool refused_only = false;
+    std::vector<bool> held;  // as in GridOptimizationOptions
+};
+
+struct PolishResult {
+    Id cells = 0, cells_after = 0;  // cells polished (under `below`, or refused) before and after
+    // Inverted cells plus checkMesh's failures (QualityReport::solver_valid), before and after.
+    Id refused_before = 0, refused_after = 0;
+    double min_sj_before = 0, min_sj_after = 0;
+    int rounds = 0;
+    double seconds = 0;
+};
+
+// The worst cells of an optimized grid optimized again in their neighbourhood, the rest held:
+// a global optimization stops when the mean energy no longer falls, while a few cells (thin
+// parts of the body, wall quads bent round a fold) are still poor, and in a small problem
+// they weigh. Targets: each cell's box of its current edge lengths. Each round starts from the
+// one before; the grid returned is the best seen (fewer cells a solver refuses, then a
+// higher worst scaled Jacobian), never worse than the input.
+// The nodes 0 .. layers of every wall line: the wall and its boundary layer.
+std::vector<bool> wall_layer_nodes(const BlockGrid& grid, int layers);
+
+PolishResult polish_worst_cells(BlockGrid& grid, const ImplicitFunction& body, const PolishOptions& options);
+
 }  // namespace hexmesh

@@ -1,6 +1,7 @@
 #include "hexmesh/pipeline/run_case.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -73,17 +74,29 @@ void refuse_topology(const Case& c, const TriangleSurface& surface, std::ostream
                            s.boundary_edges, s.boundary_loops);
 }
 
-// Throws (nothing written) when the grid has inverted cells, unless keep_invalid.
+// What makes the grid invalid, for the refusal: its inverted cells, else what a finite-volume
+// solver refuses in it.
+std::string invalid_cells(const QualityReport& q) {
+    if (q.inverted_cells > 0) return fmt::format("{} inverted cells", q.inverted_cells);
+    std::vector<std::string> what;
+    if (q.negative_pyramids > 0) what.push_back(fmt::format("{} face pyramids of negative volume", q.negative_pyramids));
+    if (q.faces_over_90_deg > 0) what.push_back(fmt::format("{} faces at 90 degrees of non-orthogonality or more", q.faces_over_90_deg));
+    if (q.nonpositive_volumes > 0) what.push_back(fmt::format("{} cells of volume <= 0", q.nonpositive_volumes));
+    return fmt::format("cells that a finite-volume solver refuses ({})", fmt::join(what, ", "));
+}
+
+// Throws (nothing written) when the grid is not valid for a solver (QualityReport::solver_valid:
+// inverted cells, cells turned inside out at their centre or faces warped past it), unless
+// keep_invalid.
 void refuse_invalid(const Case& c, const GridReport& report, const std::string& dir,
                     const RunOptions& options) {
-    const Id inverted = report.quality.inverted_cells;
-    if (inverted > 0 && !options.keep_invalid) {
+    if (!report.quality.solver_valid() && !options.keep_invalid) {
         const Vec3& at = report.quality.worst_cell_centre;
         const std::optional<CellPlace>& w = report.worst_cell;
         throw std::runtime_error(fmt::format(
-            "{}: the grid {}has {} inverted cells (min scaled Jacobian {:.3g} at ({:.4g}, {:.4g}, {:.4g}){}); "
+            "{}: the grid {}has {} (min scaled Jacobian {:.3g} at ({:.4g}, {:.4g}, {:.4g}){}); "
             "nothing written (use --keep-invalid to write it as grid_invalid.*)",
-            c.path, dir.empty() ? "" : "of " + dir.substr(0, dir.size() - 1) + " ", inverted,
+            c.path, dir.empty() ? "" : "of " + dir.substr(0, dir.size() - 1) + " ", invalid_cells(report.quality),
             report.quality.min_scaled_jacobian, at.x(), at.y(), at.z(),
             w ? fmt::format(", block {} cell ({}, {}, {}){}", w->block, w->i, w->j, w->k,
                             w->on_wall ? " on the wall" : "")
@@ -96,8 +109,7 @@ void refuse_invalid(const Case& c, const GridReport& report, const std::string& 
 void write_level(const Case& c, const BlockGrid& grid, GridReport report, const std::string& dir,
                  const RunOptions& options, PhaseTimer& timer, StagedOutput& out) {
     refuse_invalid(c, report, dir, options);
-    const Id inverted = report.quality.inverted_cells;
-    const std::string stem = dir + (inverted > 0 ? "grid_invalid" : "grid");
+    const std::string stem = dir + (report.quality.solver_valid() ? "grid" : "grid_invalid");
     const std::string file = out.path(stem + (grid.blocks.size() == 1 ? ".vts" : ".vtm"));
     std::filesystem::create_directories(std::filesystem::path(file).parent_path());
     write_vtk_grid(grid, file);
@@ -227,6 +239,39 @@ void surface_pass(const Case& c, const ImplicitFunction& body, const WallRoute* 
     }
 }
 
+// The worst cells optimized again in their neighbourhood (optimize_grid.h,
+// polish_worst_cells), the wall and its boundary layer held. While the grid then has cells a
+// solver refuses: those cells with 2, then 4 rings around them, layers free (validity before
+// the layers' spacing); then every cell under the threshold, layers free. One line per pass.
+void polish(const Case& c, const ImplicitFunction& body, BlockGrid& grid, std::ostream& log) {
+    PolishOptions o;
+    o.untangle = untangle_options(c.solver, log);
+    o.untangle.log = nullptr;  // a summary line instead
+    o.untangle.optimize_tolerance = 1e-7;  // a small problem: its worst cells weigh
+    o.untangle.max_optimize_iterations = 50;
+    const int layers = wall_layers(c).layers;
+    if (layers > 0) o.held = wall_layer_nodes(grid, layers);
+    for (int pass = 0; pass < 4; ++pass) {
+        const PolishResult r = polish_worst_cells(grid, body, o);
+        if (r.cells > 0) {
+            if (o.refused_only)
+                log << fmt::format("  cells a solver refuses (checkMesh's cell checks) and {} rings around them, "
+                                   "layers free: {} -> {}",
+                                   o.rings, r.refused_before, r.refused_after);
+            else
+                log << fmt::format("  worst cells polished{}: {} -> {} cells with a scaled Jacobian under {}",
+                                   o.held.empty() ? ", layers free" : " beyond the boundary layer", r.cells,
+                                   r.cells_after, o.below);
+            log << fmt::format(", min scaled Jacobian {:.3g} -> {:.3g} ({} rounds, {:.2f} s)\n", r.min_sj_before,
+                               r.min_sj_after, r.rounds, r.seconds);
+        }
+        if (r.refused_after == 0) return;
+        o.held.clear();
+        o.refused_only = pass < 2;
+        o.rings = pass == 1 ? 4 : 2;
+    }
+}
+
 }  // namespace
 
 RunResult run_case(const Case& given, const std::string& outdir, const RunOptions& options,
@@ -313,6 +358,8 @@ RunResult run_case(const Case& given, const std::string& outdir, const RunOption
                 log << "  the laid layers left inverted cells: the joint optimization's grid is kept\n";
         }
         timer.done("optimization");
+        polish(c, *body, result.grid, log);
+        timer.done("polish");
     }
     result.report = measure_grid(result.grid, *body, wall_layers(c), surface ? &*surface : nullptr);
     timer.done("quality");

@@ -217,5 +217,43 @@ TEST(Quality, FaceSharedByThreeCellsIsRejected) {
     EXPECT_THROW(measure_quality(mesh), std::invalid_argument);
 }
 
+// A cell from an optimized grid of a body with legs: its 8 corner tets are positive, but it is
+// turned inside out at its centre (Verdict's centre frame -0.96, OpenFOAM volume < 0).
+std::array<Vec3, 8> inside_out_cell() {
+    return {Vec3(-0.141865, 0.190517, 0.212616), Vec3(-0.143186, 0.199647, 0.204166),
+            Vec3(-0.158641, 0.160889, 0.142733), Vec3(-0.156454, 0.15972, 0.139122),
+            Vec3(-0.143301, 0.190185, 0.211333), Vec3(-0.143869, 0.197249, 0.201958),
+            Vec3(-0.146059, 0.159576, 0.147823), Vec3(-0.152377, 0.160523, 0.140178)};
+}
+
+TEST(SolverValidity, ACellInsideOutAtItsCentreIsRefusedThoughItsCornersArePositive) {
+    HexMesh mesh = tensor_grid(uniform(2, 1.0), uniform(1, 1.0), uniform(1, 1.0));  // cells 0, 1
+    const std::array<Vec3, 8> bad = inside_out_cell();
+    const Id first = Id(mesh.points.size());
+    mesh.points.insert(mesh.points.end(), bad.begin(), bad.end());
+    for (Id i = 0; i < 8; ++i) mesh.hexes.push_back(first + i);  // cell 2, apart
+    EXPECT_EQ(count_inverted_corner_tets(bad), 0);
+    const QualityReport q = measure_quality(mesh);
+    EXPECT_EQ(q.inverted_corner_tets, 0);
+    EXPECT_GT(q.negative_pyramids, 0);
+    EXPECT_EQ(q.nonpositive_volumes, 1);
+    EXPECT_FALSE(q.solver_valid());
+    EXPECT_EQ(find_refused_cells(mesh), std::vector<Id>{2});
+
+    const QualityReport cubes = measure_quality(tensor_grid(uniform(2, 1.0), uniform(1, 1.0), uniform(1, 1.0)));
+    EXPECT_TRUE(cubes.solver_valid());
+    EXPECT_EQ(cubes.negative_pyramids + cubes.faces_over_90_deg + cubes.nonpositive_volumes, 0);
+}
+
+// Verdict scores a cell with a zero-length edge 1e30; the mean stays a mean of values in [-1, 1].
+TEST(SolverValidity, ADegenerateCellDoesNotSwampTheMeanScaledJacobian) {
+    std::array<Vec3, 8> p = unit_cube();
+    p[6] = p[5];
+    const QualityReport q = measure_quality(single_hex(p));
+    EXPECT_EQ(q.min_scaled_jacobian, 1e30);
+    EXPECT_LE(q.mean_scaled_jacobian, 1.0);
+    EXPECT_FALSE(q.solver_valid());
+}
+
 }  // namespace
 }  // namespace hexmesh

@@ -400,3 +400,37 @@ TEST(Fluent, ZonesBeyondNineKeepTheirNames) {
         EXPECT_TRUE(std::regex_search(r.output, std::regex(std::string(R"(\n\s*)") + patch + R"(\s+4\s)")))
             << patch << "\n" << r.output;
 }
+
+// A cell from a grid of a body with legs (wall cell of a folded quad): its 8 corner tets are
+// positive, but it is turned inside out at its centre, its volume negative and faces lie
+// beyond its centre. The quality report counts what checkMesh fails, with checkMesh's numbers,
+// and does not call the grid valid.
+TEST(OpenFoam, QualityCountsTheCellChecksCheckMeshFails) {
+    if (!have_tool("checkMesh")) GTEST_SKIP() << "checkMesh not installed (Debian package openfoam)";
+    BlockGrid grid;
+    grid.points = {{-0.141865, 0.190517, 0.212616}, {-0.143186, 0.199647, 0.204166},
+                   {-0.158641, 0.160889, 0.142733}, {-0.156454, 0.15972, 0.139122},
+                   {-0.143301, 0.190185, 0.211333}, {-0.143869, 0.197249, 0.201958},
+                   {-0.146059, 0.159576, 0.147823}, {-0.152377, 0.160523, 0.140178}};
+    grid.kinds.assign(8, VertexKind::interior);
+    Block b;
+    b.name = "cell";
+    b.nodes = {2, 2, 2};
+    b.node_ids = {0, 1, 3, 2, 4, 5, 7, 6};  // (i, j, k) order of the VTK corners above
+    b.face_patch = {"wall", "wall", "wall", "wall", "wall", "wall"};
+    grid.blocks = {b};
+    const QualityReport q = measure_quality(grid);
+    EXPECT_EQ(q.inverted_corner_tets, 0);
+    EXPECT_FALSE(q.solver_valid());
+    EXPECT_LT(q.min_scaled_jacobian, -0.9);
+
+    const fs::path dir = scratch("openfoam_refused_cell");
+    write_openfoam_mesh(grid, (dir / "case").string());
+    const ToolRun r = run_tool(check_mesh_command(dir / "case"));
+    EXPECT_NE(r.output.find("Failed"), std::string::npos) << r.output;
+    EXPECT_EQ(number_after(r.output, "Error in face pyramids: "), double(q.negative_pyramids)) << r.output;
+    EXPECT_EQ(number_after(r.output, "Number of negative volume cells: "), double(q.nonpositive_volumes)) << r.output;
+    EXPECT_GT(q.negative_pyramids, 0);
+    EXPECT_EQ(q.nonpositive_volumes, 1);
+    fs::remove_all(dir);
+}

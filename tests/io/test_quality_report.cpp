@@ -75,10 +75,13 @@ TEST(QualityReport, WithoutWallTheTableAndJsonAreAsBefore) {
     EXPECT_EQ(table.find("first-layer thickness"), std::string::npos);
     EXPECT_EQ(table.find("Hausdorff"), std::string::npos);
     EXPECT_EQ(table.find("time per phase"), std::string::npos);
-    EXPECT_EQ(lines_of(table).size(), 12u);
+    EXPECT_NE(table.find("  negative face pyramids                     0\n"), std::string::npos) << table;
+    EXPECT_EQ(lines_of(table).size(), 15u);
 
     const auto j = nlohmann::json::parse(quality_json(r));
     EXPECT_EQ(j.at("cells").get<long>(), 4056);
+    EXPECT_TRUE(j.at("valid").get<bool>());
+    EXPECT_EQ(j.at("faces_over_90_deg").get<long>(), 0);
     EXPECT_DOUBLE_EQ(j.at("length_scale_h").get<double>(), 0.0962);
     EXPECT_FALSE(j.contains("wall"));
     EXPECT_FALSE(j.contains("phases"));
@@ -137,7 +140,9 @@ TEST(QualityReport, JsonHoldsTheWallAndPhases) {
     r.wall = wall_quality();
     r.phase_seconds = {{"geometry", 0.012}, {"grid", 1.5}};
     const auto j = nlohmann::json::parse(quality_json(r));
-    EXPECT_EQ(j.at("cells").get<long>(), 4056);  // existing keys stay
+    EXPECT_EQ(j.at("cells").get<long>(), 4056);
+    EXPECT_TRUE(j.at("valid").get<bool>());
+    EXPECT_EQ(j.at("faces_over_90_deg").get<long>(), 0);  // existing keys stay
     const auto& w = j.at("wall");
     EXPECT_EQ(w.at("cells").get<long>(), 864);
     EXPECT_DOUBLE_EQ(w.at("first_layer_thickness").at("min").get<double>(), 0.0099);

@@ -7,6 +7,7 @@
 
 #include "hexmesh/core/quality.h"
 #include "hexmesh/pipeline/make_body.h"
+#include "hexmesh/pipeline/optimize_grid.h"
 #include "hexmesh/pipeline/run_case.h"
 #include "io/vtk_mesh.h"
 
@@ -117,4 +118,37 @@ TEST(RunCase, ExteriorWallCellsFollowTheCellSize) {
     const Case written = read_case((dir / "grid.case.json").string());
     EXPECT_EQ(written.grid.wall_cells, 8);
     fs::remove_all(dir);
+}
+
+// A node of the core pushed most of a cell aside leaves its 8 cells poor but valid, worse than
+// any cell as built. The polish of the cells under that optimizes them again with two rings
+// around, the rest held: the worst cell rises, no corner tet turns, and nodes farther than the
+// rings do not move.
+TEST(RunCase, PolishRaisesTheWorstCellsAndHoldsTheRest) {
+    const Case c = parse_case(R"({"geometry": {"ellipsoid": {"semi_axes": [3, 2, 1]}},
+        "grid": {"cells_per_edge": 8, "wall_cells": 4}})", "e.json");
+    const Body body = make_body(c.geometry);
+    BlockGrid grid = build_grid(c, *body);
+    const Block& core = grid.blocks.front();
+    ASSERT_EQ(core.nodes.ni, 9);
+    const Id pushed = core.node(4, 4, 4);
+    const double worst_as_built = measure_quality(grid).min_scaled_jacobian;
+    grid.points[pushed] += 0.3 * (grid.points[core.node(5, 5, 5)] - grid.points[pushed]);  // along a diagonal
+    const QualityReport before = measure_quality(grid);
+    ASSERT_EQ(before.inverted_corner_tets, 0);
+    const std::vector<Vec3> start = grid.points;
+
+    PolishOptions o;
+    o.below = worst_as_built;  // the pushed node's cells only
+    const PolishResult r = polish_worst_cells(grid, *body, o);
+    const QualityReport after = measure_quality(grid);
+    EXPECT_GT(r.cells, 0);
+    EXPECT_LT(r.cells_after, r.cells);
+    EXPECT_EQ(r.min_sj_before, before.min_scaled_jacobian);
+    EXPECT_EQ(r.min_sj_after, after.min_scaled_jacobian);
+    EXPECT_GT(after.min_scaled_jacobian, before.min_scaled_jacobian + 0.1);
+    EXPECT_EQ(after.inverted_corner_tets, 0);
+    EXPECT_TRUE(after.solver_valid());
+    EXPECT_EQ(grid.points[core.node(0, 0, 0)], start[core.node(0, 0, 0)]);  // 4 cells away
+    EXPECT_NE(grid.points[pushed], start[pushed]);
 }
