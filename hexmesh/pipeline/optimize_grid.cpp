@@ -376,6 +376,7 @@ PolishResult polish_worst_cells(BlockGrid& grid, const ImplicitFunction& body, c
         if (!options.held.empty())
             for (size_t v = 0; v < held.size(); ++v) held[v] = held[v] || options.held[v];
         GridProblem g = make_problem(grid, grid.points, body, held, {});
+        if (g.nodes.empty()) break;  // every node of those cells held (the wall and its layers)
         const untangle::UntangleResult r = untangle::untangle_and_optimize(g.problem, options.untangle);
         ++result.rounds;
         result.seconds += r.seconds;

@@ -152,3 +152,20 @@ TEST(RunCase, PolishRaisesTheWorstCellsAndHoldsTheRest) {
     EXPECT_EQ(grid.points[core.node(0, 0, 0)], start[core.node(0, 0, 0)]);  // 4 cells away
     EXPECT_NE(grid.points[pushed], start[pushed]);
 }
+
+// With every node of the poor cells held (as the wall and its layers are in `run`), there is
+// nothing to optimize: the grid comes back as it was.
+TEST(RunCase, PolishOfHeldCellsLeavesTheGridAsItIs) {
+    const Case c = parse_case(R"({"geometry": {"ellipsoid": {"semi_axes": [3, 2, 1]}},
+        "grid": {"cells_per_edge": 6, "wall_cells": 3}})", "e.json");
+    const Body body = make_body(c.geometry);
+    BlockGrid grid = build_grid(c, *body);
+    const std::vector<Vec3> start = grid.points;
+    PolishOptions o;
+    o.below = 1.1;  // every cell
+    o.held.assign(grid.points.size(), true);
+    const PolishResult r = polish_worst_cells(grid, *body, o);
+    EXPECT_EQ(r.rounds, 0);
+    EXPECT_EQ(r.cells, grid.num_cells());
+    EXPECT_EQ(grid.points, start);
+}
