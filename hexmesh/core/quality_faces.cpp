@@ -264,6 +264,20 @@ void add_internal_face(FaceStats& acc, const std::array<Vec3, 4>& p, const FaceG
     acc.max_volume_ratio = std::max(acc.max_volume_ratio, ratio);
 }
 
+// Cell c's faces as it sees them, its OpenFOAM centre and volume (returned) and its per-cell
+// measures into `acc`.
+template <class Cells>
+CellGeometry measure_cell(const Cells& cells, Id c, CellStats& acc) {
+    const CellView v = cells.cell(c);
+    std::array<FaceGeometry, 6> faces;
+    for (int f = 0; f < 6; ++f) faces[f] = oriented_face(cells, c, v, f);
+    const CellGeometry g = detail::cell_geometry(faces);
+    std::array<Vec3, 8> p;
+    for (int k = 0; k < 8; ++k) p[k] = cells.points()[v.nodes[k]];
+    add_cell(acc, c, faces, g, p);
+    return g;
+}
+
 template <class Cells>
 QualityReport measure(const Cells& cells) {
     QualityReport report;
@@ -280,15 +294,9 @@ QualityReport measure(const Cells& cells) {
         tbb::blocked_range<Id>(0, report.cells, cells_per_task), CellStats{},
         [&](const tbb::blocked_range<Id>& r, CellStats acc) {
             for (Id c = r.begin(); c != r.end(); ++c) {
-                const CellView v = cells.cell(c);
-                std::array<FaceGeometry, 6> faces;
-                for (int f = 0; f < 6; ++f) faces[f] = oriented_face(cells, c, v, f);
-                const CellGeometry g = detail::cell_geometry(faces);
+                const CellGeometry g = measure_cell(cells, c, acc);
                 centres[c] = g.centre;
                 volumes[c] = g.volume;
-                std::array<Vec3, 8> p;
-                for (int k = 0; k < 8; ++k) p[k] = points[v.nodes[k]];
-                add_cell(acc, c, faces, g, p);
             }
             return acc;
         },
@@ -521,15 +529,8 @@ std::vector<Id> refused(const Cells& cells) {
     std::vector<char> bad(static_cast<size_t>(n), 0);
     tbb::parallel_for(tbb::blocked_range<Id>(0, n, cells_per_task), [&](const tbb::blocked_range<Id>& r) {
         for (Id c = r.begin(); c != r.end(); ++c) {
-            const CellView v = cells.cell(c);
-            std::array<FaceGeometry, 6> faces;
-            for (int f = 0; f < 6; ++f) faces[f] = oriented_face(cells, c, v, f);
-            const CellGeometry g = detail::cell_geometry(faces);
-            centres[c] = g.centre;
             CellStats one;
-            std::array<Vec3, 8> p;
-            for (int k = 0; k < 8; ++k) p[k] = points[v.nodes[k]];
-            add_cell(one, c, faces, g, p);
+            centres[c] = measure_cell(cells, c, one).centre;
             bad[c] = one.inverted_tets + one.negative_pyramids + one.nonpositive_volumes > 0;
         }
     });
