@@ -244,6 +244,12 @@ void surface_pass(const Case& c, const ImplicitFunction& body, const WallRoute* 
 // solver refuses: those cells with 2, then 4 rings around them, layers free (validity before
 // the layers' spacing); then every cell under the threshold, layers free. One line per pass.
 void polish(const Case& c, const ImplicitFunction& body, BlockGrid& grid, std::ostream& log) {
+    // Cells the joint untangling left inverted are not repaired by a local optimization (it
+    // runs the same continuation): the grid goes to its refusal as it is.
+    if (const Id inverted = measure_quality(grid).inverted_cells; inverted > 0) {
+        log << fmt::format("  no polish: {} cells are still inverted\n", inverted);
+        return;
+    }
     PolishOptions o;
     o.untangle = untangle_options(c.solver, log);
     o.untangle.log = nullptr;  // a summary line instead
