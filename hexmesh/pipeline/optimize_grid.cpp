@@ -320,15 +320,23 @@ GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& bo
 namespace {
 
 // How a grid ranks in the polish: fewer cells a solver refuses (inverted, or failing
-// checkMesh's cell checks), then a higher worst scaled Jacobian.
+// checkMesh's cell checks), then a higher worst scaled Jacobian, then fewer cells under the
+// polish threshold (the worst cell may be one the polish holds).
 struct PolishRank {
     Id refused = 0;
     double min_sj = 0;
-    explicit PolishRank(const QualityReport& q)
-        : refused(q.inverted_cells + q.negative_pyramids + q.faces_over_90_deg + q.nonpositive_volumes),
-          min_sj(q.min_scaled_jacobian) {}
+    Id below = 0;
+    PolishRank(const BlockGrid& grid, double threshold) {
+        const QualityReport q = measure_quality(grid);
+        refused = q.inverted_cells + q.negative_pyramids + q.faces_over_90_deg + q.nonpositive_volumes;
+        min_sj = q.min_scaled_jacobian;
+        const std::vector<double> sj = scaled_jacobians(grid);
+        below = Id(std::count_if(sj.begin(), sj.end(), [&](double v) { return !(v >= threshold); }));
+    }
     bool better_than(const PolishRank& o) const {
-        return refused < o.refused || (refused == o.refused && min_sj > o.min_sj);
+        if (refused != o.refused) return refused < o.refused;
+        if (min_sj != o.min_sj) return min_sj > o.min_sj;
+        return below < o.below;
     }
 };
 
@@ -345,9 +353,9 @@ std::vector<bool> wall_layer_nodes(const BlockGrid& grid, int layers) {
 
 PolishResult polish_worst_cells(BlockGrid& grid, const ImplicitFunction& body, const PolishOptions& options) {
     PolishResult result;
-    const QualityReport first = measure_quality(grid);
-    result.min_sj_before = result.min_sj_after = first.min_scaled_jacobian;
-    result.refused_before = result.refused_after = PolishRank(first).refused;
+    const PolishRank first(grid, options.below);
+    result.min_sj_before = result.min_sj_after = first.min_sj;
+    result.refused_before = result.refused_after = first.refused;
     // The cells to polish, in for_each_cell order over the blocks.
     const auto to_polish = [&] {
         std::vector<bool> cells(size_t(grid.num_cells()), false);
@@ -362,7 +370,7 @@ PolishResult polish_worst_cells(BlockGrid& grid, const ImplicitFunction& body, c
     std::vector<bool> cells = to_polish();
     result.cells = result.cells_after = Id(std::count(cells.begin(), cells.end(), true));
     std::vector<Vec3> best = grid.points;
-    PolishRank best_rank(first);
+    PolishRank best_rank = first;
     for (int round = 0; round < options.rounds && std::count(cells.begin(), cells.end(), true) > 0; ++round) {
         std::vector<bool> marked(grid.points.size(), false);
         size_t c = 0;
@@ -383,7 +391,7 @@ PolishResult polish_worst_cells(BlockGrid& grid, const ImplicitFunction& body, c
         if (r.inverted_after > 0) break;  // the next round would start from worse
         g.scatter(grid.points);  // the next round starts here, even if this one ranks lower
         cells = to_polish();
-        const PolishRank rank(measure_quality(grid));
+        const PolishRank rank(grid, options.below);
         if (rank.better_than(best_rank)) {
             best = grid.points, best_rank = rank;
             result.cells_after = Id(std::count(cells.begin(), cells.end(), true));

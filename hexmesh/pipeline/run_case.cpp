@@ -241,8 +241,9 @@ void surface_pass(const Case& c, const ImplicitFunction& body, const WallRoute* 
 
 // The worst cells optimized again in their neighbourhood (optimize_grid.h,
 // polish_worst_cells), the wall and its boundary layer held. While the grid then has cells a
-// solver refuses: those cells with 2, then 4 rings around them, layers free (validity before
-// the layers' spacing); then every cell under the threshold, layers free. One line per pass.
+// solver refuses: those cells with 2, 4, then 8 rings around them, layers free (validity
+// before the layers' spacing); then every cell under the threshold, layers free. One line per
+// pass.
 void polish(const Case& c, const ImplicitFunction& body, BlockGrid& grid, std::ostream& log) {
     // Cells the joint untangling left inverted are not repaired by a local optimization (it
     // runs the same continuation): the grid goes to its refusal as it is.
@@ -257,7 +258,7 @@ void polish(const Case& c, const ImplicitFunction& body, BlockGrid& grid, std::o
     o.untangle.max_optimize_iterations = 50;
     const int layers = wall_layers(c).layers;
     if (layers > 0) o.held = wall_layer_nodes(grid, layers);
-    for (int pass = 0; pass < 4; ++pass) {
+    for (int pass = 0; pass < 5; ++pass) {
         const PolishResult r = polish_worst_cells(grid, body, o);
         if (r.cells > 0) {
             if (o.refused_only)
@@ -273,8 +274,8 @@ void polish(const Case& c, const ImplicitFunction& body, BlockGrid& grid, std::o
         }
         if (r.refused_after == 0) return;
         o.held.clear();
-        o.refused_only = pass < 2;
-        o.rings = pass == 1 ? 4 : 2;
+        o.refused_only = pass < 3;  // rings 2, 4, 8; then every cell under the threshold, rings 2
+        o.rings = pass < 3 ? 2 << pass : 2;
     }
 }
 

@@ -78,7 +78,10 @@ TEST(CliBodies, TheSharedBodiesWithHandlesOrTwoSolidsAreRefusedAtOnce) {
 // Outside a cross, the boundary layer laid along the wall normals crosses itself in the
 // concave corners between its arms: those wall lines keep the joint optimization's nodes, and
 // every other line keeps its laid layers (all lines used to fall back then, with 9 % of the
-// wall on the first-layer target). The grid is valid by the independent checker too.
+// wall on the first-layer target). The grid is valid by the independent checker too. Nine
+// cells there would fail checkMesh's cell checks (face pyramids) with every corner tet
+// positive; the polish repairs them with the layers around them free, which costs the layers
+// of some lines there: at least 70 % of the wall keeps its first layer on target.
 TEST(CliBodies, LaidLayersThatWouldCrossAreGivenBackLineByLine) {
     const fs::path cross = bodies / "cross.off";
     if (!fs::exists(cross)) GTEST_SKIP() << "shared bodies not beside the project: " << bodies;
@@ -100,7 +103,8 @@ TEST(CliBodies, LaidLayersThatWouldCrossAreGivenBackLineByLine) {
     std::ifstream in(dir / "out" / "quality.json");
     const nlohmann::json q = nlohmann::json::parse(in);
     EXPECT_TRUE(q.at("valid").get<bool>());
-    EXPECT_GE(q.at("wall").at("first_layer_thickness").at("fraction_within_10_percent").get<double>(), 0.75);
+    EXPECT_EQ(q.at("negative_face_pyramids").get<long>(), 0);
+    EXPECT_GE(q.at("wall").at("first_layer_thickness").at("fraction_within_10_percent").get<double>(), 0.70);
     const fs::path checker = fs::path(HEXMESH_SOURCE_DIR) / ".." / "shared" / "tools" / "check_grid.py";
     ASSERT_TRUE(fs::exists(checker)) << checker;
     const CommandResult check =
