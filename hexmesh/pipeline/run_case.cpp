@@ -79,9 +79,12 @@ void refuse_topology(const Case& c, const TriangleSurface& surface, std::ostream
 std::string invalid_cells(const QualityReport& q) {
     if (q.inverted_cells > 0) return fmt::format("{} inverted cells", q.inverted_cells);
     std::vector<std::string> what;
-    if (q.negative_pyramids > 0) what.push_back(fmt::format("{} face pyramids of negative volume", q.negative_pyramids));
-    if (q.faces_over_90_deg > 0) what.push_back(fmt::format("{} faces at 90 degrees of non-orthogonality or more", q.faces_over_90_deg));
-    if (q.nonpositive_volumes > 0) what.push_back(fmt::format("{} cells of volume <= 0", q.nonpositive_volumes));
+    if (q.negative_pyramids > 0)
+        what.push_back(fmt::format("{} face pyramids of negative volume", q.negative_pyramids));
+    if (q.faces_over_90_deg > 0)
+        what.push_back(fmt::format("{} faces at 90 degrees of non-orthogonality or more", q.faces_over_90_deg));
+    if (q.nonpositive_volumes > 0)
+        what.push_back(fmt::format("{} cells of volume <= 0", q.nonpositive_volumes));
     return fmt::format("cells that a finite-volume solver refuses: {}", fmt::join(what, ", "));
 }
 
