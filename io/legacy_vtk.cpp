@@ -5,11 +5,11 @@
 #include <vtkCellType.h>
 #include <vtkCellTypes.h>
 #include <vtkDoubleArray.h>
-#include <vtkIdTypeArray.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkStructuredGrid.h>
+#include <vtkTypeInt64Array.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
 
@@ -44,11 +44,11 @@ ValueType numeric_type(Parser& f, const std::string& what, bool integers_only) {
 // What the data set section holds, as read so far.
 struct DataSet {
     long long points = -1;  // until POINTS
-    std::vector<double> xyz;
+    vtkNew<vtkDoubleArray> xyz;
     std::array<long long, 3> dims{-1, -1, -1};  // a structured grid's, until DIMENSIONS
     bool has_cells = false, has_types = false;
-    std::vector<vtkIdType> offsets{0}, connectivity;  // offsets: one more than the cells
-    std::vector<unsigned char> types;
+    vtkNew<vtkTypeInt64Array> offsets, connectivity;  // offsets: one more than the cells
+    vtkNew<vtkUnsignedCharArray> types;
     size_t cells_at = 0;                   // where CELLS is, for errors found later
     vtkSmartPointer<vtkDoubleArray> kept;  // the point array asked for
 };
@@ -59,11 +59,12 @@ void read_points(Parser& f, DataSet& d) {
     f.start_data();
     const long long values = f.product(d.points, 3, "POINTS");
     f.check_fits(values, type, "POINTS");
-    d.xyz.resize(size_t(values));
-    for (long long m = 0; m < d.points; ++m) {
-        for (int a = 0; a < 3; ++a) d.xyz[size_t(3 * m + a)] = f.real(type, "a coordinate");
-        if (!std::isfinite(d.xyz[size_t(3 * m)]) || !std::isfinite(d.xyz[size_t(3 * m + 1)]) ||
-            !std::isfinite(d.xyz[size_t(3 * m + 2)]))
+    d.xyz->SetNumberOfComponents(3);
+    d.xyz->SetNumberOfTuples(d.points);
+    double* x = d.xyz->GetPointer(0);
+    for (long long m = 0; m < d.points; ++m, x += 3) {
+        for (int a = 0; a < 3; ++a) x[a] = f.real(type, "a coordinate");
+        if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
             f.fail(fmt::format("point {} has a non-finite coordinate", m));
     }
 }
@@ -80,20 +81,22 @@ void read_cells(Parser& f, DataSet& d, bool offsets_layout, const std::string& v
         if (count > size)
             f.fail(fmt::format("CELLS: {} rows cannot fit in the {} values the line declares",
                                count, size));
-        d.offsets.reserve(size_t(count) + 1);
-        d.connectivity.reserve(size_t(size - count));
-        long long used = 0;
+        d.offsets->SetNumberOfValues(count + 1);
+        d.connectivity->SetNumberOfValues(size - count);
+        vtkTypeInt64* offset = d.offsets->GetPointer(0);
+        vtkTypeInt64* id = d.connectivity->GetPointer(0);
+        offset[0] = 0;
+        long long used = 0;  // of the declared values, with the counts of the rows still to come
         for (long long r = 0; r < count; ++r) {
             const long long ids = f.integer(int32, "the id count of a CELLS row");
-            ++used;
-            if (ids < 0 || ids > size - used)
+            used += 1;
+            if (ids < 0 || ids > size - used - (count - r - 1))
                 f.fail(
                     fmt::format("CELLS: row {} has {} ids, beyond the {} values the line declares",
                                 r, ids, size));
-            for (long long k = 0; k < ids; ++k)
-                d.connectivity.push_back(f.integer(int32, "a point id"));
+            for (long long k = 0; k < ids; ++k) *id++ = f.integer(int32, "a point id");
             used += ids;
-            d.offsets.push_back(vtkIdType(d.connectivity.size()));
+            offset[r + 1] = offset[r] + ids;
         }
         if (used != size)
             f.fail(fmt::format("CELLS: its {} rows hold {} values, but the line declares {}", count,
@@ -108,26 +111,30 @@ void read_cells(Parser& f, DataSet& d, bool offsets_layout, const std::string& v
     f.check_fits(count, type, "OFFSETS");
     if (count == 0 && size != 0)
         f.fail(fmt::format("CELLS: no offsets for the {} ids the line declares", size));
-    d.offsets.resize(size_t(std::max(count, 1LL)));
+    d.offsets->SetNumberOfValues(std::max(count, 1LL));
+    vtkTypeInt64* offset = d.offsets->GetPointer(0);
+    offset[0] = 0;
     for (long long k = 0; k < count; ++k) {
         const long long o = f.integer(type, "an offset");
-        const long long previous = k == 0 ? 0 : d.offsets[size_t(k - 1)];
+        const long long previous = k == 0 ? 0 : offset[k - 1];
         if (o < previous || o > size || (k == 0 && o != 0))
             f.fail(fmt::format("CELLS: offset {} is {}, outside [{}, {}]", k, o,
                                k == 0 ? 0 : previous, k == 0 ? 0 : size));
-        d.offsets[size_t(k)] = o;
+        offset[k] = o;
     }
-    if (d.offsets.back() != size)
-        f.fail(fmt::format("CELLS: the offsets end at {}, but the line declares {} ids",
-                           d.offsets.back(), size));
+    const long long last = offset[std::max(count, 1LL) - 1];
+    if (last != size)
+        f.fail(
+            fmt::format("CELLS: the offsets end at {}, but the line declares {} ids", last, size));
     const std::string connectivity = f.word("CONNECTIVITY");
     if (upper(connectivity) != "CONNECTIVITY")
         f.fail(fmt::format("CELLS: '{}' where CONNECTIVITY follows the offsets", connectivity));
     type = numeric_type(f, "CONNECTIVITY", true);
     f.start_data();
     f.check_fits(size, type, "CONNECTIVITY");
-    d.connectivity.resize(size_t(size));
-    for (vtkIdType& id : d.connectivity) id = f.integer(type, "a point id");
+    d.connectivity->SetNumberOfValues(size);
+    vtkTypeInt64* id = d.connectivity->GetPointer(0);
+    for (long long k = 0; k < size; ++k) id[k] = f.integer(type, "a point id");
 }
 
 // CELL_TYPES: one 4-byte int a cell, each a type VTK knows (polyhedra, which need a face list
@@ -136,7 +143,7 @@ void read_cell_types(Parser& f, DataSet& d) {
     const long long count = f.count("the CELL_TYPES count");
     f.start_data();
     f.check_fits(count, int32, "CELL_TYPES");
-    d.types.resize(size_t(count));
+    d.types->SetNumberOfValues(count);
     for (long long c = 0; c < count; ++c) {
         const long long type = f.integer(int32, "a cell type");
         if (type < 0 || type > 255 ||
@@ -145,7 +152,7 @@ void read_cell_types(Parser& f, DataSet& d) {
                 fmt::format("CELL_TYPES: cell {} has type {}, which VTK does not know", c, type));
         if (type == VTK_POLYHEDRON)
             f.fail(fmt::format("CELL_TYPES: cell {} is a polyhedron (42), which is not read", c));
-        d.types[size_t(c)] = static_cast<unsigned char>(type);
+        d.types->SetValue(c, static_cast<unsigned char>(type));
     }
 }
 
@@ -358,24 +365,23 @@ vtkSmartPointer<vtkDataSet> read_legacy_vtk(const std::string& path,
     }
     // The data set's checks that need all of its sections.
     if (d.points < 0) f.fail(fmt::format("the {} has no POINTS", kind));
-    vtkNew<vtkDoubleArray> xyz;
-    xyz->SetNumberOfComponents(3);
-    xyz->SetNumberOfTuples(d.points);
-    std::copy(d.xyz.begin(), d.xyz.end(), xyz->GetPointer(0));
     vtkNew<vtkPoints> points;
-    points->SetData(xyz);
+    points->SetData(d.xyz);
     vtkSmartPointer<vtkDataSet> out;
     long long cells = 0;
     if (unstructured) {
         if (d.has_cells != d.has_types)
             f.fail(d.has_cells ? "CELLS without CELL_TYPES" : "CELL_TYPES without CELLS");
-        cells = static_cast<long long>(d.types.size());
-        if (d.offsets.size() != d.types.size() + 1)
-            f.fail(fmt::format("CELL_TYPES: {} types for the {} cells of CELLS", d.types.size(),
-                               d.offsets.size() - 1));
-        for (size_t c = 0; c + 1 < d.offsets.size(); ++c)
-            for (vtkIdType k = d.offsets[c]; k < d.offsets[c + 1]; ++k) {
-                const vtkIdType id = d.connectivity[size_t(k)];
+        if (!d.has_cells) d.offsets->InsertNextValue(0);  // no cells
+        cells = d.types->GetNumberOfValues();
+        if (d.offsets->GetNumberOfValues() != cells + 1)
+            f.fail(fmt::format("CELL_TYPES: {} types for the {} cells of CELLS", cells,
+                               d.offsets->GetNumberOfValues() - 1));
+        const vtkTypeInt64* offset = d.offsets->GetPointer(0);
+        const vtkTypeInt64* ids = d.connectivity->GetPointer(0);
+        for (long long c = 0; c < cells; ++c)
+            for (vtkTypeInt64 k = offset[c]; k < offset[c + 1]; ++k) {
+                const vtkTypeInt64 id = ids[k];
                 if (id < 0 || id >= d.points)
                     f.fail_at(
                         d.cells_at,
@@ -383,19 +389,11 @@ vtkSmartPointer<vtkDataSet> read_legacy_vtk(const std::string& path,
                                     d.points == 0 ? "no points"
                                                   : fmt::format("points 0 to {}", d.points - 1)));
             }
-        vtkNew<vtkIdTypeArray> offsets, connectivity;
-        offsets->SetNumberOfValues(vtkIdType(d.offsets.size()));
-        std::copy(d.offsets.begin(), d.offsets.end(), offsets->GetPointer(0));
-        connectivity->SetNumberOfValues(vtkIdType(d.connectivity.size()));
-        std::copy(d.connectivity.begin(), d.connectivity.end(), connectivity->GetPointer(0));
         vtkNew<vtkCellArray> list;
-        list->SetData(offsets, connectivity);
-        vtkNew<vtkUnsignedCharArray> types;
-        types->SetNumberOfValues(vtkIdType(d.types.size()));
-        std::copy(d.types.begin(), d.types.end(), types->GetPointer(0));
+        list->SetData(d.offsets, d.connectivity);
         auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
         grid->SetPoints(points);
-        grid->SetCells(types, list);
+        grid->SetCells(d.types, list);
         out = grid;
     } else {
         if (d.dims[0] < 0) f.fail("the STRUCTURED_GRID has no DIMENSIONS");

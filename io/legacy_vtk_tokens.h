@@ -13,8 +13,8 @@
 #include <cstring>
 #include <fstream>
 #include <optional>
-#include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "io/case_file.h"
@@ -75,10 +75,11 @@ class Parser {
   public:
     explicit Parser(std::string path) : path_(std::move(path)) {
         vtk_support::require_file(path_);
-        std::ifstream in(path_, std::ios::binary);
-        std::ostringstream bytes;
-        bytes << in.rdbuf();
-        bytes_ = bytes.str();
+        std::ifstream in(path_, std::ios::binary | std::ios::ate);
+        bytes_.resize(size_t(std::max<std::streamoff>(in.tellg(), 0)));
+        in.seekg(0);
+        in.read(bytes_.data(), std::streamsize(bytes_.size()));
+        if (!in) throw InputError(fmt::format("{}: cannot read the file", path_));
     }
 
     void set_binary(bool binary) { binary_ = binary; }
@@ -107,7 +108,7 @@ class Parser {
         return at_ == bytes_.size();
     }
     // The next word; `what` names it when the file ends first.
-    std::string word(const std::string& what) {
+    std::string word(std::string_view what) {
         skip_space();
         const size_t start = at_;
         while (at_ < bytes_.size() && !is_space(bytes_[at_])) ++at_;
@@ -115,7 +116,7 @@ class Parser {
         return bytes_.substr(start, at_ - start);
     }
     // The next word as a count: a whole number, 0 or more.
-    long long count(const std::string& what) {
+    long long count(std::string_view what) {
         const std::string text = word(what);
         long long v = -1;
         const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
@@ -144,7 +145,7 @@ class Parser {
         at_ = end + 1;
     }
     // tuples x components, refused beyond 64 bits (check_fits then compares it with the file).
-    long long product(long long tuples, long long components, const std::string& what) const {
+    long long product(long long tuples, long long components, std::string_view what) const {
         if (components != 0 && tuples > LLONG_MAX / components)
             fail(fmt::format("{}: {} x {} values are more than any file holds", what, tuples,
                              components));
@@ -152,7 +153,7 @@ class Parser {
     }
     // Refuses `count` values of `type` that the rest of the file cannot hold: nothing is sized
     // from a count before this.
-    void check_fits(long long count, ValueType type, const std::string& what) const {
+    void check_fits(long long count, ValueType type, std::string_view what) const {
         const size_t left = bytes_.size() - at_;
         const unsigned long long n = static_cast<unsigned long long>(count);
         bool fits;
@@ -172,7 +173,7 @@ class Parser {
     }
 
     // One value as an integer: refused if it is not one, or beyond 64 bits.
-    long long integer(ValueType type, const std::string& what) {
+    long long integer(ValueType type, std::string_view what) {
         if (!binary_) {
             const std::string text = word(what);
             long long v = 0;
@@ -194,7 +195,7 @@ class Parser {
         return static_cast<long long>(bits);
     }
     // One value of a numeric type as a double.
-    double real(ValueType type, const std::string& what) {
+    double real(ValueType type, std::string_view what) {
         if (!binary_) {
             const std::string text = word(what);
             char* end = nullptr;
@@ -216,7 +217,7 @@ class Parser {
         return v;
     }
     // `count` values of a numeric type (bits as 0 and 1) as doubles.
-    std::vector<double> reals(ValueType type, long long count, const std::string& what) {
+    std::vector<double> reals(ValueType type, long long count, std::string_view what) {
         if (type.kind == Kind::String)
             fail(fmt::format("{} holds strings; expected numbers", what));
         check_fits(count, type, what);
@@ -231,7 +232,7 @@ class Parser {
         return values;
     }
     // Skips `count` values of `type`.
-    void skip(ValueType type, long long count, const std::string& what) {
+    void skip(ValueType type, long long count, std::string_view what) {
         check_fits(count, type, what);
         const auto n = static_cast<size_t>(count);
         if (type.kind == Kind::String && !binary_) {  // one string a line, after the keyword line
@@ -275,7 +276,7 @@ class Parser {
     void skip_space() {
         while (at_ < bytes_.size() && is_space(bytes_[at_])) ++at_;
     }
-    std::uint64_t big_endian(int size, const std::string& what) {
+    std::uint64_t big_endian(int size, std::string_view what) {
         if (bytes_.size() - at_ < size_t(size)) fail(fmt::format("the file ends inside {}", what));
         std::uint64_t v = 0;
         for (int b = 0; b < size; ++b)
