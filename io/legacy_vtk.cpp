@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstring>
 #include <optional>
+#include <set>
 #include <vector>
 
 #include "io/case_file.h"
@@ -235,6 +236,13 @@ void read_attributes(Parser& f, DataSet& d, long long cells, const std::string& 
             read_field(f, d, points ? "point" : "cell", tuples, keep);
             continue;
         }
+        static const std::set<std::string> arrays = {
+            "SCALARS",      "VECTORS",      "NORMALS",
+            "TENSORS",      "TENSORS6",     "GLOBAL_IDS",
+            "PEDIGREE_IDS", "EDGE_FLAGS",   "TEXTURE_COORDINATES",
+            "LOOKUP_TABLE", "COLOR_SCALARS"};
+        if (arrays.count(key) == 0)
+            f.fail_at(at, fmt::format("unknown keyword '{}' in the {} section", word, section));
         const std::string name = f.word("the name of a " + key);
         long long components = 1;
         std::string type;
@@ -264,13 +272,10 @@ void read_attributes(Parser& f, DataSet& d, long long cells, const std::string& 
             type = f.word("the type of TEXTURE_COORDINATES " + name);
         } else if (key == "GLOBAL_IDS" || key == "PEDIGREE_IDS" || key == "EDGE_FLAGS") {
             type = f.word("the type of " + key + " " + name);
-        } else if (key == "LOOKUP_TABLE" ||
-                   key == "COLOR_SCALARS") {  // colours: bytes if binary, else floats
+        } else {  // LOOKUP_TABLE, COLOR_SCALARS: colours, bytes if binary, else floats
             components = f.count("the size of " + key + " " + name);
             if (key == "LOOKUP_TABLE") components = f.product(components, 4, key + " " + name);
             type = f.binary() ? "unsigned_char" : "float";
-        } else {
-            f.fail_at(at, fmt::format("unknown keyword '{}' in the {} section", word, section));
         }
         const long long rows = key == "LOOKUP_TABLE" ? 1 : tuples;
         read_array(f, d, name, type, rows, components,

@@ -293,6 +293,7 @@ TEST(LegacyVtk, MalformedFilesAreRefusedNamingTheLineOrByteAndTheFault) {
         {head + cube + cell + "POINT_DATA 8\nFIELD f 1\nfixed 1 7 int\n0 0 0 0 0 0 0\n", ":20: the point array \"fixed\" has 7 values for 8 points"},
         {head + cube + cell + "POINT_DATA 8\nSCALARS s float\nLOOKUP_TABLE default\n1 2 3\n", ":20: array 's': 8 values do not fit in the 7 bytes left in the file"},
         {head + cube + "CELLS 1 9\n8 0 1 3 2 4 5 7 6\n", "CELLS without CELL_TYPES"},
+        {head + cube + cell + "POINT_DATA 8\nVECTOR v float\n", ":19: unknown keyword 'VECTOR' in the POINT_DATA section"},
         {head + cube + cell + "POINTS 8 float\n", ":18: a second POINTS section"},
         {"# vtk DataFile Version 3.0\nt\nASCII\nDATASET STRUCTURED_GRID\nDIMENSIONS 2 2 3\n" + cube,
          "DIMENSIONS 2 2 3 do not make the 8 points of POINTS"},
