@@ -13,6 +13,7 @@
 #include "io/gmsh_mesh.h"
 #include "io/medit_mesh.h"
 #include "io/plot3d.h"
+#include "io/sample_readers.h"
 #include "io/volume_mesh_io.h"
 #include "io/vtk_mesh.h"
 
@@ -196,6 +197,11 @@ TEST(ReadErrors, FuzzFindingsAreRefused) {
     // Gmsh: a second $Nodes section wrote past the first one's tag table.
     what = test::input_error_of(read_gmsh_mesh, (dir / "gmsh_second_nodes_section.msh").string());
     EXPECT_NE(what.find("gmsh_second_nodes_section.msh:92: a second $Nodes section"), std::string::npos) << what;
+    // A PLY point cloud with an element of 16 578 868 067 080 items and no property: the reader
+    // looped over the items reading nothing (a timeout). The surface reader shares the header.
+    what = test::input_error_of(read_point_cloud, (dir / "points_ply_element_without_properties.ply").string());
+    EXPECT_NE(what.find("PLY element 'v7rtex' declares 16578868067080 items but no property"), std::string::npos)
+        << what;
     // Medit: an element count times its entries overflowed.
     what = test::input_error_of(read_medit_mesh, (dir / "medit_element_count_overflow.mesh").string());
     EXPECT_NE(what.find("elements do not fit in the file"), std::string::npos) << what;
