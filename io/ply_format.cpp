@@ -136,6 +136,11 @@ Header read_header(const std::string& path, const std::string& data,
     });
     if (body == std::string::npos) throw InputError(path + ": not a PLY file: no 'end_header'");
     if (format.empty()) throw InputError(path + ": PLY header has no 'format' line");
+    // Items of no property take no bytes: nothing bounds their count by the file's size.
+    for (const Element& e : elements)
+        if (e.count > 0 && e.properties.empty())
+            throw InputError(fmt::format("{}: PLY element '{}' declares {} items but no property",
+                                         path, e.name, e.count));
     header.body = body;
     header.binary = format != "ascii";
     return header;

@@ -4,12 +4,12 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <vtkCell.h>
 #include <vtkCellArray.h>
 #include <vtkCellType.h>
 #include <vtkDataArray.h>
 #include <vtkDataSet.h>
 #include <vtkIdList.h>
-#include <vtkDataSetReader.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkUnsignedCharArray.h>
@@ -19,6 +19,7 @@
 #include <vtkXMLUnstructuredGridWriter.h>
 
 #include "io/case_file.h"
+#include "io/legacy_vtk.h"
 #include "io/medit_mesh.h"
 #include "io/vtk_support.h"
 
@@ -49,7 +50,8 @@ VolumeMesh from_vtk(vtkDataSet* data, const std::string& path) {
             for (int v = 0; v < 8; ++v) mesh.hexes.push_back(ids->GetId(type == VTK_VOXEL ? voxel_to_hex[v] : v));
         } else if (type == VTK_TETRA) {
             for (int v = 0; v < 4; ++v) mesh.tets.push_back(ids->GetId(v));
-        } else if (data->GetCell(c)->GetCellDimension() == 3) {
+        } else if (vtkCell* cell = data->GetCell(c); !cell || cell->GetCellDimension() == 3) {
+            // Types VTK names but builds no cell of (parametric, some higher-order): refused.
             throw InputError(fmt::format("{}: cell {} has VTK type {}; only hexahedra and tetrahedra "
                                          "are supported", path, c, type));
         }
@@ -104,8 +106,7 @@ VolumeMesh read_volume_mesh(const std::string& path) {
     }
     vtkSmartPointer<vtkDataObject> data;
     if (ext == ".vtk") {
-        vtk_support::check_legacy_vtk(path);  // before VTK's legacy reader
-        data = vtk_support::read_with<vtkDataSetReader>(path);
+        data = read_legacy_vtk(path, "fixed");
     } else if (ext == ".vtu") {
         vtk_support::check_xml_vtk(path);  // before VTK's XML reader
         data = vtk_support::read_with<vtkXMLUnstructuredGridReader>(path);

@@ -6,7 +6,6 @@
 #include <vtkCellData.h>
 #include <vtkCellType.h>
 #include <vtkCompositeDataIterator.h>
-#include <vtkDataSetReader.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkIdList.h>
@@ -33,6 +32,7 @@
 #include "io/case_file.h"
 #include "io/export_grid.h"
 #include "io/gmsh_mesh.h"
+#include "io/legacy_vtk.h"
 #include "io/medit_mesh.h"
 #include "io/plot3d.h"
 #include "io/vtk_support.h"
@@ -262,10 +262,8 @@ HexMesh read_vtk_mesh(const std::string& path) {
     if (ext == ".vts" || ext == ".vtu" || ext == ".vtm") vtk_support::check_xml_vtk(path);  // before VTK's XML reader
     if (ext == ".vts") data = vtk_support::read_with<vtkXMLStructuredGridReader>(path);
     else if (ext == ".vtu") data = vtk_support::read_with<vtkXMLUnstructuredGridReader>(path);
-    else if (ext == ".vtk") {
-        vtk_support::check_legacy_vtk(path);  // before VTK's legacy reader
-        data = vtk_support::read_with<vtkDataSetReader>(path);
-    } else if (ext == ".vtm") data = vtk_support::read_with<vtkXMLMultiBlockDataReader>(path);
+    else if (ext == ".vtk") data = read_legacy_vtk(path);
+    else if (ext == ".vtm") data = vtk_support::read_with<vtkXMLMultiBlockDataReader>(path);
     else if (ext == ".msh") return read_gmsh_mesh(path);
     else if (ext == ".mesh") return read_medit_mesh(path);
     else if (is_plot3d_path(path)) return to_hex_mesh(read_plot3d(path));

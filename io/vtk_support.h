@@ -37,12 +37,6 @@ void configure_xml_writer(vtkXMLWriterBase& writer);
 // (what its type takes) or any of them is outside [0, points).
 void check_cell_points(vtkIdList* ids, int count, Id points, const std::string& path, vtkIdType cell);
 
-// Checks the cell lists of a legacy .vtk file (ASCII or binary, the old and the 5.1 layouts)
-// before VTK's legacy reader sees it: that reader corrupts the heap when a list's rows do not
-// add up to the size its keyword line declares. Throws InputError naming the file, the list
-// and the fault; returns quietly for what it does not check (other datasets, attributes).
-void check_legacy_vtk(const std::string& path);
-
 // Checks an XML VTK file (.vts, .vtu; a .vtm's pieces) before VTK's XML reader sees it: its
 // header_type and byte_order, a structured file's extents (six integers, ranges ascending,
 // pieces inside the whole), that the sections of arrays (FieldData, PointData, ...) hold arrays
