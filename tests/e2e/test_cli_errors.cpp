@@ -1,7 +1,13 @@
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <thread>
 
 #include "cli.h"
 
@@ -113,22 +119,44 @@ TEST(CliErrors, ADistanceFieldTooLargeForTheMachineIsRefusedBeforeItIsBuilt) {
     fs::remove_all(dir);
 }
 
+namespace {
+
+// Whether some process holds the lock `run` takes on its output folder (flock on the folder).
+bool folder_locked(const fs::path& folder) {
+    const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0) return false;
+    const bool locked = ::flock(fd, LOCK_EX | LOCK_NB) != 0;
+    ::close(fd);  // releases it if this process got it
+    return locked;
+}
+
+}  // namespace
+
 TEST(CliErrors, TwoRunsIntoOneFolderAtOnceOneSucceedsTheOtherIsRefused) {
     const fs::path dir = scratch("two_runs");
     fs::remove_all(dir);
     fs::create_directories(dir);
     const fs::path out = dir / "out";
-    const std::string run = std::string("'") + HEXMESH_EXE + "' run cases/sphere/case.json -o '" + out.string() + "'";
-    // Both start together; the sphere takes about a second, the refusal a few milliseconds.
-    const std::string script = "(" + run + " > '" + (dir / "1.out").string() + "' 2> '" + (dir / "1.err").string() +
-                               "'; echo $? > '" + (dir / "1.rc").string() + "') & (" + run + " > '" +
-                               (dir / "2.out").string() + "' 2> '" + (dir / "2.err").string() + "'; echo $? > '" +
-                               (dir / "2.rc").string() + "') & wait";
-    ASSERT_EQ(std::system(script.c_str()), 0);
+    const auto run = [&](const std::string& n) {
+        return std::string("'") + HEXMESH_EXE + "' run cases/sphere/case.json -o '" + out.string() + "' > '" +
+               (dir / (n + ".out")).string() + "' 2> '" + (dir / (n + ".err")).string() + "'; echo $? > '" +
+               (dir / (n + ".rc")).string() + "'";
+    };
+    // The second starts while the first holds the folder (the sphere takes about a second; on
+    // a loaded machine the second could otherwise start after the first has finished).
+    ASSERT_EQ(std::system(("(" + run("1") + ") &").c_str()), 0);
+    const auto waited = [](const auto& ready) {
+        for (int i = 0; i < 6000 && !ready(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        return ready();
+    };
+    ASSERT_TRUE(waited([&] { return folder_locked(out) || fs::exists(dir / "1.rc"); }));
+    ASSERT_FALSE(fs::exists(dir / "1.rc")) << "the first run ended before it was seen holding the folder";
+    ASSERT_EQ(std::system(run("2").c_str()), 0);
+    ASSERT_TRUE(waited([&] { return fs::exists(dir / "1.rc") && !read_text(dir / "1.rc").empty(); }));
     const int rc1 = std::stoi(read_text(dir / "1.rc")), rc2 = std::stoi(read_text(dir / "2.rc"));
-    EXPECT_EQ(std::min(rc1, rc2), 0) << read_text(dir / "1.err") << read_text(dir / "2.err");
-    EXPECT_EQ(std::max(rc1, rc2), 1);
-    const std::string refused = read_text(dir / (rc1 == 1 ? "1.err" : "2.err"));
+    EXPECT_EQ(rc1, 0) << read_text(dir / "1.err");
+    EXPECT_EQ(rc2, 1);
+    const std::string refused = read_text(dir / "2.err");
     EXPECT_EQ(count_lines(refused), 1) << refused;
     EXPECT_NE(refused.find(out.string() + ": another hexmesh process is writing into this folder"),
               std::string::npos) << refused;
