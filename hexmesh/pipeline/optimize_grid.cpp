@@ -326,11 +326,11 @@ struct PolishRank {
     Id refused = 0;
     double min_sj = 0;
     Id below = 0;
-    PolishRank(const BlockGrid& grid, double threshold) {
+    // `sj`: the grid's scaled Jacobians (scaled_jacobians).
+    PolishRank(const BlockGrid& grid, const std::vector<double>& sj, double threshold) {
         const QualityReport q = measure_quality(grid);
         refused = q.inverted_cells + q.negative_pyramids + q.faces_over_90_deg + q.nonpositive_volumes;
         min_sj = q.min_scaled_jacobian;
-        const std::vector<double> sj = scaled_jacobians(grid);
         below = Id(std::count_if(sj.begin(), sj.end(), [&](double v) { return !(v >= threshold); }));
     }
     bool better_than(const PolishRank& o) const {
@@ -353,16 +353,16 @@ std::vector<bool> wall_layer_nodes(const BlockGrid& grid, int layers) {
 
 PolishResult polish_worst_cells(BlockGrid& grid, const ImplicitFunction& body, const PolishOptions& options) {
     PolishResult result;
-    const PolishRank first(grid, options.below);
+    std::vector<double> sj = scaled_jacobians(grid);
+    const PolishRank first(grid, sj, options.below);
     result.min_sj_before = result.min_sj_after = first.min_sj;
     result.refused_before = result.refused_after = first.refused;
-    // The cells to polish, in for_each_cell order over the blocks.
+    // The cells to polish, in for_each_cell order over the blocks (`sj` of the grid as it is).
     const auto to_polish = [&] {
         std::vector<bool> cells(size_t(grid.num_cells()), false);
         if (options.refused_only) {
             for (Id c : find_refused_cells(to_hex_mesh(grid))) cells[c] = true;
         } else {
-            const std::vector<double> sj = scaled_jacobians(grid);
             for (size_t c = 0; c < sj.size(); ++c) cells[c] = !(sj[c] >= options.below);
         }
         return cells;
@@ -390,8 +390,9 @@ PolishResult polish_worst_cells(BlockGrid& grid, const ImplicitFunction& body, c
         result.seconds += r.seconds;
         if (r.inverted_after > 0) break;  // the next round would start from worse
         g.scatter(grid.points);  // the next round starts here, even if this one ranks lower
+        sj = scaled_jacobians(grid);
         cells = to_polish();
-        const PolishRank rank(grid, options.below);
+        const PolishRank rank(grid, sj, options.below);
         if (rank.better_than(best_rank)) {
             best = grid.points, best_rank = rank;
             result.cells_after = Id(std::count(cells.begin(), cells.end(), true));

@@ -89,15 +89,15 @@ struct PolishResult {
     double seconds = 0;
 };
 
+// The nodes 0 .. layers of every wall line: the wall and its boundary layer.
+std::vector<bool> wall_layer_nodes(const BlockGrid& grid, int layers);
+
 // The worst cells of an optimized grid optimized again in their neighbourhood, the rest held:
 // a global optimization stops when the mean energy no longer falls, while a few cells (thin
 // parts of the body, wall quads bent round a fold) are still poor, and in a small problem
 // they weigh. Targets: each cell's box of its current edge lengths. Each round starts from the
 // one before; the grid returned is the best seen (fewer cells a solver refuses, then a
 // higher worst scaled Jacobian, then fewer cells under `below`), never worse than the input.
-// The nodes 0 .. layers of every wall line: the wall and its boundary layer.
-std::vector<bool> wall_layer_nodes(const BlockGrid& grid, int layers);
-
 PolishResult polish_worst_cells(BlockGrid& grid, const ImplicitFunction& body, const PolishOptions& options);
 
 }  // namespace hexmesh
