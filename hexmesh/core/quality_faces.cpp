@@ -251,13 +251,16 @@ void add_cell(CellStats& acc, Id cell, const std::array<FaceGeometry, 6>& faces,
     acc.inverted_cells += inverted > 0;
 }
 
+// checkMesh's non-orthogonality error: the face's cosine (face_orthogonality) at most SMALL.
+bool at_90_deg_or_more(double ortho) { return !(ortho > detail::foam_small); }
+
 // The second pass's measures of an internal face: p, g as its owner sees it.
 void add_internal_face(FaceStats& acc, const std::array<Vec3, 4>& p, const FaceGeometry& g,
                        const Vec3& own_cc, const Vec3& nei_cc, double own_volume,
                        double nei_volume) {
     const double ortho = detail::face_orthogonality(own_cc, nei_cc, g.area);
     acc.min_ortho = std::min(acc.min_ortho, ortho);
-    acc.over_90_deg += !(ortho > detail::foam_small);
+    acc.over_90_deg += at_90_deg_or_more(ortho);
     acc.max_skew = std::max(acc.max_skew, detail::face_skewness(p, g, own_cc, nei_cc));
     const double vo = std::abs(own_volume), vn = std::abs(nei_volume);
     const double ratio = std::max(vo, vn) / std::max(std::min(vo, vn), detail::foam_rootvsmall);
@@ -540,7 +543,7 @@ std::vector<Id> refused(const Cells& cells) {
             const Id other = v.partner[f];
             if (other == no_partner || !is_owner_side(6 * c + f, other)) continue;
             const FaceGeometry g = detail::quad_geometry(points_of(points, v.nodes, hex_faces[f]));
-            if (!(detail::face_orthogonality(centres[c], centres[other / 6], g.area) > detail::foam_small))
+            if (at_90_deg_or_more(detail::face_orthogonality(centres[c], centres[other / 6], g.area)))
                 bad[c] = bad[other / 6] = 1;
         }
     }
@@ -550,18 +553,22 @@ std::vector<Id> refused(const Cells& cells) {
     return ids;
 }
 
+// f(MeshCells of `mesh`), with 32-bit face ids when 6 #cells fits.
+template <class F>
+auto with_mesh_cells(const HexMesh& mesh, F&& f) {
+    if (6 * mesh.num_cells() <= Id(std::numeric_limits<std::int32_t>::max()))
+        return f(MeshCells<std::int32_t>(mesh));
+    return f(MeshCells<Id>(mesh));
+}
+
 }  // namespace
 
 std::vector<Id> find_refused_cells(const HexMesh& mesh) {
-    if (6 * mesh.num_cells() <= Id(std::numeric_limits<std::int32_t>::max()))
-        return refused(MeshCells<std::int32_t>(mesh));
-    return refused(MeshCells<Id>(mesh));
+    return with_mesh_cells(mesh, [](const auto& cells) { return refused(cells); });
 }
 
 QualityReport measure_quality(const HexMesh& mesh) {
-    if (6 * mesh.num_cells() <= Id(std::numeric_limits<std::int32_t>::max()))
-        return measure(MeshCells<std::int32_t>(mesh));
-    return measure(MeshCells<Id>(mesh));
+    return with_mesh_cells(mesh, [](const auto& cells) { return measure(cells); });
 }
 
 QualityReport measure_quality(const BlockGrid& grid) {
