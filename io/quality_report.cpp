@@ -133,6 +133,7 @@ std::string quality_json(const GridReport& r) {
     j["negative_face_pyramids"] = q.negative_pyramids;
     j["faces_over_90_deg"] = q.faces_over_90_deg;
     j["nonpositive_volume_cells"] = q.nonpositive_volumes;
+    j["internal_faces"] = q.internal_faces;
     j["min_scaled_jacobian"] = q.min_scaled_jacobian;
     j["mean_scaled_jacobian"] = q.mean_scaled_jacobian;
     if (q.worst_cell >= 0) {

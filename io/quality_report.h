@@ -24,6 +24,8 @@ struct GridReport {
     QualityReport quality;
     // Where quality.worst_cell is, for a block grid.
     std::optional<CellPlace> worst_cell;
+    // Where each of quality.worst_cells is (the same order), for a block grid.
+    std::vector<CellPlace> worst_places;
     // Surface fidelity: max |u| over wall nodes divided by the length scale h (the mean
     // wall-edge length), when the grid was built from a known body.
     std::optional<double> max_surface_distance;

@@ -2,6 +2,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_reduce.h>
 
 #include <Eigen/Geometry>
@@ -104,6 +105,9 @@ double cell_thickness(const WallFace& f, int p, int q, const std::vector<Vec3>& 
 WallMeter::WallMeter(const ImplicitFunction& body, const WallLayers& law) : body_(body), law_(law) {
     w_.first_layer_target = law.layers > 0 ? law.first_height : 0;
     w_.growth_ratio_target = law.layers > 1 ? law.growth_ratio : 0;
+    w_.first_layer_histogram = Histogram(0, 2, 20);
+    w_.growth_ratio_histogram =
+        w_.growth_ratio_target > 0 ? Histogram(0.8, 1.2, 20) : Histogram(0.5, 2.5, 20);
     w_.first_layer_min = w_.growth_ratio_min = inf;
     w_.first_layer_max = w_.growth_ratio_max = -inf;
 }
@@ -121,6 +125,19 @@ void WallMeter::add(const BlockGrid& grid, const Block& block) {
             lines[l] = measure_line(f, int(l % f.np), int(l / f.np), grid.points, body_, side,
                                     ratios, w.growth_ratio_target);
         });
+        // The ratios again, into the histogram (counts: the order does not matter).
+        tbb::enumerable_thread_specific<Histogram> ratio_bins(
+            [&] { return w.growth_ratio_histogram.empty_copy(); });
+        tbb::parallel_for(Id(0), f.lines(), [&](Id l) {
+            Histogram& bins = ratio_bins.local();
+            const int p = int(l % f.np), q = int(l / f.np);
+            for (int e = 1; e <= ratios; ++e) {
+                const Vec3 &x0 = grid.points[f.node(p, q, e - 1)], &x1 = grid.points[f.node(p, q, e)];
+                const double r = (grid.points[f.node(p, q, e + 1)] - x1).norm() / (x1 - x0).norm();
+                bins.add(w.growth_ratio_target > 0 ? r / w.growth_ratio_target : r);
+            }
+        });
+        for (const Histogram& local : ratio_bins) w.growth_ratio_histogram.join(local);
 
         // Reduced in a fixed order, so the sums do not depend on the thread count.
         for (const LineMeasures& m : lines) {
@@ -143,6 +160,7 @@ void WallMeter::add(const BlockGrid& grid, const Block& block) {
                 thickness_within_ +=
                     w.first_layer_target > 0 &&
                     std::abs(t - w.first_layer_target) <= 0.1 * w.first_layer_target;
+                if (w.first_layer_target > 0) w.first_layer_histogram.add(t / w.first_layer_target);
             }
     }
 }

@@ -7,6 +7,7 @@
 
 #include "hexmesh/core/block_grid.h"
 #include "hexmesh/core/hex_mesh.h"
+#include "hexmesh/core/histogram.h"
 
 namespace hexmesh {
 
@@ -46,6 +47,18 @@ InversionCount count_inversions(const HexMesh& mesh);
 // Ids of the cells with at least one corner tet of exact det <= 0, ascending.
 std::vector<Id> find_inverted_cells(const HexMesh& mesh);
 
+// A cell and its scaled Jacobian, for the list of a grid's worst cells.
+struct RankedCell {
+    Id cell = -1;
+    double scaled_jacobian = 0;
+    Vec3 centre = Vec3::Zero();  // OpenFOAM's
+};
+inline constexpr std::size_t worst_cells_listed = 20;
+
+// The bins the report counts its cells and faces in.
+inline Histogram scaled_jacobian_bins() { return Histogram(-1, 1, 20); }  // 0.1 wide
+inline Histogram non_orthogonality_bins() { return Histogram(0, 180, 18); }  // 10 degrees wide
+
 struct QualityReport {
     Id cells = 0;
     Id inverted_corner_tets = 0;  // corner tets with det <= 0, by exact orientation predicate
@@ -72,6 +85,15 @@ struct QualityReport {
     Id negative_pyramids = 0;
     Id faces_over_90_deg = 0;
     Id nonpositive_volumes = 0;
+    // The worst_cells_listed cells of lowest scaled Jacobian, ascending (the lower id first
+    // among equals); the first is worst_cell.
+    std::vector<RankedCell> worst_cells;
+    // Every cell's scaled Jacobian (a cell with a zero-length edge, 1e30, counts above), and
+    // every internal face's non-orthogonality in degrees (the faces_over_90_deg in the bins
+    // from 90 up: a face checkMesh counts there is never put under 90).
+    Histogram scaled_jacobian_histogram = scaled_jacobian_bins();
+    Histogram non_orthogonality_histogram = non_orthogonality_bins();
+    Id internal_faces = 0;
     // No inverted corner tet and none of the above: a grid that checkMesh does not fail for
     // its cells' shapes (it may still warn about skewness or aspect ratio).
     bool solver_valid() const {

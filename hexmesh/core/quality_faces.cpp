@@ -177,12 +177,30 @@ struct CellStats {
     double min_volume = std::numeric_limits<double>::infinity();
     Id inverted_tets = 0, inverted_cells = 0;
     Id negative_pyramids = 0, nonpositive_volumes = 0;
+    Histogram sj_histogram = scaled_jacobian_bins();
+    std::vector<RankedCell> lowest;  // ascending by (scaled Jacobian, id), at most worst_cells_listed
 
+    // A cell's scaled Jacobian: the worst so far, one of the lowest.
+    void offer_cell(double sj, Id cell, const Vec3& centre) {
+        offer_worst(sj, cell, centre);
+        offer_lowest(RankedCell{cell, sj, centre});
+    }
     void offer_worst(double sj, Id cell, const Vec3& centre) {
         if (sj < min_sj || (sj == min_sj && cell < worst)) min_sj = sj, worst = cell, worst_centre = centre;
     }
+    void offer_lowest(const RankedCell& r) {
+        const auto before = [](const RankedCell& a, const RankedCell& b) {
+            return a.scaled_jacobian < b.scaled_jacobian ||
+                   (a.scaled_jacobian == b.scaled_jacobian && a.cell < b.cell);
+        };
+        if (lowest.size() == worst_cells_listed && !before(r, lowest.back())) return;
+        lowest.insert(std::upper_bound(lowest.begin(), lowest.end(), r, before), r);
+        if (lowest.size() > worst_cells_listed) lowest.pop_back();
+    }
     void join(const CellStats& o) {
         if (o.worst >= 0) offer_worst(o.min_sj, o.worst, o.worst_centre);
+        for (const RankedCell& r : o.lowest) offer_lowest(r);
+        sj_histogram.join(o.sj_histogram);
         sum_sj += o.sum_sj;
         max_aspect = std::max(max_aspect, o.max_aspect);
         min_volume = std::min(min_volume, o.min_volume);
@@ -199,9 +217,11 @@ struct FaceStats {
     double max_skew = 0;
     double max_volume_ratio = 1;
     Id over_90_deg = 0;  // internal faces whose cosine is at most OpenFOAM's SMALL
+    Histogram non_orthogonality = non_orthogonality_bins();
 
     void join(const FaceStats& o) {
         over_90_deg += o.over_90_deg;
+        non_orthogonality.join(o.non_orthogonality);
         min_ortho = std::min(min_ortho, o.min_ortho);
         max_skew = std::max(max_skew, o.max_skew);
         max_volume_ratio = std::max(max_volume_ratio, o.max_volume_ratio);
@@ -230,6 +250,10 @@ QualityReport make_report(Id cells, const CellStats& per_cell, const FaceStats& 
     report.negative_pyramids = per_cell.negative_pyramids;
     report.faces_over_90_deg = per_face.over_90_deg;
     report.nonpositive_volumes = per_cell.nonpositive_volumes;
+    report.worst_cells = per_cell.lowest;
+    report.scaled_jacobian_histogram = per_cell.sj_histogram;
+    report.non_orthogonality_histogram = per_face.non_orthogonality;
+    report.internal_faces = per_face.non_orthogonality.total();
     return report;
 }
 
@@ -244,8 +268,9 @@ void add_cell(CellStats& acc, Id cell, const std::array<FaceGeometry, 6>& faces,
     for (const FaceGeometry& f : faces)
         acc.negative_pyramids += !(f.area.dot(f.centre - g.centre) / 3 >= -detail::foam_small);
     const double sj = hex_scaled_jacobian(p);
-    acc.offer_worst(sj, cell, g.centre);
+    acc.offer_cell(sj, cell, g.centre);
     acc.sum_sj += std::clamp(sj, -1.0, 1.0);  // Verdict's 1e30 for a zero-length edge would swamp the mean
+    acc.sj_histogram.add(sj);
     const int inverted = count_inverted_corner_tets(p);
     acc.inverted_tets += inverted;
     acc.inverted_cells += inverted > 0;
@@ -261,6 +286,9 @@ void add_internal_face(FaceStats& acc, const std::array<Vec3, 4>& p, const FaceG
     const double ortho = detail::face_orthogonality(own_cc, nei_cc, g.area);
     acc.min_ortho = std::min(acc.min_ortho, ortho);
     acc.over_90_deg += at_90_deg_or_more(ortho);
+    // In degrees as max_non_orthogonality_deg; a face checkMesh counts at 90 or more is there.
+    const double deg = std::acos(std::clamp(ortho, -1.0, 1.0)) * 180.0 / pi;
+    acc.non_orthogonality.add(at_90_deg_or_more(ortho) ? std::max(deg, 90.0) : std::min(deg, 89.999));
     acc.max_skew = std::max(acc.max_skew, detail::face_skewness(p, g, own_cc, nei_cc));
     const double vo = std::abs(own_volume), vn = std::abs(nei_volume);
     const double ratio = std::max(vo, vn) / std::max(std::min(vo, vn), detail::foam_rootvsmall);

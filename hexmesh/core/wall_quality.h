@@ -3,6 +3,7 @@
 
 #include <optional>
 
+#include "hexmesh/core/histogram.h"
 #include "hexmesh/core/types.h"
 
 namespace hexmesh {
@@ -48,6 +49,12 @@ struct WallQuality {
     // (square root of its area): max and 99th percentile.
     std::optional<double> surface_in_cells_max;
     std::optional<double> surface_in_cells_p99;
+
+    // Every wall cell's first-layer thickness over the target, 20 bins over [0, 2) (empty
+    // without a target: bins 9 and 10 hold the cells within 10 %); every growth ratio over its
+    // target, 20 bins over [0.8, 1.2) (without a target, the ratio itself over [0.5, 2.5)).
+    Histogram first_layer_histogram;
+    Histogram growth_ratio_histogram;
 };
 
 }  // namespace hexmesh

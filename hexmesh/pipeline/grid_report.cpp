@@ -77,23 +77,29 @@ void GridMeter::add(const BlockGrid& grid, const Block& block, const std::vector
     max_slip_value_ = std::max(max_slip_value_, max_slip_value(grid, block, body_));
 }
 
-GridReport GridMeter::report() const {
-    GridReport report;
-    report.quality = quality_.report();
+std::optional<CellPlace> GridMeter::place(Id cell) const {
     Id first = 0;  // the first cell of each block, in to_hex_mesh order
     for (const Added& a : added_) {
-        const Id c = report.quality.worst_cell - first;
+        const Id c = cell - first;
         if (c >= 0 && c < a.cells.count()) {
             CellPlace w{a.name, int(c % a.cells.ni), int(c / a.cells.ni % a.cells.nj),
                         int(c / (Id(a.cells.ni) * a.cells.nj)), false};
             const std::array<int, 3> at = {w.i, w.j, w.k}, last = {a.cells.ni - 1, a.cells.nj - 1, a.cells.nk - 1};
             for (int f = 0; f < 6; ++f)
                 w.on_wall = w.on_wall || (a.wall[f] && at[f / 2] == (f % 2 ? last[f / 2] : 0));
-            report.worst_cell = w;
-            break;
+            return w;
         }
         first += a.cells.count();
     }
+    return std::nullopt;
+}
+
+GridReport GridMeter::report() const {
+    GridReport report;
+    report.quality = quality_.report();
+    report.worst_cell = place(report.quality.worst_cell);
+    for (const RankedCell& r : report.quality.worst_cells)
+        report.worst_places.push_back(place(r.cell).value_or(CellPlace{}));
     if (has_wall_) {
         report.wall = wall_.result();
         if (surface_) {

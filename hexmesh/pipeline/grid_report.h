@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "hexmesh/core/block_grid.h"
@@ -29,6 +30,8 @@ public:
     GridReport report() const;
 
 private:
+    std::optional<CellPlace> place(Id cell) const;  // of a cell added, by its id
+
     const ImplicitFunction& body_;
     const TriangleSurface* surface_;
     BlockQuality quality_;

@@ -182,6 +182,48 @@ TEST(Quality, ParallelResultsAreDeterministicAndMatchPerCellValues) {
     EXPECT_GT(a.max_volume_ratio, 1.0);
 }
 
+// The histograms count every cell and internal face in the right bin, and the worst cells
+// are the lowest scaled Jacobians in order: the same as a mesh and block by block.
+TEST(Quality, HistogramsAndWorstCellsCountEveryCell) {
+    const int n = 12;
+    BlockGrid grid;
+    Block block;
+    block.nodes = {n + 1, n + 1, n + 1};
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> jitter(-0.3, 0.3);
+    for (int k = 0; k <= n; ++k)
+        for (int j = 0; j <= n; ++j)
+            for (int i = 0; i <= n; ++i) {
+                block.node_ids.push_back(Id(grid.points.size()));
+                grid.points.emplace_back(i + jitter(rng), j + jitter(rng), k + jitter(rng));
+            }
+    grid.blocks.push_back(block);
+    const HexMesh mesh = to_hex_mesh(grid);
+    const std::vector<double> sj = scaled_jacobians(mesh);
+    Histogram expected = scaled_jacobian_bins();
+    for (double v : sj) expected.add(v);
+    std::vector<Id> order(sj.size());
+    for (Id c = 0; c < Id(order.size()); ++c) order[c] = c;
+    std::stable_sort(order.begin(), order.end(), [&](Id a, Id b) { return sj[a] < sj[b]; });
+
+    for (const QualityReport& q : {measure_quality(mesh), measure_quality(grid)}) {
+        EXPECT_EQ(q.scaled_jacobian_histogram.counts, expected.counts);
+        EXPECT_EQ(q.scaled_jacobian_histogram.total(), q.cells);
+        EXPECT_EQ(q.internal_faces, Id(3) * n * n * (n - 1));
+        EXPECT_EQ(q.non_orthogonality_histogram.total(), q.internal_faces);
+        // The highest non-empty bin holds the max non-orthogonality.
+        const std::vector<Id>& bins = q.non_orthogonality_histogram.counts;
+        const auto last = std::find_if(bins.rbegin(), bins.rend(), [](Id c) { return c > 0; });
+        EXPECT_EQ(int(bins.rend() - last) - 1, int(q.max_non_orthogonality_deg / 10));
+        ASSERT_EQ(q.worst_cells.size(), worst_cells_listed);
+        for (std::size_t r = 0; r < worst_cells_listed; ++r) {
+            EXPECT_EQ(q.worst_cells[r].cell, order[r]);
+            EXPECT_EQ(q.worst_cells[r].scaled_jacobian, sj[order[r]]);
+        }
+        EXPECT_EQ(q.worst_cells[0].cell, q.worst_cell);
+    }
+}
+
 // The report names its worst cell (the lowest id among equals) and that cell's centre, the
 // same whether measured as a mesh or block by block.
 TEST(Quality, TheWorstCellIsNamedWithItsCentre) {
