@@ -14,7 +14,7 @@ build_packages=(
   libcli11-dev nlohmann-json3-dev libfmt-dev libcgns-dev libnetcdf-dev
 )
 # Independent readers and checkers the end-to-end tests compare against.
-test_packages=(python3-vtk9 python3-meshio python3-netcdf4 openfoam gmsh cgns-convert)
+test_packages=(python3-vtk9 python3-meshio python3-netcdf4 openfoam gmsh cgns-convert chromium)
 
 install_packages() {
   local missing=()

@@ -33,6 +33,7 @@
 #include "io/export_grid.h"
 #include "io/gmsh_mesh.h"
 #include "io/legacy_vtk.h"
+#include "io/markup.h"
 #include "io/medit_mesh.h"
 #include "io/plot3d.h"
 #include "io/vtk_support.h"
@@ -214,34 +215,12 @@ void VtkGridWriter::finish() {
                                            names_.size(), num_blocks_));
     if (pieces_.empty()) return;
     // The index VTK's XML multiblock reader reads: one DataSet per block, named.
-    const auto escaped = [](const std::string& text) {
-        std::string out;
-        for (char ch : text) {
-            switch (ch) {
-                case '&':
-                    out += "&amp;";
-                    break;
-                case '<':
-                    out += "&lt;";
-                    break;
-                case '>':
-                    out += "&gt;";
-                    break;
-                case '"':
-                    out += "&quot;";
-                    break;
-                default:
-                    out += ch;
-            }
-        }
-        return out;
-    };
     std::string xml =
         "<VTKFile type=\"vtkMultiBlockDataSet\" version=\"1.0\" byte_order=\"LittleEndian\" "
         "header_type=\"UInt64\">\n  <vtkMultiBlockDataSet>\n";
     for (size_t b = 0; b < names_.size(); ++b)
         xml += fmt::format("    <DataSet index=\"{}\" name=\"{}\" file=\"{}/{}_{}.vts\"/>\n", b,
-                           escaped(names_[b]), escaped(pieces_), escaped(pieces_), b);
+                           escape_markup(names_[b]), escape_markup(pieces_), escape_markup(pieces_), b);
     xml += "  </vtkMultiBlockDataSet>\n</VTKFile>\n";
     std::ofstream out(path_, std::ios::binary);
     out << xml;

@@ -1,5 +1,5 @@
 // `hexmesh quality MESH [--json] [--surface CASE.json]`: the quality table of a hexahedral or
-// tetrahedral mesh file.
+// tetrahedral mesh file; `hexmesh report MESH [-o FILE] [--case CASE.json]`: its report page.
 #include <cctype>
 #include <filesystem>
 #include <fmt/format.h>
@@ -9,7 +9,13 @@
 #include "hexmesh/cli/commands.h"
 #include "hexmesh/pipeline/make_body.h"
 #include "hexmesh/pipeline/tet_mesh_case.h"
+#include "hexmesh/core/memory_limit.h"
+#include "hexmesh/pipeline/grid_report.h"
+#include "hexmesh/pipeline/run_case.h"
+#include "io/case_file.h"
 #include "io/quality_report.h"
+#include "io/report_page.h"
+#include "io/staged_output.h"
 #include "io/volume_mesh_io.h"
 #include "io/vtk_mesh.h"
 
@@ -73,6 +79,78 @@ void add_quality_command(CLI::App& app, int& exit_code) {
         else
             std::cout << fmt::format("quality of {}\n", args->mesh_path)
                       << format_quality_table(report);
+        exit_code = 0;
+    });
+}
+
+namespace {
+
+bool is_block_grid_file(const std::string& path) {
+    const std::string ext = std::filesystem::path(path).extension().string();
+    return ext == ".vtm" || ext == ".vts";
+}
+
+// The page of a block grid: measured against its case's body and wall law when it has one
+// (--case, else the grid.case.json `run` writes beside a grid), else its cells alone.
+ReportPage block_grid_page(const std::string& path, const std::string& case_path) {
+    const BlockGrid grid = read_vtk_block_grid(path);
+    std::string sidecar = case_path;
+    if (sidecar.empty()) {
+        const std::filesystem::path beside = std::filesystem::path(path).parent_path() / "grid.case.json";
+        if (std::filesystem::exists(beside)) sidecar = beside.string();
+    }
+    GridReport report;
+    std::string settings;
+    if (!sidecar.empty()) {
+        const Case c = read_case(sidecar);
+        const Body body = make_body(c.geometry);
+        const std::optional<TriangleSurface> surface = reference_surface(c.geometry);
+        report = measure_grid(grid, *body, wall_layers(c), surface ? &*surface : nullptr);
+        settings = case_to_json(c);
+    } else {
+        report.quality = measure_quality(grid);
+    }
+    return grid_report_page("hexmesh report " + path, report, draw_grid(grid), settings);
+}
+
+}  // namespace
+
+void add_report_command(CLI::App& app, int& exit_code) {
+    struct Args {
+        std::string mesh_path, output, case_path;
+    };
+    auto args = std::make_shared<Args>();
+    CLI::App* cmd = app.add_subcommand(
+        "report", "write the report page of a mesh: pictures, histograms, worst cells");
+    cmd->add_option("mesh", args->mesh_path,
+                    "block grid (.vtm .vts), hexahedral or tetrahedral mesh (.vtu .vtk)")
+        ->required();
+    cmd->add_option("-o,--output", args->output, "the page (default: report.html beside the mesh)");
+    cmd->add_option("--case", args->case_path,
+                    "block grids: the case whose body and wall law the wall is measured against "
+                    "(default: grid.case.json beside the grid, if any)");
+    cmd->callback([args, &exit_code] {
+        const std::string& path = args->mesh_path;
+        if (!std::filesystem::exists(path)) throw InputError(fmt::format("{}: no such mesh file", path));
+        ReportPage page;
+        if (const auto tets = read_tet_mesh(path)) {
+            page = tet_mesh_report_page("hexmesh report " + path, *tets, measure_tet_quality(*tets));
+        } else if (is_block_grid_file(path)) {
+            page = block_grid_page(path, args->case_path);
+        } else {
+            if (!args->case_path.empty()) throw InputError("--case is for block grids (.vtm .vts)");
+            const HexMesh mesh = read_vtk_mesh(path);
+            page = hex_mesh_report_page("hexmesh report " + path, mesh,
+                                        naming_file(path, [&] { return measure_quality(mesh); }));
+        }
+        page.peak_memory_bytes = peak_memory();
+        const std::filesystem::path out =
+            args->output.empty() ? std::filesystem::path(path).parent_path() / "report.html"
+                                 : std::filesystem::path(args->output);
+        StagedOutput staged(out.parent_path().empty() ? "." : out.parent_path().string(),
+                            StagedOutput::Scope::named_entries);
+        staged.write_text(out.filename().string(), report_page_html(page));
+        for (const std::string& f : staged.commit()) std::cout << "written: " << f << "\n";
         exit_code = 0;
     });
 }

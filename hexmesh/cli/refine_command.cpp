@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "hexmesh/cli/commands.h"
 #include "hexmesh/pipeline/grid_report.h"
@@ -14,7 +15,10 @@
 #include "hexmesh/pipeline/refine_family.h"
 #include "hexmesh/pipeline/run_case.h"
 #include "io/case_file.h"
+#include "hexmesh/core/memory_limit.h"
+#include "hexmesh/core/quality.h"
 #include "io/quality_report.h"
+#include "io/report_page.h"
 #include "io/staged_output.h"
 #include "io/vtk_mesh.h"
 
@@ -40,6 +44,7 @@ void add_refine_command(CLI::App& app, int& exit_code) {
     struct Args {
         std::string grid_path, outdir, case_path;
         int levels = 1;
+        bool no_report = false;
     };
     auto args = std::make_shared<Args>();
     CLI::App* cmd = app.add_subcommand(
@@ -51,6 +56,8 @@ void add_refine_command(CLI::App& app, int& exit_code) {
         ->capture_default_str();
     cmd->add_option("--case", args->case_path,
                     "case file of the grid (default: grid.case.json beside it)");
+    cmd->add_flag("--no-report", args->no_report,
+                  "do not write report.html (pictures, histograms, worst cells)");
     cmd->callback([args, &exit_code] {
         if (!std::filesystem::exists(args->grid_path))
             throw InputError(fmt::format("{}: no such grid file", args->grid_path));
@@ -75,6 +82,10 @@ void add_refine_command(CLI::App& app, int& exit_code) {
         GridMeter meter(*body, {}, surface ? &*surface : nullptr);
         VtkGridWriter writer(out.path(grid.blocks.size() == 1 ? "grid.vts" : "grid.vtm"),
                              grid.blocks.size());
+        // The last level's pictures, drawn block by block too (framed on the level before).
+        std::optional<GridPictures> pictures;
+        if (!args->no_report) pictures.emplace(grid_pictures_for(grid));
+        std::vector<double> values;
         double refine_s = 0, quality_s = 0, write_s = 0;
         auto lap = [clock = std::chrono::steady_clock::now()]() mutable {
             const auto now = std::chrono::steady_clock::now();
@@ -86,6 +97,11 @@ void add_refine_command(CLI::App& app, int& exit_code) {
             const Block& block = piece.grid.blocks[0];
             const double r = lap();
             meter.add(piece.grid, block, &piece.ids);
+            if (pictures) {
+                values.resize(std::size_t(block.cells().count()));
+                scaled_jacobians(piece.grid, block, values.data());
+                pictures->add_block(piece.grid, block, values.data());
+            }
             const double q = lap();
             writer.add(piece.grid, block);
             const double w = lap();
@@ -115,6 +131,13 @@ void add_refine_command(CLI::App& app, int& exit_code) {
                             args->grid_path, report.quality.inverted_cells));
         out.write_text("quality.json", quality_json(report));
         out.write_text("grid.case.json", case_to_json(c));
+        if (pictures) {
+            ReportPage page = grid_report_page("hexmesh refine " + args->grid_path, report,
+                                               pictures->pictures(), case_to_json(c));
+            page.phase_seconds = timer.phases();
+            page.peak_memory_bytes = peak_memory();
+            out.write_text("report.html", report_page_html(page));
+        }
         const std::vector<std::string> written = out.commit();
         timer.done("write");
         for (const std::string& f : written) std::cout << "written: " << f << "\n";

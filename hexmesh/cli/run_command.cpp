@@ -14,7 +14,7 @@ namespace hexmesh::cli {
 void add_run_command(CLI::App& app, int& exit_code) {
     struct Args {
         std::string case_path, outdir = "out";
-        bool keep_invalid = false;
+        bool keep_invalid = false, no_report = false;
     };
     auto args = std::make_shared<Args>();
     CLI::App* cmd = app.add_subcommand("run", "build the grid of a case file");
@@ -22,11 +22,14 @@ void add_run_command(CLI::App& app, int& exit_code) {
     cmd->add_option("-o,--output", args->outdir, "output directory")->capture_default_str();
     cmd->add_flag("--keep-invalid", args->keep_invalid,
                   "write a grid with inverted cells as grid_invalid.* instead of failing");
+    cmd->add_flag("--no-report", args->no_report,
+                  "do not write report.html (pictures, histograms, worst cells)");
     cmd->callback([args, &exit_code] {
         const Case c = read_case(args->case_path);
         std::cout << fmt::format("hexmesh run {}\n", args->case_path);
         RunOptions options;
         options.keep_invalid = args->keep_invalid;
+        options.report = !args->no_report;
         const RunResult result = run_case(c, args->outdir, options, std::cout);
         std::cout << "\n" << format_quality_table(result.report) << "\n";
         if (!result.level_reports.empty()) {

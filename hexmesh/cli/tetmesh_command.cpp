@@ -6,7 +6,9 @@
 
 #include "hexmesh/cli/commands.h"
 #include "hexmesh/pipeline/tet_mesh_case.h"
+#include "hexmesh/core/memory_limit.h"
 #include "io/case_file.h"
+#include "io/report_page.h"
 #include "io/volume_mesh_io.h"
 #include "untangle/solver_options.h"
 
@@ -15,7 +17,7 @@ namespace hexmesh::cli {
 void add_tetmesh_command(CLI::App& app, int& exit_code) {
     struct Args {
         std::string case_path, output, cgal_output;
-        bool compare_cgal = false;
+        bool compare_cgal = false, no_report = false;
         double theta = tet_untangle_options().theta;
         int optimize_iterations = 20;
         Reweighting reweighting;
@@ -30,6 +32,7 @@ void add_tetmesh_command(CLI::App& app, int& exit_code) {
                   "also run CGAL's perturb + exude on the same mesh and print both side by side");
     cmd->add_option("--cgal-output", args->cgal_output, "write CGAL's perturbed and exuded mesh here")
         ->needs("--compare-cgal");
+    cmd->add_flag("--no-report", args->no_report, "do not write NAME.report.html beside the mesh");
     cmd->add_option("--theta", args->theta, "weight of volume against shape, in (0, 1)")
         ->check(CLI::Range(0.0, 1.0))->capture_default_str();
     cmd->add_option("--optimize-iterations", args->optimize_iterations, "outer optimization iterations")
@@ -96,6 +99,12 @@ void add_tetmesh_command(CLI::App& app, int& exit_code) {
         }
         std::cout << "\nwritten: " << args->output << "\n";
         if (!args->cgal_output.empty()) std::cout << "written: " << args->cgal_output << "\n";
+        if (!args->no_report) {
+            ReportPage page = tet_mesh_report_page("hexmesh tetmesh " + args->case_path, r.mesh, r.optimized);
+            page.settings_json = case_to_json(c);
+            page.peak_memory_bytes = peak_memory();
+            std::cout << "written: " << write_report_beside(args->output, page) << "\n";
+        }
         exit_code = 0;
     });
 }

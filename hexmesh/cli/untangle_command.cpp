@@ -3,13 +3,18 @@
 #include <fmt/format.h>
 #include <iostream>
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "hexmesh/cli/commands.h"
 #include "hexmesh/pipeline/make_body.h"
 #include "hexmesh/pipeline/tet_mesh_case.h"
 #include "hexmesh/pipeline/untangle_mesh.h"
 #include "io/case_file.h"
+#include "hexmesh/core/memory_limit.h"
+#include "hexmesh/core/quality.h"
+#include "hexmesh/core/tet_quality.h"
 #include "io/quality_report.h"
+#include "io/report_page.h"
 #include "io/surface_reader.h"
 #include "io/volume_mesh_io.h"
 
@@ -21,7 +26,7 @@ struct Args {
     std::string preconditioner = "block-jacobi", boundary = "fixed", surface;
     double theta = 0.8, untangle_theta = 0.1, feature_angle = 30;
     int max_iterations = 200, optimize_iterations = 2;
-    bool matrix_free = false, keep_invalid = false;
+    bool matrix_free = false, keep_invalid = false, no_report = false;
     std::string target = "uniform";
 };
 
@@ -35,6 +40,25 @@ void print_quality(const QualityReport& before, const QualityReport& after) {
     b.quality = before;
     a.quality = after;
     std::cout << "\nquality before\n" << format_quality_table(b) << "quality after\n" << format_quality_table(a);
+}
+
+// The options the mesh was untangled with, for its report page.
+std::string settings_json(const Args& a) {
+    nlohmann::ordered_json j;
+    j["input"] = a.input;
+    j["boundary"] = a.boundary;
+    if (!a.surface.empty()) j["surface"] = a.surface;
+    j["solver"] = a.solver;
+    j["optimize_solver"] = a.optimize_solver;
+    j["preconditioner"] = a.preconditioner;
+    j["matrix_free"] = a.matrix_free;
+    j["theta"] = a.theta;
+    j["untangle_theta"] = a.untangle_theta;
+    j["max_iterations"] = a.max_iterations;
+    j["optimize_iterations"] = a.optimize_iterations;
+    j["feature_angle_deg"] = a.feature_angle;
+    j["target"] = a.target;
+    return j.dump(1);
 }
 
 int run(const Args& args) {
@@ -90,6 +114,20 @@ int run(const Args& args) {
     const std::string out = valid ? args.output : invalid_name(args.output);
     write_volume_mesh(mesh, out);
     std::cout << "\nwritten: " << out << "\n";
+    if (!args.no_report) {
+        const std::string title = "hexmesh untangle " + args.input;
+        ReportPage page;
+        if (mesh.num_hexes() > 0) {
+            const HexMesh hexes{mesh.points, mesh.hexes};
+            page = hex_mesh_report_page(title, hexes, r.hex_after ? *r.hex_after : measure_quality(hexes));
+        } else {
+            const TetMesh tets{mesh.points, mesh.tets};
+            page = tet_mesh_report_page(title, tets, measure_tet_quality(tets));
+        }
+        page.settings_json = settings_json(args);
+        page.peak_memory_bytes = peak_memory();
+        std::cout << "written: " << write_report_beside(out, page) << "\n";
+    }
     return valid ? 0 : 3;
 }
 
@@ -124,6 +162,7 @@ void add_untangle_command(CLI::App& app, int& exit_code) {
                     "outer optimization iterations once valid (0: untangle only)")
         ->check(CLI::NonNegativeNumber)->capture_default_str();
     cmd->add_flag("--keep-invalid", args->keep_invalid, "write a mesh that stays tangled as NAME_invalid.EXT");
+    cmd->add_flag("--no-report", args->no_report, "do not write NAME.report.html beside the mesh");
     cmd->callback([args, &exit_code] { exit_code = run(*args); });
 }
 

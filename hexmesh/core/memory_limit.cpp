@@ -1,5 +1,6 @@
 #include "hexmesh/core/memory_limit.h"
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -18,5 +19,10 @@ double memory_limit() {
 }
 
 void set_memory_limit(double bytes) { limit.store(bytes > 0 ? bytes : 0); }
+
+double peak_memory() {
+    rusage usage{};
+    return getrusage(RUSAGE_SELF, &usage) == 0 ? 1024.0 * double(usage.ru_maxrss) : 0;
+}
 
 }  // namespace hexmesh

@@ -9,4 +9,7 @@ double memory_limit();
 // Sets the limit (bytes, > 0); 0 goes back to half of the machine's memory.
 void set_memory_limit(double bytes);
 
+// Bytes: the most memory this process has held so far (its peak resident set).
+double peak_memory();
+
 }  // namespace hexmesh

@@ -14,7 +14,9 @@
 #include "hexmesh/pipeline/phase_timer.h"
 #include "hexmesh/pipeline/refine_family.h"
 #include "hexmesh/pipeline/wall_route.h"
+#include "hexmesh/core/memory_limit.h"
 #include "io/export_grid.h"
+#include "io/report_page.h"
 #include "io/staged_output.h"
 #include "io/vtk_mesh.h"
 #include "surface/surface_topology.h"
@@ -125,6 +127,13 @@ void write_level(const Case& c, const BlockGrid& grid, GridReport report, const 
     report.phase_seconds = timer.phases();
     out.write_text(dir + "quality.json", quality_json(report));
     out.write_text(dir + "grid.case.json", case_to_json(c));
+    if (!options.report) return;
+    ReportPage page = grid_report_page(
+        fmt::format("hexmesh run {}{}", c.path, dir.empty() ? "" : ", " + dir.substr(0, dir.size() - 1)),
+        report, draw_grid(grid), case_to_json(c));
+    page.peak_memory_bytes = peak_memory();
+    out.write_text(dir + "report.html", report_page_html(page));
+    timer.done(dir.empty() ? "report" : "report " + dir.substr(0, dir.size() - 1));
 }
 
 }  // namespace

@@ -49,11 +49,14 @@ struct RunOptions {
     // A grid with inverted cells is refused (std::runtime_error, nothing written) unless
     // keep_invalid is set: then it is written as grid_invalid.* so no one takes it for valid.
     bool keep_invalid = false;
+    // Writes report.html beside each grid's quality.json (report_page_html: pictures,
+    // histograms, worst cells, settings, time and memory).
+    bool report = true;
 };
 
 // Builds the grid, measures it and writes OUTDIR/grid.vtm (grid.vts for one block),
-// OUTDIR/quality.json and OUTDIR/grid.case.json (case_to_json: the geometry `hexmesh refine`
-// projects new wall nodes onto), all or nothing. With c.refinement.levels = N > 1, the grid is
+// OUTDIR/quality.json, OUTDIR/grid.case.json (case_to_json: the geometry `hexmesh refine`
+// projects new wall nodes onto) and OUTDIR/report.html, all or nothing. With c.refinement.levels = N > 1, the grid is
 // level 1 of a nested family: OUTDIR/level_1 ... OUTDIR/level_N each hold those three files,
 // level L + 1 being refine_on_body of level L (its wall law refined_wall_layers), and
 // OUTDIR/family.json the study table. grid.axis "auto" is resolved once (choose_o_h_axis)

@@ -34,10 +34,11 @@ TEST(RunCase, WritesGridAndReportThatReadBack) {
     fs::remove_all(dir);
     std::ostringstream log;
     const RunResult result = run_case(c, dir.string(), RunOptions{}, log);
-    ASSERT_EQ(result.files.size(), 3u);
+    ASSERT_EQ(result.files.size(), 4u);
     EXPECT_TRUE(fs::exists(dir / "grid.vtm"));
     EXPECT_TRUE(fs::exists(dir / "quality.json"));
     EXPECT_TRUE(fs::exists(dir / "grid.case.json"));
+    EXPECT_TRUE(fs::exists(dir / "report.html"));
     EXPECT_EQ(read_vtk_mesh((dir / "grid.vtm").string()).num_cells(), 8 * 8 * 8 + 6 * 8 * 8 * 4);
     EXPECT_NE(log.str().find("grid (o-h, 7 blocks, 2048 cells)"), std::string::npos) << log.str();
     // The surface pass ran, as a phase of its own, and the grid is valid after it.
