@@ -105,6 +105,13 @@ void add_tetmesh_command(CLI::App& app, int& exit_code) {
             page.peak_memory_bytes = peak_memory();
             std::cout << "written: " << write_report_beside(args->output, page) << "\n";
         }
+        if (r.optimized.slivers > 0) {
+            std::cout << fmt::format("\nwarning: {} slivers remain (a dihedral angle under {:.3g} degrees; the smallest "
+                                     "{:.3g}), the mesh is written but a solver may reject them\n",
+                                     r.optimized.slivers, r.optimized.sliver_degrees, r.optimized.min_dihedral);
+            exit_code = 3;
+            return;
+        }
         exit_code = 0;
     });
 }

@@ -6,6 +6,7 @@
 #include <functional>
 #include <optional>
 #include <ostream>
+#include <string>
 #include <vector>
 
 #include "hexmesh/core/tet_quality.h"
@@ -100,9 +101,15 @@ struct TetCaseResult {
     TetOptimization optimization;
     double wall_size = 0, core_size = 0;
     double seconds_features = 0, seconds_optimize = 0;
+    // Where `mesh` comes from: the refined mesh optimized ("variational"), or, when that left
+    // slivers or ended under CGAL's perturb + exude, that mesh optimized ("variational from
+    // CGAL's") or that mesh itself ("CGAL's"), whichever has the largest smallest angle.
+    std::string start = "variational";
 };
 
-// The whole job; one progress line per phase to `log`. Throws InputError for a case it
+// The whole job; one progress line per phase to `log`. The refined mesh is optimized; where
+// slivers remain or CGAL's perturb + exude of it (computed then if compare_cgal did not) has
+// a larger smallest dihedral angle, that mesh optimized too, and the best of the three kept. Throws InputError for a case it
 // cannot mesh (an exterior domain, a wall cell size too small to trace the creases at).
 TetCaseResult run_tet_case(const Case& c, const TetCaseOptions& options, std::ostream& log);
 
