@@ -56,11 +56,69 @@ void interpolate_line(int coarse_count, At&& at) {
     }
 }
 
+// Which ends of a block's grid lines along one index direction lie on a wall (a block face
+// of patch "wall"): where their boundary layer grows from.
+struct WallEnds {
+    bool first = false, last = false;
+};
+
+// Fills the odd entries of a wall-normal line (see refine.h) whose even entries are set: first
+// as interpolate_line does, then each new node is moved along the chord of its coarse cell
+// m (from sample m to m + 1, length L_m) to the fraction the refined law gives, keeping its
+// offset across the chord (the line's curvature). Cell m is split into two cells of ratio
+// rho_m = sqrt(L_m / L_w), L_w the cell next to it on the wall side (for the wall cell,
+// sqrt(L_o / L_m), L_o the cell beyond it): each coarse step from one cell to the next becomes
+// two fine steps of its square root, and the fine cell on the wall side is L_m / (1 + rho_m)
+// long. The ratios do not stop at kinks as the stencils do: a line that turns sharply keeps
+// its spacing, and a ratio that changed there would jump between neighbouring lines. With
+// walls at both ends a cell takes the nearer one (the middle cell of an odd count is halved).
+template <class At>
+void interpolate_wall_line(int coarse_count, WallEnds wall, At&& at) {
+    const int n = coarse_count;
+    interpolate_line(n, at);
+    auto sample = [&](int m) -> const Vec3& { return at(2 * m); };
+    auto length = [&](int m) { return (sample(m + 1) - sample(m)).norm(); };
+    for (int m = 0; m + 1 < n; ++m) {
+        // Cell m's wall side: its first end, its last end, or neither (the middle cell
+        // between two walls).
+        const bool from_first = wall.first && (!wall.last || 2 * m < n - 2);
+        const bool from_last = wall.last && (!wall.first || 2 * m > n - 2);
+        const int inner = from_first ? m - 1 : m + 1;  // the neighbours towards the wall
+        const int outer = from_first ? m + 1 : m - 1;  // and away from it
+        auto is_cell = [&](int c) { return c >= 0 && c + 1 < n; };
+        double rho = 1;  // the fine ratio, away from the wall
+        if ((from_first || from_last) && is_cell(inner))
+            rho = std::sqrt(length(m) / length(inner));
+        else if ((from_first || from_last) && is_cell(outer))
+            rho = std::sqrt(length(outer) / length(m));
+        if (!(rho > 0) || !std::isfinite(rho)) rho = 1;  // a cell of zero length
+        const double f = from_last ? rho / (1 + rho) : 1 / (1 + rho);  // of the chord from m
+        const Vec3 chord = sample(m + 1) - sample(m);
+        const double chord2 = chord.squaredNorm();
+        if (!(chord2 > 0)) continue;
+        Vec3& mid = at(2 * m + 1);
+        mid += (f - (mid - sample(m)).dot(chord) / chord2) * chord;
+    }
+}
+
+// Fills a line: along the wall normal by interpolate_wall_line, else by interpolate_line.
+template <class At>
+void fill_line(int coarse_count, WallEnds wall, At&& at) {
+    if (wall.first || wall.last)
+        interpolate_wall_line(coarse_count, wall, at);
+    else
+        interpolate_line(coarse_count, at);
+}
+
 // Positions of the fine nodes of one block (fine dims, flat i fastest), by tensor-product
-// interpolation: along i on the coarse j, k lines, then along j, then along k.
+// interpolation: along i on the coarse j, k lines, then along j, then along k; along an
+// index direction with a wall face at an end, by interpolate_wall_line.
 std::vector<Vec3> fine_positions(const BlockGrid& coarse, const Block& block, const Dims& fine) {
     std::vector<Vec3> x(fine.count());
     const Dims c = block.nodes;
+    WallEnds wall[3];
+    for (int d = 0; d < 3; ++d)
+        wall[d] = {block.face_patch[2 * d] == "wall", block.face_patch[2 * d + 1] == "wall"};
     tbb::parallel_for(0, c.nk, [&](int k) {
         for (int j = 0; j < c.nj; ++j)
             for (int i = 0; i < c.ni; ++i)
@@ -69,15 +127,15 @@ std::vector<Vec3> fine_positions(const BlockGrid& coarse, const Block& block, co
     // Along i on (even j, even k); along j on (all i, even k); along k on (all i, all j).
     tbb::parallel_for(0, c.nk, [&](int k) {
         for (int j = 0; j < c.nj; ++j)
-            interpolate_line(c.ni, [&](int f) -> Vec3& { return x[fine.flat(f, 2 * j, 2 * k)]; });
+            fill_line(c.ni, wall[0], [&](int f) -> Vec3& { return x[fine.flat(f, 2 * j, 2 * k)]; });
     });
     tbb::parallel_for(0, c.nk, [&](int k) {
         for (int i = 0; i < fine.ni; ++i)
-            interpolate_line(c.nj, [&](int f) -> Vec3& { return x[fine.flat(i, f, 2 * k)]; });
+            fill_line(c.nj, wall[1], [&](int f) -> Vec3& { return x[fine.flat(i, f, 2 * k)]; });
     });
     tbb::parallel_for(0, fine.nj, [&](int j) {
         for (int i = 0; i < fine.ni; ++i)
-            interpolate_line(c.nk, [&](int f) -> Vec3& { return x[fine.flat(i, j, f)]; });
+            fill_line(c.nk, wall[2], [&](int f) -> Vec3& { return x[fine.flat(i, j, f)]; });
     });
     return x;
 }
