@@ -140,6 +140,52 @@ std::vector<Vec3> fine_positions(const BlockGrid& coarse, const Block& block, co
     return x;
 }
 
+// Where placement moved a new wall node by d (onto the body), the new interior nodes of its
+// wall-normal line in the fine block `block` (local ids) follow by d (1 - s / S), s the length
+// along the line from the wall and S the whole line's: every cell of a straight line grows by
+// the same factor, so the first layer keeps its thickness and the line its growth ratios
+// (projection moves a node of the interpolated wall by up to a few percent of a cell, as
+// much as a thin first layer). The line's far end does not move. Coarse nodes and nodes of
+// other kinds (on a wall, a crease, the far field) stay. A node other blocks placed first
+// moves too, but gets their position back afterwards, as every shared node does.
+void carry_wall_moves(const Block& block, const std::vector<VertexKind>& kinds,
+                      const std::vector<bool>& coarse,
+                      const std::unordered_map<Id, Vec3>& wall_moves, std::vector<Vec3>& x) {
+    if (wall_moves.empty()) return;
+    const Dims& f = block.nodes;
+    for (int side = 0; side < 6; ++side) {
+        if (block.face_patch[side] != "wall") continue;
+        const int d = side / 2, p = (d + 1) % 3, q = (d + 2) % 3, n = f[d];
+        if (n < 3) continue;
+        auto node = [&](int a, int b, int t) {
+            int ijk[3];
+            ijk[d] = side % 2 ? n - 1 - t : t;
+            ijk[p] = a;
+            ijk[q] = b;
+            return f.flat(ijk[0], ijk[1], ijk[2]);
+        };
+        tbb::parallel_for(0, f[q], [&](int b) {
+            std::vector<double> s(size_t(n), 0.0);
+            for (int a = 0; a < f[p]; ++a) {
+                const auto moved = wall_moves.find(node(a, b, 0));
+                if (moved == wall_moves.end()) continue;
+                // Lengths along the line as interpolated, the wall node where it was.
+                Vec3 before = x[node(a, b, 0)] - moved->second;
+                for (int t = 1; t < n; ++t) {
+                    s[t] = s[t - 1] + (x[node(a, b, t)] - before).norm();
+                    before = x[node(a, b, t)];
+                }
+                if (!(s[n - 1] > 0)) continue;
+                for (int t = 1; t + 1 < n; ++t) {
+                    const Id m = node(a, b, t);
+                    if (!coarse[m] && kinds[m] == VertexKind::interior)
+                        x[m] += (1 - s[t] / s[n - 1]) * moved->second;
+                }
+            }
+        });
+    }
+}
+
 // The coarse entity of fine node f (on a block face, so an edge or a face): the coarse ids
 // of its 2 or 4 corners, sorted, padded with "no node" (the largest id).
 EntityKey entity_key(const Block& block, const int f[3]) {
@@ -287,11 +333,19 @@ RefinedBlock BlockRefiner::refine(size_t b, const Place& place) {
                 out.ids[m] = n.id;
             }
     std::vector<Vec3>& x = out.grid.points;
-    if (place)
+    if (place) {
+        std::vector<Vec3> moves(first.size());
         tbb::parallel_for(size_t(0), first.size(), [&](size_t n) {
             const Id m = first[n].first;
-            x[m] = place(x[m], out.grid.kinds[m]);
+            const Vec3 placed = place(x[m], out.grid.kinds[m]);
+            moves[n] = placed - x[m];
+            x[m] = placed;
         });
+        std::unordered_map<Id, Vec3> wall_moves;
+        for (size_t n = 0; n < first.size(); ++n)
+            if (moves[n] != Vec3::Zero()) wall_moves.emplace(first[n].first, moves[n]);
+        carry_wall_moves(fine, out.grid.kinds, out.coarse, wall_moves, x);
+    }
     for (const auto& [m, e] : first) e->second.x = x[m];
     for (const auto& [m, e] : again) x[m] = e->second.x;
     for (auto* list : {&first, &again})

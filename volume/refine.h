@@ -72,7 +72,11 @@ class BlockRefiner {
 public:
     // place(x, kind): where a new node on a block face goes (e.g. a wall node projected onto
     // the body); called once per such node, in parallel, before any block receives it, so a
-    // node shared by blocks gets one position. Nodes inside a block stay where interpolated.
+    // node shared by blocks gets one position. Where it moves a wall node by d, the new
+    // interior nodes of the node's wall-normal line in the block (not yet placed by another
+    // block) move by d (1 - s / S), s their length along the line from the wall, S the line's:
+    // its cells all stretch alike, so the first layer keeps its thickness and the line its
+    // growth ratios. Nodes inside a block stay where interpolated otherwise.
     using Place = std::function<Vec3(const Vec3& x, VertexKind kind)>;
 
     explicit BlockRefiner(const BlockGrid& coarse);

@@ -295,7 +295,11 @@ TEST(BlockRefiner, BlocksAreTheFineGridsAndPlaceEachFaceNodeOnce) {
                 EXPECT_EQ(x, coarse.points[v]);
                 continue;
             }
-            if (!moved) continue;  // inside the block: not placed
+            const Dims& d = block.nodes;
+            const int i = int(m % d.ni), j = int(m / d.ni % d.nj), k = int(m / d.ni / d.nj);
+            const bool on_face = i == 0 || j == 0 || k == 0 || i == d.ni - 1 || j == d.nj - 1 || k == d.nk - 1;
+            // Inside the block: not placed (moved, if at all, along with a wall node's line).
+            if (!moved || !on_face) continue;
             const auto [it, first] = placed.try_emplace(v, x);
             if (!first) {
                 EXPECT_EQ(it->second, x) << "fine node " << v;
@@ -308,6 +312,32 @@ TEST(BlockRefiner, BlocksAreTheFineGridsAndPlaceEachFaceNodeOnce) {
     EXPECT_EQ(calls.load(), int(placed.size()));
     EXPECT_GT(std::count_if(holders.begin(), holders.end(), [](const auto& h) { return h.second > 1; }), 0);
     EXPECT_THROW(refiner.refine(0), std::logic_error);  // each block once, in order
+}
+
+// Placement moves a new wall node (onto the body, in `refine`): the new nodes of its
+// wall-normal line follow by d (1 - s / S), so the line's cells all stretch by 1 + |d| / S:
+// its growth ratios stay the law's and its first cell keeps its thickness (it would grow by
+// |d|, 42 % here, if the line stayed where interpolated).
+TEST(BlockRefiner, WallNormalLinesFollowTheirPlacedWallNode) {
+    const std::vector<double> d = two_ratio_distances(0.01, 1.21, 4, 1.7, 4);
+    std::vector<Vec3> line;
+    for (double x : d) line.emplace_back(x, 0, 0);
+    const Vec3 move(-0.002, 0, 0);  // out of the grid
+    const BlockGrid coarse = wall_line_block(line, imin);
+    BlockRefiner refiner(coarse);
+    const RefinedBlock piece = refiner.refine(0, [&](const Vec3& x, VertexKind kind) {
+        return kind == VertexKind::slip ? Vec3(x + move) : x;
+    });
+    const Block& f = piece.grid.blocks[0];
+    ASSERT_EQ(piece.grid.kinds[f.nodes.flat(0, 1, 1)], VertexKind::slip);  // a new wall node
+    std::vector<double> h;  // the fine cells of its line
+    for (int i = 0; i + 1 < f.nodes.ni; ++i)
+        h.push_back(piece.grid.points[f.nodes.flat(i + 1, 1, 1)].x() -
+                    piece.grid.points[f.nodes.flat(i, 1, 1)].x());
+    const double stretch = 1 + 0.002 / d.back();
+    EXPECT_NEAR(h[0], 0.01 / 2.1 * stretch, 1e-15);
+    for (size_t m = 0; m < 7; ++m) EXPECT_NEAR(h[m + 1] / h[m], 1.1, 1e-12) << m;
+    EXPECT_NEAR(h.back(), (d.back() - d[d.size() - 2]) * std::sqrt(1.7) / (1 + std::sqrt(1.7)) * stretch, 1e-15);
 }
 
 // Two one-cell blocks side by side (x in [0, 1] and [1, 2]), numbered by hand: block 0's 19 new
