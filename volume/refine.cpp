@@ -56,11 +56,69 @@ void interpolate_line(int coarse_count, At&& at) {
     }
 }
 
+// Which ends of a block's grid lines along one index direction lie on a wall (a block face
+// of patch "wall"): where their boundary layer grows from.
+struct WallEnds {
+    bool first = false, last = false;
+};
+
+// Fills the odd entries of a wall-normal line (see refine.h) whose even entries are set: first
+// as interpolate_line does, then each new node is moved along the chord of its coarse cell
+// m (from sample m to m + 1, length L_m) to the fraction the refined law gives, keeping its
+// offset across the chord (the line's curvature). Cell m is split into two cells of ratio
+// rho_m = sqrt(L_m / L_w), L_w the cell next to it on the wall side (for the wall cell,
+// sqrt(L_o / L_m), L_o the cell beyond it): each coarse step from one cell to the next becomes
+// two fine steps of its square root, and the fine cell on the wall side is L_m / (1 + rho_m)
+// long. The ratios do not stop at kinks as the stencils do: a line that turns sharply keeps
+// its spacing, and a ratio that changed there would jump between neighbouring lines. With
+// walls at both ends a cell takes the nearer one (the middle cell of an odd count is halved).
+template <class At>
+void interpolate_wall_line(int coarse_count, WallEnds wall, At&& at) {
+    const int n = coarse_count;
+    interpolate_line(n, at);
+    auto sample = [&](int m) -> const Vec3& { return at(2 * m); };
+    auto length = [&](int m) { return (sample(m + 1) - sample(m)).norm(); };
+    for (int m = 0; m + 1 < n; ++m) {
+        // Cell m's wall side: its first end, its last end, or neither (the middle cell
+        // between two walls).
+        const bool from_first = wall.first && (!wall.last || 2 * m < n - 2);
+        const bool from_last = wall.last && (!wall.first || 2 * m > n - 2);
+        const int inner = from_first ? m - 1 : m + 1;  // the neighbours towards the wall
+        const int outer = from_first ? m + 1 : m - 1;  // and away from it
+        auto is_cell = [&](int c) { return c >= 0 && c + 1 < n; };
+        double rho = 1;  // the fine ratio, away from the wall
+        if ((from_first || from_last) && is_cell(inner))
+            rho = std::sqrt(length(m) / length(inner));
+        else if ((from_first || from_last) && is_cell(outer))
+            rho = std::sqrt(length(outer) / length(m));
+        if (!(rho > 0) || !std::isfinite(rho)) rho = 1;  // a cell of zero length
+        const double f = from_last ? rho / (1 + rho) : 1 / (1 + rho);  // of the chord from m
+        const Vec3 chord = sample(m + 1) - sample(m);
+        const double chord2 = chord.squaredNorm();
+        if (!(chord2 > 0)) continue;
+        Vec3& mid = at(2 * m + 1);
+        mid += (f - (mid - sample(m)).dot(chord) / chord2) * chord;
+    }
+}
+
+// Fills a line: along the wall normal by interpolate_wall_line, else by interpolate_line.
+template <class At>
+void fill_line(int coarse_count, WallEnds wall, At&& at) {
+    if (wall.first || wall.last)
+        interpolate_wall_line(coarse_count, wall, at);
+    else
+        interpolate_line(coarse_count, at);
+}
+
 // Positions of the fine nodes of one block (fine dims, flat i fastest), by tensor-product
-// interpolation: along i on the coarse j, k lines, then along j, then along k.
+// interpolation: along i on the coarse j, k lines, then along j, then along k; along an
+// index direction with a wall face at an end, by interpolate_wall_line.
 std::vector<Vec3> fine_positions(const BlockGrid& coarse, const Block& block, const Dims& fine) {
     std::vector<Vec3> x(fine.count());
     const Dims c = block.nodes;
+    WallEnds wall[3];
+    for (int d = 0; d < 3; ++d)
+        wall[d] = {block.face_patch[2 * d] == "wall", block.face_patch[2 * d + 1] == "wall"};
     tbb::parallel_for(0, c.nk, [&](int k) {
         for (int j = 0; j < c.nj; ++j)
             for (int i = 0; i < c.ni; ++i)
@@ -69,17 +127,63 @@ std::vector<Vec3> fine_positions(const BlockGrid& coarse, const Block& block, co
     // Along i on (even j, even k); along j on (all i, even k); along k on (all i, all j).
     tbb::parallel_for(0, c.nk, [&](int k) {
         for (int j = 0; j < c.nj; ++j)
-            interpolate_line(c.ni, [&](int f) -> Vec3& { return x[fine.flat(f, 2 * j, 2 * k)]; });
+            fill_line(c.ni, wall[0], [&](int f) -> Vec3& { return x[fine.flat(f, 2 * j, 2 * k)]; });
     });
     tbb::parallel_for(0, c.nk, [&](int k) {
         for (int i = 0; i < fine.ni; ++i)
-            interpolate_line(c.nj, [&](int f) -> Vec3& { return x[fine.flat(i, f, 2 * k)]; });
+            fill_line(c.nj, wall[1], [&](int f) -> Vec3& { return x[fine.flat(i, f, 2 * k)]; });
     });
     tbb::parallel_for(0, fine.nj, [&](int j) {
         for (int i = 0; i < fine.ni; ++i)
-            interpolate_line(c.nk, [&](int f) -> Vec3& { return x[fine.flat(i, j, f)]; });
+            fill_line(c.nk, wall[2], [&](int f) -> Vec3& { return x[fine.flat(i, j, f)]; });
     });
     return x;
+}
+
+// Where placement moved a new wall node by d (onto the body), the new interior nodes of its
+// wall-normal line in the fine block `block` (local ids) follow by d (1 - s / S), s the length
+// along the line from the wall and S the whole line's: every cell of a straight line grows by
+// the same factor, so the first layer keeps its thickness and the line its growth ratios
+// (projection moves a node of the interpolated wall by up to a few percent of a cell, as
+// much as a thin first layer). The line's far end does not move. Coarse nodes and nodes of
+// other kinds (on a wall, a crease, the far field) stay. A node other blocks placed first
+// moves too, but gets their position back afterwards, as every shared node does.
+void carry_wall_moves(const Block& block, const std::vector<VertexKind>& kinds,
+                      const std::vector<bool>& coarse,
+                      const std::unordered_map<Id, Vec3>& wall_moves, std::vector<Vec3>& x) {
+    if (wall_moves.empty()) return;
+    const Dims& f = block.nodes;
+    for (int side = 0; side < 6; ++side) {
+        if (block.face_patch[side] != "wall") continue;
+        const int d = side / 2, p = (d + 1) % 3, q = (d + 2) % 3, n = f[d];
+        if (n < 3) continue;
+        auto node = [&](int a, int b, int t) {
+            int ijk[3];
+            ijk[d] = side % 2 ? n - 1 - t : t;
+            ijk[p] = a;
+            ijk[q] = b;
+            return f.flat(ijk[0], ijk[1], ijk[2]);
+        };
+        tbb::parallel_for(0, f[q], [&](int b) {
+            std::vector<double> s(size_t(n), 0.0);
+            for (int a = 0; a < f[p]; ++a) {
+                const auto moved = wall_moves.find(node(a, b, 0));
+                if (moved == wall_moves.end()) continue;
+                // Lengths along the line as interpolated, the wall node where it was.
+                Vec3 before = x[node(a, b, 0)] - moved->second;
+                for (int t = 1; t < n; ++t) {
+                    s[t] = s[t - 1] + (x[node(a, b, t)] - before).norm();
+                    before = x[node(a, b, t)];
+                }
+                if (!(s[n - 1] > 0)) continue;
+                for (int t = 1; t + 1 < n; ++t) {
+                    const Id m = node(a, b, t);
+                    if (!coarse[m] && kinds[m] == VertexKind::interior)
+                        x[m] += (1 - s[t] / s[n - 1]) * moved->second;
+                }
+            }
+        });
+    }
 }
 
 // The coarse entity of fine node f (on a block face, so an edge or a face): the coarse ids
@@ -229,11 +333,19 @@ RefinedBlock BlockRefiner::refine(size_t b, const Place& place) {
                 out.ids[m] = n.id;
             }
     std::vector<Vec3>& x = out.grid.points;
-    if (place)
+    if (place) {
+        std::vector<Vec3> moves(first.size());
         tbb::parallel_for(size_t(0), first.size(), [&](size_t n) {
             const Id m = first[n].first;
-            x[m] = place(x[m], out.grid.kinds[m]);
+            const Vec3 placed = place(x[m], out.grid.kinds[m]);
+            moves[n] = placed - x[m];
+            x[m] = placed;
         });
+        std::unordered_map<Id, Vec3> wall_moves;
+        for (size_t n = 0; n < first.size(); ++n)
+            if (moves[n] != Vec3::Zero()) wall_moves.emplace(first[n].first, moves[n]);
+        carry_wall_moves(fine, out.grid.kinds, out.coarse, wall_moves, x);
+    }
     for (const auto& [m, e] : first) e->second.x = x[m];
     for (const auto& [m, e] : again) x[m] = e->second.x;
     for (auto* list : {&first, &again})

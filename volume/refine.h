@@ -25,8 +25,17 @@ namespace hexmesh {
 // each side, quadratic (3, 6, -1)/8 at line ends, linear on 2-node lines; a coarse node where
 // the line turns by more than 45 degrees (a crease of the wall it follows) counts as a line
 // end for the stencils on either side. This keeps curved walls curved and a geometric
-// stretching geometric (ratio r becomes ~sqrt(r)), and keeps the lines next to a crease on
-// their side of it. A node shared
+// stretching nearly geometric (ratio r becomes ~sqrt(r)), and keeps the lines next to a crease
+// on their side of it. Along an index direction with a "wall" face at an end (the
+// wall-normal lines) each new node then slides along the chord of its coarse cell (keeping
+// its offset across it, the line's curvature) to where the refined stretching law splits
+// the cell: into two cells of ratio sqrt(L / L_w), L the cell's length and L_w that of the
+// cell next to it on the wall side (for the wall cell: sqrt(L_o / L), L_o the cell beyond).
+// So a boundary layer of ratio r becomes one of ratio sqrt(r), exactly, its first cell
+// h / (1 + sqrt(r)) (refined_wall_layers), up to its last layer, next to which the ratio
+// changes: there the stencils in the index overshoot, which made the fine spacing shrink
+// outwards (ratios down to 0.99 on a sphere, 0.2 on a box with a cylinder, whose lines
+// change ratio more sharply). A node shared
 // by blocks takes the value of the first block that reaches it (the blocks agree up to
 // round-off where their lines coincide, except next to a crease, where the order of the
 // index directions can change which stencils stop).
@@ -63,7 +72,11 @@ class BlockRefiner {
 public:
     // place(x, kind): where a new node on a block face goes (e.g. a wall node projected onto
     // the body); called once per such node, in parallel, before any block receives it, so a
-    // node shared by blocks gets one position. Nodes inside a block stay where interpolated.
+    // node shared by blocks gets one position. Where it moves a wall node by d, the new
+    // interior nodes of the node's wall-normal line in the block (not yet placed by another
+    // block) move by d (1 - s / S), s their length along the line from the wall, S the line's:
+    // its cells all stretch alike, so the first layer keeps its thickness and the line its
+    // growth ratios. Nodes inside a block stay where interpolated otherwise.
     using Place = std::function<Vec3(const Vec3& x, VertexKind kind)>;
 
     explicit BlockRefiner(const BlockGrid& coarse);

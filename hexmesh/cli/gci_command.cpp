@@ -1,11 +1,13 @@
-// `hexmesh gci F1 F2 F3 [--ratio R] [--ratio32 R]`: discretization uncertainty of a result
-// computed on the fine, medium and coarse grids of a family (Celik et al. 2008).
+// `hexmesh gci F1 F2 F3 [--ratio R] [--ratio32 R] [--order P]`: discretization uncertainty of
+// a result computed on the fine, medium and coarse grids of a family (Celik et al. 2008), with
+// a warning line (stderr) for a ratio assumed and for an observed order far from the formal one.
 #include <fmt/format.h>
 
 #include <cmath>
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <string>
 
 #include "hexmesh/cli/commands.h"
 #include "hexmesh/pipeline/grid_convergence.h"
@@ -15,7 +17,7 @@ namespace hexmesh::cli {
 
 void add_gci_command(CLI::App& app, int& exit_code) {
     struct Args {
-        double phi1 = 0, phi2 = 0, phi3 = 0, ratio = 2;
+        double phi1 = 0, phi2 = 0, phi3 = 0, ratio = 2, order = 2;
         std::optional<double> ratio32;
         bool allow_oscillatory = false;
     };
@@ -25,12 +27,16 @@ void add_gci_command(CLI::App& app, int& exit_code) {
     cmd->add_option("F1", args->phi1, "result on the fine grid")->required();
     cmd->add_option("F2", args->phi2, "result on the medium grid")->required();
     cmd->add_option("F3", args->phi3, "result on the coarse grid")->required();
-    cmd->add_option("--ratio", args->ratio, "refinement ratio h2/h1 (and h3/h2)")
-        ->capture_default_str();
+    CLI::Option* ratio = cmd->add_option("--ratio", args->ratio, "refinement ratio h2/h1 (and h3/h2)")
+                             ->capture_default_str();
     cmd->add_option("--ratio32", args->ratio32, "refinement ratio h3/h2 (default: --ratio)");
     cmd->add_flag("--allow-oscillatory", args->allow_oscillatory,
                   "accept values that go up and down (oscillatory convergence, s = -1)");
-    cmd->callback([args, &exit_code] {
+    cmd->add_option("--order", args->order,
+                    "formal order of the scheme: a warning when the observed order is below half "
+                    "of it or above twice")
+        ->capture_default_str();
+    cmd->callback([args, ratio, &exit_code] {
         GridConvergenceInput in;
         in.phi1 = args->phi1, in.phi2 = args->phi2, in.phi3 = args->phi3;
         in.r21 = args->ratio;
@@ -42,6 +48,8 @@ void add_gci_command(CLI::App& app, int& exit_code) {
             if (!std::isfinite(value)) throw InputError(fmt::format("gci: {} is {}: expected a finite number", name, value));
         for (const auto& [name, value] : {given[3], given[4]})
             if (!(value > 1)) throw InputError(fmt::format("gci: {} is {}: a refinement ratio must be > 1", name, value));
+        if (!(args->order > 0) || !std::isfinite(args->order))
+            throw InputError(fmt::format("gci: --order is {}: expected the scheme's formal order, a number > 0", args->order));
         GridConvergence g;
         try {
             g = grid_convergence(in);
@@ -63,6 +71,14 @@ void add_gci_command(CLI::App& app, int& exit_code) {
             "  GCI_fine^21                         {:.4g} %\n",
             in.r21, in.r32, g.oscillatory ? "oscillatory" : "monotone", g.order, g.extrapolated,
             100 * g.relative_error, 100 * g.extrapolated_relative_error, 100 * g.gci_fine);
+        if (ratio->count() == 0)
+            std::cerr << fmt::format(
+                "hexmesh: warning: gci: no --ratio given: assumed refinement ratio h2/h1 = {:g}{} "
+                "(a hexmesh family: every cell split in two per direction); give --ratio for grids "
+                "refined otherwise\n",
+                in.r21, args->ratio32 ? "" : fmt::format(" and h3/h2 = {:g}", in.r32));
+        const std::string order = order_warning(g.order, args->order);
+        if (!order.empty()) std::cerr << "hexmesh: warning: gci: " << order << "\n";
         exit_code = 0;
     });
 }

@@ -58,4 +58,20 @@ GridConvergence grid_convergence(const GridConvergenceInput& in) {
     return g;
 }
 
+std::string order_warning(double p, double formal, const OrderRange& range) {
+    if (!std::isfinite(p))
+        return fmt::format(
+            "observed order p = {} is not a finite number: the three grids are not in the "
+            "asymptotic range; phi_ext and GCI mean nothing",
+            p);
+    const bool low = p < range.low * formal, high = p > range.high * formal;
+    if (!low && !high) return "";
+    const double bound = (low ? range.low : range.high) * formal;
+    return fmt::format(
+        "observed order p = {:.3g} is {} {:g} times the formal order {:g} (p {} {:g}): the three "
+        "grids are not in the asymptotic range, so phi_ext and GCI are not reliable (refine "
+        "further, or check that the iterative error is converged)",
+        p, low ? "below" : "above", low ? range.low : range.high, formal, low ? "<" : ">", bound);
+}
+
 }  // namespace hexmesh

@@ -1,6 +1,8 @@
 // Discretization uncertainty from three grid levels: the GCI procedure of Celik et al. (2008).
 #pragma once
 
+#include <string>
+
 namespace hexmesh {
 
 // Results of one quantity on three grids, fine (1), medium (2) and coarse (3), and the
@@ -30,5 +32,18 @@ struct GridConvergence {
 // zero (no convergence to measure), phi1 or phi_ext is zero (relative errors undefined), or
 // the iteration does not converge in 200 steps.
 GridConvergence grid_convergence(const GridConvergenceInput& input);
+
+// Where the observed order p must lie, in multiples of the scheme's formal order, for the three
+// grids to count as in the asymptotic range (p near the formal order; far from it, the error
+// is not yet the leading term of its expansion, and phi_ext and the GCI do not bound it).
+struct OrderRange {
+    double low = 0.5;  // p below half the formal order: the error falls too slowly
+    double high = 2;   // above twice: too fast (differences of round-off, or of cancelling terms)
+};
+
+// One warning line about the observed order p against `formal_order` (> 0), naming what it
+// means, or an empty string when low * formal <= p <= high * formal. A p that is not finite
+// is warned about too.
+std::string order_warning(double observed_order, double formal_order, const OrderRange& range = {});
 
 }  // namespace hexmesh

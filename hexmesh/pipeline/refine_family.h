@@ -47,7 +47,8 @@ using BlockSink = std::function<void(RefinedBlock& block)>;
 // one fine block and the new nodes on block faces (see BlockRefiner), not the fine grid. Each
 // block: BlockRefiner splits it, its new slip nodes go onto u = 0 of `body` (project_to_surface)
 // and its new feature_edge nodes onto their crease, as they are first reached (a node shared by
-// blocks is placed once); then `sweeps` steps of the block-diagonal solver (slip on u = 0) over the
+// blocks is placed once), and the new nodes of their wall-normal lines follow them (see
+// BlockRefiner::Place); then `sweeps` steps of the block-diagonal solver (slip on u = 0) over the
 // new nodes of the cells that touch a new wall node, each cell's target the box of its own edge
 // lengths after interpolation (as in optimize_grid). The interpolated interior needs no polish and
 // is left as it is; so are the new nodes on block interfaces, which every block holding

@@ -1,8 +1,9 @@
-// grid_convergence against the worked example of Celik et al. (2008).
+// grid_convergence against the worked example of Celik et al. (2008); order_warning.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "hexmesh/pipeline/grid_convergence.h"
 
@@ -85,4 +86,38 @@ TEST(GridConvergence, RatiosNotAboveOneAreRefused) {
     GridConvergenceInput in = celik_table_1();
     in.r21 = 1;
     EXPECT_THROW(grid_convergence(in), std::invalid_argument);
+}
+
+TEST(OrderWarning, NoneBetweenHalfAndTwiceTheFormalOrder) {
+    EXPECT_EQ(order_warning(2.0, 2), "");
+    EXPECT_EQ(order_warning(1.0, 2), "");
+    EXPECT_EQ(order_warning(4.0, 2), "");
+    EXPECT_EQ(order_warning(1.53, 2), "");  // Celik's Table 1
+}
+
+TEST(OrderWarning, FarBelowTheFormalOrderIsNotAsymptotic) {
+    // phi = 1, 1.1, 1.21975 on ratio 2: p = log2(1.1975) = 0.26 for a second-order scheme.
+    GridConvergenceInput in;
+    in.phi1 = 1, in.phi2 = 1.1, in.phi3 = 1.21975;
+    const GridConvergence g = grid_convergence(in);
+    EXPECT_NEAR(g.order, 0.26, 1e-3);
+    const std::string w = order_warning(g.order, 2);
+    EXPECT_NE(w.find("p = 0.26 is below 0.5 times the formal order 2 (p < 1)"), std::string::npos) << w;
+    EXPECT_NE(w.find("not in the asymptotic range"), std::string::npos) << w;
+    EXPECT_EQ(order_warning(g.order, 0.5), "");  // in range for a scheme of order 0.5
+}
+
+TEST(OrderWarning, FarAboveTheFormalOrderIsNotAsymptotic) {
+    const std::string w = order_warning(2.6, 1);
+    EXPECT_NE(w.find("p = 2.6 is above 2 times the formal order 1 (p > 2)"), std::string::npos) << w;
+    EXPECT_NE(w.find("not in the asymptotic range"), std::string::npos) << w;
+    EXPECT_EQ(order_warning(2.6, 1, {0.5, 3}), "");  // a wider range, as given
+}
+
+TEST(OrderWarning, NotFiniteIsWarnedAbout) {
+    for (const double p : {std::nan(""), HUGE_VAL}) {
+        const std::string w = order_warning(p, 2);
+        EXPECT_NE(w.find("is not a finite number"), std::string::npos) << w;
+        EXPECT_NE(w.find("not in the asymptotic range"), std::string::npos) << w;
+    }
 }

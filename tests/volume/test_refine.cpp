@@ -1,7 +1,9 @@
-// refine_grid: topology, nesting and conformity of a refined O-H sphere grid; BlockRefiner,
+// refine_grid: topology, nesting and conformity of a refined O-H sphere grid, the refined law
+// along wall-normal lines; BlockRefiner,
 // the same grid one block at a time.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <atomic>
 #include <map>
@@ -151,6 +153,88 @@ TEST(RefineGrid, GeometricStretchingBecomesItsSquareRoot) {
     }
 }
 
+namespace {
+
+// A block whose i lines (2 x 2 of them, 0.5 apart) run through the points `line`, its face
+// `wall` (imin or imax) a wall: a line normal to the wall, as in a boundary-layer block.
+BlockGrid wall_line_block(const std::vector<Vec3>& line, BlockFace wall) {
+    BlockGrid grid;
+    Block b;
+    b.name = "layers";
+    b.nodes = {int(line.size()), 2, 2};
+    b.face_patch[wall] = "wall";
+    for (int k = 0; k < 2; ++k)
+        for (int j = 0; j < 2; ++j)
+            for (const Vec3& x : line) {
+                b.node_ids.push_back(Id(grid.points.size()));
+                grid.points.push_back(x + Vec3(0, 0, 0.5 * j + 0.5 * k));
+                grid.kinds.push_back(VertexKind::interior);
+            }
+    grid.blocks.push_back(b);
+    return grid;
+}
+
+// Wall distances of `layers` cells from h of ratio r, then `fill` cells of ratio R.
+std::vector<double> two_ratio_distances(double h, double r, int layers, double R, int fill) {
+    std::vector<double> d = {0};
+    for (int m = 0; m < layers + fill; ++m, h *= m < layers ? r : R) d.push_back(d.back() + h);
+    return d;
+}
+
+}  // namespace
+
+TEST(RefineGrid, WallNormalLinesFollowTheRefinedLawAcrossTheEndOfTheLayers) {
+    // 4 layers of ratio 1.21 from 0.01, then 4 cells of ratio 1.7 (the rest of the line grows
+    // faster, as wall_distances fills it): 8 fine layers of ratio 1.1 from 0.01 / 2.1, then
+    // cells of ratio sqrt(1.7); the spacing grows everywhere. (Cubic stencils in the index
+    // made ratios 1.03 and 1.25 in the last layer.) The same with the wall at the other end.
+    const std::vector<double> d = two_ratio_distances(0.01, 1.21, 4, 1.7, 4);
+    for (const BlockFace wall : {imin, imax}) {
+        std::vector<Vec3> line;  // node i at distance d[i] from the wall, or d[n - 1 - i]
+        for (size_t i = 0; i < d.size(); ++i)
+            line.emplace_back(wall == imin ? d[i] : -d[d.size() - 1 - i], 0, 0);
+        const BlockGrid fine = refine_grid(wall_line_block(line, wall));
+        const Block& f = fine.blocks[0];
+        std::vector<double> h;  // fine cells from the wall
+        for (int i = 0; i + 1 < f.nodes.ni; ++i) {
+            const int a = wall == imin ? i : f.nodes.ni - 1 - i, b = wall == imin ? a + 1 : a - 1;
+            h.push_back((fine.points[f.node(b, 1, 1)] - fine.points[f.node(a, 1, 1)]).norm());
+        }
+        EXPECT_NEAR(h[0], 0.01 / 2.1, 1e-15) << wall;
+        for (size_t m = 0; m + 1 < h.size(); ++m) {
+            EXPECT_GE(h[m + 1] / h[m], 1.0) << wall << " " << m;
+            if (m < 7) {
+                EXPECT_NEAR(h[m + 1] / h[m], 1.1, 1e-12) << wall << " " << m;
+            } else if (m >= 8) {
+                EXPECT_NEAR(h[m + 1] / h[m], std::sqrt(1.7), 1e-12) << wall << " " << m;
+            }
+        }
+    }
+}
+
+TEST(RefineGrid, WallNormalLinesKeepTheirCurvature) {
+    // The line an arc of the unit circle, its arc length the two-ratio law. Each new node is
+    // where the grid without a wall puts it (the cubic of the line), moved along its coarse
+    // cell's chord only, to the law's fraction of it: its offset from the chord, the arc's
+    // curvature, is kept (up to 4.6e-3 in the last cell: a node on the chord would be that
+    // far inside the circle).
+    const std::vector<double> d = two_ratio_distances(0.01, 1.21, 4, 1.7, 4);
+    std::vector<Vec3> line;
+    for (double t : d) line.emplace_back(std::cos(t), std::sin(t), 0);
+    const BlockGrid coarse = wall_line_block(line, imin);
+    BlockGrid no_wall = coarse;
+    no_wall.blocks[0].face_patch[imin] = "";
+    const BlockGrid fine = refine_grid(coarse), cubic = refine_grid(no_wall);
+    const Block& f = fine.blocks[0];
+    for (int i = 1; i < f.nodes.ni; i += 2) {
+        const Vec3 a = line[i / 2], chord = line[i / 2 + 1] - a;
+        const Vec3 x = fine.points[f.node(i, 0, 0)], y = cubic.points[f.node(i, 0, 0)];
+        EXPECT_LT((x - y).cross(chord).norm(), 1e-12) << i;  // x - y along the chord
+        const Vec3 offset = (x - a) - (x - a).dot(chord) / chord.squaredNorm() * chord;
+        EXPECT_GT(offset.norm(), 0.1 * (1 - std::cos(chord.norm() / 2))) << i;
+    }
+}
+
 TEST(RefineGrid, LinesTurningAtACreaseStayOnTheirSideOfIt) {
     // A block whose i lines turn by 90 degrees at i = 3 (along x, then along y), like the
     // lines over a box's edge: the new nodes lie on the two straight legs, none overshoots the
@@ -211,7 +295,11 @@ TEST(BlockRefiner, BlocksAreTheFineGridsAndPlaceEachFaceNodeOnce) {
                 EXPECT_EQ(x, coarse.points[v]);
                 continue;
             }
-            if (!moved) continue;  // inside the block: not placed
+            const Dims& d = block.nodes;
+            const int i = int(m % d.ni), j = int(m / d.ni % d.nj), k = int(m / d.ni / d.nj);
+            const bool on_face = i == 0 || j == 0 || k == 0 || i == d.ni - 1 || j == d.nj - 1 || k == d.nk - 1;
+            // Inside the block: not placed (moved, if at all, along with a wall node's line).
+            if (!moved || !on_face) continue;
             const auto [it, first] = placed.try_emplace(v, x);
             if (!first) {
                 EXPECT_EQ(it->second, x) << "fine node " << v;
@@ -224,6 +312,32 @@ TEST(BlockRefiner, BlocksAreTheFineGridsAndPlaceEachFaceNodeOnce) {
     EXPECT_EQ(calls.load(), int(placed.size()));
     EXPECT_GT(std::count_if(holders.begin(), holders.end(), [](const auto& h) { return h.second > 1; }), 0);
     EXPECT_THROW(refiner.refine(0), std::logic_error);  // each block once, in order
+}
+
+// Placement moves a new wall node (onto the body, in `refine`): the new nodes of its
+// wall-normal line follow by d (1 - s / S), so the line's cells all stretch by 1 + |d| / S:
+// its growth ratios stay the law's and its first cell keeps its thickness (it would grow by
+// |d|, 42 % here, if the line stayed where interpolated).
+TEST(BlockRefiner, WallNormalLinesFollowTheirPlacedWallNode) {
+    const std::vector<double> d = two_ratio_distances(0.01, 1.21, 4, 1.7, 4);
+    std::vector<Vec3> line;
+    for (double x : d) line.emplace_back(x, 0, 0);
+    const Vec3 move(-0.002, 0, 0);  // out of the grid
+    const BlockGrid coarse = wall_line_block(line, imin);
+    BlockRefiner refiner(coarse);
+    const RefinedBlock piece = refiner.refine(0, [&](const Vec3& x, VertexKind kind) {
+        return kind == VertexKind::slip ? Vec3(x + move) : x;
+    });
+    const Block& f = piece.grid.blocks[0];
+    ASSERT_EQ(piece.grid.kinds[f.nodes.flat(0, 1, 1)], VertexKind::slip);  // a new wall node
+    std::vector<double> h;  // the fine cells of its line
+    for (int i = 0; i + 1 < f.nodes.ni; ++i)
+        h.push_back(piece.grid.points[f.nodes.flat(i + 1, 1, 1)].x() -
+                    piece.grid.points[f.nodes.flat(i, 1, 1)].x());
+    const double stretch = 1 + 0.002 / d.back();
+    EXPECT_NEAR(h[0], 0.01 / 2.1 * stretch, 1e-15);
+    for (size_t m = 0; m < 7; ++m) EXPECT_NEAR(h[m + 1] / h[m], 1.1, 1e-12) << m;
+    EXPECT_NEAR(h.back(), (d.back() - d[d.size() - 2]) * std::sqrt(1.7) / (1 + std::sqrt(1.7)) * stretch, 1e-15);
 }
 
 // Two one-cell blocks side by side (x in [0, 1] and [1, 2]), numbered by hand: block 0's 19 new
