@@ -218,6 +218,33 @@ TEST(OpenFoam, CheckMeshAcceptsTheSphereGridAndAgreesWithOurMetrics) {
     EXPECT_NE(r.output.find("Boundary definition OK."), std::string::npos);
 }
 
+// Every bundled case through the pipeline: when our report calls the grid valid (no inverted
+// corner tet and none of the cell checks a solver fails), checkMesh says "Mesh OK." and fails
+// no check.
+class BundledCaseInOpenFoam : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(BundledCaseInOpenFoam, ValidByOurReportMeansMeshOkByCheckMesh) {
+    if (!have_tool("checkMesh")) GTEST_SKIP() << "checkMesh not installed (Debian package openfoam)";
+    Case c = read_case(std::string(HEXMESH_SOURCE_DIR "/cases/") + GetParam() + "/case.json");
+    c.outputs = {"vtk", "openfoam"};
+    c.refinement.levels = 1;
+    const fs::path dir = scratch("bundled_" + GetParam());
+    RunOptions options;
+    options.report = false;
+    std::ostringstream log;
+    const RunResult result = run_case(c, (dir / "out").string(), options, log);
+    ASSERT_TRUE(result.report.quality.solver_valid()) << GetParam() << ": the bundled case is refused";
+    const ToolRun r = run_tool(check_mesh_command(dir / "out" / "grid_openfoam"));
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("Mesh OK."), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("***"), std::string::npos) << r.output;
+    fs::remove_all(dir);
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases, BundledCaseInOpenFoam,
+                         ::testing::Values("sphere", "sphere_exterior", "ellipsoid", "bean", "bean_exterior",
+                                           "box_exterior", "box_cylinder", "stl_capsule"));
+
 // The exterior O-grid (six shell blocks, patch wall on the sphere, farfield on a sphere of
 // radius 10) with a boundary layer of first height 0.01: checkMesh passes every check.
 TEST(OpenFoam, CheckMeshAcceptsTheExteriorOGridWithSphereFarField) {
