@@ -46,7 +46,8 @@ std::string histogram_svg(const ReportHistogram& h) {
     for (Id c : b.counts) most = std::max(most, c);
     const double scale = (height - top - bottom) / std::log10(1.0 + double(most));
     std::string svg = fmt::format(
-        "<svg class=\"histogram\" id=\"hist-{}\" width=\"{}\" height=\"{}\" viewBox=\"0 0 {} {}\" "
+        "<svg class=\"histogram\" data-name=\"{}\" width=\"{}\" height=\"{}\" viewBox=\"0 0 {} "
+        "{}\" "
         "xmlns=\"http://www.w3.org/2000/svg\">\n",
         h.name, width, height, width, height);
     svg += fmt::format("<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#444\"/>\n", left,
@@ -147,17 +148,15 @@ const char* style = R"(body{font-family:sans-serif;margin:20px;color:#222;max-wi
 h1{font-size:22px}h2{font-size:17px;margin-top:28px;border-bottom:1px solid #ccc}
 figure{display:inline-block;margin:6px;vertical-align:top}figcaption{font-size:12px;text-align:center}
 table{border-collapse:collapse;font-size:13px}td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}
+td.side{vertical-align:top;text-align:left;border:none;padding:0 12px}
 th{background:#eee}td.l{text-align:left}pre{background:#f6f6f6;padding:8px;font-size:12px;overflow:auto}
 .bad{color:#b00;font-weight:bold}.good{color:#070;font-weight:bold}
 )";
 
-}  // namespace
-
-std::string report_page_html(const ReportPage& page) {
-    std::string html = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
-    html += fmt::format("<title>{}</title>\n<style>{}</style>\n</head>\n<body>\n",
-                        escape_markup(page.title), style);
-    html += fmt::format("<h1>{}</h1>\n<p id=\"summary\">{}</p>\n", escape_markup(page.title),
+// The page's sections, from its heading to its settings.
+std::string page_body(const ReportPage& page) {
+    std::string html;
+    html += fmt::format("<h1>{}</h1>\n<p class=\"summary\">{}</p>\n", escape_markup(page.title),
                         page.summary);
 
     html += "<h2>Pictures</h2>\n<p>Cells coloured by " + escape_markup(page.value_name) +
@@ -182,7 +181,7 @@ std::string report_page_html(const ReportPage& page) {
     }
 
     html += fmt::format(
-        "<h2>The {} worst cells</h2>\n<table id=\"worst\">\n<tr><th>rank</th><th>{}</th>"
+        "<h2>The {} worst cells</h2>\n<table class=\"worst\">\n<tr><th>rank</th><th>{}</th>"
         "<th>where</th><th>centre</th></tr>\n",
         page.worst.size(), escape_markup(page.value_name));
     for (std::size_t r = 0; r < page.worst.size(); ++r) {
@@ -197,7 +196,7 @@ std::string report_page_html(const ReportPage& page) {
     html += "<h2>Quality</h2>\n<pre>" + escape_markup(page.quality_table) + "</pre>\n";
     html += "<h2>Time and memory</h2>\n";
     if (!page.phase_seconds.empty()) {
-        html += "<table id=\"phases\">\n<tr><th>phase</th><th>seconds</th></tr>\n";
+        html += "<table class=\"phases\">\n<tr><th>phase</th><th>seconds</th></tr>\n";
         double total = 0;
         for (const auto& [phase, seconds] : page.phase_seconds) {
             html += fmt::format("<tr><td class=\"l\">{}</td><td>{:.2f}</td></tr>\n",
@@ -210,9 +209,14 @@ std::string report_page_html(const ReportPage& page) {
     if (!page.settings_json.empty())
         html +=
             "<h2>Settings</h2>\n<p>Every setting the run used, its automatic choices included "
-            "(grid.case.json).</p>\n<pre id=\"settings\">" +
+            "(grid.case.json).</p>\n<pre class=\"settings\">" +
             escape_markup(page.settings_json) + "</pre>\n";
 
+    return html;
+}
+
+// The page's numbers for tools: histograms, worst cells, pictures drawn, quality.json.
+nlohmann::ordered_json page_data(const ReportPage& page) {
     nlohmann::ordered_json data;
     data["histograms"] = nlohmann::ordered_json::array();
     for (const ReportHistogram& h : page.histograms)
@@ -225,11 +229,39 @@ std::string report_page_html(const ReportPage& page) {
     data["pictures"] = page.pictures.size();
     if (!page.quality_json.empty())
         data["quality"] = nlohmann::ordered_json::parse(page.quality_json);
+    return data;
+}
+
+// A document around `body`, with `data` embedded as JSON.
+std::string html_document(const std::string& title, const std::string& body,
+                          const nlohmann::ordered_json& data) {
+    std::string html = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
+    html += fmt::format("<title>{}</title>\n<style>{}</style>\n</head>\n<body>\n",
+                        escape_markup(title), style);
+    html += body;
     std::string json = data.dump();
     for (std::size_t at = json.find("</"); at != std::string::npos; at = json.find("</", at + 2))
         json.replace(at, 2, "<\\/");
     html += "<script type=\"application/json\" id=\"hexmesh-report\">" + json + "</script>\n";
     return html + "</body>\n</html>\n";
+}
+
+}  // namespace
+
+std::string report_page_html(const ReportPage& page) {
+    return html_document(page.title, page_body(page), page_data(page));
+}
+
+std::string compare_page_html(const ReportPage& a, const ReportPage& b) {
+    const std::string title = "hexmesh compare: " + a.title + " | " + b.title;
+    std::string body = "<table class=\"compare\"><tr>\n";
+    for (const ReportPage* page : {&a, &b})
+        body += "<td class=\"side\">\n" + page_body(*page) + "</td>\n";
+    body += "</tr></table>\n";
+    nlohmann::ordered_json data;
+    data["a"] = page_data(a);
+    data["b"] = page_data(b);
+    return html_document(title, body, data);
 }
 
 ReportPage grid_report_page(const std::string& title, const GridReport& report,

@@ -50,6 +50,10 @@ struct ReportPage {
 // tools; the page itself runs no script.
 std::string report_page_html(const ReportPage& page);
 
+// Two pages side by side (e.g. two levels of a family, two optimizations of a mesh), section
+// by section; the data of each as {"a": ..., "b": ...}.
+std::string compare_page_html(const ReportPage& a, const ReportPage& b);
+
 // The page of a block grid's report: histograms of scaled Jacobian and non-orthogonality,
 // and with a wall, of first-layer height over its target and of growth ratio; the worst
 // cells with their blocks; `pictures` drawn by GridPictures with the scaled Jacobian on

@@ -11,6 +11,7 @@ namespace hexmesh::cli {
 void add_run_command(CLI::App& app, int& exit_code);
 void add_quality_command(CLI::App& app, int& exit_code);
 void add_report_command(CLI::App& app, int& exit_code);
+void add_compare_command(CLI::App& app, int& exit_code);
 void add_inspect_command(CLI::App& app, int& exit_code);
 void add_sdf_command(CLI::App& app, int& exit_code);
 void add_export_command(CLI::App& app, int& exit_code);

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
     hexmesh::cli::add_run_command(app, exit_code);
     hexmesh::cli::add_quality_command(app, exit_code);
     hexmesh::cli::add_report_command(app, exit_code);
+    hexmesh::cli::add_compare_command(app, exit_code);
     hexmesh::cli::add_inspect_command(app, exit_code);
     hexmesh::cli::add_sdf_command(app, exit_code);
     hexmesh::cli::add_export_command(app, exit_code);

@@ -1,5 +1,6 @@
 // `hexmesh quality MESH [--json] [--surface CASE.json]`: the quality table of a hexahedral or
-// tetrahedral mesh file; `hexmesh report MESH [-o FILE] [--case CASE.json]`: its report page.
+// tetrahedral mesh file; `hexmesh report MESH [-o FILE] [--case CASE.json]`: its report page;
+// `hexmesh compare A B [-o FILE]`: two such pages side by side.
 #include <cctype>
 #include <filesystem>
 #include <fmt/format.h>
@@ -110,7 +111,28 @@ ReportPage block_grid_page(const std::string& path, const std::string& case_path
     } else {
         report.quality = measure_quality(grid);
     }
-    return grid_report_page("hexmesh report " + path, report, draw_grid(grid), settings);
+    return grid_report_page(path, report, draw_grid(grid), settings);
+}
+
+// The page of any mesh file, titled by its path: a tet mesh, a block grid (see
+// block_grid_page) or a hex mesh.
+ReportPage page_of_mesh(const std::string& path, const std::string& case_path) {
+    if (!std::filesystem::exists(path)) throw InputError(fmt::format("{}: no such mesh file", path));
+    if (const auto tets = read_tet_mesh(path))
+        return tet_mesh_report_page(path, *tets, measure_tet_quality(*tets));
+    if (is_block_grid_file(path)) return block_grid_page(path, case_path);
+    if (!case_path.empty()) throw InputError("--case is for block grids (.vtm .vts)");
+    const HexMesh mesh = read_vtk_mesh(path);
+    return hex_mesh_report_page(path, mesh,
+                                naming_file(path, [&] { return measure_quality(mesh); }));
+}
+
+// Writes `html` to `file` (staged, then renamed into place) and says so.
+void write_page(const std::filesystem::path& file, const std::string& html) {
+    StagedOutput staged(file.parent_path().empty() ? "." : file.parent_path().string(),
+                        StagedOutput::Scope::named_entries);
+    staged.write_text(file.filename().string(), html);
+    for (const std::string& f : staged.commit()) std::cout << "written: " << f << "\n";
 }
 
 }  // namespace
@@ -130,27 +152,30 @@ void add_report_command(CLI::App& app, int& exit_code) {
                     "block grids: the case whose body and wall law the wall is measured against "
                     "(default: grid.case.json beside the grid, if any)");
     cmd->callback([args, &exit_code] {
-        const std::string& path = args->mesh_path;
-        if (!std::filesystem::exists(path)) throw InputError(fmt::format("{}: no such mesh file", path));
-        ReportPage page;
-        if (const auto tets = read_tet_mesh(path)) {
-            page = tet_mesh_report_page("hexmesh report " + path, *tets, measure_tet_quality(*tets));
-        } else if (is_block_grid_file(path)) {
-            page = block_grid_page(path, args->case_path);
-        } else {
-            if (!args->case_path.empty()) throw InputError("--case is for block grids (.vtm .vts)");
-            const HexMesh mesh = read_vtk_mesh(path);
-            page = hex_mesh_report_page("hexmesh report " + path, mesh,
-                                        naming_file(path, [&] { return measure_quality(mesh); }));
-        }
+        ReportPage page = page_of_mesh(args->mesh_path, args->case_path);
+        page.title = "hexmesh report " + page.title;
         page.peak_memory_bytes = peak_memory();
-        const std::filesystem::path out =
-            args->output.empty() ? std::filesystem::path(path).parent_path() / "report.html"
-                                 : std::filesystem::path(args->output);
-        StagedOutput staged(out.parent_path().empty() ? "." : out.parent_path().string(),
-                            StagedOutput::Scope::named_entries);
-        staged.write_text(out.filename().string(), report_page_html(page));
-        for (const std::string& f : staged.commit()) std::cout << "written: " << f << "\n";
+        write_page(args->output.empty() ? std::filesystem::path(args->mesh_path).parent_path() / "report.html"
+                                        : std::filesystem::path(args->output),
+                   report_page_html(page));
+        exit_code = 0;
+    });
+}
+
+void add_compare_command(CLI::App& app, int& exit_code) {
+    struct Args {
+        std::string a, b, output = "compare.html", case_a, case_b;
+    };
+    auto args = std::make_shared<Args>();
+    CLI::App* cmd = app.add_subcommand("compare", "write the report pages of two meshes side by side");
+    cmd->add_option("a", args->a, "first mesh (as for report)")->required();
+    cmd->add_option("b", args->b, "second mesh")->required();
+    cmd->add_option("-o,--output", args->output, "the page")->capture_default_str();
+    cmd->add_option("--case-a", args->case_a, "block grids: the first one's case (default: grid.case.json beside it)");
+    cmd->add_option("--case-b", args->case_b, "the second one's");
+    cmd->callback([args, &exit_code] {
+        const ReportPage a = page_of_mesh(args->a, args->case_a), b = page_of_mesh(args->b, args->case_b);
+        write_page(args->output, compare_page_html(a, b));
         exit_code = 0;
     });
 }

@@ -122,7 +122,7 @@ TEST_F(ReportPage, ListsTheWorstCellsFromTheWorst) {
     const std::string block = quality["worst_cell"]["block"];
     EXPECT_EQ(worst[0]["where"].get<std::string>().rfind("block " + block + " (", 0), 0u)
         << worst[0];
-    EXPECT_NE(html.find("<pre id=\"settings\">"), std::string::npos);
+    EXPECT_NE(html.find("<pre class=\"settings\">"), std::string::npos);
     EXPECT_NE(html.find("Peak memory"), std::string::npos);
 }
 
@@ -188,7 +188,8 @@ TEST(ReportFlag, NoReportWritesNone) {
 }
 
 // The other commands write the page too: refine (drawn block by block as the level is
-// made), untangle and tetmesh (beside their mesh file), and `report` for any mesh file.
+// made), untangle and tetmesh (beside their mesh file), `report` for any mesh file and
+// `compare` for two.
 TEST_F(ReportPage, RefineWritesOneForItsLevel) {
     ASSERT_EQ(result.exit_code, 0) << result.err;
     const fs::path dir = scratch("report_refined");
@@ -202,6 +203,17 @@ TEST_F(ReportPage, RefineWritesOneForItsLevel) {
     EXPECT_EQ(q["cells"].get<long long>(), 8 * quality["cells"].get<long long>());
     EXPECT_EQ(histogram(refined, "non_orthogonality")["total"], q["internal_faces"]);
     EXPECT_GE(refined["pictures"].get<int>(), 7);
+
+    // The two levels side by side: each side's numbers its own.
+    const fs::path both = scratch("report_compare.html");
+    const CommandResult c =
+        run_hexmesh("compare '" + (out_dir / "grid.vtm").string() + "' '" +
+                    (dir / "grid.vtm").string() + "' -o '" + both.string() + "'");
+    ASSERT_EQ(c.exit_code, 0) << c.out << c.err;
+    const nlohmann::json sides = page_data(read_text(both));
+    EXPECT_EQ(histogram(sides["a"], "scaled_jacobian")["total"], quality["cells"]);
+    EXPECT_EQ(histogram(sides["b"], "scaled_jacobian")["total"], q["cells"]);
+    EXPECT_EQ(sides["b"]["quality"]["cells"], q["cells"]);
     fs::remove_all(dir);
 }
 
