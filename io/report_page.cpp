@@ -343,19 +343,19 @@ struct BoxGrower {
     }
 };
 
-// Pictures of cells of `corners` corners each (8: hexes, 4: tets), cells[c * corners + k],
-// coloured by values[c] over [lo, hi]: the faces no two cells share (the boundary) and cuts.
-std::vector<Picture> draw_cells(const std::vector<Vec3>& points, const std::vector<Id>& cells,
-                                int corners, const std::vector<double>& values, double lo,
-                                double hi) {
-    BoxGrower box;
-    for (const Vec3& p : points) box.add(p);
-    GridPictures pictures(box.box, box.box, lo, hi);
+// The faces of cells of `corners` corners each (8: hexes, VTK order; 4: tets),
+// cells[c * corners + k], that no other cell shares, and the cells that have one.
+struct BoundaryFaces {
+    int corners = 8;
+    std::vector<std::array<Id, 4>> faces;  // nodes; a triangle's third node repeated
+    std::vector<Id> cell;                  // the cell of each
+    std::vector<bool> cell_on_boundary;
+};
+
+BoundaryFaces boundary_faces(const std::vector<Id>& cells, int corners) {
     static const std::array<std::array<int, 4>, 4> tet_faces = {
         {{0, 2, 1, 1}, {0, 1, 3, 3}, {1, 2, 3, 3}, {0, 3, 2, 2}}};
     const int face_count = corners == 8 ? 6 : 4;
-    std::unordered_map<std::array<Id, 4>, int, ArrayHash<Id, 4>>
-        seen;  // sorted face nodes: times met
     const Id n = Id(cells.size()) / corners;
     const auto face_nodes = [&](Id c, int f) {
         std::array<Id, 4> ids;
@@ -364,22 +364,44 @@ std::vector<Picture> draw_cells(const std::vector<Vec3>& points, const std::vect
         return ids;
     };
     const auto key = [&](std::array<Id, 4> ids) {
-        if (corners == 4) ids[3] = -1;  // a triangle: its third node repeated
+        if (corners == 4) ids[3] = -1;
         std::sort(ids.begin(), ids.end());
         return ids;
     };
+    std::unordered_map<std::array<Id, 4>, int, ArrayHash<Id, 4>> seen;  // sorted nodes: times met
     for (Id c = 0; c < n; ++c)
         for (int f = 0; f < face_count; ++f) ++seen[key(face_nodes(c, f))];
-    std::array<Vec3, 8> p;
-    for (Id c = 0; c < n; ++c) {
-        for (int k = 0; k < corners; ++k) p[k] = points[cells[c * corners + k]];
-        pictures.add_cell(p.data(), corners, values[c]);
+    BoundaryFaces b;
+    b.corners = corners;
+    b.cell_on_boundary.assign(std::size_t(n), false);
+    for (Id c = 0; c < n; ++c)
         for (int f = 0; f < face_count; ++f) {
             const std::array<Id, 4> ids = face_nodes(c, f);
             if (seen[key(ids)] != 1) continue;
-            pictures.add_wall_face({points[ids[0]], points[ids[1]], points[ids[2]], points[ids[3]]},
-                                   values[c]);
+            b.faces.push_back(ids);
+            b.cell.push_back(c);
+            b.cell_on_boundary[std::size_t(c)] = true;
         }
+    return b;
+}
+
+// Pictures of those cells coloured by values[c] over [lo, hi]: their boundary faces and cuts.
+std::vector<Picture> draw_cells(const std::vector<Vec3>& points, const std::vector<Id>& cells,
+                                const BoundaryFaces& boundary, const std::vector<double>& values,
+                                double lo, double hi) {
+    BoxGrower box;
+    for (const Vec3& p : points) box.add(p);
+    GridPictures pictures(box.box, box.box, lo, hi);
+    const int corners = boundary.corners;
+    std::array<Vec3, 8> p;
+    for (Id c = 0; c < Id(cells.size()) / corners; ++c) {
+        for (int k = 0; k < corners; ++k) p[k] = points[cells[c * corners + k]];
+        pictures.add_cell(p.data(), corners, values[c]);
+    }
+    for (std::size_t f = 0; f < boundary.faces.size(); ++f) {
+        const std::array<Id, 4>& ids = boundary.faces[f];
+        pictures.add_wall_face({points[ids[0]], points[ids[1]], points[ids[2]], points[ids[3]]},
+                               values[boundary.cell[f]]);
     }
     return pictures.pictures();
 }
@@ -391,8 +413,14 @@ ReportPage hex_mesh_report_page(const std::string& title, const HexMesh& mesh,
     GridReport report;
     report.quality = quality;
     const std::vector<double> sj = scaled_jacobians(mesh);
-    ReportPage page =
-        grid_report_page(title, report, draw_cells(mesh.points, mesh.hexes, 8, sj, 0, 1), "");
+    const BoundaryFaces boundary = boundary_faces(mesh.hexes, 8);
+    ReportPage page = grid_report_page(title, report,
+                                       draw_cells(mesh.points, mesh.hexes, boundary, sj, 0, 1), "");
+    for (std::size_t r = 0; r < page.worst.size(); ++r)
+        if (boundary.cell_on_boundary[std::size_t(quality.worst_cells[r].cell)]) {
+            page.worst[r].on_wall = true;
+            page.worst[r].where += ", on the boundary";
+        }
     return page;
 }
 
@@ -440,7 +468,13 @@ ReportPage tet_mesh_report_page(const std::string& title, const TetMesh& mesh,
         for (int m = 0; m < 4; ++m) centre += 0.25 * mesh.points[mesh.node(order[k], m)];
         page.worst.push_back({angle[order[k]], fmt::format("tet {}", order[k]), centre, false});
     }
-    page.pictures = draw_cells(mesh.points, mesh.tets, 4, angle, 0, 70.53);
+    const BoundaryFaces boundary = boundary_faces(mesh.tets, 4);
+    for (std::size_t k = 0; k < listed; ++k)
+        if (boundary.cell_on_boundary[std::size_t(order[k])]) {
+            page.worst[k].on_wall = true;
+            page.worst[k].where += ", on the boundary";
+        }
+    page.pictures = draw_cells(mesh.points, mesh.tets, boundary, angle, 0, 70.53);
     return page;
 }
 
