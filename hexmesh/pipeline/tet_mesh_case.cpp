@@ -326,17 +326,17 @@ TetCaseResult run_tet_case(const Case& c, const TetCaseOptions& options, std::os
     }
 
     start = std::chrono::steady_clock::now();
-    Improved ours = improve_tet_mesh(refined, boundary, size, options, log);
-    r.caps_removed = ours.caps_removed;
+    Improved kept = improve_tet_mesh(refined, boundary, size, options, log);
+    TetQualityReport kept_quality = measure_tet_quality(kept.mesh);
     // The last resort where the optimization of the refined mesh leaves slivers or ends under
     // CGAL's own sliver removal: the same optimization started from CGAL's perturbed and
     // exuded mesh, and the best of the three meshes kept, said in the log.
-    const TetQualityReport ours_quality = measure_tet_quality(ours.mesh);
-    if (ours_quality.slivers > 0 || (r.cgal && r.cgal->min_dihedral > ours_quality.min_dihedral)) {
+    if (kept_quality.slivers > 0 || (r.cgal && r.cgal->min_dihedral > kept_quality.min_dihedral)) {
+        const double ours = kept_quality.min_dihedral;
         if (!r.generation.cgal_optimized) {
             log << fmt::format("{} slivers left (smallest dihedral angle {:.2f} degrees): CGAL's perturb + exude "
                                "of the refined mesh, to start from\n",
-                               ours_quality.slivers, ours_quality.min_dihedral)
+                               kept_quality.slivers, ours)
                 << std::flush;
             mesh_options.cgal_sliver_removal = true;
             TetMeshGeneration again = generate_tet_mesh(*body, mesh_options);
@@ -348,27 +348,32 @@ TetCaseResult run_tet_case(const Case& c, const TetCaseOptions& options, std::os
         }
         Improved from_cgal = improve_tet_mesh(*r.generation.cgal_optimized, boundary, size, options, log);
         const TetQualityReport from_cgal_quality = measure_tet_quality(from_cgal.mesh);
-        const double best = std::max({ours_quality.min_dihedral, from_cgal_quality.min_dihedral, r.cgal->min_dihedral});
-        if (from_cgal_quality.min_dihedral == best && from_cgal_quality.min_dihedral > ours_quality.min_dihedral) {
+        const double from_cgal_angle = from_cgal_quality.min_dihedral;
+        if (from_cgal_angle > ours && from_cgal_angle >= r.cgal->min_dihedral) {
             r.start = "variational from CGAL's";
-            ours = std::move(from_cgal);
-        } else if (r.cgal->min_dihedral > ours_quality.min_dihedral) {
+            kept = std::move(from_cgal);
+            kept_quality = from_cgal_quality;
+        } else if (r.cgal->min_dihedral > ours) {
+            // CGAL's mesh as it is: none of the stage's caps or flips, its own distances.
             r.start = "CGAL's";
-            ours.mesh = r.generation.cgal_optimized->mesh;
-            ours.optimization.max_surface_distance = r.cgal_surface_distance;
-            ours.optimization.max_crease_distance = std::numeric_limits<double>::quiet_NaN();  // not measured
+            kept.mesh = r.generation.cgal_optimized->mesh;
+            kept.caps_removed = kept.flips_23 = kept.edge_removals = 0;
+            kept.optimization.max_surface_distance = r.cgal_surface_distance;
+            kept.optimization.max_crease_distance = std::numeric_limits<double>::quiet_NaN();  // not measured
+            kept_quality = *r.cgal;
         }
         log << fmt::format("smallest dihedral angle: variational {:.2f}, CGAL perturb+exude {:.2f}, variational "
                            "from CGAL's {:.2f} degrees: kept {}\n",
-                           ours_quality.min_dihedral, r.cgal->min_dihedral, from_cgal_quality.min_dihedral, r.start)
+                           ours, r.cgal->min_dihedral, from_cgal_angle, r.start)
             << std::flush;
     }
-    r.mesh = std::move(ours.mesh);
-    r.optimization = std::move(ours.optimization);
-    r.flips_23 = ours.flips_23;
-    r.edge_removals = ours.edge_removals;
+    r.mesh = std::move(kept.mesh);
+    r.optimization = std::move(kept.optimization);
+    r.caps_removed = kept.caps_removed;
+    r.flips_23 = kept.flips_23;
+    r.edge_removals = kept.edge_removals;
     r.seconds_optimize = elapsed(start);
-    r.optimized = measure_tet_quality(r.mesh);
+    r.optimized = kept_quality;
     return r;
 }
 
