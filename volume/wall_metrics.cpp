@@ -1,8 +1,8 @@
 #include "volume/wall_metrics.h"
 
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
 #include <Eigen/Geometry>
@@ -34,9 +34,10 @@ struct LineMeasures {
     double ratio_min = inf, ratio_max = -inf, ratio_sum = 0;
 };
 
+// Its growth ratios also go into `ratio_bins` (over growth_target when there is one).
 LineMeasures measure_line(const WallFace& f, int p, int q, const std::vector<Vec3>& points,
                           const ImplicitFunction& body, double side, int ratios,
-                          double growth_target) {
+                          double growth_target, Histogram& ratio_bins) {
     LineMeasures m;
     const Vec3 x0 = points[f.node(p, q, 0)];
     const Vec3 edge = points[f.node(p, q, 1)] - x0;
@@ -74,6 +75,7 @@ LineMeasures measure_line(const WallFace& f, int p, int q, const std::vector<Vec
         m.ratio_min = std::min(m.ratio_min, r);
         m.ratio_max = std::max(m.ratio_max, r);
         m.ratio_sum += r;
+        ratio_bins.add(growth_target > 0 ? r / growth_target : r);
         spacing = next;
     }
     return m;
@@ -121,21 +123,12 @@ void WallMeter::add(const BlockGrid& grid, const Block& block) {
         const int ratios =
             std::max(0, law_.layers > 0 ? std::min(law_.layers, edges) - 1 : edges - 1);
         std::vector<LineMeasures> lines(f.lines());
-        tbb::parallel_for(Id(0), f.lines(), [&](Id l) {
-            lines[l] = measure_line(f, int(l % f.np), int(l / f.np), grid.points, body_, side,
-                                    ratios, w.growth_ratio_target);
-        });
-        // The ratios again, into the histogram (counts: the order does not matter).
+        // The ratios' bins per thread (counts: the order does not matter).
         tbb::enumerable_thread_specific<Histogram> ratio_bins(
             [&] { return w.growth_ratio_histogram.empty_copy(); });
         tbb::parallel_for(Id(0), f.lines(), [&](Id l) {
-            Histogram& bins = ratio_bins.local();
-            const int p = int(l % f.np), q = int(l / f.np);
-            for (int e = 1; e <= ratios; ++e) {
-                const Vec3 &x0 = grid.points[f.node(p, q, e - 1)], &x1 = grid.points[f.node(p, q, e)];
-                const double r = (grid.points[f.node(p, q, e + 1)] - x1).norm() / (x1 - x0).norm();
-                bins.add(w.growth_ratio_target > 0 ? r / w.growth_ratio_target : r);
-            }
+            lines[l] = measure_line(f, int(l % f.np), int(l / f.np), grid.points, body_, side,
+                                    ratios, w.growth_ratio_target, ratio_bins.local());
         });
         for (const Histogram& local : ratio_bins) w.growth_ratio_histogram.join(local);
 
