@@ -276,30 +276,25 @@ void GridPictures::add_cell(const Vec3* corners, int count, double value) {
 void GridPictures::add_block(const BlockGrid& grid, const Block& block, const double* values,
                              bool all_boundary) {
     const Dims d = block.cells();
-    for (int k = 0; k < d.nk; ++k)
-        for (int j = 0; j < d.nj; ++j)
-            for (int i = 0; i < d.ni; ++i) {
-                const std::array<Id, 8> nodes = cell_nodes(block, i, j, k);
-                std::array<Vec3, 8> p;
-                for (int m = 0; m < 8; ++m) p[m] = grid.points[nodes[m]];
-                const double value = values[i + Id(d.ni) * (j + Id(d.nj) * k)];
-                add_cell(p.data(), 8, value);
-                const std::array<int, 3> at = {i, j, k}, last = {d.ni - 1, d.nj - 1, d.nk - 1};
-                for (int f = 0; f < 6; ++f) {
-                    const bool shown =
-                        all_boundary ? !block.face_patch[f].empty() : block.face_patch[f] == "wall";
-                    if (!shown || at[f / 2] != (f % 2 ? last[f / 2] : 0)) continue;
-                    std::array<Vec3, 4> q;
-                    for (int m = 0; m < 4; ++m) q[m] = p[hex_faces[f][m]];
-                    add_wall_face(q, value);
-                }
-            }
+    for_each_cell(block, [&](int i, int j, int k, const std::array<Id, 8>& nodes) {
+        std::array<Vec3, 8> p;
+        for (int m = 0; m < 8; ++m) p[m] = grid.points[nodes[m]];
+        const double value = values[d.flat(i, j, k)];
+        add_cell(p.data(), 8, value);
+        for (int f = 0; f < 6; ++f) {
+            const bool shown = all_boundary ? !block.face_patch[f].empty() : block.face_patch[f] == "wall";
+            if (!shown || !on_block_face(d, {i, j, k}, f)) continue;
+            std::array<Vec3, 4> q;
+            for (int m = 0; m < 4; ++m) q[m] = p[hex_faces[f][m]];
+            add_wall_face(q, value);
+        }
+    });
 }
 
 std::vector<Picture> GridPictures::pictures() const {
     std::vector<Picture> out;
     for (const std::vector<Canvas>* group : {&wall_, &cuts_})
-        for (const Canvas& c : *group) out.push_back({c.title, c.view, c.png()});
+        for (const Canvas& c : *group) out.push_back({c.title, c.view, c.cut, c.png()});
     return out;
 }
 

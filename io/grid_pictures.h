@@ -29,6 +29,7 @@ struct View {
 struct Picture {
     std::string title;
     View view;
+    bool cut = false;  // a plane cut (else a view of the wall)
     std::string png;  // the image file's bytes
 };
 

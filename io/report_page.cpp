@@ -164,7 +164,7 @@ std::string page_body(const ReportPage& page) {
             "wall, on the cuts those the plane crosses.</p>\n" +
             legend_svg(page) + "<div>\n";
     for (const Picture& p : page.pictures)
-        html += "<figure>" + picture_svg(p, page.worst, p.title.rfind("wall", 0) == 0) +
+        html += "<figure>" + picture_svg(p, page.worst, !p.cut) +
                 "<figcaption>" + escape_markup(p.title) + "</figcaption></figure>\n";
     html += "</div>\n";
 
@@ -332,17 +332,6 @@ ReportPage grid_report_page(const std::string& title, const GridReport& report,
 
 namespace {
 
-// Boxes grown from the first point added.
-struct BoxGrower {
-    Box3 box;
-    bool started = false;
-    void add(const Vec3& p) {
-        box.lo = started ? Vec3(box.lo.cwiseMin(p)) : p;
-        box.hi = started ? Vec3(box.hi.cwiseMax(p)) : p;
-        started = true;
-    }
-};
-
 // The faces of cells of `corners` corners each (8: hexes, VTK order; 4: tets),
 // cells[c * corners + k], that no other cell shares, and the cells that have one.
 struct BoundaryFaces {
@@ -385,13 +374,20 @@ BoundaryFaces boundary_faces(const std::vector<Id>& cells, int corners) {
     return b;
 }
 
+// Says of a listed cell (id `cell`) whether it has a boundary face: marked on the boundary
+// views then.
+void mark_on_boundary(ReportCell& listed, Id cell, const BoundaryFaces& boundary) {
+    if (!boundary.cell_on_boundary[std::size_t(cell)]) return;
+    listed.on_wall = true;
+    listed.where += ", on the boundary";
+}
+
 // Pictures of those cells coloured by values[c] over [lo, hi]: their boundary faces and cuts.
 std::vector<Picture> draw_cells(const std::vector<Vec3>& points, const std::vector<Id>& cells,
                                 const BoundaryFaces& boundary, const std::vector<double>& values,
                                 double lo, double hi) {
-    BoxGrower box;
-    for (const Vec3& p : points) box.add(p);
-    GridPictures pictures(box.box, box.box, lo, hi);
+    const Box3 box = bounds_of(points);
+    GridPictures pictures(box, box, lo, hi);
     const int corners = boundary.corners;
     std::array<Vec3, 8> p;
     for (Id c = 0; c < Id(cells.size()) / corners; ++c) {
@@ -417,10 +413,7 @@ ReportPage hex_mesh_report_page(const std::string& title, const HexMesh& mesh,
     ReportPage page = grid_report_page(title, report,
                                        draw_cells(mesh.points, mesh.hexes, boundary, sj, 0, 1), "");
     for (std::size_t r = 0; r < page.worst.size(); ++r)
-        if (boundary.cell_on_boundary[std::size_t(quality.worst_cells[r].cell)]) {
-            page.worst[r].on_wall = true;
-            page.worst[r].where += ", on the boundary";
-        }
+        mark_on_boundary(page.worst[r], quality.worst_cells[r].cell, boundary);
     return page;
 }
 
@@ -469,46 +462,38 @@ ReportPage tet_mesh_report_page(const std::string& title, const TetMesh& mesh,
         page.worst.push_back({angle[order[k]], fmt::format("tet {}", order[k]), centre, false});
     }
     const BoundaryFaces boundary = boundary_faces(mesh.tets, 4);
-    for (std::size_t k = 0; k < listed; ++k)
-        if (boundary.cell_on_boundary[std::size_t(order[k])]) {
-            page.worst[k].on_wall = true;
-            page.worst[k].where += ", on the boundary";
-        }
+    for (std::size_t k = 0; k < listed; ++k) mark_on_boundary(page.worst[k], order[k], boundary);
     page.pictures = draw_cells(mesh.points, mesh.tets, boundary, angle, 0, 70.53);
     return page;
 }
 
-std::string write_report_beside(const std::string& mesh_file, const ReportPage& page) {
-    const std::filesystem::path mesh(mesh_file);
-    StagedOutput out(mesh.parent_path().empty() ? "." : mesh.parent_path().string(),
+std::string write_page(const std::filesystem::path& file, const std::string& html) {
+    StagedOutput out(file.parent_path().empty() ? "." : file.parent_path().string(),
                      StagedOutput::Scope::named_entries);
-    out.write_text(mesh.stem().string() + ".report.html", report_page_html(page));
+    out.write_text(file.filename().string(), html);
     return out.commit().at(0);
 }
 
+std::string write_report_beside(const std::string& mesh_file, const ReportPage& page) {
+    const std::filesystem::path mesh(mesh_file);
+    return write_page(mesh.parent_path() / (mesh.stem().string() + ".report.html"), report_page_html(page));
+}
+
 GridPictures grid_pictures_for(const BlockGrid& grid) {
-    // Boxes grown from the first point added.
-    Box3 wall, domain;
-    bool walled = false;
-    const auto add = [](Box3& box, bool& started, const Vec3& p) {
-        box.lo = started ? Vec3(box.lo.cwiseMin(p)) : p;
-        box.hi = started ? Vec3(box.hi.cwiseMax(p)) : p;
-        started = true;
-    };
-    bool started = false;
-    for (const Vec3& p : grid.points) add(domain, started, p);
+    std::vector<Vec3> wall;  // the nodes of the faces whose patch is "wall"
     for (const Block& block : grid.blocks)
         for (int f = 0; f < 6; ++f) {
             if (block.face_patch[f] != "wall") continue;
             const Dims n = block.nodes;
-            const int axis = f / 2, at = f % 2 ? n[axis] - 1 : 0;
-            for (int k = 0; k < n.nk; ++k)
-                for (int j = 0; j < n.nj; ++j)
-                    for (int i = 0; i < n.ni; ++i)
-                        if ((axis == 0 ? i : axis == 1 ? j : k) == at)
-                            add(wall, walled, grid.points[block.node_ids[n.flat(i, j, k)]]);
+            const int axis = f / 2, u = (axis + 1) % 3, v = (axis + 2) % 3;
+            std::array<int, 3> at;
+            at[axis] = f % 2 ? n[axis] - 1 : 0;
+            for (at[v] = 0; at[v] < n[v]; ++at[v])
+                for (at[u] = 0; at[u] < n[u]; ++at[u])
+                    wall.push_back(grid.points[block.node_ids[n.flat(at[0], at[1], at[2])]]);
         }
-    return GridPictures(walled ? wall : domain, domain, 0, 1);
+    const Box3 domain = bounds_of(grid.points);
+    return GridPictures(wall.empty() ? domain : bounds_of(wall), domain, 0, 1);
 }
 
 std::vector<Picture> draw_grid(const BlockGrid& grid) {

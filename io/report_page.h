@@ -2,6 +2,7 @@
 // histograms of its quality, its worst cells, the settings used, time per phase and memory.
 #pragma once
 
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <utility>
@@ -77,6 +78,10 @@ ReportPage hex_mesh_report_page(const std::string& title, const HexMesh& mesh,
 // coloured by that angle (over [0, 70.5], a regular tet's).
 ReportPage tet_mesh_report_page(const std::string& title, const TetMesh& mesh,
                                 const TetQualityReport& quality);
+
+// Writes `html` as `file`, first in a staging folder beside it, then renamed into place;
+// returns its path.
+std::string write_page(const std::filesystem::path& file, const std::string& html);
 
 // Writes the page as NAME.report.html beside the mesh file NAME.EXT (the file itself first
 // in a staging folder, then renamed into place); returns its path.

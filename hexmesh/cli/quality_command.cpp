@@ -8,15 +8,14 @@
 #include <memory>
 
 #include "hexmesh/cli/commands.h"
-#include "hexmesh/pipeline/make_body.h"
-#include "hexmesh/pipeline/tet_mesh_case.h"
 #include "hexmesh/core/memory_limit.h"
 #include "hexmesh/pipeline/grid_report.h"
+#include "hexmesh/pipeline/make_body.h"
 #include "hexmesh/pipeline/run_case.h"
+#include "hexmesh/pipeline/tet_mesh_case.h"
 #include "io/case_file.h"
 #include "io/quality_report.h"
 #include "io/report_page.h"
-#include "io/staged_output.h"
 #include "io/volume_mesh_io.h"
 #include "io/vtk_mesh.h"
 
@@ -127,14 +126,6 @@ ReportPage page_of_mesh(const std::string& path, const std::string& case_path) {
                                 naming_file(path, [&] { return measure_quality(mesh); }));
 }
 
-// Writes `html` to `file` (staged, then renamed into place) and says so.
-void write_page(const std::filesystem::path& file, const std::string& html) {
-    StagedOutput staged(file.parent_path().empty() ? "." : file.parent_path().string(),
-                        StagedOutput::Scope::named_entries);
-    staged.write_text(file.filename().string(), html);
-    for (const std::string& f : staged.commit()) std::cout << "written: " << f << "\n";
-}
-
 }  // namespace
 
 void add_report_command(CLI::App& app, int& exit_code) {
@@ -155,9 +146,12 @@ void add_report_command(CLI::App& app, int& exit_code) {
         ReportPage page = page_of_mesh(args->mesh_path, args->case_path);
         page.title = "hexmesh report " + page.title;
         page.peak_memory_bytes = peak_memory();
-        write_page(args->output.empty() ? std::filesystem::path(args->mesh_path).parent_path() / "report.html"
-                                        : std::filesystem::path(args->output),
-                   report_page_html(page));
+        std::cout << "written: "
+                  << write_page(args->output.empty()
+                                    ? std::filesystem::path(args->mesh_path).parent_path() / "report.html"
+                                    : std::filesystem::path(args->output),
+                                report_page_html(page))
+                  << "\n";
         exit_code = 0;
     });
 }
@@ -175,7 +169,7 @@ void add_compare_command(CLI::App& app, int& exit_code) {
     cmd->add_option("--case-b", args->case_b, "the second one's");
     cmd->callback([args, &exit_code] {
         const ReportPage a = page_of_mesh(args->a, args->case_a), b = page_of_mesh(args->b, args->case_b);
-        write_page(args->output, compare_page_html(a, b));
+        std::cout << "written: " << write_page(args->output, compare_page_html(a, b)) << "\n";
         exit_code = 0;
     });
 }

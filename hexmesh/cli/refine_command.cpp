@@ -9,14 +9,14 @@
 #include <optional>
 
 #include "hexmesh/cli/commands.h"
+#include "hexmesh/core/memory_limit.h"
+#include "hexmesh/core/quality.h"
 #include "hexmesh/pipeline/grid_report.h"
 #include "hexmesh/pipeline/make_body.h"
 #include "hexmesh/pipeline/phase_timer.h"
 #include "hexmesh/pipeline/refine_family.h"
 #include "hexmesh/pipeline/run_case.h"
 #include "io/case_file.h"
-#include "hexmesh/core/memory_limit.h"
-#include "hexmesh/core/quality.h"
 #include "io/quality_report.h"
 #include "io/report_page.h"
 #include "io/staged_output.h"

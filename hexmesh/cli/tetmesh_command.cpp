@@ -5,8 +5,8 @@
 #include <memory>
 
 #include "hexmesh/cli/commands.h"
-#include "hexmesh/pipeline/tet_mesh_case.h"
 #include "hexmesh/core/memory_limit.h"
+#include "hexmesh/pipeline/tet_mesh_case.h"
 #include "io/case_file.h"
 #include "io/report_page.h"
 #include "io/volume_mesh_io.h"

@@ -6,13 +6,13 @@
 #include <nlohmann/json.hpp>
 
 #include "hexmesh/cli/commands.h"
+#include "hexmesh/core/memory_limit.h"
+#include "hexmesh/core/quality.h"
+#include "hexmesh/core/tet_quality.h"
 #include "hexmesh/pipeline/make_body.h"
 #include "hexmesh/pipeline/tet_mesh_case.h"
 #include "hexmesh/pipeline/untangle_mesh.h"
 #include "io/case_file.h"
-#include "hexmesh/core/memory_limit.h"
-#include "hexmesh/core/quality.h"
-#include "hexmesh/core/tet_quality.h"
 #include "io/quality_report.h"
 #include "io/report_page.h"
 #include "io/surface_reader.h"

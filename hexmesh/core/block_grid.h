@@ -55,6 +55,12 @@ struct BlockGrid {
     Id num_cells() const;
 };
 
+// Whether the cell at = (i, j, k) of a block of `cells` cell dims touches block face `face`
+// (BlockFace order).
+inline bool on_block_face(const Dims& cells, const std::array<int, 3>& at, int face) {
+    return at[face / 2] == (face % 2 ? cells[face / 2] - 1 : 0);
+}
+
 // Global node ids of the 8 corners of cell (i,j,k) of a block, in VTK_HEXAHEDRON order.
 std::array<Id, 8> cell_nodes(const Block& block, int i, int j, int k);
 

@@ -37,16 +37,7 @@ inline std::unordered_map<std::uint64_t, int> edge_uses(const std::vector<std::a
 }
 
 // Axis-aligned bounds of the points (lo = hi = 0 for an empty surface).
-inline Box3 surface_bounds(const TriangleSurface& s) {
-    Box3 box;
-    if (s.points.empty()) return box;
-    box.lo = box.hi = s.points[0];
-    for (const Vec3& p : s.points) {
-        box.lo = box.lo.cwiseMin(p);
-        box.hi = box.hi.cwiseMax(p);
-    }
-    return box;
-}
+inline Box3 surface_bounds(const TriangleSurface& s) { return bounds_of(s.points); }
 
 // The total area of the triangles.
 inline double surface_area(const TriangleSurface& s) {

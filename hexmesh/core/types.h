@@ -22,4 +22,17 @@ struct Box3 {
     double diagonal() const { return (hi - lo).norm(); }
 };
 
+// The smallest box holding every point (lo = hi = 0 for none).
+template <class Points>
+Box3 bounds_of(const Points& points) {
+    Box3 box;
+    bool first = true;
+    for (const Vec3& p : points) {
+        box.lo = first ? p : Vec3(box.lo.cwiseMin(p));
+        box.hi = first ? p : Vec3(box.hi.cwiseMax(p));
+        first = false;
+    }
+    return box;
+}
+
 }  // namespace hexmesh

@@ -84,9 +84,8 @@ std::optional<CellPlace> GridMeter::place(Id cell) const {
         if (c >= 0 && c < a.cells.count()) {
             CellPlace w{a.name, int(c % a.cells.ni), int(c / a.cells.ni % a.cells.nj),
                         int(c / (Id(a.cells.ni) * a.cells.nj)), false};
-            const std::array<int, 3> at = {w.i, w.j, w.k}, last = {a.cells.ni - 1, a.cells.nj - 1, a.cells.nk - 1};
             for (int f = 0; f < 6; ++f)
-                w.on_wall = w.on_wall || (a.wall[f] && at[f / 2] == (f % 2 ? last[f / 2] : 0));
+                w.on_wall = w.on_wall || (a.wall[f] && on_block_face(a.cells, {w.i, w.j, w.k}, f));
             return w;
         }
         first += a.cells.count();

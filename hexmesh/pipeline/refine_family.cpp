@@ -23,11 +23,7 @@ namespace {
 // A length scale for projection tolerances: the edge of a cube of the grid's mean cell volume,
 // estimated from the bounding box (only its order of magnitude matters).
 double cell_length_scale(const BlockGrid& grid) {
-    Box3 box{grid.points.front(), grid.points.front()};
-    for (const Vec3& p : grid.points) {
-        box.lo = box.lo.cwiseMin(p);
-        box.hi = box.hi.cwiseMax(p);
-    }
+    const Box3 box = bounds_of(grid.points);
     const double cells = std::max<double>(1, double(grid.num_cells()));
     return box.diagonal() / std::cbrt(cells);
 }
