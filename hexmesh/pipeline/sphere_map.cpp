@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 
 #include <Eigen/Geometry>
+#include <Eigen/SVD>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
@@ -330,6 +331,26 @@ SphereMap map_to_sphere(const TriangleSurface& input, const SphereMapOptions& o,
     const untangle::UntangleResult r = untangle::untangle_and_optimize(p, u);
     if (o.log) *o.log << untangle::format_untangle_summary(r);
     return SphereMap(std::move(s), std::move(p.points));
+}
+
+SphereMap aligned_with_body(const SphereMap& map, const Vec3& centre) {
+    const TriangleSurface& s = map.surface();
+    Mat3 correlation = Mat3::Zero();  // sum of area * image * direction^T
+    for (const auto& t : s.triangles) {
+        const double area = 0.5 * (s.points[t[1]] - s.points[t[0]]).cross(s.points[t[2]] - s.points[t[0]]).norm();
+        for (int c = 0; c < 3; ++c) {
+            const Vec3 d = s.points[t[c]] - centre;
+            if (d.norm() > 0) correlation += area * map.sphere()[t[c]] * d.normalized().transpose();
+        }
+    }
+    // R maximizing trace(R correlation): V diag(1, 1, det) U^T for correlation = U S V^T.
+    const Eigen::JacobiSVD<Mat3> svd(correlation, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    Mat3 flip = Mat3::Identity();
+    flip(2, 2) = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0 ? -1 : 1;
+    const Mat3 rotation = svd.matrixV() * flip * svd.matrixU().transpose();
+    std::vector<Vec3> sphere(map.sphere().size());
+    for (size_t i = 0; i < sphere.size(); ++i) sphere[i] = (rotation * map.sphere()[i]).normalized();
+    return SphereMap(s, std::move(sphere));
 }
 
 std::vector<Vec3> wall_from_sphere_map(const SphereMap& map, int n, const ImplicitFunction& body) {

@@ -65,6 +65,14 @@ private:
 SphereMap map_to_sphere(const TriangleSurface& surface, const SphereMapOptions& options = {},
                         const std::function<Vec3(const Vec3&)>& start = {});
 
+// The same map turned on the sphere (a rotation: shapes and areas kept) so that each surface
+// point's image points, as nearly as a rotation allows, the way the point lies from `centre`
+// (the rotation maximizing the area-weighted sum of image . direction, by the SVD of their
+// correlation). The map's own turn is arbitrary (Tutte's disk starts anywhere on its ring), and
+// the lattice's patches, numbered as the cube's, then face the sides of the body they are named
+// after, so that lines from an interior core box run to the side facing it.
+SphereMap aligned_with_body(const SphereMap& map, const Vec3& centre);
+
 // The cube-sphere wall lattice (CubeSurfaceLattice numbering, volume/cube_sphere.h) with n
 // cells per patch edge on the body: the equiangular cube-sphere directions of the unit cube,
 // taken through the map to the surface, then projected onto u = 0 of `body`. Throws

@@ -110,7 +110,8 @@ WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
                        map.surface().triangles.size(), map.inverted(), since())
         << (route.potential ? fmt::format("; lines out to the potential's level {:.1f}\n", route.far_level)
                             : fmt::format("; core cube of half-size {:.4g}\n", route.core_half->x()));
-    route.wall = std::make_shared<std::vector<Vec3>>(wall_from_sphere_map(map, cells_per_edge, body));
+    route.wall = std::make_shared<std::vector<Vec3>>(
+        wall_from_sphere_map(aligned_with_body(map, route.centre), cells_per_edge, body));
     route.solver = solver;
     route.solver.log = nullptr;
     return route;
