@@ -33,15 +33,19 @@ struct Best {
     }
 };
 
-// When the inverted count last fell, over all passes of one untangle_and_optimize call.
+// When the inverted count last fell, over all passes of one untangle_and_optimize call, in
+// work done (each outer iteration 1 plus its conjugate-gradient iterations: deterministic,
+// unlike the clock) and in seconds (for the message).
 struct Progress {
     Id fewest = std::numeric_limits<Id>::max();
-    double last_fewer = 0;  // seconds since the call began
-    void offer(Id inverted, double now) {
-        if (inverted < fewest) fewest = inverted, last_fewer = now;
+    double work = 0, last_fewer = 0, last_fewer_seconds = 0;
+    void offer(Id inverted, double iteration_work, double seconds) {
+        work += iteration_work;
+        if (inverted < fewest) fewest = inverted, last_fewer = work, last_fewer_seconds = seconds;
     }
-    // Whether the count has not fallen for longer than `share` of the time so far.
-    bool crawling(double now, double share) const { return now - last_fewer > share * now; }
+    void start_again(double seconds) { last_fewer = work, last_fewer_seconds = seconds; }
+    // Whether the count has not fallen for longer than `share` of the work so far.
+    bool crawling(double share) const { return work - last_fewer > share * work; }
 };
 
 void log_note(std::ostream* log, const std::string& note) {
@@ -99,7 +103,7 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
         result.history.push_back(r);
         log_line(options.log, r);
         best.offer(x, stats.inverted, stats.inverted ? infinity : judge.energy(x, {options.theta, 0}));
-        progress.offer(stats.inverted, r.seconds);
+        progress.offer(stats.inverted, 1.0 + double(m.linear_iterations), r.seconds);
         if (stats.inverted < fewest || (regularize_below > 0 && stats.inverted == 0)) {
             fewest = stats.inverted, restart = x, restart_eps = eps, stalled = 0, restart_iteration = it;
         } else {
@@ -109,7 +113,7 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
         // eps this small (in target units) no longer changes anything but the energy's scale.
         const bool stuck = stalled > 0 && eps < negligible_eps;
         const bool crawling = regularize_below == 0 && stalled >= options.stall_minimum &&
-                              progress.crawling(r.seconds, options.stall_share);
+                              progress.crawling(options.stall_share);
         if (fast && !crawling && (stalled >= options.fast_stall || stuck) && stats.inverted > options.unrepairable) {
             fast = false, stalled = 0;
             x = restart, eps = restart_eps;
@@ -126,9 +130,10 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
             result.stopped =
                 stuck ? fmt::format("eps fell to {:.1e} with {} inverted elements left", eps, progress.fewest)
                       : fmt::format("no fewer than {} inverted elements for {:.1f} s ({:.0f} % of the untangling "
-                                    "time, {} outer iterations of this pass)",
-                                    progress.fewest, r.seconds - progress.last_fewer,
-                                    100 * (r.seconds - progress.last_fewer) / std::max(r.seconds, 1e-9), stalled);
+                                    "work, {} outer iterations of this pass)",
+                                    progress.fewest, r.seconds - progress.last_fewer_seconds,
+                                    100 * (progress.work - progress.last_fewer) / std::max(progress.work, 1e-9),
+                                    stalled);
             return;
         }
         const double sigma = std::max(1 - m.energy / e_prev, fast ? options.fast_sigma : options.safe_sigma);
@@ -259,7 +264,7 @@ UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& op
     Best best;
     best.offer(x, stats.inverted, assembly.energy(x, {options.theta, 0}));
     Progress progress;
-    progress.offer(stats.inverted, 0);
+    progress.offer(stats.inverted, 0, 0);
     result.blocked = Id(problem.blocked_elements().size());
 
     // Untangling. Few inverted elements are first repaired locally, in growing
@@ -288,7 +293,7 @@ UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& op
     // step of eps is matched by their det): their neighbourhoods start again from room_eps,
     // where the functional lets them move.
     if (best.inverted > options.unrepairable && options.room_eps > 0 && options.local_rings > 0) {
-        progress.last_fewer = seconds();  // a new start: the stall clock starts again
+        progress.start_again(seconds());  // a new start: the stall clock starts again
         log_note(options.log, fmt::format("{} inverted elements left: their neighbourhoods start again from eps {}",
                                           best.inverted, options.room_eps));
         repair_locally(options.room_eps);
@@ -306,7 +311,7 @@ UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& op
                     if (problem.kinds[v] == VertexKind::feature_edge || problem.kinds[v] == VertexKind::corner)
                         problem.kinds[v] = VertexKind::slip, ++result.released;
         if (result.released > 0) {
-            progress.last_fewer = seconds();  // new freedom: the stall clock starts again
+            progress.start_again(seconds());  // new freedom: the stall clock starts again
             log_note(options.log, fmt::format("{} crease and corner vertices of the inverted elements now slide on "
                                               "the surface",
                                               result.released));

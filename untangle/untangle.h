@@ -28,7 +28,9 @@ struct UntangleOptions {
     int max_untangle_iterations = 200;  // outer iterations (eps updates)
     int stall_iterations = 40;          // stop untangling after this many without progress
     // Untangling also stops when the inverted count has not fallen for longer than this share
-    // of the time spent so far, after at least stall_minimum outer iterations of the pass
+    // of the work done so far (outer iterations and their conjugate-gradient iterations: a
+    // measure of time that does not depend on the machine or its load, so that a case gives
+    // the same grid on every run), after at least stall_minimum outer iterations of the pass
     // without fewer (counted again from the switch to the safe rule): a continuation that
     // crawls or cycles ends, with the reason in UntangleResult::stopped. The safe rule often
     // raises the count for a few iterations before it falls (an exterior grid of a cross:
