@@ -102,6 +102,15 @@ struct QualityReport {
     }
 };
 
+// How far one hex (VTK order) is from what QualityReport::solver_valid refuses: the smallest
+// of its 8 corner scaled Jacobians and, for each face, the distance of the cell's OpenFOAM
+// centre inside the face's plane (its area vector against face centre - cell centre) over the
+// cell's mean edge length. Positive for every cell of a mesh exactly when no corner tet is
+// flat or inverted and no face pyramid has a negative volume, and then no internal face is at
+// 90 degrees or more (the two centres lie on either side of its plane) and no cell's volume is
+// <= 0 (a sum of positive pyramids).
+double solver_margin(const std::array<Vec3, 8>& p);
+
 // The cells that fail a check of QualityReport::solver_valid (an inverted corner tet, a face
 // pyramid of negative volume, volume <= 0, a face at 90 degrees or more: both its cells),
 // ascending.

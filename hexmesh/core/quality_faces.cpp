@@ -605,4 +605,24 @@ QualityReport measure_quality(const BlockGrid& grid) {
     return q.report();
 }
 
+double solver_margin(const std::array<Vec3, 8>& p) {
+    double edges = 0;
+    for (const auto& e : hex_edges) edges += (p[e[1]] - p[e[0]]).norm();
+    const double mean_edge = edges / 12;
+    double margin = std::numeric_limits<double>::infinity();
+    for (const auto& t : hex_corner_tets) {
+        const Vec3 a = p[t[1]] - p[t[0]], b = p[t[2]] - p[t[0]], d = p[t[3]] - p[t[0]];
+        const double lengths = a.norm() * b.norm() * d.norm();
+        margin = std::min(margin, lengths > 0 ? a.cross(b).dot(d) / lengths : -1.0);
+    }
+    std::array<FaceGeometry, 6> faces;
+    for (int f = 0; f < 6; ++f) faces[f] = detail::quad_geometry(face_of(p, hex_faces[f]));
+    const CellGeometry cell = detail::cell_geometry(faces);
+    for (const FaceGeometry& f : faces) {
+        const double area = f.area.norm();
+        margin = std::min(margin, area > 0 && mean_edge > 0 ? f.area.dot(f.centre - cell.centre) / (area * mean_edge) : -1.0);
+    }
+    return margin;
+}
+
 }  // namespace hexmesh

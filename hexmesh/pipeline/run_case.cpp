@@ -9,6 +9,7 @@
 
 #include "hexmesh/pipeline/grid_report.h"
 #include "hexmesh/pipeline/make_body.h"
+#include "hexmesh/pipeline/mend_cells.h"
 #include "hexmesh/pipeline/optimize_grid.h"
 #include "hexmesh/pipeline/optimize_surface.h"
 #include "hexmesh/pipeline/phase_timer.h"
@@ -251,11 +252,21 @@ void surface_pass(const Case& c, const ImplicitFunction& body, const WallRoute* 
     }
 }
 
+// The cells a solver refuses mended node by node (hexmesh/pipeline/mend_cells.h), one line
+// to `log`; the cells still refused.
+Id mend(BlockGrid& grid, const ImplicitFunction& body, std::ostream& log) {
+    const MendResult m = mend_refused_cells(grid, body);
+    log << fmt::format("  cells a solver refuses mended node by node (the solver's own checks): {} -> {}, "
+                       "smallest margin {:.3g} -> {:.3g} ({} moves)\n",
+                       m.refused_before, m.refused_after, m.min_margin_before, m.min_margin_after, m.moves);
+    return m.refused_after;
+}
+
 // The worst cells optimized again in their neighbourhood (optimize_grid.h,
 // polish_worst_cells), the wall and its boundary layer held. While the grid then has cells a
-// solver refuses: those cells with 2, 4, then 8 rings around them, layers free (validity
-// before the layers' spacing); then every cell under the threshold, layers free. One line per
-// pass.
+// solver refuses: they are mended node by node (mend); what is left, with 2, 4, then 8 rings
+// around them, layers free (validity before the layers' spacing); then every cell under the
+// threshold, layers free; then mended again. One line per pass.
 void polish(const Case& c, const ImplicitFunction& body, BlockGrid& grid, std::ostream& log) {
     // Cells the joint untangling left inverted are not repaired by a local optimization (it
     // runs the same continuation): the grid goes to its refusal as it is.
@@ -285,10 +296,14 @@ void polish(const Case& c, const ImplicitFunction& body, BlockGrid& grid, std::o
                                r.min_sj_after, r.rounds, r.seconds);
         }
         if (r.refused_after == 0) return;
+        // A face warped past its cell's centre, which the corner tets do not see: the nodes of
+        // such cells moved one by one, before the layers around them are let go.
+        if (pass == 0 && mend(grid, body, log) == 0) return;
         o.held.clear();
         o.refused_only = pass < 3;  // rings 2, 4, 8; then every cell under the threshold, rings 2
         o.rings = pass < 3 ? 2 << pass : 2;
     }
+    mend(grid, body, log);
 }
 
 }  // namespace

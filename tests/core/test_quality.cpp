@@ -287,6 +287,25 @@ TEST(SolverValidity, ACellInsideOutAtItsCentreIsRefusedThoughItsCornersArePositi
     EXPECT_EQ(cubes.negative_pyramids + cubes.faces_over_90_deg + cubes.nonpositive_volumes, 0);
 }
 
+// solver_margin is positive exactly when the cell alone passes the solver's checks, on random
+// cells (a unit cube's corners each moved up to 0.45 along each axis) of both kinds.
+TEST(SolverValidity, TheMarginIsPositiveExactlyWhenTheSolverAcceptsTheCell) {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> jitter(-0.45, 0.45);
+    int accepted = 0, refused = 0;
+    for (int trial = 0; trial < 3000; ++trial) {
+        std::array<Vec3, 8> p = unit_cube();
+        for (Vec3& x : p) x += Vec3(jitter(rng), jitter(rng), jitter(rng));
+        const bool accepts = find_refused_cells(single_hex(p)).empty();
+        EXPECT_EQ(solver_margin(p) > 0, accepts) << "trial " << trial << ", margin " << solver_margin(p);
+        ++(accepts ? accepted : refused);
+    }
+    EXPECT_GT(accepted, 300);
+    EXPECT_GT(refused, 300);
+    EXPECT_LT(solver_margin(inside_out_cell()), 0);
+    EXPECT_NEAR(solver_margin(unit_cube()), 0.5, 1e-12);  // centre half an edge inside each face
+}
+
 // Verdict scores a cell with a zero-length edge 1e30; the mean stays a mean of values in [-1, 1].
 TEST(SolverValidity, ADegenerateCellDoesNotSwampTheMeanScaledJacobian) {
     std::array<Vec3, 8> p = unit_cube();

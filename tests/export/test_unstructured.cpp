@@ -233,10 +233,11 @@ TEST(Exodus, MeshioAndVtkReadTheBlockAndOneSideSetPerPatch) {
     const fs::path file = scratch("exodus") / "grid.exo";
     write_exodus_mesh(grid, file.string());
     const std::string summary = meshio_summary(file);
-    if (!summary.empty())
+    if (!summary.empty()) {
         EXPECT_EQ(summary, fmt::format("{{\"cells\": {{\"hexahedron\": {}}}, \"left_handed_hexes\": 0, \"points\": {}, "
                                        "\"quads_facing_origin_per_tag\": {{}}, \"quads_per_tag\": {{}}}}\n",
                                        grid.num_cells(), grid.points.size()));
+    }
     vtkNew<vtkExodusIIReader> reader;
     reader->SetFileName(file.string().c_str());
     reader->UpdateInformation();

@@ -1,0 +1,134 @@
+#include "hexmesh/pipeline/mend_cells.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "hexmesh/core/hex_mesh.h"
+#include "hexmesh/core/quality.h"
+#include "hexmesh/core/reference_hex.h"
+#include "surface/projection.h"
+
+namespace hexmesh {
+namespace {
+
+// The cells of each node (CSR: cells[offset[v] .. offset[v + 1])).
+struct NodeCells {
+    std::vector<Id> offset, cells;
+    NodeCells(const HexMesh& mesh) : offset(mesh.points.size() + 1, 0) {
+        for (Id v : mesh.hexes) ++offset[v + 1];
+        for (size_t v = 0; v < mesh.points.size(); ++v) offset[v + 1] += offset[v];
+        cells.resize(mesh.hexes.size());
+        std::vector<Id> next(offset.begin(), offset.end() - 1);
+        for (size_t i = 0; i < mesh.hexes.size(); ++i) cells[next[mesh.hexes[i]]++] = Id(i / 8);
+    }
+    std::pair<const Id*, const Id*> of(Id v) const { return {&cells[offset[v]], &cells[offset[v + 1]]}; }
+};
+
+double margin_of(const HexMesh& mesh, Id c) {
+    std::array<Vec3, 8> p;
+    for (int i = 0; i < 8; ++i) p[i] = mesh.points[mesh.hexes[8 * c + i]];
+    return solver_margin(p);
+}
+
+double smallest_margin(const HexMesh& mesh, const NodeCells& around, Id v) {
+    double m = std::numeric_limits<double>::infinity();
+    for (auto [c, end] = around.of(v); c != end; ++c) m = std::min(m, margin_of(mesh, *c));
+    return m;
+}
+
+double mean_edge_at(const HexMesh& mesh, const NodeCells& around, Id v) {
+    double sum = 0;
+    int count = 0;
+    for (auto [c, end] = around.of(v); c != end; ++c)
+        for (const auto& e : hex_edges) {
+            const Id a = mesh.hexes[8 * *c + e[0]], b = mesh.hexes[8 * *c + e[1]];
+            if (a == v || b == v) sum += (mesh.points[a] - mesh.points[b]).norm(), ++count;
+        }
+    return count ? sum / count : 0;
+}
+
+}  // namespace
+
+MendResult mend_refused_cells(BlockGrid& grid, const ImplicitFunction& body, const MendOptions& o) {
+    MendResult result;
+    HexMesh mesh = to_hex_mesh(grid);
+    std::vector<Id> refused = find_refused_cells(mesh);
+    result.refused_before = result.refused_after = Id(refused.size());
+    if (refused.empty()) return result;
+    const NodeCells around(mesh);
+    const auto movable = [&](Id v) {
+        const VertexKind k = grid.kinds[v];
+        return (k == VertexKind::interior || k == VertexKind::slip) && (o.held.empty() || !o.held[v]);
+    };
+    // The nodes of the refused cells, then of the cells sharing a node with those.
+    std::vector<Id> cells = refused, nodes;
+    const auto nodes_of_cells = [&] {
+        nodes.clear();
+        for (Id c : cells)
+            for (int i = 0; i < 8; ++i) nodes.push_back(mesh.hexes[8 * c + i]);
+        std::sort(nodes.begin(), nodes.end());
+        nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    };
+    const auto lowest = [&] {
+        double m = std::numeric_limits<double>::infinity();
+        for (Id v : nodes) m = std::min(m, smallest_margin(mesh, around, v));
+        return m;
+    };
+    nodes_of_cells();
+    result.min_margin_before = lowest();
+    static const std::array<Vec3, 6> directions = {Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitY(),
+                                                   -Vec3::UnitY(), Vec3::UnitZ(), -Vec3::UnitZ()};
+    for (int ring = 0; ring < o.rings && !refused.empty(); ++ring) {
+        if (ring > 0) {
+            std::vector<Id> wider;
+            for (Id v : nodes)
+                for (auto [c, end] = around.of(v); c != end; ++c) wider.push_back(*c);
+            std::sort(wider.begin(), wider.end());
+            wider.erase(std::unique(wider.begin(), wider.end()), wider.end());
+            cells = std::move(wider);
+            nodes_of_cells();
+        }
+        std::vector<double> step(nodes.size());
+        for (size_t i = 0; i < nodes.size(); ++i) step[i] = o.first_step * mean_edge_at(mesh, around, nodes[i]);
+        for (int round = 0; round < o.rounds; ++round) {
+            bool moved = false, trying = false;
+            for (size_t i = 0; i < nodes.size(); ++i) {
+                const Id v = nodes[i];
+                if (!movable(v) || step[i] <= 0) continue;
+                const double before = smallest_margin(mesh, around, v);
+                if (before > o.enough) continue;
+                const double edge = mean_edge_at(mesh, around, v);
+                if (step[i] < o.last_step * edge) continue;
+                trying = true;
+                const Vec3 start = mesh.points[v];
+                Vec3 best = start;
+                double best_margin = before;
+                for (const Vec3& d : directions) {
+                    Vec3 x = start + step[i] * d;
+                    if (grid.kinds[v] == VertexKind::slip) x = project_to_surface(body, x, edge).point;
+                    mesh.points[v] = x;
+                    const double m = smallest_margin(mesh, around, v);
+                    if (m > best_margin + 1e-12) best = x, best_margin = m;
+                }
+                mesh.points[v] = best;
+                if (best != start) {
+                    moved = true;
+                    ++result.moves;
+                } else {
+                    step[i] *= 0.5;
+                }
+            }
+            if (!trying) break;
+            if (!moved && round > 0 && lowest() > 0) break;
+        }
+        refused = find_refused_cells(mesh);
+    }
+    result.min_margin_after = lowest();
+    result.refused_after = Id(refused.size());
+    grid.points = std::move(mesh.points);
+    return result;
+}
+
+}  // namespace hexmesh
