@@ -38,6 +38,26 @@ double smallest_margin(const HexMesh& mesh, const NodeCells& around, Id v) {
     return m;
 }
 
+// The cells around a node as a move is judged: how many the solver refuses (margin <= 0), then
+// the smallest margin. A move may not trade a refused cell for an accepted one that falls.
+struct Score {
+    int refused = 0;
+    double lowest = std::numeric_limits<double>::infinity();
+    bool better_than(const Score& s) const {
+        return refused < s.refused || (refused == s.refused && lowest > s.lowest + 1e-12);
+    }
+};
+
+Score score_at(const HexMesh& mesh, const NodeCells& around, Id v) {
+    Score s;
+    for (auto [c, end] = around.of(v); c != end; ++c) {
+        const double m = margin_of(mesh, *c);
+        s.refused += !(m > 0);
+        s.lowest = std::min(s.lowest, m);
+    }
+    return s;
+}
+
 double mean_edge_at(const HexMesh& mesh, const NodeCells& around, Id v) {
     double sum = 0;
     int count = 0;
@@ -97,20 +117,20 @@ MendResult mend_refused_cells(BlockGrid& grid, const ImplicitFunction& body, con
             for (size_t i = 0; i < nodes.size(); ++i) {
                 const Id v = nodes[i];
                 if (!movable(v) || step[i] <= 0) continue;
-                const double before = smallest_margin(mesh, around, v);
-                if (before > o.enough) continue;
+                const Score before = score_at(mesh, around, v);
+                if (before.lowest > o.enough) continue;
                 const double edge = mean_edge_at(mesh, around, v);
                 if (step[i] < o.last_step * edge) continue;
                 trying = true;
                 const Vec3 start = mesh.points[v];
                 Vec3 best = start;
-                double best_margin = before;
+                Score best_score = before;
                 for (const Vec3& d : directions) {
                     Vec3 x = start + step[i] * d;
                     if (grid.kinds[v] == VertexKind::slip) x = project_to_surface(body, x, edge).point;
                     mesh.points[v] = x;
-                    const double m = smallest_margin(mesh, around, v);
-                    if (m > best_margin + 1e-12) best = x, best_margin = m;
+                    const Score m = score_at(mesh, around, v);
+                    if (m.better_than(best_score)) best = x, best_score = m;
                 }
                 mesh.points[v] = best;
                 if (best != start) {

@@ -26,8 +26,9 @@ struct MendResult {
 
 // The cells find_refused_cells names (core/quality.h), mended: each node of theirs (interior or
 // slip; slip nodes projected back onto u = 0 of `body`) tries six moves along the axes and keeps
-// the one that most raises the smallest solver_margin of the cells around it (never lowering
-// it: the grid's smallest margin there cannot fall), the step halved when none helps. When
+// the best for the cells around it: fewer refused (solver_margin <= 0), then a higher smallest
+// margin (so a cell the solver accepts is never traded away, and with as many refused the
+// smallest margin there never falls), the step halved when none helps. When
 // that leaves refused cells, the nodes of the cells sharing a node with them join in. The
 // functional's corner tets do not see a face pyramid on the cell's centre; this sees exactly
 // what the solver checks. Deterministic; the grid's points are changed in place.
