@@ -118,3 +118,63 @@ TEST(CliBodies, LaidLayersThatWouldCrossAreGivenBackLineByLine) {
     EXPECT_EQ(nlohmann::json::parse(check.out).at("inverted").get<long>(), 0);
     fs::remove_all(dir);
 }
+
+// Bodies from the file alone (the case names the file, the domain and a boundary layer of 5
+// layers from 0.2 % of the body's largest extent, growth 1.2): the grid is valid by our report,
+// by the independent checker and by OpenFOAM's checkMesh, and most of the wall has its first
+// layer on target. The quicker ones of the table in bench/RESULTS.md (5-40 s each): the part
+// and the U outside are not star-shaped (wall through the sphere map, lines up the exterior
+// potential), the others are around the centre of their bounds. The min scaled
+// Jacobian of 0.2 outside holds for the dragknob only (0.29), and the surface's vertices lie
+// up to 0.15-3.6 wall cells from the grid's wall (the wing's trailing edge), so neither is
+// asserted here.
+struct BodyRun {
+    const char* body;
+    const char* domain;
+};
+
+class FromTheFileAlone : public ::testing::TestWithParam<BodyRun> {};
+
+TEST_P(FromTheFileAlone, IsValidForTheSolverAndKeepsItsFirstLayer) {
+    const BodyRun p = GetParam();
+    const fs::path file = bodies / p.body;
+    if (!fs::exists(file)) GTEST_SKIP() << "shared bodies not beside the project: " << bodies;
+    const fs::path dir = scratch(std::string("from_file_") + fs::path(p.body).stem().string() + "_" + p.domain);
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    std::ofstream(dir / "case.json") << nlohmann::json{
+        {"geometry", {{"file", file.string()}}},
+        {"domain", p.domain},
+        {"boundary_layer", {{"first_height", 0.002}, {"growth_ratio", 1.2}, {"layers", 5}}}}.dump();
+    const CommandResult r = run_hexmesh("run '" + (dir / "case.json").string() + "' -o '" + (dir / "out").string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    std::ifstream in(dir / "out" / "quality.json");
+    const nlohmann::json q = nlohmann::json::parse(in);
+    EXPECT_TRUE(q.at("valid").get<bool>());
+    EXPECT_GT(q.at("min_scaled_jacobian").get<double>(), 0);
+    EXPECT_GE(q.at("wall").at("first_layer_thickness").at("fraction_within_10_percent").get<double>(), 0.85);
+
+    const fs::path checker = fs::path(HEXMESH_SOURCE_DIR) / ".." / "shared" / "tools" / "check_grid.py";
+    ASSERT_TRUE(fs::exists(checker)) << checker;
+    const CommandResult check =
+        run_command("/usr/bin/python3 '" + checker.string() + "' '" + (dir / "out" / "grid.vtm").string() + "' --json");
+    ASSERT_EQ(check.exit_code, 0) << check.out << check.err;
+    EXPECT_EQ(nlohmann::json::parse(check.out).at("inverted").get<long>(), 0);
+
+    const CommandResult exported = run_hexmesh("export '" + (dir / "out" / "grid.vtm").string() + "' -f openfoam -o '" +
+                                               (dir / "foam").string() + "'");
+    ASSERT_EQ(exported.exit_code, 0) << exported.out << exported.err;
+    const std::string foam = std::getenv("WM_PROJECT_DIR") ? "" : "WM_PROJECT_DIR=/usr/share/openfoam ";
+    const CommandResult mesh = run_command(foam + "checkMesh -case '" + (dir / "foam").string() + "'");
+    EXPECT_NE(mesh.out.find("Mesh OK."), std::string::npos) << mesh.out << mesh.err;
+    fs::remove_all(dir);
+}
+
+INSTANTIATE_TEST_SUITE_P(SharedBodies, FromTheFileAlone,
+                         ::testing::Values(BodyRun{"dragknob.off", "exterior"}, BodyRun{"dragknob.off", "interior"},
+                                           BodyRun{"tripod.off", "interior"}, BodyRun{"cross.off", "interior"},
+                                           BodyRun{"part.off", "exterior"}, BodyRun{"u.off", "exterior"},
+                                           BodyRun{"NACA0012.obj", "interior"}),
+                         [](const ::testing::TestParamInfo<BodyRun>& info) {
+                             return fs::path(info.param.body).stem().string() + "_" + info.param.domain;
+                         });
