@@ -45,6 +45,15 @@ void expect_refused_at_once(const Refusal& r, const std::string& message) {
     EXPECT_FALSE(r.wrote);
 }
 
+// The independent checker (../shared/tools/check_grid.py) finds no inverted cell in the grid.
+void expect_no_inverted_cell_by_the_checker(const fs::path& grid) {
+    const fs::path checker = fs::path(HEXMESH_SOURCE_DIR) / ".." / "shared" / "tools" / "check_grid.py";
+    ASSERT_TRUE(fs::exists(checker)) << checker;
+    const CommandResult check = run_command("/usr/bin/python3 '" + checker.string() + "' '" + grid.string() + "' --json");
+    ASSERT_EQ(check.exit_code, 0) << check.out << check.err;
+    EXPECT_EQ(nlohmann::json::parse(check.out).at("inverted").get<long>(), 0);
+}
+
 }  // namespace
 
 TEST(CliBodies, ASurfaceWithAHandleIsRefusedAtOnce) {
@@ -110,12 +119,7 @@ TEST(CliBodies, LaidLayersThatWouldCrossAreGivenBackLineByLine) {
     EXPECT_TRUE(q.at("valid").get<bool>());
     EXPECT_EQ(q.at("negative_face_pyramids").get<long>(), 0);
     EXPECT_GE(q.at("wall").at("first_layer_thickness").at("fraction_within_10_percent").get<double>(), 0.70);
-    const fs::path checker = fs::path(HEXMESH_SOURCE_DIR) / ".." / "shared" / "tools" / "check_grid.py";
-    ASSERT_TRUE(fs::exists(checker)) << checker;
-    const CommandResult check =
-        run_command("/usr/bin/python3 '" + checker.string() + "' '" + (dir / "out" / "grid.vtm").string() + "' --json");
-    ASSERT_EQ(check.exit_code, 0) << check.out << check.err;
-    EXPECT_EQ(nlohmann::json::parse(check.out).at("inverted").get<long>(), 0);
+    expect_no_inverted_cell_by_the_checker(dir / "out" / "grid.vtm");
     fs::remove_all(dir);
 }
 
@@ -154,12 +158,7 @@ TEST_P(FromTheFileAlone, IsValidForTheSolverAndKeepsItsFirstLayer) {
     EXPECT_GT(q.at("min_scaled_jacobian").get<double>(), 0);
     EXPECT_GE(q.at("wall").at("first_layer_thickness").at("fraction_within_10_percent").get<double>(), 0.85);
 
-    const fs::path checker = fs::path(HEXMESH_SOURCE_DIR) / ".." / "shared" / "tools" / "check_grid.py";
-    ASSERT_TRUE(fs::exists(checker)) << checker;
-    const CommandResult check =
-        run_command("/usr/bin/python3 '" + checker.string() + "' '" + (dir / "out" / "grid.vtm").string() + "' --json");
-    ASSERT_EQ(check.exit_code, 0) << check.out << check.err;
-    EXPECT_EQ(nlohmann::json::parse(check.out).at("inverted").get<long>(), 0);
+    expect_no_inverted_cell_by_the_checker(dir / "out" / "grid.vtm");
 
     const CommandResult exported = run_hexmesh("export '" + (dir / "out" / "grid.vtm").string() + "' -f openfoam -o '" +
                                                (dir / "foam").string() + "'");
