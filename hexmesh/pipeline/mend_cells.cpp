@@ -26,18 +26,6 @@ struct NodeCells {
     std::pair<const Id*, const Id*> of(Id v) const { return {&cells[offset[v]], &cells[offset[v + 1]]}; }
 };
 
-double margin_of(const HexMesh& mesh, Id c) {
-    std::array<Vec3, 8> p;
-    for (int i = 0; i < 8; ++i) p[i] = mesh.points[mesh.hexes[8 * c + i]];
-    return solver_margin(p);
-}
-
-double smallest_margin(const HexMesh& mesh, const NodeCells& around, Id v) {
-    double m = std::numeric_limits<double>::infinity();
-    for (auto [c, end] = around.of(v); c != end; ++c) m = std::min(m, margin_of(mesh, *c));
-    return m;
-}
-
 // The cells around a node as a move is judged: how many the solver refuses (margin <= 0), then
 // the smallest margin. A move may not trade a refused cell for an accepted one that falls.
 struct Score {
@@ -51,7 +39,7 @@ struct Score {
 Score score_at(const HexMesh& mesh, const NodeCells& around, Id v) {
     Score s;
     for (auto [c, end] = around.of(v); c != end; ++c) {
-        const double m = margin_of(mesh, *c);
+        const double m = solver_margin(mesh.corners(*c));
         s.refused += !(m > 0);
         s.lowest = std::min(s.lowest, m);
     }
@@ -93,7 +81,7 @@ MendResult mend_refused_cells(BlockGrid& grid, const ImplicitFunction& body, con
     };
     const auto lowest = [&] {
         double m = std::numeric_limits<double>::infinity();
-        for (Id v : nodes) m = std::min(m, smallest_margin(mesh, around, v));
+        for (Id v : nodes) m = std::min(m, score_at(mesh, around, v).lowest);
         return m;
     };
     nodes_of_cells();
