@@ -4,10 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include <fmt/format.h>
 
+#include "surface/level_sets.h"
 #include "volume/cube_sphere.h"
 #include "volume/o_h_grid.h"
 
@@ -53,22 +55,50 @@ void untangle_on_sphere(std::vector<Vec3>& directions, int n, const untangle::Un
 }  // namespace
 
 std::vector<Vec3> gradient_line_up(const ImplicitFunction& potential, Vec3 p, double c0,
-                                   double step, std::vector<double>& levels) {
+                                   double step, std::vector<double>& levels, bool climb_pockets) {
+    static const std::vector<Vec3> around = sphere_directions(64);
     const double longest = 4 * potential.bounds().diagonal();
     const auto up = [&](const Vec3& x) {
         const Vec3 g = potential.gradient(x);
         const double norm = g.norm();
         return norm > 0 && std::isfinite(norm) ? Vec3(g / norm) : Vec3(Vec3::Zero());
     };
+    // The highest of the points at distance r, 2 r, 4 r, 8 r around x (nearest ring first) that
+    // is above f.
+    const auto climb = [&](const Vec3& x, double f, double& fy) -> std::optional<Vec3> {
+        for (double r = step; r <= 8 * step; r *= 2) {
+            std::optional<Vec3> best;
+            fy = f;
+            for (const Vec3& d : around)
+                if (const double fd = potential.value(x + r * d); fd > fy) fy = fd, best = x + r * d;
+            if (best) return best;
+        }
+        return std::nullopt;
+    };
     std::vector<Vec3> line = {p};
     double f = potential.value(p);
     levels = {std::max(f, 0.0)};
+    int flat = 0;  // steps in a row that did not rise above the line's highest level
     for (double travelled = 0; travelled < longest && f < c0; travelled += step) {
         const Vec3 v = up(p);
-        if (v.squaredNorm() == 0) break;
-        const Vec3 w = up(p + 0.5 * step * v);
-        Vec3 q = p + step * (w.squaredNorm() > 0 ? w : v);
-        const double fq = potential.value(q);
+        Vec3 q = p;
+        double fq = f;
+        if (v.squaredNorm() > 0) {
+            const Vec3 w = up(p + 0.5 * step * v);
+            q = p + step * (w.squaredNorm() > 0 ? w : v);
+            fq = potential.value(q);
+        }
+        flat = fq > levels.back() ? 0 : flat + 1;
+        if (v.squaredNorm() == 0 && !climb_pockets) break;
+        if (climb_pockets && (v.squaredNorm() == 0 || flat >= 4)) {
+            // The gradient vanishes, or the line has not risen for 4 steps: a gap about as
+            // narrow as the potential's lattice, where F is near its solve's noise and the
+            // interpolant has pockets. The highest point around that is higher.
+            const std::optional<Vec3> higher = climb(p, levels.back(), fq);
+            if (!higher) break;
+            q = *higher;
+            flat = 0;
+        }
         if (fq >= c0 && fq > f) q = p + (q - p) * ((c0 - f) / (fq - f));  // land on the level
         p = q;
         f = std::min(fq, c0);
@@ -89,15 +119,17 @@ WallPaths exterior_paths(const ImplicitFunction& potential, const std::vector<Ve
     const double step = 0.25 * grid_length_scale(potential, n);
     tbb::parallel_for(size_t(0), wall.size(), [&](size_t s) {
         paths.lines[s] = gradient_line_up(potential, wall[s], c0, step, paths.levels[s]);
+        if (paths.levels[s].back() < (1 - 1e-9) * c0)
+            paths.lines[s] = gradient_line_up(potential, wall[s], c0, step, paths.levels[s], true);
     });
     std::vector<Vec3> directions(wall.size());
     for (size_t s = 0; s < wall.size(); ++s) {
-        // A line that stopped short of the far level (the gradient vanished: a saddle of the
-        // potential, or it wandered four diagonals) would pile its nodes on its last point.
+        // A line that stopped short of the far level (no higher point near its end, or it
+        // wandered four diagonals) would pile its nodes on its last point.
         if (paths.lines[s].size() < 2 || paths.levels[s].back() < (1 - 1e-9) * c0)
             throw std::invalid_argument(fmt::format(
                 "the exterior potential's gradient line from the wall point ({:.4g}, {:.4g}, {:.4g}) "
-                "stops at level {:.3g} short of the far level {:.3g} (the gradient vanishes there)",
+                "stops at level {:.3g} short of the far level {:.3g} (no higher point near its end)",
                 wall[s].x(), wall[s].y(), wall[s].z(), paths.levels[s].back(), c0));
         const Vec3 d = paths.outer(s) - centre;
         if (!d.allFinite() || !(d.norm() > 0))

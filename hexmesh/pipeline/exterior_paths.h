@@ -13,21 +13,27 @@ namespace hexmesh {
 // The gradient line of `potential` from p up to the level F = c0 (the midpoint rule at unit
 // speed, points `step` apart, the last one on the level), and F at its points in `levels`
 // (non-decreasing). It ends early where the gradient vanishes or after 4 bounds diagonals.
+// With `climb_pockets`, where the gradient vanishes or the line has not risen above its highest
+// level for 4 steps (a pocket of the interpolant: in gaps about as narrow as the potential's
+// lattice, F is near its solve's noise), it moves instead to the highest of 64 points around at
+// 1, 2, 4 or 8 steps that is higher than that, and ends early only where none is.
 std::vector<Vec3> gradient_line_up(const ImplicitFunction& potential, Vec3 p, double c0,
-                                   double step, std::vector<double>& levels);
+                                   double step, std::vector<double>& levels,
+                                   bool climb_pockets = false);
 
 // The paths of an exterior grid's lines (volume/wall_paths.h) from the wall lattice `wall`
 // (CubeSurfaceLattice numbering, n cells per patch edge) up `potential` (F = 0 on the body,
 // rising away from it without a local maximum: surface/exterior_potential.h) to its level c0,
-// which must be star-shaped around `centre`; points every quarter of a wall edge. Gradient
-// lines never cross, so the lines of neighbouring wall nodes stay neighbours out to that
-// level. Their far-field directions: from the centre to the paths' ends, the lattice's quads on
-// the unit sphere then untangled and smoothed with the 2D functional (each quad's target the
-// rectangle of its own mean edge lengths; `solver`'s methods), so that a fold the lines carry
-// out (from the wall, or where gradient lines pass a saddle of the potential, as between the
-// legs of an animal) is not fixed in the far field. Throws std::invalid_argument, naming the
-// wall point, when a line stops short of c0 (the gradient vanishes: a groove narrower than the
-// potential's lattice), std::runtime_error when a line leaves no finite point.
+// which must be star-shaped around `centre`; points every quarter of a wall edge; a line that
+// stops short is traced again climbing out of pockets. Gradient lines never cross, so the
+// lines of neighbouring wall nodes stay neighbours out to that level. Their far-field
+// directions: from the centre to the paths' ends, the lattice's quads on the unit sphere then
+// untangled and smoothed with the 2D functional (each quad's target the rectangle of its own
+// mean edge lengths; `solver`'s methods), so that a fold the lines carry out (from the wall, or
+// where gradient lines pass a saddle of the potential, as between the legs of an animal) is not
+// fixed in the far field. Throws std::invalid_argument, naming the wall point, when a line
+// stops short of c0 even so (no higher point near where it stops), std::runtime_error when a
+// line leaves no finite point.
 WallPaths exterior_paths(const ImplicitFunction& potential, const std::vector<Vec3>& wall,
                          double c0, int cells_per_edge, const Vec3& centre,
                          const untangle::UntangleOptions& solver);

@@ -12,24 +12,27 @@ using namespace hexmesh;
 
 namespace {
 
-// F = 1 - 1/|x| outside the unit ball (harmonic, 0 on the sphere, 1 far away), 0 inside it;
-// with `plateau`, also 0 above z = 0.5, where its gradient vanishes.
+// F = 1 - 1/|x| outside the unit ball (harmonic, 0 on the sphere, 1 far away), 0 inside it.
+// Flat::everywhere: 0 everywhere, its gradient nowhere non-zero; Flat::pocket: constant, its
+// gradient zero, in a ball of radius 0.1 round (0, 0, 1.3), on the line of the top wall node.
+enum class Flat { nowhere, everywhere, pocket };
 class BallPotential : public ImplicitFunction {
 public:
-    explicit BallPotential(bool plateau = false) : plateau_(plateau) {}
+    explicit BallPotential(Flat flat = Flat::nowhere) : flat_(flat) {}
     double value(const Vec3& p) const override {
-        if (flat(p)) return 0;
+        if (p.norm() <= 1 || flat_ == Flat::everywhere) return 0;
+        if (in_pocket(p)) return 1 - 1 / 1.2;
         return 1 - 1 / p.norm();
     }
     Vec3 gradient(const Vec3& p) const override {
-        if (flat(p)) return Vec3::Zero();
+        if (p.norm() <= 1 || flat_ == Flat::everywhere || in_pocket(p)) return Vec3::Zero();
         return p / std::pow(p.norm(), 3);
     }
     Box3 bounds() const override { return {Vec3::Constant(-1), Vec3::Constant(1)}; }
 
 private:
-    bool flat(const Vec3& p) const { return p.norm() <= 1 || (plateau_ && p.z() > 0.5); }
-    bool plateau_;
+    bool in_pocket(const Vec3& p) const { return flat_ == Flat::pocket && (p - Vec3(0, 0, 1.3)).norm() < 0.1; }
+    Flat flat_;
 };
 
 std::vector<Vec3> unit_sphere_wall(int n) {
@@ -60,11 +63,27 @@ TEST(ExteriorPaths, LinesOfABallsPotentialAreItsRaysUpToTheLevel) {
 TEST(ExteriorPaths, ALineThatStopsShortOfTheLevelIsRefusedWithItsPoint) {
     const int n = 4;
     try {
-        exterior_paths(BallPotential(true), unit_sphere_wall(n), 0.5, n, Vec3::Zero(), {});
+        exterior_paths(BallPotential(Flat::everywhere), unit_sphere_wall(n), 0.5, n, Vec3::Zero(), {});
         FAIL() << "expected std::invalid_argument";
     } catch (const std::invalid_argument& e) {
         const std::string what = e.what();
         EXPECT_NE(what.find("gradient line from the wall point ("), std::string::npos) << what;
         EXPECT_NE(what.find("short of the far level 0.5"), std::string::npos) << what;
     }
+}
+
+TEST(ExteriorPaths, ALineClimbsOutOfAPocketWhereTheGradientVanishes) {
+    // As in a gap about as narrow as a potential's lattice: the top node's line meets the
+    // pocket, where a gradient step goes nowhere; it moves to a higher point around and on.
+    const int n = 4;
+    const std::vector<Vec3> wall = unit_sphere_wall(n);
+    const WallPaths paths = exterior_paths(BallPotential(Flat::pocket), wall, 0.5, n, Vec3::Zero(), {});
+    int through_pocket = 0;
+    for (size_t s = 0; s < wall.size(); ++s) {
+        EXPECT_NEAR(paths.levels[s].back(), 0.5, 1e-9) << s;
+        EXPECT_NEAR(paths.lines[s].back().norm(), 2, 0.01) << s;
+        for (size_t i = 1; i < paths.levels[s].size(); ++i) EXPECT_GE(paths.levels[s][i], paths.levels[s][i - 1]) << s;
+        for (const Vec3& x : paths.lines[s]) through_pocket += (x - Vec3(0, 0, 1.3)).norm() < 0.1;
+    }
+    EXPECT_GT(through_pocket, 0);  // the top line did enter it
 }
