@@ -13,7 +13,9 @@ struct GridOptimizationOptions {
     // The boundary layer the grid must keep. With layers > 0, after the joint optimization the
     // layer nodes are laid again along the optimized wall's normals (volume/wall_extrusion.h)
     // and the grid around them (relax_rings) is optimized once more, wall and layers held (kept
-    // only if every cell is then valid).
+    // only if every cell is then valid). Not when the joint optimization left inverted
+    // elements: that pass holds more nodes and has never repaired what the joint one left
+    // (bench/RESULTS.md), so it would only make a refused run longer.
     WallLayers wall_layers;
     // The nodes beyond the laid layers follow them over this many nodes along each line, and
     // the pass after the layers are laid again optimizes the cells within this many cell

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -169,4 +170,42 @@ TEST(RunCase, PolishOfHeldCellsLeavesTheGridAsItIs) {
     EXPECT_EQ(r.rounds, 0);
     EXPECT_EQ(r.cells, grid.num_cells());
     EXPECT_EQ(grid.points, start);
+}
+
+// A joint optimization that leaves inverted elements (here a corner tet between held nodes: a
+// core node held 1.2 cells past its held neighbour) is not followed by the pass that lays the
+// boundary layer again: that pass holds more, and the run is refused all the same. The same
+// grid without the fold gets its layers laid.
+TEST(RunCase, LayersAreNotLaidAgainOnAGridTheJointOptimizationLeftInverted) {
+    const Case c = parse_case(R"({"geometry": {"ellipsoid": {"semi_axes": [3, 2, 1]}},
+        "grid": {"cells_per_edge": 8, "wall_cells": 4},
+        "boundary_layer": {"first_height": 0.02, "growth_ratio": 1.2, "layers": 3}})", "e.json");
+    const Body body = make_body(c.geometry);
+    const BlockGrid built = build_grid(c, *body);
+    GridOptimizationOptions o;
+    o.untangle.max_untangle_iterations = 20;
+    o.untangle.max_optimize_iterations = 2;
+    o.wall_layers = wall_layers(c);
+
+    BlockGrid valid = built;
+    const GridOptimizationResult laid = optimize_grid(valid, *body, o);
+    EXPECT_EQ(laid.solve.inverted_after, 0);
+    EXPECT_GT(laid.laid_nodes, 0);
+    EXPECT_FALSE(laid.layers_held.history.empty());
+
+    BlockGrid folded = built;
+    const Block& core = folded.blocks.front();
+    const Id p = core.node(4, 4, 4);
+    folded.points[p] += 1.2 * (folded.points[core.node(5, 4, 4)] - folded.points[p]);
+    o.held.assign(folded.points.size(), false);
+    o.held[p] = true;
+    for (const auto& [i, j, k] : {std::array{3, 4, 4}, {5, 4, 4}, {4, 3, 4}, {4, 5, 4}, {4, 4, 3}, {4, 4, 5}})
+        o.held[core.node(i, j, k)] = true;
+    const GridOptimizationResult r = optimize_grid(folded, *body, o);
+    EXPECT_GT(r.solve.blocked, 0);
+    EXPECT_GT(r.solve.inverted_after, 0);
+    EXPECT_EQ(r.laid_nodes, 0);
+    EXPECT_TRUE(r.layers_held.history.empty());
+    EXPECT_FALSE(r.layers_laid);
+    EXPECT_EQ(folded.points[p], built.points[p] + 1.2 * (built.points[core.node(5, 4, 4)] - built.points[p]));
 }

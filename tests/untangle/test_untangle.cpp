@@ -140,8 +140,11 @@ TEST_P(UntangleStressInput, IsUntangled) {
     EXPECT_GT(r.inverted_before, 0);
     EXPECT_EQ(r.inverted_after, 0) << format_untangle_summary(r) << log.str();
     EXPECT_TRUE(r.stopped.empty()) << r.stopped;
-    for (size_t v = 0; v < p.points.size(); ++v)
-        if (p.kinds[v] == VertexKind::fixed) EXPECT_EQ(p.points[v], before[v]);
+    for (size_t v = 0; v < p.points.size(); ++v) {
+        if (p.kinds[v] == VertexKind::fixed) {
+            EXPECT_EQ(p.points[v], before[v]);
+        }
+    }
     std::cout << "  " << GetParam().name << ": " << p.hexes.size() << " cells, " << r.inverted_before
               << " inverted corner tets before\n" << format_untangle_summary(r);
 }
