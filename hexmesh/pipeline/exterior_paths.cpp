@@ -1,13 +1,12 @@
 #include "hexmesh/pipeline/exterior_paths.h"
 
+#include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
 #include <optional>
 #include <stdexcept>
-
-#include <fmt/format.h>
 
 #include "surface/level_sets.h"
 #include "volume/cube_sphere.h"
@@ -54,31 +53,61 @@ void untangle_on_sphere(std::vector<Vec3>& directions, int n, const untangle::Un
 
 }  // namespace
 
+namespace {
+
+struct Climb {
+    Vec3 point;
+    double value;
+};
+
+// Where a line climbs out of a pocket of `potential` from x: on the nearest of the rings of 64
+// directions at distances step, 2 step, 4 step and 8 step around x that has points higher than
+// `above`, the highest of them, reached from x without passing through the body (F > 0 at 8
+// points along the way).
+std::optional<Climb> climb_out(const ImplicitFunction& potential, const Vec3& x, double above,
+                               double step) {
+    static const std::vector<Vec3> around = sphere_directions(64);
+    const auto outside_all_along = [&](const Vec3& y) {
+        for (int i = 1; i < 8; ++i)
+            if (!(potential.value(x + (i / 8.0) * (y - x)) > 0)) return false;
+        return true;
+    };
+    for (double r = step; r <= 8 * step; r *= 2) {
+        std::optional<Climb> best;
+        for (const Vec3& d : around) {
+            const Vec3 y = x + r * d;
+            const double fy = potential.value(y);
+            if (fy > (best ? best->value : above) && outside_all_along(y)) best = Climb{y, fy};
+        }
+        if (best) return best;
+    }
+    return std::nullopt;
+}
+
+// A point of the segment from p (F < c0) to q (F >= c0) where F = c0, by bisection.
+Vec3 on_level(const ImplicitFunction& potential, Vec3 p, Vec3 q, double c0) {
+    for (int i = 0; i < 40; ++i) {
+        const Vec3 m = 0.5 * (p + q);
+        (potential.value(m) >= c0 ? q : p) = m;
+    }
+    return 0.5 * (p + q);
+}
+
+}  // namespace
+
 std::vector<Vec3> gradient_line_up(const ImplicitFunction& potential, Vec3 p, double c0,
                                    double step, std::vector<double>& levels, bool climb_pockets) {
-    static const std::vector<Vec3> around = sphere_directions(64);
     const double longest = 4 * potential.bounds().diagonal();
     const auto up = [&](const Vec3& x) {
         const Vec3 g = potential.gradient(x);
         const double norm = g.norm();
         return norm > 0 && std::isfinite(norm) ? Vec3(g / norm) : Vec3(Vec3::Zero());
     };
-    // The highest of the points at distance r, 2 r, 4 r, 8 r around x (nearest ring first) that
-    // is above f.
-    const auto climb = [&](const Vec3& x, double f, double& fy) -> std::optional<Vec3> {
-        for (double r = step; r <= 8 * step; r *= 2) {
-            std::optional<Vec3> best;
-            fy = f;
-            for (const Vec3& d : around)
-                if (const double fd = potential.value(x + r * d); fd > fy) fy = fd, best = x + r * d;
-            if (best) return best;
-        }
-        return std::nullopt;
-    };
     std::vector<Vec3> line = {p};
     double f = potential.value(p);
     levels = {std::max(f, 0.0)};
-    int flat = 0;  // steps in a row that did not rise above the line's highest level
+    double highest = f;  // F at the line's highest point so far (levels clamp it at 0)
+    int flat = 0;        // steps in a row that did not rise above it
     for (double travelled = 0; travelled < longest && f < c0; travelled += step) {
         const Vec3 v = up(p);
         Vec3 q = p;
@@ -88,18 +117,23 @@ std::vector<Vec3> gradient_line_up(const ImplicitFunction& potential, Vec3 p, do
             q = p + step * (w.squaredNorm() > 0 ? w : v);
             fq = potential.value(q);
         }
-        flat = fq > levels.back() ? 0 : flat + 1;
         if (v.squaredNorm() == 0 && !climb_pockets) break;
+        flat = fq > highest ? 0 : flat + 1;
         if (climb_pockets && (v.squaredNorm() == 0 || flat >= 4)) {
             // The gradient vanishes, or the line has not risen for 4 steps: a gap about as
             // narrow as the potential's lattice, where F is near its solve's noise and the
-            // interpolant has pockets. The highest point around that is higher.
-            const std::optional<Vec3> higher = climb(p, levels.back(), fq);
-            if (!higher) break;
-            q = *higher;
+            // interpolant has pockets.
+            const std::optional<Climb> out = climb_out(potential, p, highest, step);
+            if (!out) break;
+            q = out->point;
+            fq = out->value;
             flat = 0;
+            if (fq >= c0)
+                q = on_level(potential, p, q, c0);  // a climb does not follow the gradient
+        } else if (fq >= c0 && fq > f) {
+            q = p + (q - p) * ((c0 - f) / (fq - f));  // land on the level
         }
-        if (fq >= c0 && fq > f) q = p + (q - p) * ((c0 - f) / (fq - f));  // land on the level
+        highest = std::max(highest, fq);
         p = q;
         f = std::min(fq, c0);
         line.push_back(p);
@@ -127,10 +161,12 @@ WallPaths exterior_paths(const ImplicitFunction& potential, const std::vector<Ve
         // A line that stopped short of the far level (no higher point near its end, or it
         // wandered four diagonals) would pile its nodes on its last point.
         if (paths.lines[s].size() < 2 || paths.levels[s].back() < (1 - 1e-9) * c0)
-            throw std::invalid_argument(fmt::format(
-                "the exterior potential's gradient line from the wall point ({:.4g}, {:.4g}, {:.4g}) "
-                "stops at level {:.3g} short of the far level {:.3g} (no higher point near its end)",
-                wall[s].x(), wall[s].y(), wall[s].z(), paths.levels[s].back(), c0));
+            throw std::invalid_argument(
+                fmt::format("the exterior potential's gradient line from the wall point ({:.4g}, "
+                            "{:.4g}, {:.4g}) "
+                            "stops at level {:.3g} short of the far level {:.3g} (no higher point "
+                            "near its end)",
+                            wall[s].x(), wall[s].y(), wall[s].z(), paths.levels[s].back(), c0));
         const Vec3 d = paths.outer(s) - centre;
         if (!d.allFinite() || !(d.norm() > 0))
             throw std::runtime_error("the gradient line of a wall node left no finite point");

@@ -12,11 +12,15 @@ namespace hexmesh {
 
 // The gradient line of `potential` from p up to the level F = c0 (the midpoint rule at unit
 // speed, points `step` apart, the last one on the level), and F at its points in `levels`
-// (non-decreasing). It ends early where the gradient vanishes or after 4 bounds diagonals.
+// (non-decreasing). It ends early where the gradient vanishes or after 4 bounds diagonals of
+// steps.
 // With `climb_pockets`, where the gradient vanishes or the line has not risen above its highest
-// level for 4 steps (a pocket of the interpolant: in gaps about as narrow as the potential's
-// lattice, F is near its solve's noise), it moves instead to the highest of 64 points around at
-// 1, 2, 4 or 8 steps that is higher than that, and ends early only where none is.
+// point for 4 steps (a pocket of the interpolant: in gaps about as narrow as the potential's
+// lattice, F is near its solve's noise), it climbs instead: to the highest point higher than
+// that on the nearest ring of 64 directions at 1, 2, 4 or 8 steps that has one, reached without
+// passing through the body (the last point bisected onto the level); it then ends early only
+// where no ring has one. Such a step does not follow the gradient, so a line that climbed may
+// cross its neighbours'.
 std::vector<Vec3> gradient_line_up(const ImplicitFunction& potential, Vec3 p, double c0,
                                    double step, std::vector<double>& levels,
                                    bool climb_pockets = false);

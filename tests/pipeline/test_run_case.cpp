@@ -179,7 +179,8 @@ TEST(RunCase, PolishOfHeldCellsLeavesTheGridAsItIs) {
 TEST(RunCase, LayersAreNotLaidAgainOnAGridTheJointOptimizationLeftInverted) {
     const Case c = parse_case(R"({"geometry": {"ellipsoid": {"semi_axes": [3, 2, 1]}},
         "grid": {"cells_per_edge": 8, "wall_cells": 4},
-        "boundary_layer": {"first_height": 0.02, "growth_ratio": 1.2, "layers": 3}})", "e.json");
+        "boundary_layer": {"first_height": 0.02, "growth_ratio": 1.2, "layers": 3}})",
+                              "e.json");
     const Body body = make_body(c.geometry);
     const BlockGrid built = build_grid(c, *body);
     GridOptimizationOptions o;
@@ -190,6 +191,7 @@ TEST(RunCase, LayersAreNotLaidAgainOnAGridTheJointOptimizationLeftInverted) {
     BlockGrid valid = built;
     const GridOptimizationResult laid = optimize_grid(valid, *body, o);
     EXPECT_EQ(laid.solve.inverted_after, 0);
+    EXPECT_FALSE(laid.layers_skipped);
     EXPECT_GT(laid.laid_nodes, 0);
     EXPECT_FALSE(laid.layers_held.history.empty());
 
@@ -199,13 +201,16 @@ TEST(RunCase, LayersAreNotLaidAgainOnAGridTheJointOptimizationLeftInverted) {
     folded.points[p] += 1.2 * (folded.points[core.node(5, 4, 4)] - folded.points[p]);
     o.held.assign(folded.points.size(), false);
     o.held[p] = true;
-    for (const auto& [i, j, k] : {std::array{3, 4, 4}, {5, 4, 4}, {4, 3, 4}, {4, 5, 4}, {4, 4, 3}, {4, 4, 5}})
+    for (const auto& [i, j, k] :
+         {std::array{3, 4, 4}, {5, 4, 4}, {4, 3, 4}, {4, 5, 4}, {4, 4, 3}, {4, 4, 5}})
         o.held[core.node(i, j, k)] = true;
     const GridOptimizationResult r = optimize_grid(folded, *body, o);
     EXPECT_GT(r.solve.blocked, 0);
     EXPECT_GT(r.solve.inverted_after, 0);
+    EXPECT_TRUE(r.layers_skipped);
     EXPECT_EQ(r.laid_nodes, 0);
     EXPECT_TRUE(r.layers_held.history.empty());
     EXPECT_FALSE(r.layers_laid);
-    EXPECT_EQ(folded.points[p], built.points[p] + 1.2 * (built.points[core.node(5, 4, 4)] - built.points[p]));
+    EXPECT_EQ(folded.points[p],
+              built.points[p] + 1.2 * (built.points[core.node(5, 4, 4)] - built.points[p]));
 }
