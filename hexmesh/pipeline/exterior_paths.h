@@ -17,10 +17,10 @@ namespace hexmesh {
 // With `climb_pockets`, where the gradient vanishes or the line has not risen above its highest
 // point for 4 steps (a pocket of the interpolant: in gaps about as narrow as the potential's
 // lattice, F is near its solve's noise), it climbs instead: to the highest point higher than
-// that on the nearest ring of 64 directions at 1, 2, 4 or 8 steps that has one, reached without
-// passing through the body (the last point bisected onto the level); it then ends early only
-// where no ring has one. Such a step does not follow the gradient, so a line that climbed may
-// cross its neighbours'.
+// that on the nearest ring of 64 directions at 1, 2, 4 or 8 steps that has one (the last point
+// bisected onto the level); it then ends early only where no ring has one. Such a step does
+// not follow the gradient: a line that climbed may cross its neighbours', or jump across a
+// part of the body thinner than 2 steps.
 std::vector<Vec3> gradient_line_up(const ImplicitFunction& potential, Vec3 p, double c0,
                                    double step, std::vector<double>& levels,
                                    bool climb_pockets = false);
