@@ -51,10 +51,6 @@ void untangle_on_sphere(std::vector<Vec3>& directions, int n, const untangle::Un
     directions = std::move(p.points);
 }
 
-}  // namespace
-
-namespace {
-
 struct Climb {
     Vec3 point;
     double value;
@@ -148,22 +144,22 @@ WallPaths exterior_paths(const ImplicitFunction& potential, const std::vector<Ve
     paths.lines.resize(wall.size());
     paths.levels.resize(wall.size());
     const double step = 0.25 * grid_length_scale(potential, n);
+    const auto short_of_level = [&](size_t s) { return paths.levels[s].back() < (1 - 1e-9) * c0; };
     tbb::parallel_for(size_t(0), wall.size(), [&](size_t s) {
         paths.lines[s] = gradient_line_up(potential, wall[s], c0, step, paths.levels[s]);
-        if (paths.levels[s].back() < (1 - 1e-9) * c0)
+        if (short_of_level(s))
             paths.lines[s] = gradient_line_up(potential, wall[s], c0, step, paths.levels[s], true);
     });
     std::vector<Vec3> directions(wall.size());
     for (size_t s = 0; s < wall.size(); ++s) {
         // A line that stopped short of the far level (no higher point near its end, or it
         // wandered four diagonals) would pile its nodes on its last point.
-        if (paths.lines[s].size() < 2 || paths.levels[s].back() < (1 - 1e-9) * c0)
-            throw std::invalid_argument(
-                fmt::format("the exterior potential's gradient line from the wall point ({:.4g}, "
-                            "{:.4g}, {:.4g}) "
-                            "stops at level {:.3g} short of the far level {:.3g} (no higher point "
-                            "near its end)",
-                            wall[s].x(), wall[s].y(), wall[s].z(), paths.levels[s].back(), c0));
+        if (paths.lines[s].size() < 2 || short_of_level(s))
+            throw std::invalid_argument(fmt::format(
+                "the exterior potential's gradient line from the wall point ({:.4g}, {:.4g}, "
+                "{:.4g}) stops at level {:.3g} short of the far level {:.3g} (no higher point "
+                "near its end)",
+                wall[s].x(), wall[s].y(), wall[s].z(), paths.levels[s].back(), c0));
         const Vec3 d = paths.outer(s) - centre;
         if (!d.allFinite() || !(d.norm() > 0))
             throw std::runtime_error("the gradient line of a wall node left no finite point");
