@@ -23,15 +23,24 @@ struct Refusal {
     bool wrote = false;
 };
 
+// `hexmesh run` of the case `c`, written to DIR/case.json, into DIR/out.
+CommandResult run_case_in(const fs::path& dir, const nlohmann::json& c) {
+    fs::create_directories(dir);
+    std::ofstream(dir / "case.json") << c.dump();
+    return run_hexmesh("run '" + (dir / "case.json").string() + "' -o '" + (dir / "out").string() + "'");
+}
+
+// The quality.json that run_case_in(dir, ...) wrote.
+nlohmann::json quality_in(const fs::path& dir) {
+    std::ifstream in(dir / "out" / "quality.json");
+    return nlohmann::json::parse(in);
+}
+
 // `hexmesh run` of a case naming only the file and the domain.
 Refusal run_file(const fs::path& surface, const std::string& domain) {
     const fs::path dir = scratch("bodies_" + surface.stem().string() + "_" + domain);
-    fs::create_directories(dir);
-    std::ofstream(dir / "case.json") << nlohmann::json{{"geometry", {{"file", surface.string()}}},
-                                                       {"domain", domain}}
-                                            .dump();
     Refusal r;
-    r.result = run_hexmesh("run '" + (dir / "case.json").string() + "' -o '" + (dir / "out").string() + "'");
+    r.result = run_case_in(dir, {{"geometry", {{"file", surface.string()}}}, {"domain", domain}});
     r.wrote = fs::exists(dir / "out");
     return r;
 }
@@ -98,13 +107,11 @@ TEST(CliBodies, LaidLayersThatWouldCrossAreGivenBackLineByLine) {
     if (!fs::exists(cross)) GTEST_SKIP() << "shared bodies not beside the project: " << bodies;
     const fs::path dir = scratch("bodies_cross_layers");
     fs::remove_all(dir);
-    fs::create_directories(dir);
-    std::ofstream(dir / "case.json") << nlohmann::json{
-        {"geometry", {{"file", cross.string()}}},
-        {"domain", "exterior"},
-        {"grid", {{"cells_per_edge", 12}}},
-        {"boundary_layer", {{"first_height", 0.002}, {"growth_ratio", 1.2}, {"layers", 5}}}}.dump();
-    const CommandResult r = run_hexmesh("run '" + (dir / "case.json").string() + "' -o '" + (dir / "out").string() + "'");
+    const CommandResult r = run_case_in(
+        dir, {{"geometry", {{"file", cross.string()}}},
+              {"domain", "exterior"},
+              {"grid", {{"cells_per_edge", 12}}},
+              {"boundary_layer", {{"first_height", 0.002}, {"growth_ratio", 1.2}, {"layers", 5}}}});
     ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
     EXPECT_NE(r.out.find("wall lines, whose laid cells would cross or fall under half the worst scaled Jacobian "
                          "before: they keep the joint optimization's"),
@@ -114,8 +121,7 @@ TEST(CliBodies, LaidLayersThatWouldCrossAreGivenBackLineByLine) {
     EXPECT_TRUE(std::regex_search(r.out, std::regex("cells a solver refuses mended node by node \\(the solver's own "
                                                     "checks\\): [1-9][0-9]* -> 0,")))
         << r.out;
-    std::ifstream in(dir / "out" / "quality.json");
-    const nlohmann::json q = nlohmann::json::parse(in);
+    const nlohmann::json q = quality_in(dir);
     EXPECT_TRUE(q.at("valid").get<bool>());
     EXPECT_EQ(q.at("negative_face_pyramids").get<long>(), 0);
     EXPECT_GE(q.at("wall").at("first_layer_thickness").at("fraction_within_10_percent").get<double>(), 0.70);
@@ -145,15 +151,12 @@ TEST_P(FromTheFileAlone, IsValidForTheSolverAndKeepsItsFirstLayer) {
     if (!fs::exists(file)) GTEST_SKIP() << "shared bodies not beside the project: " << bodies;
     const fs::path dir = scratch(std::string("from_file_") + fs::path(p.body).stem().string() + "_" + p.domain);
     fs::remove_all(dir);
-    fs::create_directories(dir);
-    std::ofstream(dir / "case.json") << nlohmann::json{
-        {"geometry", {{"file", file.string()}}},
-        {"domain", p.domain},
-        {"boundary_layer", {{"first_height", 0.002}, {"growth_ratio", 1.2}, {"layers", 5}}}}.dump();
-    const CommandResult r = run_hexmesh("run '" + (dir / "case.json").string() + "' -o '" + (dir / "out").string() + "'");
+    const CommandResult r = run_case_in(
+        dir, {{"geometry", {{"file", file.string()}}},
+              {"domain", p.domain},
+              {"boundary_layer", {{"first_height", 0.002}, {"growth_ratio", 1.2}, {"layers", 5}}}});
     ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
-    std::ifstream in(dir / "out" / "quality.json");
-    const nlohmann::json q = nlohmann::json::parse(in);
+    const nlohmann::json q = quality_in(dir);
     EXPECT_TRUE(q.at("valid").get<bool>());
     EXPECT_GT(q.at("min_scaled_jacobian").get<double>(), 0);
     EXPECT_GE(q.at("wall").at("first_layer_thickness").at("fraction_within_10_percent").get<double>(), 0.85);

@@ -20,28 +20,29 @@ namespace {
 enum class Flat { nowhere, everywhere, pocket, lying_pocket };
 class BallPotential : public ImplicitFunction {
 public:
-  explicit BallPotential(Flat flat = Flat::nowhere) : flat_(flat) {}
-  double value(const Vec3& p) const override {
-      if (flat_ == Flat::everywhere) return 0;
-      if (in_pocket(p)) return 1 - 1 / 1.2;
-      return 1 - 1 / p.norm();
+    explicit BallPotential(Flat flat = Flat::nowhere) : flat_(flat) {}
+    double value(const Vec3& p) const override {
+        if (flat_ == Flat::everywhere) return 0;
+        if (in_pocket(p)) return 1 - 1 / 1.2;
+        return 1 - 1 / p.norm();
     }
     Vec3 gradient(const Vec3& p) const override {
         if (flat_ == Flat::everywhere || p.norm() <= 1) return Vec3::Zero();
         if (in_pocket(p))
-            return flat_ == Flat::lying_pocket ? Vec3(Vec3(0, 0, 1.3) - p) : Vec3(Vec3::Zero());
+            return flat_ == Flat::lying_pocket ? Vec3(pocket_centre() - p) : Vec3(Vec3::Zero());
         return p / std::pow(p.norm(), 3);
     }
     Box3 bounds() const override { return {Vec3::Constant(-1), Vec3::Constant(1)}; }
+    static Vec3 pocket_centre() { return {0, 0, 1.3}; }
     static bool near_pocket(const Vec3& p, double margin) {
-        return (p - Vec3(0, 0, 1.3)).norm() < 0.1 + margin;
+        return (p - pocket_centre()).norm() < 0.1 + margin;
     }
 
 private:
-  bool in_pocket(const Vec3& p) const {
-      return (flat_ == Flat::pocket || flat_ == Flat::lying_pocket) && near_pocket(p, 0);
-  }
-  Flat flat_;
+    bool in_pocket(const Vec3& p) const {
+        return (flat_ == Flat::pocket || flat_ == Flat::lying_pocket) && near_pocket(p, 0);
+    }
+    Flat flat_;
 };
 
 std::vector<Vec3> unit_sphere_wall(int n) {
