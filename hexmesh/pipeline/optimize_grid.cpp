@@ -254,8 +254,7 @@ GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& bo
         result.solve = untangle::untangle_and_optimize(g.problem, options.untangle);
         g.scatter(grid.points);
     }
-    result.layers_skipped = options.wall_layers.layers > 0 && result.solve.inverted_after > 0;
-    if (options.wall_layers.layers > 0 && !result.layers_skipped) {
+    if (options.wall_layers.layers > 0) {
         const std::vector<Vec3> joint = grid.points;
         const std::vector<double> joint_sj = scaled_jacobians(grid);
         const double joint_min_sj = joint_sj.empty() ? 0 : *std::min_element(joint_sj.begin(), joint_sj.end());
