@@ -49,6 +49,9 @@ std::string wall_rows(const WallQuality& w) {
         out += table_row("surface to wall in wall cells max/p99",
                          {fmt::format("{:.3f}", *w.surface_in_cells_max),
                           fmt::format("{:.3f}", w.surface_in_cells_p99.value_or(0))});
+    if (w.surface_in_cells_at)
+        out += table_row("  at", {fmt::format("({:.4g}, {:.4g}, {:.4g})", w.surface_in_cells_at->x(),
+                                              w.surface_in_cells_at->y(), w.surface_in_cells_at->z())});
     return out;
 }
 
@@ -79,10 +82,30 @@ nlohmann::ordered_json wall_json(const WallQuality& w) {
     if (w.surface_in_cells_max)
         j["surface_to_wall_in_cells"] = {{"max", *w.surface_in_cells_max},
                                          {"p99", w.surface_in_cells_p99.value_or(0)}};
+    if (w.surface_in_cells_max && w.surface_in_cells_at) {
+        const Vec3& at = *w.surface_in_cells_at;
+        j["surface_to_wall_in_cells"]["at"] = {at.x(), at.y(), at.z()};
+        j["surface_to_wall_in_cells"]["distance"] = w.surface_in_cells_distance.value_or(0);
+    }
     return j;
 }
 
 }  // namespace
+
+bool follows_body(const GridReport& r) {
+    return !(r.wall && r.wall->surface_in_cells_max && *r.wall->surface_in_cells_max > follows_body_wall_cells);
+}
+
+std::string body_missed(const GridReport& r) {
+    if (follows_body(r)) return {};
+    const WallQuality& w = *r.wall;
+    const Vec3 at = w.surface_in_cells_at.value_or(Vec3::Zero());
+    return fmt::format("the grid's wall misses the body by {:.3g} ({:.3g} wall cells, more than {}) at the surface "
+                       "point ({:.4g}, {:.4g}, {:.4g}): the wall cuts off or bridges that part of the body (a limb, a "
+                       "fin, a groove, a sharp edge or corner)",
+                       w.surface_in_cells_distance.value_or(0), *w.surface_in_cells_max, follows_body_wall_cells,
+                       at.x(), at.y(), at.z());
+}
 
 std::string format_quality_table(const GridReport& r) {
     const QualityReport& q = r.quality;
@@ -127,6 +150,7 @@ std::string quality_json(const GridReport& r) {
     const QualityReport& q = r.quality;
     nlohmann::ordered_json j;
     j["valid"] = q.solver_valid();
+    j["follows_body"] = follows_body(r);
     j["cells"] = q.cells;
     j["inverted_corner_tets"] = q.inverted_corner_tets;
     j["inverted_cells"] = q.inverted_cells;

@@ -36,13 +36,28 @@ struct GridReport {
     std::vector<std::pair<std::string, double>> phase_seconds;
 };
 
+// A grid of a surface file follows the body when every vertex of the surface lies within this
+// many sizes of its nearest wall quad from the grid's wall (WallQuality::surface_in_cells_max);
+// beyond, the wall skips part of the body (a horn, a fin, a wing's trailing edge) or bridges
+// a groove.
+constexpr double follows_body_wall_cells = 0.5;
+
+// False when the grid's wall misses part of the body as above; true when it follows it, or
+// when no surface was measured (a body given by a formula).
+bool follows_body(const GridReport& report);
+
+// One line naming where the wall misses the body most and by how much; empty when it
+// follows it.
+std::string body_missed(const GridReport& report);
+
 // Aligned "name  value" lines, one per metric, ending in a newline: every first value ends
 // in the same column; rows with several values (min/mean/max) continue to its right. The
 // wall rows appear when `wall` is set, the "time per phase" block when phase_seconds is not
 // empty.
 std::string format_quality_table(const GridReport& report);
 
-// The same numbers as a JSON object: keys as in QualityReport, plus "valid", and, when
+// The same numbers as a JSON object: keys as in QualityReport, plus "valid" (for the solver),
+// "follows_body" (follows_body above), and, when
 // present, "wall" (nested objects; null for a target the law did not give) and "phases"
 // (name: seconds).
 std::string quality_json(const GridReport& report);

@@ -51,6 +51,9 @@ struct HausdorffDistance {
     // Above 0.5 the grid misses part of the body: it bridges a groove or skips a finger.
     double surface_in_cells_max = 0;
     double surface_in_cells_p99 = 0;
+    // The vertex of that max and its distance to the wall.
+    Vec3 surface_in_cells_at = Vec3::Zero();
+    double surface_in_cells_distance = 0;
 };
 
 // Exact distances (CGAL AABB tree) between the grid's wall and a triangle surface. The

@@ -41,7 +41,12 @@ void add_run_command(CLI::App& app, int& exit_code) {
                       << format_family_table(table) << "\n";
         }
         for (const std::string& f : result.files) std::cout << "written: " << f << "\n";
-        exit_code = result.report.quality.solver_valid() ? 0 : 3;
+        // A grid that misses part of the body is written, with a warning and exit code 3.
+        const std::string missed = body_missed(result.report);
+        if (!missed.empty())
+            std::cout << "\nwarning: " << missed << "; the grid is written, but a solver would see the body without "
+                      << "that part\n";
+        exit_code = result.report.quality.solver_valid() && missed.empty() ? 0 : 3;
     });
 }
 

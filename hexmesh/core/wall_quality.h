@@ -49,6 +49,9 @@ struct WallQuality {
     // (square root of its area): max and 99th percentile.
     std::optional<double> surface_in_cells_max;
     std::optional<double> surface_in_cells_p99;
+    // The surface vertex of that max, and its distance to the wall.
+    std::optional<Vec3> surface_in_cells_at;
+    std::optional<double> surface_in_cells_distance;
 
     // Every wall cell's first-layer thickness over the target, 20 bins over [0, 2) (empty
     // without a target: bins 9 and 10 hold the cells within 10 %); every growth ratio over its

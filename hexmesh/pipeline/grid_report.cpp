@@ -108,6 +108,8 @@ GridReport GridMeter::report() const {
             report.wall->surface_to_grid = d.surface_to_grid;
             report.wall->surface_in_cells_max = d.surface_in_cells_max;
             report.wall->surface_in_cells_p99 = d.surface_in_cells_p99;
+            report.wall->surface_in_cells_at = d.surface_in_cells_at;
+            report.wall->surface_in_cells_distance = d.surface_in_cells_distance;
         }
     }
     // h: mean length of the hex edges whose two ends lie on the wall (counted once per cell).

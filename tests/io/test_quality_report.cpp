@@ -163,3 +163,37 @@ TEST(QualityReport, JsonHoldsTheWallAndPhases) {
     EXPECT_DOUBLE_EQ(j.at("phases").at("geometry").get<double>(), 0.012);
     EXPECT_DOUBLE_EQ(j.at("phases").at("grid").get<double>(), 1.5);
 }
+
+// A wall that misses the surface by more than half a wall cell: follows_body false, the place
+// and distance in the JSON, one line naming them; within half a cell, or without a surface
+// measured, the grid follows the body.
+TEST(QualityReport, AWallThatMissesTheBodyIsNamed) {
+    GridReport r = plain_report();
+    EXPECT_TRUE(follows_body(r));  // no wall, no surface
+    EXPECT_EQ(body_missed(r), "");
+    r.wall = wall_quality();
+    EXPECT_TRUE(follows_body(r));  // a wall but no surface vertices measured
+    r.wall->surface_in_cells_max = 0.5;
+    r.wall->surface_in_cells_p99 = 0.2;
+    r.wall->surface_in_cells_at = Vec3(0.25, -1.5, 3);
+    r.wall->surface_in_cells_distance = 0.031;
+    EXPECT_TRUE(follows_body(r));  // exactly half a cell
+    EXPECT_TRUE(nlohmann::json::parse(quality_json(r)).at("follows_body").get<bool>());
+
+    r.wall->surface_in_cells_max = 2.4;
+    EXPECT_FALSE(follows_body(r));
+    EXPECT_EQ(body_missed(r).rfind("the grid's wall misses the body by 0.031 (2.4 wall cells, more than 0.5) at "
+                                   "the surface point (0.25, -1.5, 3)",
+                                   0),
+              0u)
+        << body_missed(r);
+    const auto j = nlohmann::json::parse(quality_json(r));
+    EXPECT_TRUE(j.at("valid").get<bool>());  // for the solver: a separate question
+    EXPECT_FALSE(j.at("follows_body").get<bool>());
+    const auto& s = j.at("wall").at("surface_to_wall_in_cells");
+    EXPECT_DOUBLE_EQ(s.at("max").get<double>(), 2.4);
+    EXPECT_DOUBLE_EQ(s.at("distance").get<double>(), 0.031);
+    EXPECT_EQ(s.at("at"), nlohmann::json::array({0.25, -1.5, 3}));
+    EXPECT_NE(line_named(format_quality_table(r), "  at").find("(0.25, -1.5, 3)"), std::string::npos)
+        << format_quality_table(r);
+}

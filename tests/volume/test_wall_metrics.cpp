@@ -320,6 +320,8 @@ TEST(WallMetrics, SurfaceVerticesInWallCellsMeasureAFingerTheGridSkips) {
     }
     const HausdorffDistance h = hausdorff_to_surface(wall, surface);
     EXPECT_NEAR(h.surface_in_cells_max, 0.4, 1e-12);
+    EXPECT_EQ(h.surface_in_cells_at, Vec3(2, 0.5, 0.8));  // the big quad's spike (0.4 cells)
+    EXPECT_NEAR(h.surface_in_cells_distance, 0.8, 1e-12);
     EXPECT_NEAR(h.surface_to_grid, 0.8, 1e-12);
     // The 99th percentile of 100 vertices: the 99th smallest, the small quad's spike.
     EXPECT_NEAR(h.surface_in_cells_p99, 0.3, 1e-12);
