@@ -191,6 +191,23 @@ std::vector<bool> inverted_tet_nodes(const BlockGrid& grid, const std::vector<Ve
     return hit;
 }
 
+// Whether some corner tet of `grid` is inverted with none of its nodes `near` (true).
+bool inverted_away_from(const BlockGrid& grid, const std::vector<bool>& near) {
+    bool found = false;
+    for (const Block& block : grid.blocks)
+        for_each_cell(block, [&](int, int, int, const std::array<Id, 8>& nodes) {
+            if (found) return;
+            std::array<Vec3, 8> p;
+            for (int n = 0; n < 8; ++n) p[n] = grid.points[nodes[n]];
+            const std::array<double, 8> dets = corner_determinants(p);
+            for (int c = 0; c < 8 && !found; ++c) {
+                const auto& t = hex_corner_tets[c];
+                found = !(dets[c] > 0) && std::none_of(t.begin(), t.end(), [&](int n) { return near[nodes[n]]; });
+            }
+        });
+    return found;
+}
+
 // Gives the wall lines with a `hit` node back to `joint`: all their nodes go back where
 // `joint` had them, and none of them is placed any more. Returns the number of lines.
 Id give_back_lines(BlockGrid& grid, const std::vector<Vec3>& joint, std::vector<bool>& placed,
@@ -254,7 +271,12 @@ GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& bo
         result.solve = untangle::untangle_and_optimize(g.problem, options.untangle);
         g.scatter(grid.points);
     }
-    if (options.wall_layers.layers > 0) {
+    // Laying the layers again moves the wall's layer nodes and optimizes what lies around them:
+    // it can free inverted elements the joint pass left at the wall (the tripod outside), never
+    // one it left away from the layers, whose cells it holds or barely frees.
+    result.layers_skipped = options.wall_layers.layers > 0 && result.solve.inverted_after > 0 &&
+                            inverted_away_from(grid, wall_layer_nodes(grid, options.wall_layers.layers));
+    if (options.wall_layers.layers > 0 && !result.layers_skipped) {
         const std::vector<Vec3> joint = grid.points;
         const std::vector<double> joint_sj = scaled_jacobians(grid);
         const double joint_min_sj = joint_sj.empty() ? 0 : *std::min_element(joint_sj.begin(), joint_sj.end());

@@ -14,8 +14,10 @@ struct GridOptimizationOptions {
     // layer nodes are laid again along the optimized wall's normals (volume/wall_extrusion.h)
     // and the grid around them (relax_rings) is optimized once more, wall and layers held (kept
     // only if every cell is then valid). Also when the joint optimization left inverted
-    // elements: the layers laid along the normals can free the last of them (the tripod
-    // outside: 1 inverted element left by the joint pass, none after this one).
+    // elements, all at the wall or its layers: the layers laid along the normals can free them
+    // (the tripod outside: 1 left by the joint pass, none after this one). Not when one lies
+    // away from them (GridOptimizationResult::layers_skipped): that pass has never repaired
+    // those (bench/RESULTS.md), and the grid is refused as the joint pass left it.
     WallLayers wall_layers;
     // The nodes beyond the laid layers follow them over this many nodes along each line, and
     // the pass after the layers are laid again optimizes the cells within this many cell
@@ -50,8 +52,11 @@ struct GridOptimizationResult {
     // only): given back the joint optimization's nodes, their layers as it left them.
     Id lines_given_back = 0;
     // Wall and layer nodes the law placed; 0 when no wall-normal line could be laid alone
-    // (volume/wall_extrusion.h) and the second pass was skipped.
+    // (volume/wall_extrusion.h) and the second pass was skipped, or when layers_skipped.
     Id laid_nodes = 0;
+    // The joint optimization left an inverted element away from the wall and its layers, so
+    // the layers were not laid again.
+    bool layers_skipped = false;
 };
 
 // Gives `p` the geometry of `body` for its constrained vertices: slip on u = 0 (grad u, the

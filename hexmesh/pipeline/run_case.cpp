@@ -373,7 +373,12 @@ RunResult run_case(const Case& given, const std::string& outdir, const RunOption
         o.keep_crease_shapes = c.domain == "exterior";  // its lines leave creases mitred
         const GridOptimizationResult r = optimize_grid(result.grid, *body, o);
         log << untangle::format_untangle_summary(r.solve);
-        if (o.wall_layers.layers > 0 && r.laid_nodes == 0) {
+        if (r.layers_skipped) {
+            log << fmt::format(
+                "  boundary layer not laid again: the joint optimization left {} inverted elements, some away "
+                "from the wall and its layers\n",
+                r.solve.inverted_after);
+        } else if (o.wall_layers.layers > 0 && r.laid_nodes == 0) {
             log << "  boundary layer kept as built (no wall-normal line can be laid alone)\n";
         } else if (r.layers_blocked > 0) {
             log << fmt::format("  boundary layer laid along the wall normals crosses the grid ({} corner tets "
