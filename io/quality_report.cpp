@@ -100,7 +100,7 @@ std::string body_missed(const GridReport& r) {
     if (follows_body(r)) return {};
     const WallQuality& w = *r.wall;
     const Vec3 at = w.surface_in_cells_at.value_or(Vec3::Zero());
-    return fmt::format("the grid's wall misses the body by {:.3g} ({:.3g} wall cells, more than {}) at the surface "
+    return fmt::format("the grid's wall misses the body by {:.3g} ({:.4g} wall cells, more than {}) at the surface "
                        "point ({:.4g}, {:.4g}, {:.4g}): the wall cuts off or bridges that part of the body (a limb, a "
                        "fin, a groove, a sharp edge or corner)",
                        w.surface_in_cells_distance.value_or(0), *w.surface_in_cells_max, follows_body_wall_cells,
@@ -150,7 +150,9 @@ std::string quality_json(const GridReport& r) {
     const QualityReport& q = r.quality;
     nlohmann::ordered_json j;
     j["valid"] = q.solver_valid();
-    j["follows_body"] = follows_body(r);
+    // null when no surface was measured (a body given by a formula, `hexmesh quality` of a file)
+    if (r.wall && r.wall->surface_in_cells_max) j["follows_body"] = follows_body(r);
+    else j["follows_body"] = nullptr;
     j["cells"] = q.cells;
     j["inverted_corner_tets"] = q.inverted_corner_tets;
     j["inverted_cells"] = q.inverted_cells;

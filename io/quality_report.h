@@ -57,7 +57,7 @@ std::string body_missed(const GridReport& report);
 std::string format_quality_table(const GridReport& report);
 
 // The same numbers as a JSON object: keys as in QualityReport, plus "valid" (for the solver),
-// "follows_body" (follows_body above), and, when
+// "follows_body" (follows_body above; null when no surface was measured), and, when
 // present, "wall" (nested objects; null for a target the law did not give) and "phases"
 // (name: seconds).
 std::string quality_json(const GridReport& report);

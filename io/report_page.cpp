@@ -278,6 +278,8 @@ ReportPage grid_report_page(const std::string& title, const GridReport& report,
                           "of negative volume, {} faces at 90 degrees or more)",
                           q.inverted_cells, q.negative_pyramids, q.faces_over_90_deg),
         q.min_scaled_jacobian, q.mean_scaled_jacobian);
+    if (const std::string missed = body_missed(report); !missed.empty())
+        page.summary += fmt::format(" <span class=\"bad\">Not the body's grid: {}.</span>", missed);
     page.value_lo = 0;  // under 0 (inverted) gets its own colour
     page.value_hi = 1;
     page.pictures = std::move(pictures);

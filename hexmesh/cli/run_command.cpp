@@ -41,12 +41,18 @@ void add_run_command(CLI::App& app, int& exit_code) {
                       << format_family_table(table) << "\n";
         }
         for (const std::string& f : result.files) std::cout << "written: " << f << "\n";
-        // A grid that misses part of the body is written, with a warning and exit code 3.
-        const std::string missed = body_missed(result.report);
-        if (!missed.empty())
-            std::cout << "\nwarning: " << missed << "; the grid is written, but a solver would see the body without "
-                      << "that part\n";
-        exit_code = result.report.quality.solver_valid() && missed.empty() ? 0 : 3;
+        // A grid that misses part of the body is written, with a warning (per level of a
+        // family) and exit code 3.
+        bool follows = true;
+        const std::vector<GridReport> levels =
+            result.level_reports.empty() ? std::vector<GridReport>{result.report} : result.level_reports;
+        for (size_t l = 0; l < levels.size(); ++l)
+            if (const std::string missed = body_missed(levels[l]); !missed.empty()) {
+                follows = false;
+                std::cout << "\nwarning: " << (levels.size() > 1 ? fmt::format("level {}: ", l + 1) : "") << missed
+                          << "; the grid is written, but a solver would see the body without that part\n";
+            }
+        exit_code = result.report.quality.solver_valid() && follows ? 0 : 3;
     });
 }
 

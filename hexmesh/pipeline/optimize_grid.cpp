@@ -271,9 +271,10 @@ GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& bo
         result.solve = untangle::untangle_and_optimize(g.problem, options.untangle);
         g.scatter(grid.points);
     }
-    // Laying the layers again moves the wall's layer nodes and optimizes what lies around them:
-    // it can free inverted elements the joint pass left at the wall (the tripod outside), never
-    // one it left away from the layers, whose cells it holds or barely frees.
+    // Laying the layers again moves the wall's layer nodes and optimizes the cells around them
+    // and around the poor ones: it can free inverted elements the joint pass left at the wall
+    // (the tripod outside). On every run measured it freed none that the joint pass left away
+    // from the wall and its layers, and took up to minutes there (bench/RESULTS.md): skipped.
     result.layers_skipped = options.wall_layers.layers > 0 && result.solve.inverted_after > 0 &&
                             inverted_away_from(grid, wall_layer_nodes(grid, options.wall_layers.layers));
     if (options.wall_layers.layers > 0 && !result.layers_skipped) {

@@ -217,3 +217,47 @@ TEST(RunCase, LayersAreNotLaidAgainOnAGridTheJointOptimizationLeftInvertedAwayFr
     EXPECT_EQ(folded.points[p],
               built.points[p] + 1.2 * (built.points[core.node(5, 4, 4)] - built.points[p]));
 }
+
+// An inverted element the joint optimization leaves at the wall (a first-layer node held 1.2
+// of its line's first edge past its wall node, with its neighbours) is handed to the pass
+// that lays the boundary layer again: it is tried, not skipped, and what it cannot repair
+// comes back as the joint pass left it.
+TEST(RunCase, LayersAreLaidAgainOnAGridTheJointOptimizationLeftInvertedAtTheWall) {
+    const Case c = parse_case(R"({"geometry": {"ellipsoid": {"semi_axes": [3, 2, 1]}},
+        "grid": {"cells_per_edge": 8, "wall_cells": 4},
+        "boundary_layer": {"first_height": 0.02, "growth_ratio": 1.2, "layers": 3}})",
+                              "e.json");
+    const Body body = make_body(c.geometry);
+    BlockGrid grid = build_grid(c, *body);
+    const Block* wall = nullptr;
+    for (const Block& b : grid.blocks)
+        if (b.name == "wall_xmax") wall = &b;
+    ASSERT_NE(wall, nullptr);
+    const int top = wall->nodes.nk - 1;  // the wall
+    ASSERT_EQ(grid.kinds[wall->node(4, 4, top)], VertexKind::slip);
+    const Id p = wall->node(4, 4, top - 1);
+    grid.points[p] += 1.2 * (grid.points[wall->node(4, 4, top)] - grid.points[p]);
+    GridOptimizationOptions o;
+    o.untangle.max_untangle_iterations = 20;
+    o.untangle.max_optimize_iterations = 2;
+    o.wall_layers = wall_layers(c);
+    o.held.assign(grid.points.size(), false);
+    o.held[p] = true;
+    for (const auto& [i, j, k] : {std::array{3, 4, top - 1}, {5, 4, top - 1}, {4, 3, top - 1}, {4, 5, top - 1},
+                                  {4, 4, top - 2}, {4, 4, top}})
+        o.held[wall->node(i, j, k)] = true;
+    const BlockGrid folded = grid;
+    const GridOptimizationResult r = optimize_grid(grid, *body, o);
+    EXPECT_GT(r.solve.inverted_after, 0);
+    EXPECT_FALSE(r.layers_skipped);
+    EXPECT_GT(r.laid_nodes, 0);  // tried
+    // Laid and valid, or the joint pass's grid as it was (that pass alone, without layers).
+    BlockGrid joint = folded;
+    GridOptimizationOptions alone = o;
+    alone.wall_layers = {};
+    optimize_grid(joint, *body, alone);
+    if (r.layers_laid)
+        EXPECT_EQ(measure_quality(grid).inverted_corner_tets, 0);
+    else
+        EXPECT_EQ(grid.points, joint.points);
+}

@@ -326,3 +326,21 @@ TEST(WallMetrics, SurfaceVerticesInWallCellsMeasureAFingerTheGridSkips) {
     // The 99th percentile of 100 vertices: the 99th smallest, the small quad's spike.
     EXPECT_NEAR(h.surface_in_cells_p99, 0.3, 1e-12);
 }
+
+// The worst vertex is the one farthest from the wall in wall cells, not in length: a spike of
+// 0.45 over a unit quad (0.45 cells) beats one of 0.8 over a 2 x 2 quad (0.4 cells).
+TEST(WallMetrics, TheWorstSurfaceVertexIsTheFarthestInWallCells) {
+    TriangleSurface wall;
+    wall.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0),
+                   Vec3(1, -0.5, 0), Vec3(3, -0.5, 0), Vec3(3, 1.5, 0), Vec3(1, 1.5, 0)};
+    wall.triangles = {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}, {4, 6, 7}};
+    TriangleSurface surface;
+    surface.points = {Vec3(0.5, 0.5, 0.45), Vec3(0.2, 0.2, 0), Vec3(0.8, 0.2, 0),
+                      Vec3(2, 0.5, 0.8),    Vec3(1.5, 0, 0),   Vec3(2.5, 0, 0)};
+    surface.triangles = {{0, 1, 2}, {3, 4, 5}};
+    const HausdorffDistance h = hausdorff_to_surface(wall, surface);
+    EXPECT_NEAR(h.surface_in_cells_max, 0.45, 1e-12);
+    EXPECT_EQ(h.surface_in_cells_at, Vec3(0.5, 0.5, 0.45));
+    EXPECT_NEAR(h.surface_in_cells_distance, 0.45, 1e-12);
+    EXPECT_NEAR(h.surface_to_grid, 0.8, 1e-12);  // the farthest in length is the other spike
+}
