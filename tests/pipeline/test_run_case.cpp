@@ -172,6 +172,26 @@ TEST(RunCase, PolishOfHeldCellsLeavesTheGridAsItIs) {
     EXPECT_EQ(grid.points, start);
 }
 
+namespace {
+
+// An ellipsoid's O-H grid with a 3-layer boundary layer, and a short optimization of it.
+Case layered_ellipsoid() {
+    return parse_case(R"({"geometry": {"ellipsoid": {"semi_axes": [3, 2, 1]}},
+        "grid": {"cells_per_edge": 8, "wall_cells": 4},
+        "boundary_layer": {"first_height": 0.02, "growth_ratio": 1.2, "layers": 3}})",
+                      "e.json");
+}
+
+GridOptimizationOptions short_options(const Case& c) {
+    GridOptimizationOptions o;
+    o.untangle.max_untangle_iterations = 20;
+    o.untangle.max_optimize_iterations = 2;
+    o.wall_layers = wall_layers(c);
+    return o;
+}
+
+}  // namespace
+
 // A joint optimization that leaves an inverted element away from the wall and its layers
 // (here a corner tet between held nodes in the core: a core node held 1.2 cells past its held
 // neighbour) is not followed by the pass that lays the boundary layer again: that pass holds
@@ -179,16 +199,10 @@ TEST(RunCase, PolishOfHeldCellsLeavesTheGridAsItIs) {
 // laid. (Inverted elements at the wall, which the laid layers can free, are tried: the
 // tripod outside, tests/e2e.)
 TEST(RunCase, LayersAreNotLaidAgainOnAGridTheJointOptimizationLeftInvertedAwayFromThem) {
-    const Case c = parse_case(R"({"geometry": {"ellipsoid": {"semi_axes": [3, 2, 1]}},
-        "grid": {"cells_per_edge": 8, "wall_cells": 4},
-        "boundary_layer": {"first_height": 0.02, "growth_ratio": 1.2, "layers": 3}})",
-                              "e.json");
+    const Case c = layered_ellipsoid();
     const Body body = make_body(c.geometry);
     const BlockGrid built = build_grid(c, *body);
-    GridOptimizationOptions o;
-    o.untangle.max_untangle_iterations = 20;
-    o.untangle.max_optimize_iterations = 2;
-    o.wall_layers = wall_layers(c);
+    GridOptimizationOptions o = short_options(c);
 
     BlockGrid valid = built;
     const GridOptimizationResult laid = optimize_grid(valid, *body, o);
@@ -223,10 +237,7 @@ TEST(RunCase, LayersAreNotLaidAgainOnAGridTheJointOptimizationLeftInvertedAwayFr
 // that lays the boundary layer again: it is tried, not skipped, and what it cannot repair
 // comes back as the joint pass left it.
 TEST(RunCase, LayersAreLaidAgainOnAGridTheJointOptimizationLeftInvertedAtTheWall) {
-    const Case c = parse_case(R"({"geometry": {"ellipsoid": {"semi_axes": [3, 2, 1]}},
-        "grid": {"cells_per_edge": 8, "wall_cells": 4},
-        "boundary_layer": {"first_height": 0.02, "growth_ratio": 1.2, "layers": 3}})",
-                              "e.json");
+    const Case c = layered_ellipsoid();
     const Body body = make_body(c.geometry);
     BlockGrid grid = build_grid(c, *body);
     const Block* wall = nullptr;
@@ -237,10 +248,7 @@ TEST(RunCase, LayersAreLaidAgainOnAGridTheJointOptimizationLeftInvertedAtTheWall
     ASSERT_EQ(grid.kinds[wall->node(4, 4, top)], VertexKind::slip);
     const Id p = wall->node(4, 4, top - 1);
     grid.points[p] += 1.2 * (grid.points[wall->node(4, 4, top)] - grid.points[p]);
-    GridOptimizationOptions o;
-    o.untangle.max_untangle_iterations = 20;
-    o.untangle.max_optimize_iterations = 2;
-    o.wall_layers = wall_layers(c);
+    GridOptimizationOptions o = short_options(c);
     o.held.assign(grid.points.size(), false);
     o.held[p] = true;
     for (const auto& [i, j, k] : {std::array{3, 4, top - 1}, {5, 4, top - 1}, {4, 3, top - 1}, {4, 5, top - 1},

@@ -299,18 +299,26 @@ TEST(WallMetrics, HausdorffNeedsAWall) {
     EXPECT_THROW(hausdorff_to_surface(grid, uv), std::invalid_argument);
 }
 
+// A wall of two quads, 1 x 1 and 2 x 2, side by side in the plane z = 0, and a surface whose
+// vertices lie on it but for a spike over each quad: `small` above the small one's centre and
+// 0.8 above the big one's (0.4 cells).
+struct TwoSpikes {
+    TriangleSurface wall, surface;
+    explicit TwoSpikes(double small) {
+        wall.points = {Vec3(0, 0, 0),    Vec3(1, 0, 0),    Vec3(1, 1, 0),    Vec3(0, 1, 0),
+                       Vec3(1, -0.5, 0), Vec3(3, -0.5, 0), Vec3(3, 1.5, 0), Vec3(1, 1.5, 0)};
+        wall.triangles = {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}, {4, 6, 7}};
+        surface.points = {Vec3(0.5, 0.5, small), Vec3(0.2, 0.2, 0), Vec3(0.8, 0.2, 0),
+                          Vec3(2, 0.5, 0.8),     Vec3(1.5, 0, 0),   Vec3(2.5, 0, 0)};
+        surface.triangles = {{0, 1, 2}, {3, 4, 5}};
+    }
+};
+
 TEST(WallMetrics, SurfaceVerticesInWallCellsMeasureAFingerTheGridSkips) {
-    // A wall of two quads, 1 x 1 and 2 x 2, side by side in the plane z = 0, and a surface
-    // whose vertices lie on it but for a spike over each quad: 0.3 above the small one (0.3
-    // cells) and 0.8 above the big one (0.4 cells).
-    TriangleSurface wall;
-    wall.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0),
-                   Vec3(1, -0.5, 0), Vec3(3, -0.5, 0), Vec3(3, 1.5, 0), Vec3(1, 1.5, 0)};
-    wall.triangles = {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}, {4, 6, 7}};
-    TriangleSurface surface;
-    surface.points = {Vec3(0.5, 0.5, 0.3), Vec3(0.2, 0.2, 0), Vec3(0.8, 0.2, 0),
-                      Vec3(2, 0.5, 0.8),   Vec3(1.5, 0, 0),   Vec3(2.5, 0, 0)};
-    surface.triangles = {{0, 1, 2}, {3, 4, 5}};
+    // The small quad's spike 0.3 above it (0.3 cells).
+    TwoSpikes spikes(0.3);
+    const TriangleSurface& wall = spikes.wall;
+    TriangleSurface& surface = spikes.surface;
     // 94 more vertices on the wall, in slivers along its edge y = 0: 100 in all.
     for (int k = 0; k < 47; ++k) {
         const int a = int(surface.points.size());
@@ -330,15 +338,8 @@ TEST(WallMetrics, SurfaceVerticesInWallCellsMeasureAFingerTheGridSkips) {
 // The worst vertex is the one farthest from the wall in wall cells, not in length: a spike of
 // 0.45 over a unit quad (0.45 cells) beats one of 0.8 over a 2 x 2 quad (0.4 cells).
 TEST(WallMetrics, TheWorstSurfaceVertexIsTheFarthestInWallCells) {
-    TriangleSurface wall;
-    wall.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0),
-                   Vec3(1, -0.5, 0), Vec3(3, -0.5, 0), Vec3(3, 1.5, 0), Vec3(1, 1.5, 0)};
-    wall.triangles = {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}, {4, 6, 7}};
-    TriangleSurface surface;
-    surface.points = {Vec3(0.5, 0.5, 0.45), Vec3(0.2, 0.2, 0), Vec3(0.8, 0.2, 0),
-                      Vec3(2, 0.5, 0.8),    Vec3(1.5, 0, 0),   Vec3(2.5, 0, 0)};
-    surface.triangles = {{0, 1, 2}, {3, 4, 5}};
-    const HausdorffDistance h = hausdorff_to_surface(wall, surface);
+    const TwoSpikes spikes(0.45);
+    const HausdorffDistance h = hausdorff_to_surface(spikes.wall, spikes.surface);
     EXPECT_NEAR(h.surface_in_cells_max, 0.45, 1e-12);
     EXPECT_EQ(h.surface_in_cells_at, Vec3(0.5, 0.5, 0.45));
     EXPECT_NEAR(h.surface_in_cells_distance, 0.45, 1e-12);
