@@ -1,5 +1,5 @@
-// `hexmesh quality MESH [--json] [--surface CASE.json]`: the quality table of a hexahedral or
-// tetrahedral mesh file; `hexmesh report MESH [-o FILE] [--case CASE.json]`: its report page;
+// `hexmesh quality MESH [--json] [--surface CASE.json] [--case CASE.json]`: the quality table
+// of a hexahedral or tetrahedral mesh file (a block grid measured against its case's body); `hexmesh report MESH [-o FILE] [--case CASE.json]`: its report page;
 // `hexmesh compare A B [-o FILE]`: two such pages side by side.
 #include <cctype>
 #include <filesystem>
@@ -23,9 +23,41 @@ namespace hexmesh::cli {
 namespace {
 
 struct Args {
-    std::string mesh_path, surface;
+    std::string mesh_path, surface, case_path;
     bool json = false;
 };
+
+bool is_block_grid_file(const std::string& path) {
+    const std::string ext = std::filesystem::path(path).extension().string();
+    return ext == ".vtm" || ext == ".vts";
+}
+
+// The case a block grid at `path` is measured against: `case_path`, else the grid.case.json
+// `run` writes beside a grid, if any ("" for none).
+std::string case_of_grid(const std::string& path, const std::string& case_path) {
+    if (!case_path.empty()) return case_path;
+    const std::filesystem::path beside = std::filesystem::path(path).parent_path() / "grid.case.json";
+    return std::filesystem::exists(beside) ? beside.string() : std::string();
+}
+
+// The report of a block grid read from `path`: measured against its case's body and wall law
+// when it has one (case_of_grid; then also the wall's distance to a surface file, and
+// follows_body), else its cells alone. `settings` gets the case as JSON (empty without one).
+GridReport block_grid_report(const BlockGrid& grid, const std::string& path, const std::string& case_path,
+                             std::string& settings) {
+    const std::string sidecar = case_of_grid(path, case_path);
+    settings.clear();
+    if (sidecar.empty()) {
+        GridReport report;
+        report.quality = measure_quality(grid);
+        return report;
+    }
+    const Case c = read_case(sidecar);
+    const Body body = make_body(c.geometry);
+    const std::optional<TriangleSurface> surface = reference_surface(c.geometry);
+    settings = case_to_json(c);
+    return measure_grid(grid, *body, wall_layers(c), surface ? &*surface : nullptr);
+}
 
 // A file of tetrahedra only (legacy VTK or VTK XML unstructured), else nullopt.
 std::optional<TetMesh> read_tet_mesh(const std::string& path) {
@@ -63,6 +95,9 @@ void add_quality_command(CLI::App& app, int& exit_code) {
     cmd->add_flag("--json", args->json, "print the report as JSON");
     cmd->add_option("--surface", args->surface,
                     "tet meshes: case file whose body the boundary should lie on (distance over its wall cell size)");
+    cmd->add_option("--case", args->case_path,
+                    "block grids: the case whose body and wall law the wall is measured against "
+                    "(default: grid.case.json beside the grid, if any)");
     cmd->callback([args, &exit_code] {
         if (const auto tets = read_tet_mesh(args->mesh_path)) {
             const TetQualityReport q = measure_tet_quality(*tets);
@@ -72,8 +107,15 @@ void add_quality_command(CLI::App& app, int& exit_code) {
         }
         if (!args->surface.empty()) throw std::invalid_argument("--surface is for tetrahedral meshes");
         GridReport report;
-        const HexMesh mesh = read_vtk_mesh(args->mesh_path);
-        report.quality = naming_file(args->mesh_path, [&] { return measure_quality(mesh); });
+        if (is_block_grid_file(args->mesh_path) && !case_of_grid(args->mesh_path, args->case_path).empty()) {
+            std::string settings;
+            report = block_grid_report(read_vtk_block_grid(args->mesh_path), args->mesh_path, args->case_path,
+                                       settings);
+        } else {
+            if (!args->case_path.empty()) throw InputError("--case is for block grids (.vtm .vts)");
+            const HexMesh mesh = read_vtk_mesh(args->mesh_path);
+            report.quality = naming_file(args->mesh_path, [&] { return measure_quality(mesh); });
+        }
         if (args->json)
             std::cout << quality_json(report);
         else
@@ -85,31 +127,11 @@ void add_quality_command(CLI::App& app, int& exit_code) {
 
 namespace {
 
-bool is_block_grid_file(const std::string& path) {
-    const std::string ext = std::filesystem::path(path).extension().string();
-    return ext == ".vtm" || ext == ".vts";
-}
-
-// The page of a block grid: measured against its case's body and wall law when it has one
-// (--case, else the grid.case.json `run` writes beside a grid), else its cells alone.
+// The page of a block grid, measured as block_grid_report says.
 ReportPage block_grid_page(const std::string& path, const std::string& case_path) {
     const BlockGrid grid = read_vtk_block_grid(path);
-    std::string sidecar = case_path;
-    if (sidecar.empty()) {
-        const std::filesystem::path beside = std::filesystem::path(path).parent_path() / "grid.case.json";
-        if (std::filesystem::exists(beside)) sidecar = beside.string();
-    }
-    GridReport report;
     std::string settings;
-    if (!sidecar.empty()) {
-        const Case c = read_case(sidecar);
-        const Body body = make_body(c.geometry);
-        const std::optional<TriangleSurface> surface = reference_surface(c.geometry);
-        report = measure_grid(grid, *body, wall_layers(c), surface ? &*surface : nullptr);
-        settings = case_to_json(c);
-    } else {
-        report.quality = measure_quality(grid);
-    }
+    const GridReport report = block_grid_report(grid, path, case_path, settings);
     return grid_report_page(path, report, draw_grid(grid), settings);
 }
 

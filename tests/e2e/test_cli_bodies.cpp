@@ -136,7 +136,8 @@ TEST(CliBodies, LaidLayersThatWouldCrossAreGivenBackLineByLine) {
 
 // A sphere with a pit narrower than the wall's cells, between the rays that place the wall:
 // the grid is valid but its wall bridges the pit. It is written with a warning naming the
-// place in the pit, exit code 3, and quality.json says it does not follow the body; the same
+// place in the pit, exit code 3, and quality.json (and `quality` of the grid, against the case
+// beside it) says it does not follow the body; the same
 // sphere without the pit follows it, exit code 0.
 TEST(CliBodies, AGridWhoseWallBridgesAPitIsWrittenWithAWarning) {
     const Vec3 pit = Vec3(0.1, 0.08, 1).normalized();  // between the rays of 8 cells per edge
@@ -167,6 +168,12 @@ TEST(CliBodies, AGridWhoseWallBridgesAPitIsWrittenWithAWarning) {
     EXPECT_GT(at.normalized().dot(pit), std::cos(5 * M_PI / 180)) << at.transpose();
     EXPECT_GT(missed.at("distance").get<double>(), 0.2);
     EXPECT_TRUE(fs::exists(pitted / "out" / "grid.vtm"));
+    // `quality` of the written grid measures it against the case beside it: the same verdict.
+    const CommandResult again = run_hexmesh("quality --json '" + (pitted / "out" / "grid.vtm").string() + "'");
+    ASSERT_EQ(again.exit_code, 0) << again.err;
+    const nlohmann::json q2 = nlohmann::json::parse(again.out);
+    EXPECT_FALSE(q2.at("follows_body").get<bool>());
+    EXPECT_EQ(q2.at("wall").at("surface_to_wall_in_cells").at("at"), missed.at("at"));
 
     const auto [smooth, plain] = run("none", 0);
     ASSERT_EQ(plain.exit_code, 0) << plain.out << plain.err;
