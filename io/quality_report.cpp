@@ -107,6 +107,12 @@ std::string body_missed(const GridReport& r) {
                        at.x(), at.y(), at.z());
 }
 
+std::string body_missed_warning(const GridReport& r, const std::string& prefix) {
+    const std::string missed = body_missed(r);
+    if (missed.empty()) return {};
+    return "\nwarning: " + prefix + missed + "; the grid is written, but a solver would see the body without that part\n";
+}
+
 std::string format_quality_table(const GridReport& r) {
     const QualityReport& q = r.quality;
     std::string out;

@@ -50,6 +50,10 @@ bool follows_body(const GridReport& report);
 // follows it.
 std::string body_missed(const GridReport& report);
 
+// The warning `run` and `refine` print for a grid they wrote that misses the body
+// ("\nwarning: " + prefix + body_missed + ..., ending in a newline); empty when it follows it.
+std::string body_missed_warning(const GridReport& report, const std::string& prefix = "");
+
 // Aligned "name  value" lines, one per metric, ending in a newline: every first value ends
 // in the same column; rows with several values (min/mean/max) continue to its right. The
 // wall rows appear when `wall` is set, the "time per phase" block when phase_seconds is not

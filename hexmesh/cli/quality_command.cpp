@@ -1,5 +1,6 @@
 // `hexmesh quality MESH [--json] [--surface CASE.json] [--case CASE.json]`: the quality table
-// of a hexahedral or tetrahedral mesh file (a block grid measured against its case's body); `hexmesh report MESH [-o FILE] [--case CASE.json]`: its report page;
+// of a hexahedral or tetrahedral mesh file (a block grid measured against its case's body);
+// `hexmesh report MESH [-o FILE] [--case CASE.json]`: its report page;
 // `hexmesh compare A B [-o FILE]`: two such pages side by side.
 #include <cctype>
 #include <filesystem>
@@ -40,12 +41,10 @@ std::string case_of_grid(const std::string& path, const std::string& case_path) 
     return std::filesystem::exists(beside) ? beside.string() : std::string();
 }
 
-// The report of a block grid read from `path`: measured against its case's body and wall law
-// when it has one (case_of_grid; then also the wall's distance to a surface file, and
-// follows_body), else its cells alone. `settings` gets the case as JSON (empty without one).
-GridReport block_grid_report(const BlockGrid& grid, const std::string& path, const std::string& case_path,
-                             std::string& settings) {
-    const std::string sidecar = case_of_grid(path, case_path);
+// The report of a block grid: measured against the body and wall law of the case file `sidecar`
+// (case_of_grid; then also the wall's distance to a surface file, and follows_body), else ("")
+// its cells alone. `settings` gets the case as JSON (empty without one).
+GridReport block_grid_report(const BlockGrid& grid, const std::string& sidecar, std::string& settings) {
     settings.clear();
     if (sidecar.empty()) {
         GridReport report;
@@ -107,10 +106,11 @@ void add_quality_command(CLI::App& app, int& exit_code) {
         }
         if (!args->surface.empty()) throw std::invalid_argument("--surface is for tetrahedral meshes");
         GridReport report;
-        if (is_block_grid_file(args->mesh_path) && !case_of_grid(args->mesh_path, args->case_path).empty()) {
+        const std::string sidecar =
+            is_block_grid_file(args->mesh_path) ? case_of_grid(args->mesh_path, args->case_path) : std::string();
+        if (!sidecar.empty()) {
             std::string settings;
-            report = block_grid_report(read_vtk_block_grid(args->mesh_path), args->mesh_path, args->case_path,
-                                       settings);
+            report = block_grid_report(read_vtk_block_grid(args->mesh_path), sidecar, settings);
         } else {
             if (!args->case_path.empty()) throw InputError("--case is for block grids (.vtm .vts)");
             const HexMesh mesh = read_vtk_mesh(args->mesh_path);
@@ -131,7 +131,7 @@ namespace {
 ReportPage block_grid_page(const std::string& path, const std::string& case_path) {
     const BlockGrid grid = read_vtk_block_grid(path);
     std::string settings;
-    const GridReport report = block_grid_report(grid, path, case_path, settings);
+    const GridReport report = block_grid_report(grid, case_of_grid(path, case_path), settings);
     return grid_report_page(path, report, draw_grid(grid), settings);
 }
 

@@ -142,11 +142,9 @@ void add_refine_command(CLI::App& app, int& exit_code) {
         timer.done("write");
         for (const std::string& f : written) std::cout << "written: " << f << "\n";
         // As in run: a refined grid whose wall misses part of the body is written with a warning.
-        const std::string missed = body_missed(report);
-        if (!missed.empty())
-            std::cout << "\nwarning: " << missed << "; the grid is written, but a solver would see the body without "
-                      << "that part\n";
-        exit_code = missed.empty() ? 0 : 3;
+        const std::string warning = body_missed_warning(report);
+        std::cout << warning;
+        exit_code = warning.empty() ? 0 : 3;
     });
 }
 

@@ -1,4 +1,5 @@
 // `hexmesh run CASE.json -o OUTDIR`: the grid of a case file.
+#include <algorithm>
 #include <fmt/format.h>
 #include <iostream>
 #include <memory>
@@ -44,14 +45,14 @@ void add_run_command(CLI::App& app, int& exit_code) {
         // A grid that misses part of the body is written, with a warning (per level of a
         // family) and exit code 3.
         bool follows = true;
-        const std::vector<GridReport> levels =
-            result.level_reports.empty() ? std::vector<GridReport>{result.report} : result.level_reports;
-        for (size_t l = 0; l < levels.size(); ++l)
-            if (const std::string missed = body_missed(levels[l]); !missed.empty()) {
-                follows = false;
-                std::cout << "\nwarning: " << (levels.size() > 1 ? fmt::format("level {}: ", l + 1) : "") << missed
-                          << "; the grid is written, but a solver would see the body without that part\n";
-            }
+        const size_t levels = std::max<size_t>(result.level_reports.size(), 1);
+        for (size_t l = 0; l < levels; ++l) {
+            const GridReport& level = result.level_reports.empty() ? result.report : result.level_reports[l];
+            const std::string warning =
+                body_missed_warning(level, levels > 1 ? fmt::format("level {}: ", l + 1) : std::string());
+            follows = follows && warning.empty();
+            std::cout << warning;
+        }
         exit_code = result.report.quality.solver_valid() && follows ? 0 : 3;
     });
 }
