@@ -15,13 +15,13 @@
 #include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkUnstructuredGridWriter.h>
-#include <vtkXMLUnstructuredGridReader.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
 #include "io/case_file.h"
 #include "io/legacy_vtk.h"
 #include "io/medit_mesh.h"
 #include "io/vtk_support.h"
+#include "io/xml_vtk.h"
 
 namespace hexmesh {
 namespace {
@@ -108,8 +108,7 @@ VolumeMesh read_volume_mesh(const std::string& path) {
     if (ext == ".vtk") {
         data = read_legacy_vtk(path, "fixed");
     } else if (ext == ".vtu") {
-        vtk_support::check_xml_vtk(path);  // before VTK's XML reader
-        data = vtk_support::read_with<vtkXMLUnstructuredGridReader>(path);
+        data = read_xml_vtk(path);
     } else
         throw InputError(fmt::format("{}: unknown volume mesh format '{}' (expected .vtk, .vtu or .mesh)", path, ext));
     auto* set = vtkDataSet::SafeDownCast(data);

@@ -18,10 +18,7 @@
 #include <vtkStringArray.h>
 #include <vtkStructuredGrid.h>
 #include <vtkUnsignedCharArray.h>
-#include <vtkXMLMultiBlockDataReader.h>
-#include <vtkXMLStructuredGridReader.h>
 #include <vtkXMLStructuredGridWriter.h>
-#include <vtkXMLUnstructuredGridReader.h>
 
 #include <filesystem>
 #include <fstream>
@@ -37,6 +34,7 @@
 #include "io/medit_mesh.h"
 #include "io/plot3d.h"
 #include "io/vtk_support.h"
+#include "io/xml_vtk.h"
 
 namespace hexmesh {
 namespace {
@@ -238,11 +236,8 @@ HexMesh read_vtk_mesh(const std::string& path) {
     vtk_support::require_file(path);
     const std::string ext = vtk_support::extension(path);
     vtkSmartPointer<vtkDataObject> data;
-    if (ext == ".vts" || ext == ".vtu" || ext == ".vtm") vtk_support::check_xml_vtk(path);  // before VTK's XML reader
-    if (ext == ".vts") data = vtk_support::read_with<vtkXMLStructuredGridReader>(path);
-    else if (ext == ".vtu") data = vtk_support::read_with<vtkXMLUnstructuredGridReader>(path);
+    if (ext == ".vts" || ext == ".vtu" || ext == ".vtm") data = read_xml_vtk(path);
     else if (ext == ".vtk") data = read_legacy_vtk(path);
-    else if (ext == ".vtm") data = vtk_support::read_with<vtkXMLMultiBlockDataReader>(path);
     else if (ext == ".msh") return read_gmsh_mesh(path);
     else if (ext == ".mesh") return read_medit_mesh(path);
     else if (is_plot3d_path(path)) return to_hex_mesh(read_plot3d(path));
@@ -272,9 +267,7 @@ BlockGrid read_vtk_block_grid(const std::string& path) {
         throw InputError(fmt::format("{}: no such grid file", path));
     const std::string ext = vtk_support::extension(path);
     vtkSmartPointer<vtkDataObject> data;
-    if (ext == ".vts" || ext == ".vtu" || ext == ".vtm") vtk_support::check_xml_vtk(path);  // before VTK's XML reader
-    if (ext == ".vts") data = vtk_support::read_with<vtkXMLStructuredGridReader>(path);
-    else if (ext == ".vtm") data = vtk_support::read_with<vtkXMLMultiBlockDataReader>(path);
+    if (ext == ".vts" || ext == ".vtm") data = read_xml_vtk(path);
     else
         throw InputError(fmt::format("{}: a block grid is read from .vts or .vtm, not '{}'", path, ext));
 

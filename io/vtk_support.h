@@ -1,4 +1,5 @@
-// Private to io/: running VTK readers and writers with their messages turned into our errors.
+// Private to io/: VTK writers and filters with their messages turned into our errors, and the
+// checks the mesh readers share.
 #pragma once
 
 #include <string>
@@ -19,11 +20,6 @@ std::string take_message();
 // Lower-case extension of `path`, with its dot (".vtu").
 std::string extension(const std::string& path);
 
-// Runs a VTK reader on `path`; throws InputError naming the file with VTK's message when it
-// fails. The file must exist (checked first, with its own message).
-template <class Reader>
-vtkSmartPointer<vtkDataObject> read_with(const std::string& path);
-
 // Throws std::runtime_error naming the file when a VTK writer's Write() failed or complained.
 void check_written(int status, const std::string& path);
 
@@ -37,31 +33,7 @@ void configure_xml_writer(vtkXMLWriterBase& writer);
 // (what its type takes) or any of them is outside [0, points).
 void check_cell_points(vtkIdList* ids, int count, Id points, const std::string& path, vtkIdType cell);
 
-// Checks an XML VTK file (.vts, .vtu; a .vtm's pieces) before VTK's XML reader sees it: its
-// header_type and byte_order, a structured file's extents (six integers, ranges ascending,
-// pieces inside the whole), that the sections of arrays (FieldData, PointData, ...) hold arrays
-// only, every array's type (one VTK knows), that point and cell arrays hold one value for each
-// point or cell of their piece (points: 3 components), and that every array stored in raw appended data (its byte
-// count, or its compressed block table) lies inside that data: VTK 9.1's reader runs off the
-// end (a crash) on a string array whose byte count is garbage, or that holds another number of
-// strings than it declares, or whose last string is not terminated. Throws InputError naming the
-// file, the array and the fault; returns quietly for inline and base64 data.
-void check_xml_vtk(const std::string& path);
-
+// Throws InputError "PATH: no such mesh file" unless `path` is a regular file.
 void require_file(const std::string& path);
-[[noreturn]] void throw_read_error(const std::string& path, const std::string& why);
-
-template <class Reader>
-vtkSmartPointer<vtkDataObject> read_with(const std::string& path) {
-    require_file(path);
-    take_message();
-    vtkNew<Reader> reader;
-    reader->SetFileName(path.c_str());
-    reader->Update();
-    vtkSmartPointer<vtkDataObject> out = reader->GetOutputDataObject(0);
-    const std::string why = take_message();
-    if (!why.empty() || !out) throw_read_error(path, why.empty() ? "no data" : why);
-    return out;
-}
 
 }  // namespace hexmesh::vtk_support

@@ -205,21 +205,24 @@ TEST(ReadErrors, FuzzFindingsAreRefused) {
     // Medit: an element count times its entries overflowed.
     what = test::input_error_of(read_medit_mesh, (dir / "medit_element_count_overflow.mesh").string());
     EXPECT_NE(what.find("elements do not fit in the file"), std::string::npos) << what;
-    // XML .vts: appended arrays whose byte counts run past the data or that hold another number
-    // of strings than they declare (VTK's reader ran off the end of a string array), or of a type VTK does not know (it used the array it did not
-    // make), or a piece whose extent runs backwards, or an element that is no array
-    // among the arrays, or appended data not starting with '_', or points of one
-    // component: all crashed it. Both readers of the format refuse them.
+    // XML .vts: each crashed VTK 9.1's XML reader (a string array's byte count of 7e18, a
+    // misspelt header_type, an unknown array type, string arrays holding fewer or more strings
+    // than they declare or ending inside one, a piece extent running backwards, an element that
+    // is no array among the arrays, appended data not starting with '_', points of one
+    // component). Read now by the XML reader of our own: each refused with one line.
     for (const auto& [file, message] : std::vector<std::pair<std::string, std::string>>{
              {"vts_string_array_byte_count_garbage.vts",
-              "array 'face_patch' claims 6989586621679009822 bytes at byte 13 of the appended data, which has 817"},
-             // header_type misspelt: the 4-byte headers VTK then assumes cut the first string short.
-             {"vts_header_type_misspelt.vts", "string array 'block_name' ends inside a string"},
-             {"vts_unknown_array_type.vts", "array 'face_patch' has type \"STring\""},
-             {"vts_string_array_with_fewer_strings.vts", "string array 'block_name' declares 2 x 1 values but holds 1"},
+              "array 'Points' of the points claims 7521983764484810083 bytes; at most 651 are left"},
+             // header_type misspelt: the 4-byte headers then assumed read a byte count from the middle of one.
+             {"vts_header_type_misspelt.vts", "array 'Points' of the points claims 1885300067 bytes; at most 655 are left"},
+             {"vts_unknown_array_type.vts", "array 'Points' of the points holds 0 values; expected 27 tuples of 3 components"},
+             {"vts_string_array_with_fewer_strings.vts",
+              "string array 'block_name' of the field data declares 2 x 1 values but holds 1"},
              {"vts_piece_extent_backwards.vts", "Piece Extent \"5 2 0 2 0 2\": a range runs backwards"},
-             {"vts_string_array_unterminated.vts", "string array 'block_name' ends inside a string"},
-             {"vts_string_array_with_more_strings.vts", "string array 'face_patch' declares 2 x 1 values but holds 6"},
+             {"vts_string_array_unterminated.vts",
+              "string array 'block_name' of the field data ends inside a string (no terminating zero)"},
+             {"vts_string_array_with_more_strings.vts",
+              "string array 'face_patch' of the field data declares 2 x 1 values but holds 6"},
              {"vts_field_data_holding_another_element.vts", "<FieldData> holds a <Arrtyyap> element; expected arrays only"},
              {"vts_appended_data_not_starting_with_underscore.vts", "its AppendedData does not start with '_' after the tag"},
              {"vts_points_without_their_component_count.vts", "the points array 'Points' has 1 components; expected 3"}}) {
@@ -256,8 +259,8 @@ TEST(ReadErrors, AVtsCellArrayShorterThanItsPieceIsRefused) {
     std::memcpy(&bytes[data + offset], &count, 8);
     std::ofstream(file, std::ios::binary) << bytes;
     const std::string what = test::input_error_of(read_vtk_block_grid, file.string());
-    EXPECT_NE(what.find(fmt::format("array 'scaled_jacobian' holds {} bytes; its piece needs {} values of 1 components of 8 bytes",
-                                    count, one.num_cells())),
+    EXPECT_NE(what.find(fmt::format("array 'scaled_jacobian' of the cell data holds {} values; expected {} tuples of 1 components",
+                                    count / 8, one.num_cells())),
               std::string::npos)
         << what;
 }

@@ -63,10 +63,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     read_as(data[0] % 2 ? ".xyz" : ".ply", data + 1, size - 1, [](const std::string& p) { read_point_cloud(p); });
 #elif FUZZ_READER == 8
     read_as(".sections", data, size, [](const std::string& p) { read_sections(p); });
-#elif FUZZ_READER == 9  // VTK XML, through the block-grid reader
+#elif FUZZ_READER == 9  // VTK XML structured grids, through the block-grid reader
     read_as(".vts", data, size, [](const std::string& p) { read_vtk_block_grid(p); });
+#elif FUZZ_READER == 10  // VTK XML unstructured grids, through both mesh readers
+    read_as(".vtu", data, size, [](const std::string& p) { read_vtk_mesh(p); });
+    read_as(".vtu", data, size, [](const std::string& p) { read_volume_mesh(p); });
 #else
-#error "FUZZ_READER: 1 surface, 2 case, 3 vtk, 4 gmsh, 5 medit, 6 plot3d, 7 points, 8 sections, 9 vts"
+#error "FUZZ_READER: 1 surface, 2 case, 3 vtk, 4 gmsh, 5 medit, 6 plot3d, 7 points, 8 sections, 9 vts, 10 vtu"
 #endif
     return 0;
 }

@@ -9,7 +9,7 @@ cd "$(dirname "$0")/../.."
 seconds=${1:-600}
 shift || true
 targets=("$@")
-((${#targets[@]})) || targets=(surface case vtk gmsh medit plot3d points sections vts)
+((${#targets[@]})) || targets=(surface case vtk gmsh medit plot3d points sections vts vtu)
 flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -g"
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHEXMESH_FUZZ=ON \
   -DHEXMESH_BUILD_TESTS=OFF -DHEXMESH_BUILD_BENCH=OFF -DCMAKE_CXX_FLAGS="$flags" \
