@@ -233,7 +233,72 @@ TetOptimization optimize_tet_mesh(TetMesh& mesh, const std::vector<VertexKind>& 
     return result;
 }
 
+Id keep_fallback_where_worse(const TetMesh& fallback, TetMesh& optimized, double bound) {
+    std::vector<char> back(optimized.points.size(), 0);
+    Id count = 0;
+    const auto corners = [](const TetMesh& m, Id t) {
+        return std::array<Vec3, 4>{m.points[m.node(t, 0)], m.points[m.node(t, 1)], m.points[m.node(t, 2)],
+                                   m.points[m.node(t, 3)]};
+    };
+    for (bool changed = true; changed;) {
+        changed = false;
+        for (Id t = 0; t < optimized.num_cells(); ++t) {
+            bool moved = false;
+            for (int k = 0; k < 4; ++k) moved = moved || !back[optimized.node(t, k)];
+            if (!moved) continue;
+            const std::array<Vec3, 4> p = corners(optimized, t);
+            const auto angles = dihedral_angles(p);
+            const bool same_side = signed_volume(p) * signed_volume(corners(fallback, t)) > 0;
+            if (same_side && *std::min_element(angles.begin(), angles.end()) >= bound) continue;
+            for (int k = 0; k < 4; ++k) {
+                const Id v = optimized.node(t, k);
+                if (back[v]) continue;
+                back[v] = 1, ++count, changed = true;
+                optimized.points[v] = fallback.points[v];
+            }
+        }
+    }
+    return count;
+}
+
 namespace {
+
+// `cgal` (CGAL's perturbed and exuded mesh) optimized where that keeps every tet at or above
+// `bound` degrees: the vertices of the tets the optimization brings under it are held at CGAL's
+// places and the rest optimized again from CGAL's mesh, up to four times; what is still under
+// it then goes back to CGAL's places (keep_fallback_where_worse). The same tets as `cgal`.
+struct HeldOptimization {
+    TetMesh mesh;
+    TetOptimization optimization;
+    Id held = 0;  // vertices at CGAL's places (held, or moved back)
+};
+
+HeldOptimization optimize_where_better(const PlacedTetMesh& cgal, double bound, const BoundaryGeometry& boundary,
+                                       const SizingFunction& size, const TetCaseOptions& options) {
+    HeldOptimization r;
+    std::vector<VertexKind> kinds = kinds_from_dimensions(cgal.dimension);
+    const auto optimize = [&] {
+        r.mesh = cgal.mesh;
+        r.optimization = optimize_tet_mesh(r.mesh, kinds, boundary, size, options.untangle, options.reweighting);
+    };
+    optimize();
+    for (int round = 0; round < 4 && r.optimization.solve.inverted_after == 0; ++round) {
+        Id newly = 0;
+        for (Id t = 0; t < r.mesh.num_cells(); ++t) {
+            const auto angles = dihedral_angles({r.mesh.points[r.mesh.node(t, 0)], r.mesh.points[r.mesh.node(t, 1)],
+                                                 r.mesh.points[r.mesh.node(t, 2)], r.mesh.points[r.mesh.node(t, 3)]});
+            if (*std::min_element(angles.begin(), angles.end()) >= bound) continue;
+            for (int k = 0; k < 4; ++k)
+                if (kinds[r.mesh.node(t, k)] != VertexKind::fixed) kinds[r.mesh.node(t, k)] = VertexKind::fixed, ++newly;
+        }
+        if (newly == 0) break;
+        optimize();
+    }
+    if (r.optimization.solve.inverted_after > 0) r.mesh = cgal.mesh;
+    else keep_fallback_where_worse(cgal.mesh, r.mesh, bound);
+    for (size_t v = 0; v < r.mesh.points.size(); ++v) r.held += r.mesh.points[v] == cgal.mesh.points[v];
+    return r;
+}
 
 // A mesh optimized by improve_tet_mesh, with what it took.
 struct Improved {
@@ -354,17 +419,36 @@ TetCaseResult run_tet_case(const Case& c, const TetCaseOptions& options, std::os
             kept = std::move(from_cgal);
             kept_quality = from_cgal_quality;
         } else if (r.cgal->min_dihedral > ours) {
-            // CGAL's mesh as it is: none of the stage's caps or flips, its own distances.
-            r.start = "CGAL's";
-            kept.mesh = r.generation.cgal_optimized->mesh;
+            // CGAL's mesh optimized where that keeps its smallest angle, else as it is.
+            const PlacedTetMesh& cgal = *r.generation.cgal_optimized;
+            HeldOptimization merged = optimize_where_better(cgal, r.cgal->min_dihedral, boundary, size, options);
+            const TetQualityReport merged_quality = measure_tet_quality(merged.mesh);
             kept.caps_removed = kept.flips_23 = kept.edge_removals = 0;
-            kept.optimization.max_surface_distance = r.cgal_surface_distance;
             kept.optimization.max_crease_distance = std::numeric_limits<double>::quiet_NaN();  // not measured
-            kept_quality = *r.cgal;
+            const Id vertices = Id(cgal.mesh.points.size());
+            log << fmt::format("CGAL's mesh optimized, {} of its {} vertices held at their places: smallest angle "
+                               "{:.2f}, mean smallest {:.2f} degrees (CGAL's {:.2f}), {} slivers\n",
+                               merged.held, vertices, merged_quality.min_dihedral, merged_quality.mean_min_dihedral,
+                               r.cgal->mean_min_dihedral, merged_quality.slivers);
+            if (merged.held < vertices && merged_quality.min_dihedral >= r.cgal->min_dihedral &&
+                merged_quality.slivers <= r.cgal->slivers &&
+                merged_quality.mean_min_dihedral > r.cgal->mean_min_dihedral) {
+                r.start = "CGAL's, optimized";
+                r.cgal_vertices_held = merged.held;
+                kept.mesh = std::move(merged.mesh);
+                kept.optimization.solve = std::move(merged.optimization.solve);
+                kept.optimization.max_surface_distance = max_placed_distance(kept.mesh, cgal.dimension, boundary);
+                kept_quality = merged_quality;
+            } else {
+                r.start = "CGAL's";
+                kept.mesh = cgal.mesh;
+                kept.optimization.max_surface_distance = r.cgal_surface_distance;
+                kept_quality = *r.cgal;
+            }
         }
         log << fmt::format("smallest dihedral angle: variational {:.2f}, CGAL perturb+exude {:.2f}, variational "
-                           "from CGAL's {:.2f} degrees: kept {}\n",
-                           ours, r.cgal->min_dihedral, from_cgal_angle, r.start)
+                           "from CGAL's {:.2f} degrees: kept {} ({:.2f})\n",
+                           ours, r.cgal->min_dihedral, from_cgal_angle, r.start, kept_quality.min_dihedral)
             << std::flush;
     }
     r.mesh = std::move(kept.mesh);

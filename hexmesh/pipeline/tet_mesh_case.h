@@ -76,6 +76,14 @@ TetOptimization optimize_tet_mesh(TetMesh& mesh, const std::vector<VertexKind>& 
                                   const BoundaryGeometry& boundary, const SizingFunction& size,
                                   const untangle::UntangleOptions& options, const Reweighting& reweighting = {});
 
+// Moves back to `fallback`'s positions the vertices of `optimized` (a mesh of the same tets
+// as `fallback`, its vertices moved) wherever it is worse: the four vertices of every tet whose
+// smallest dihedral angle is under `bound` degrees, or whose orientation differs from
+// fallback's, again until no such tet keeps a moved vertex. Each tet of the result is then
+// fallback's own (all four vertices back) or at least `bound`. Returns the number of vertices
+// moved back.
+Id keep_fallback_where_worse(const TetMesh& fallback, TetMesh& optimized, double bound);
+
 struct TetCaseOptions {
     bool compare_cgal = false;  // also run CGAL's perturb + exude on the refined mesh
     // Boundary caps below this dihedral angle are removed before optimizing (0: none).
@@ -103,8 +111,11 @@ struct TetCaseResult {
     double seconds_features = 0, seconds_optimize = 0;
     // Where `mesh` comes from: the refined mesh optimized ("variational"), or, when that left
     // slivers or ended under CGAL's perturb + exude, that mesh optimized ("variational from
-    // CGAL's") or that mesh itself ("CGAL's"), whichever has the largest smallest angle.
+    // CGAL's"), or that mesh optimized with its vertices held where the optimization would bring
+    // a tet under that mesh's smallest angle ("CGAL's, optimized"), or that mesh itself
+    // ("CGAL's"), whichever has the largest smallest angle (then the largest mean).
     std::string start = "variational";
+    Id cgal_vertices_held = 0;  // "CGAL's, optimized": vertices left at CGAL's places
 };
 
 // The whole job; one progress line per phase to `log`. The refined mesh is optimized; where

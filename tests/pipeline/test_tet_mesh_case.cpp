@@ -151,6 +151,43 @@ TEST(TetMeshCase, TangledMeshIsUntangledWithSlip) {
     EXPECT_LT(off, 1e-9);
 }
 
+// Three tets, the first two sharing a vertex, the third apart, each optimized: the first made a
+// sliver, the third turned inside out, the second moved a little. The sliver's and the inverted
+// tet's vertices go back; the second keeps its moves except at the vertex it shares.
+TEST(TetMeshCase, FallbackPositionsComeBackOnlyAroundTetsTheOptimizationMadeWorse) {
+    TetMesh fallback;
+    const auto regular = [&](const Vec3& at) {
+        const Id first = Id(fallback.points.size());
+        for (const Vec3& p : {Vec3(1, 1, 1), Vec3(1, -1, -1), Vec3(-1, 1, -1), Vec3(-1, -1, 1)})
+            fallback.points.push_back(at + p);
+        return first;
+    };
+    const Id a = regular(Vec3(0, 0, 0)), b = regular(Vec3(2, 2, 2)), c = regular(Vec3(10, 0, 0));
+    fallback.points[b] = fallback.points[a];  // b's first vertex is a's first
+    for (Id first : {a, b, c}) {
+        for (int k = 0; k < 4; ++k) fallback.tets.push_back(first + k);
+        const Id t = fallback.num_cells() - 1;
+        if (signed_volume({fallback.points[fallback.node(t, 0)], fallback.points[fallback.node(t, 1)],
+                           fallback.points[fallback.node(t, 2)], fallback.points[fallback.node(t, 3)]}) < 0)
+            std::swap(fallback.tets[size_t(4 * t + 2)], fallback.tets[size_t(4 * t + 3)]);
+    }
+    ASSERT_EQ(measure_tet_quality(fallback).inverted, 0);
+    ASSERT_GT(measure_tet_quality(fallback).min_dihedral, 50);
+    TetMesh optimized = fallback;
+    optimized.points[a + 3] = Vec3(0, 0, -1);               // a: flat (a sliver), its vertex 3 on the plane of 1 and 2
+    optimized.points[b + 2] += Vec3(0.05, -0.05, 0.02);     // b: a small move, still a good tet
+    optimized.points[c + 3] = Vec3(10, 0, 0) + Vec3(1, 1, 3);  // c: through its opposite face
+    const Id back = keep_fallback_where_worse(fallback, optimized, 30);
+    EXPECT_EQ(back, 8);  // a's four (one of them b's first) and c's four
+    for (Id v : {a, a + 1, a + 2, a + 3, c, c + 1, c + 2, c + 3}) EXPECT_EQ(optimized.points[v], fallback.points[v]) << v;
+    EXPECT_NE(optimized.points[b + 2], fallback.points[b + 2]);
+    EXPECT_GE(measure_tet_quality(optimized).min_dihedral, 30);
+    // A bound no tet of the optimized mesh falls under keeps every move.
+    TetMesh all_good = fallback;
+    all_good.points[b + 2] += Vec3(0.05, -0.05, 0.02);
+    EXPECT_EQ(keep_fallback_where_worse(fallback, all_good, 30), 0);
+}
+
 TEST(TetMeshCase, ExteriorDomainIsRefused) {
     const Case c = parse_case(R"({"geometry": {"sphere": {"center": [0, 0, 0], "radius": 1}},
         "domain": "exterior"})", "ext.json");
