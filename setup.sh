@@ -11,7 +11,7 @@ build_packages=(
   cmake g++ make pkg-config
   libeigen3-dev libopenvdb-dev libboost-iostreams-dev libtbb-dev
   libcgal-dev libvtk9-dev libgtest-dev libgmock-dev libbenchmark-dev
-  libcli11-dev nlohmann-json3-dev libfmt-dev libcgns-dev libnetcdf-dev
+  libcli11-dev nlohmann-json3-dev libfmt-dev libcgns-dev libnetcdf-dev liblzma-dev
 )
 # Independent readers and checkers the end-to-end tests compare against.
 test_packages=(python3-vtk9 python3-meshio python3-netcdf4 openfoam gmsh cgns-convert chromium)

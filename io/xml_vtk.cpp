@@ -10,7 +10,6 @@
 #include <vtkFieldData.h>
 #include <vtkInformation.h>
 #include <vtkLZ4DataCompressor.h>
-#include <vtkLZMADataCompressor.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
@@ -31,6 +30,8 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <lzma.h>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string_view>
@@ -49,6 +50,30 @@ namespace fs = std::filesystem;
 constexpr int kMostDepth = 64;
 
 bool is_blank(char ch) { return ch == ' ' || ch == '\t' || ch == '\r' || ch == '\n'; }
+
+// `text` as a message quotes it: at most 40 characters, bytes outside printable ASCII as \xNN.
+std::string printable(std::string_view text) {
+    std::string out;
+    for (size_t k = 0; k < text.size() && k < 40; ++k) {
+        const auto ch = static_cast<unsigned char>(text[k]);
+        if (ch >= 0x20 && ch < 0x7f) out += char(ch);
+        else out += fmt::format("\\x{:02x}", ch);
+    }
+    if (text.size() > 40) out += "...";
+    return out;
+}
+
+// Attributes an element may have (VTK writes at most a dozen): more is not a VTK file, and
+// each new one is compared with all before it.
+constexpr size_t kMostAttributes = 64;
+
+// How far a compressed block may expand (bytes out per byte in, plus a little): zlib's
+// deflate at most 1032, LZ4 255; LZMA (xz) reaches about 7000 on constant data.
+double most_expansion(const std::string& compressor) {
+    if (compressor == "vtkZLibDataCompressor") return 1032;
+    if (compressor == "vtkLZ4DataCompressor") return 256;
+    return 16384;
+}
 
 // One element of the file's XML: its name, attributes (entities decoded) and text (inline data).
 struct Element {
@@ -198,6 +223,8 @@ private:
             const size_t end = text_.find(text_[p], p + 1);
             if (end == std::string_view::npos) fail_at(p, fmt::format("<{}: attribute {} does not end", element.name, key));
             if (element.find(key)) fail_at(p, fmt::format("<{}: attribute {} given twice", element.name, key));
+            if (element.attributes.size() >= kMostAttributes)
+                fail_at(p, fmt::format("<{}: more than {} attributes", element.name, kMostAttributes));
             element.attributes.emplace_back(std::move(key), decode_entities(text_.substr(p + 1, end - p - 1), p));
             p = end + 1;
         }
@@ -225,10 +252,10 @@ private:
                 const std::string_view digits = name.substr(hex ? 2 : 1);
                 const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), code, hex ? 16 : 10);
                 if (ec != std::errc() || end != digits.data() + digits.size() || digits.empty() || code == 0 || code > 0x10FFFF)
-                    fail_at(at, fmt::format("entity &{}; is not a character", name));
+                    fail_at(at, fmt::format("entity &{}; is not a character", printable(name)));
                 append_utf8(out, code);
             } else {
-                fail_at(at, fmt::format("unknown entity &{};", name));
+                fail_at(at, fmt::format("unknown entity &{};", printable(name)));
             }
             k = semi;
         }
@@ -272,6 +299,8 @@ public:
     virtual bool take(uint64_t count, char* out) = 0;
     // At least as many bytes as are left (checked against before anything is sized).
     virtual uint64_t most_left() const = 0;
+    // Where the next byte comes from: a byte of the file, or a character of the text.
+    virtual uint64_t position() const = 0;
 };
 
 struct DecodeError {
@@ -283,7 +312,8 @@ struct DecodeError {
 // uncompressed array's header and values as one).
 class Base64Source : public ByteSource {
 public:
-    explicit Base64Source(std::string_view text) : text_(text) {}
+    // `base`: where `text` starts in what position() counts in (the appended data).
+    explicit Base64Source(std::string_view text, uint64_t base = 0) : text_(text), base_(base) {}
 
     bool take(uint64_t count, char* out) override {
         while (count > 0) {
@@ -297,6 +327,7 @@ public:
         return true;
     }
     uint64_t most_left() const override { return (text_.size() - at_) / 4 * 3 + 3 + uint64_t(pending_count_ - pending_at_); }
+    uint64_t position() const override { return base_ + at_; }
 
 private:
     static int value_of(char ch) {
@@ -325,7 +356,8 @@ private:
             } else {
                 v = value_of(ch);
                 if (v < 0 || padding > 0)
-                    throw DecodeError{fmt::format("its base64 text holds '{}'", v < 0 ? std::string(1, ch) : "a character after '='")};
+                    throw DecodeError{fmt::format("its base64 text holds '{}'",
+                                                  v < 0 ? printable(std::string_view(&ch, 1)) : "a character after '='")};
             }
             bits = (bits << 6) | std::uint32_t(v);
             ++n;
@@ -339,6 +371,7 @@ private:
     }
 
     std::string_view text_;
+    uint64_t base_ = 0;
     size_t at_ = 0;
     char pending_[3] = {};
     int pending_count_ = 0, pending_at_ = 0;
@@ -359,6 +392,7 @@ public:
         return true;
     }
     uint64_t most_left() const override { return end_ - at_; }
+    uint64_t position() const override { return at_; }
 
 private:
     std::ifstream& in_;
@@ -394,11 +428,18 @@ std::optional<unsigned long long> count_of(const std::string& text) {
     return v;
 }
 
+// The memory one read may take, shared by a multiblock file's pieces: every array, string list
+// and cell list is charged before it is sized.
+struct Budget {
+    double left = 0;  // bytes
+};
+
 // What one file shares with the reading of all of its arrays.
 class XmlVtkFile {
 public:
     // `piece`: a piece of a multiblock file, which must not be one itself.
-    explicit XmlVtkFile(const std::string& path, bool piece = false) : path_(path), piece_(piece) {}
+    XmlVtkFile(const std::string& path, Budget& budget, bool piece = false)
+        : path_(path), piece_(piece), budget_(budget) {}
 
     [[noreturn]] void fail(const std::string& why) const { throw InputError(fmt::format("{}: {}", path_, why)); }
 
@@ -407,36 +448,32 @@ public:
         read_head();
         const Element& root = head_.root;
         const std::string type = root.value("type");
+        if (type != "StructuredGrid" && type != "UnstructuredGrid" && type != "vtkMultiBlockDataSet")
+            fail(fmt::format("a VTK XML file of type \"{}\"; expected StructuredGrid (.vts), UnstructuredGrid (.vtu) "
+                             "or vtkMultiBlockDataSet (.vtm)", printable(type)));
         const std::string header_type = root.value("header_type", "UInt32");
         if (header_type != "UInt32" && header_type != "UInt64")
-            fail(fmt::format("header_type is \"{}\"; expected UInt32 or UInt64", header_type));
+            fail(fmt::format("header_type is \"{}\"; expected UInt32 or UInt64", printable(header_type)));
         header_bytes_ = header_type == "UInt64" ? 8 : 4;
         const std::string byte_order = root.value("byte_order", "LittleEndian");
         if (byte_order != "LittleEndian" && byte_order != "BigEndian")
-            fail(fmt::format("byte_order is \"{}\"; expected LittleEndian or BigEndian", byte_order));
+            fail(fmt::format("byte_order is \"{}\"; expected LittleEndian or BigEndian", printable(byte_order)));
         big_endian_ = byte_order == "BigEndian";
-        if (const std::string* compressor = root.find("compressor")) {
-            if (*compressor == "vtkZLibDataCompressor") compressor_ = vtkSmartPointer<vtkZLibDataCompressor>::New();
-            else if (*compressor == "vtkLZ4DataCompressor") compressor_ = vtkSmartPointer<vtkLZ4DataCompressor>::New();
-            else if (*compressor == "vtkLZMADataCompressor") compressor_ = vtkSmartPointer<vtkLZMADataCompressor>::New();
-            else if (!compressor->empty())
-                fail(fmt::format("compressor \"{}\": expected vtkZLibDataCompressor, vtkLZ4DataCompressor or "
-                                 "vtkLZMADataCompressor", *compressor));
-        }
+        compressor_ = root.value("compressor");
+        if (!compressor_.empty() && compressor_ != "vtkZLibDataCompressor" && compressor_ != "vtkLZ4DataCompressor" &&
+            compressor_ != "vtkLZMADataCompressor")
+            fail(fmt::format("compressor \"{}\": expected vtkZLibDataCompressor, vtkLZ4DataCompressor or "
+                             "vtkLZMADataCompressor", printable(compressor_)));
         if (head_.has_appended) {
             const std::string encoding = head_.appended().value("encoding");
             if (encoding != "raw" && encoding != "base64")
-                fail(fmt::format("AppendedData encoding \"{}\": expected raw or base64", encoding));
+                fail(fmt::format("AppendedData encoding \"{}\": expected raw or base64", printable(encoding)));
             appended_base64_ = encoding == "base64";
         }
         if (type == "StructuredGrid") return structured_grid();
         if (type == "UnstructuredGrid") return unstructured_grid();
-        if (type == "vtkMultiBlockDataSet") {
-            if (piece_) fail("a piece of a multiblock file that is a multiblock file itself");
-            return multiblock();
-        }
-        fail(fmt::format("a VTK XML file of type \"{}\"; expected StructuredGrid (.vts), UnstructuredGrid (.vtu) "
-                         "or vtkMultiBlockDataSet (.vtm)", type));
+        if (piece_) fail("a piece of a multiblock file that is a multiblock file itself");
+        return multiblock();
     }
 
 private:
@@ -445,19 +482,23 @@ private:
         if (!in_) fail("cannot open the file");
         std::error_code ec;
         file_size_ = std::filesystem::file_size(path_, ec);
+        if (ec) fail(fmt::format("cannot read its size ({})", ec.message()));
         // The XML only: up to the first appended byte (a grid's appended data are hundreds of MB,
         // read array by array where they lie).
         std::string text;
         std::vector<char> chunk(size_t(1) << 20);
-        size_t found = std::string::npos;
+        size_t found = std::string::npos, tag_end = std::string::npos;
         while (in_) {
             in_.read(chunk.data(), std::streamsize(chunk.size()));
             const size_t searched = text.size();
             text.append(chunk.data(), size_t(in_.gcount()));
+            // Each search goes on from where the last one ended (a tag left open is not
+            // searched again from its start with every chunk).
             if (found == std::string::npos) found = text.find("<AppendedData", searched > 16 ? searched - 16 : 0);
             if (found == std::string::npos) continue;
-            const size_t tag_end = text.find('>', found);
-            if (tag_end != std::string::npos && text.find_first_not_of(" \t\r\n", tag_end + 1) != std::string::npos) break;
+            if (tag_end == std::string::npos) tag_end = text.find('>', std::max(found, searched));
+            if (tag_end != std::string::npos && text.find_first_not_of(" \t\r\n", std::max(tag_end + 1, searched)) != std::string::npos)
+                break;
         }
         head_ = XmlParser(path_, text).parse();
         if (!head_.has_appended) return;
@@ -486,12 +527,11 @@ private:
             fail(fmt::format("{} starts at byte {} of the appended data, which has {}", label, *offset, size));
         if (!appended_base64_) return std::make_unique<FileSource>(in_, head_.data_start + *offset, data_end_);
         if (appended_text_.empty() && size > 0) {
-            if (double(size) > memory_limit())
-                fail(fmt::format("its {} bytes of base64 appended data exceed the memory limit", size));
+            charge(double(size), "its base64 appended data");
             appended_text_.resize(size_t(size));
             FileSource(in_, head_.data_start, data_end_).take(size, appended_text_.data());
         }
-        return std::make_unique<Base64Source>(std::string_view(appended_text_).substr(size_t(*offset)));
+        return std::make_unique<Base64Source>(std::string_view(appended_text_).substr(size_t(*offset)), *offset);
     }
 
     uint64_t header(ByteSource& from, const std::string& label, const char* what) {
@@ -503,12 +543,36 @@ private:
         return v;
     }
 
+    // Charges `bytes` to the read's memory budget; `what` names what they are for.
+    void charge(double bytes, const std::string& what) {
+        if (bytes > budget_.left)
+            fail(fmt::format("{} would take the read past the memory limit of {:.2f} GB", what, memory_limit() / 1e9));
+        budget_.left -= bytes;
+    }
+
     // Reads a binary array's bytes: `allocate(bytes)` checks the count and gives where they go.
+    // Appended arrays must not share bytes (one array's data read again as many is a file
+    // that asks for more memory than it holds).
     template <class Allocate>
     void read_binary(const Element& array, const std::string& label, Allocate allocate) {
         std::unique_ptr<ByteSource> from = source_of(array, label);
+        const bool appended = array.value("format") == "appended";
+        const uint64_t first = from->position();
+        read_data(*from, label, allocate);
+        if (!appended) return;
+        const uint64_t end = from->position();
+        const auto next = appended_ranges_.lower_bound(first);
+        if ((next != appended_ranges_.end() && next->first < end) ||
+            (next != appended_ranges_.begin() && std::prev(next)->second > first))
+            fail(fmt::format("{} shares its appended bytes with another array", label));
+        appended_ranges_.emplace(first, end);
+    }
+
+    template <class Allocate>
+    void read_data(ByteSource& source, const std::string& label, Allocate allocate) {
+        ByteSource* from = &source;
         try {
-            if (!compressor_) {
+            if (compressor_.empty()) {
                 const uint64_t bytes = header(*from, label, "byte count");
                 if (bytes > from->most_left())
                     fail(fmt::format("{} claims {} bytes; at most {} are left", label, bytes, from->most_left()));
@@ -539,9 +603,14 @@ private:
                     fail(fmt::format("{} claims {} blocks of {} bytes", label, blocks, block_size));
                 bytes = (blocks - 1) * block_size + (last_size > 0 ? last_size : block_size);
             }
-            if (double(bytes) > memory_limit())
-                fail(fmt::format("{} decompresses to {} bytes, more than the memory limit of {:.0f}", label, bytes,
-                                 memory_limit()));
+            // Each block no larger than its compressed bytes can expand to, before anything is sized.
+            const double expansion = most_expansion(compressor_);
+            for (uint64_t b = 0; b < blocks; ++b) {
+                const uint64_t want = b + 1 == blocks && last_size > 0 ? last_size : block_size;
+                if (double(want) > expansion * double(sizes[size_t(b)]) + 64)
+                    fail(fmt::format("{}: compressed block {} of {} bytes claims {} bytes, more than {} can give",
+                                     label, b, sizes[size_t(b)], want, compressor_));
+            }
             char* out = allocate(bytes);
             std::vector<unsigned char> packed;
             for (uint64_t b = 0; b < blocks; ++b) {
@@ -549,15 +618,33 @@ private:
                 if (!from->take(sizes[size_t(b)], reinterpret_cast<char*>(packed.data())))
                     fail(fmt::format("{}: compressed block {} runs past the data", label, b));
                 const uint64_t want = b + 1 == blocks && last_size > 0 ? last_size : block_size;
-                vtk_support::take_message();
-                const size_t got = compressor_->Uncompress(packed.data(), packed.size(),
-                                                           reinterpret_cast<unsigned char*>(out + b * block_size), size_t(want));
-                vtk_support::take_message();
+                const size_t got = uncompress(packed, reinterpret_cast<unsigned char*>(out + b * block_size), size_t(want));
                 if (got != want) fail(fmt::format("{}: compressed block {} does not decompress to its {} bytes", label, b, want));
             }
         } catch (const DecodeError& e) {
             fail(fmt::format("{}: {}", label, e.why));
         }
+    }
+
+
+    // Decompresses one block into `out` (room for `want` bytes); returns the bytes it gave (0
+    // when the block is broken). LZMA is decoded with a memory limit near the block's size (a
+    // block's header can ask for a 4 GB dictionary).
+    size_t uncompress(const std::vector<unsigned char>& packed, unsigned char* out, size_t want) const {
+        if (compressor_ == "vtkLZMADataCompressor") {
+            uint64_t limit = uint64_t(want) + (uint64_t(16) << 20);
+            size_t in_at = 0, out_at = 0;
+            if (lzma_stream_buffer_decode(&limit, 0, nullptr, packed.data(), &in_at, packed.size(), out, &out_at, want) != LZMA_OK)
+                return 0;
+            return in_at == packed.size() ? out_at : 0;
+        }
+        vtkSmartPointer<vtkDataCompressor> codec;
+        if (compressor_ == "vtkZLibDataCompressor") codec = vtkSmartPointer<vtkZLibDataCompressor>::New();
+        else codec = vtkSmartPointer<vtkLZ4DataCompressor>::New();
+        vtk_support::take_message();
+        const size_t got = codec->Uncompress(packed.data(), packed.size(), out, want);
+        vtk_support::take_message();
+        return got;
     }
 
     // The words of an ascii array, each handed to `take`.
@@ -580,15 +667,9 @@ private:
         for_each_word(text, [&](std::string_view word) {
             T v{};
             std::from_chars_result r{};
-            if constexpr (std::is_floating_point_v<T>) {
-                double d = 0;  // "nan", "inf", "-inf" as VTK writes them, too
-                r = std::from_chars(word.data(), word.data() + word.size(), d);
-                v = T(d);
-            } else {
-                r = std::from_chars(word.data(), word.data() + word.size(), v);
-            }
+            r = std::from_chars(word.data(), word.data() + word.size(), v);  // "nan", "inf", "-inf" too
             if (r.ec != std::errc() || r.ptr != word.data() + word.size())
-                fail(fmt::format("{}: value {} is \"{}\", not a {}", label, k, word.substr(0, 40),
+                fail(fmt::format("{}: value {} is \"{}\", not a {}", label, k, printable(word),
                                  std::is_floating_point_v<T> ? "number" : "integer in the array's range"));
             out[k++] = v;
         });
@@ -597,20 +678,22 @@ private:
     // One <DataArray> (or <Array>) with `tuples` tuples (-1: any number; then NumberOfTuples, if
     // given, must be what the array holds).
     vtkSmartPointer<vtkAbstractArray> read_array(const Element& array, long long tuples, const std::string& where) {
-        const std::string name = array.value("Name");
-        const std::string label = fmt::format("array '{}' of {}", name, where);
+        const std::string* name = array.find("Name");  // VTK keeps unnamed arrays apart
+        const std::string label = fmt::format("array '{}' of {}", printable(name ? *name : ""), where);
         const std::string type_name = array.value("type");
         const std::optional<ValueType> type = value_type(type_name);
         if (!type)
-            fail(fmt::format("{} has type \"{}\"; expected one of Int8 ... UInt64, Float32, Float64, String", label, type_name));
+            fail(fmt::format("{} has type \"{}\"; expected one of Int8 ... UInt64, Float32, Float64, String", label,
+                             printable(type_name)));
         const std::string components_text = array.value("NumberOfComponents", "1");
         const std::optional<unsigned long long> components = count_of(components_text);
         if (!components || *components == 0 || *components > 1000000)
-            fail(fmt::format("{} has NumberOfComponents \"{}\"", label, components_text));
+            fail(fmt::format("{} has NumberOfComponents \"{}\"", label, printable(components_text)));
         long long declared = -1;
         if (const std::string* t = array.find("NumberOfTuples")) {
             const std::optional<unsigned long long> n = count_of(*t);
-            if (!n || *n > uint64_t(std::numeric_limits<long long>::max())) fail(fmt::format("{} has NumberOfTuples \"{}\"", label, *t));
+            if (!n || *n > uint64_t(std::numeric_limits<long long>::max()))
+                fail(fmt::format("{} has NumberOfTuples \"{}\"", label, printable(*t)));
             declared = (long long)*n;
         }
         if (tuples >= 0 && declared >= 0 && declared != tuples)
@@ -618,7 +701,7 @@ private:
         if (tuples < 0) tuples = declared;
         const std::string format = array.value("format");
         if (format != "ascii" && format != "binary" && format != "appended")
-            fail(fmt::format("{} has format \"{}\"; expected ascii, binary or appended", label, format));
+            fail(fmt::format("{} has format \"{}\"; expected ascii, binary or appended", label, printable(format)));
         // The value count the array must hold, when known.
         const auto want_values = [&]() -> long long {
             if (tuples < 0) return -1;
@@ -633,18 +716,31 @@ private:
         };
 
         if (type->vtk == VTK_STRING) {
-            // Zero-terminated strings (ascii: their bytes as numbers).
+            // Zero-terminated strings (ascii: their bytes as numbers), as many as declared: each
+            // takes a std::string however short, charged before the bytes are read.
+            const long long want = want_values();
+            if (want == -2) fail(fmt::format("string {} declares {} x {} values", label, tuples, *components));
+            if (want < 0) fail(fmt::format("string {} does not declare its NumberOfTuples", label));
+            const auto room = [&](uint64_t count) {
+                if (count < uint64_t(want))
+                    fail(fmt::format("string {} declares {} x {} values but holds {} bytes", label, tuples, *components, count));
+                charge(double(count) + double(want) * sizeof(std::string), label);
+            };
             std::string bytes;
             if (format == "ascii") {
+                uint64_t words = 0;
+                for_each_word(array.text, [&](std::string_view) { ++words; });
+                room(words);
                 for_each_word(array.text, [&](std::string_view word) {
                     unsigned v = 0;
                     const auto r = std::from_chars(word.data(), word.data() + word.size(), v);
                     if (r.ec != std::errc() || r.ptr != word.data() + word.size() || v > 255)
-                        fail(fmt::format("{}: \"{}\" is not a byte", label, word.substr(0, 40)));
+                        fail(fmt::format("{}: \"{}\" is not a byte", label, printable(word)));
                     bytes += char(v);
                 });
             } else {
                 read_binary(array, label, [&](uint64_t count) {
+                    room(count);
                     bytes.resize(size_t(count));
                     return bytes.data();
                 });
@@ -652,12 +748,10 @@ private:
             if (!bytes.empty() && bytes.back() != '\0')
                 fail(fmt::format("string {} ends inside a string (no terminating zero)", label));
             const uint64_t held = uint64_t(std::count(bytes.begin(), bytes.end(), '\0'));
-            const long long want = want_values();
-            if (want == -2 || (want >= 0 && uint64_t(want) != held) || (want < 0 && held % *components != 0))
-                fail(fmt::format("string {} declares {} x {} values but holds {}", label, tuples < 0 ? std::string("?") : std::to_string(tuples),
-                                 *components, held));
+            if (uint64_t(want) != held)
+                fail(fmt::format("string {} declares {} x {} values but holds {}", label, tuples, *components, held));
             auto out = vtkSmartPointer<vtkStringArray>::New();
-            out->SetName(name.c_str());
+            if (name) out->SetName(name->c_str());
             out->SetNumberOfComponents(int(*components));
             out->SetNumberOfValues(vtkIdType(held));
             size_t from = 0;
@@ -671,12 +765,11 @@ private:
 
         vtkSmartPointer<vtkDataArray> out;
         out.TakeReference(vtkDataArray::CreateDataArray(type->vtk));
-        out->SetName(name.c_str());
+        if (name) out->SetName(name->c_str());
         out->SetNumberOfComponents(int(*components));
         const auto allocate = [&](uint64_t values) -> char* {
             check_count(values);
-            if (double(values) * type->size > memory_limit())
-                fail(fmt::format("{} of {} values exceeds the memory limit", label, values));
+            charge(double(values) * type->size, label);
             out->SetNumberOfTuples(vtkIdType(values / *components));
             return static_cast<char*>(out->GetVoidPointer(0));
         };
@@ -728,10 +821,11 @@ private:
             if (points == 0) return vtkSmartPointer<vtkPoints>::New();
             fail("its piece has no <Points>");
         }
+        if (points == 0 && section->children.empty()) return vtkSmartPointer<vtkPoints>::New();  // as VTK writes none
         const Element& array = only_array(*section);
         if (array.value("NumberOfComponents", "1") != "3")
-            fail(fmt::format("the points array '{}' has {} components; expected 3", array.value("Name"),
-                             array.value("NumberOfComponents", "1")));
+            fail(fmt::format("the points array '{}' has {} components; expected 3", printable(array.value("Name")),
+                             printable(array.value("NumberOfComponents", "1"))));
         vtkSmartPointer<vtkAbstractArray> read = read_array(array, points, "the points");
         auto* xyz = vtkDataArray::SafeDownCast(read);
         if (!xyz) fail("its points are strings");
@@ -768,15 +862,15 @@ private:
         for (long long& v : e) {
             while (at < text.size() && is_blank(text[at])) ++at;
             const auto r = std::from_chars(text.data() + at, text.data() + text.size(), v);
-            if (r.ec != std::errc()) fail(fmt::format("{} \"{}\": expected six integers", what, text));
+            if (r.ec != std::errc()) fail(fmt::format("{} \"{}\": expected six integers", what, printable(text)));
             at = size_t(r.ptr - text.data());
         }
         if (text.find_first_not_of(" \t\r\n", at) != std::string::npos)
-            fail(fmt::format("{} \"{}\": expected six integers", what, text));
+            fail(fmt::format("{} \"{}\": expected six integers", what, printable(text)));
         for (int a = 0; a < 3; ++a) {
-            if (e[2 * a] > e[2 * a + 1]) fail(fmt::format("{} \"{}\": a range runs backwards", what, text));
-            if (e[2 * a + 1] - e[2 * a] >= std::numeric_limits<int>::max() || e[2 * a] < -(1LL << 40) || e[2 * a + 1] > (1LL << 40))
-                fail(fmt::format("{} \"{}\": a range beyond what a grid holds", what, text));
+            if (e[2 * a] > e[2 * a + 1]) fail(fmt::format("{} \"{}\": a range runs backwards", what, printable(text)));
+            if (e[2 * a] < -(1LL << 40) || e[2 * a + 1] > (1LL << 40) || e[2 * a + 1] - e[2 * a] >= std::numeric_limits<int>::max())
+                fail(fmt::format("{} \"{}\": a range beyond what a grid holds", what, printable(text)));
         }
         return e;
     }
@@ -835,6 +929,7 @@ private:
         auto* values = vtkDataArray::SafeDownCast(read);
         if (!values || !type->integer)
             fail(fmt::format("the cells' '{}' array has type {}; expected an integer type", name, found->value("type")));
+        charge(8.0 * double(values->GetNumberOfValues()), fmt::format("the cells' '{}' array", name));
         std::vector<vtkTypeInt64> out(size_t(values->GetNumberOfValues()));
         long long too_large = -1;
         switch (values->GetDataType()) {
@@ -860,10 +955,11 @@ private:
         grid->SetPoints(read_points(piece, points));
         const Element* section = piece.child("Cells");
         if (!section && cells > 0) fail(fmt::format("its piece has {} cells but no <Cells>", cells));
-        if (section) {
+        if (section && !(cells == 0 && section->children.empty())) {  // VTK writes an empty grid's <Cells> empty
             const std::vector<vtkTypeInt64> types = integers(*section, "types", cells);
             const std::vector<vtkTypeInt64> ends = integers(*section, "offsets", cells);
             const std::vector<vtkTypeInt64> ids = integers(*section, "connectivity", -1);
+            charge(9.0 * double(cells) + 8.0 * double(ids.size()), "the cell list");
             vtkNew<vtkUnsignedCharArray> cell_types;
             cell_types->SetNumberOfValues(cells);
             vtkNew<vtkTypeInt64Array> offsets, connectivity;
@@ -926,7 +1022,7 @@ private:
             std::error_code ec;
             if (!fs::is_regular_file(piece_path, ec)) fail(fmt::format("its piece '{}' does not exist", file));
             const unsigned index = out->GetNumberOfBlocks();
-            out->SetBlock(index, XmlVtkFile(piece_path.string(), true).read());
+            out->SetBlock(index, XmlVtkFile(piece_path.string(), budget_, true).read());
             if (const std::string* name = piece->find("name")) out->GetMetaData(index)->Set(vtkCompositeDataSet::NAME(), name->c_str());
         }
         return out;
@@ -934,17 +1030,22 @@ private:
 
     std::string path_;
     bool piece_ = false;
+    Budget& budget_;
     std::ifstream in_;
     uint64_t file_size_ = 0, data_end_ = 0;
     Head head_;
     int header_bytes_ = 4;
     bool big_endian_ = false, appended_base64_ = false;
-    vtkSmartPointer<vtkDataCompressor> compressor_;
+    std::string compressor_;  // "" when uncompressed
     std::string appended_text_;
+    std::map<uint64_t, uint64_t> appended_ranges_;  // [first, end) of each appended array read
 };
 
 }  // namespace
 
-vtkSmartPointer<vtkDataObject> read_xml_vtk(const std::string& path) { return XmlVtkFile(path).read(); }
+vtkSmartPointer<vtkDataObject> read_xml_vtk(const std::string& path) {
+    Budget budget{memory_limit()};
+    return XmlVtkFile(path, budget).read();
+}
 
 }  // namespace hexmesh

@@ -421,7 +421,10 @@ TetCaseResult run_tet_case(const Case& c, const TetCaseOptions& options, std::os
         } else if (r.cgal->min_dihedral > ours) {
             // CGAL's mesh optimized where that keeps its smallest angle, else as it is.
             const PlacedTetMesh& cgal = *r.generation.cgal_optimized;
-            HeldOptimization merged = optimize_where_better(cgal, r.cgal->min_dihedral, boundary, size, options);
+            // The bound: CGAL's smallest angle, and never one that leaves a sliver.
+            const double bound = std::max(r.cgal->min_dihedral, r.cgal->sliver_degrees);
+            HeldOptimization merged = optimize_where_better(cgal, bound, boundary, size, options);
+            const double merged_distance = max_placed_distance(merged.mesh, cgal.dimension, boundary);
             const TetQualityReport merged_quality = measure_tet_quality(merged.mesh);
             kept.caps_removed = kept.flips_23 = kept.edge_removals = 0;
             kept.optimization.max_crease_distance = std::numeric_limits<double>::quiet_NaN();  // not measured
@@ -430,14 +433,15 @@ TetCaseResult run_tet_case(const Case& c, const TetCaseOptions& options, std::os
                                "{:.2f}, mean smallest {:.2f} degrees (CGAL's {:.2f}), {} slivers\n",
                                merged.held, vertices, merged_quality.min_dihedral, merged_quality.mean_min_dihedral,
                                r.cgal->mean_min_dihedral, merged_quality.slivers);
-            if (merged.held < vertices && merged_quality.min_dihedral >= r.cgal->min_dihedral &&
-                merged_quality.slivers <= r.cgal->slivers &&
-                merged_quality.mean_min_dihedral > r.cgal->mean_min_dihedral) {
+            if (merged.held < vertices && merged_quality.inverted == 0 &&
+                merged_quality.min_dihedral >= r.cgal->min_dihedral && merged_quality.slivers <= r.cgal->slivers &&
+                merged_quality.mean_min_dihedral > r.cgal->mean_min_dihedral &&
+                merged_distance <= r.cgal_surface_distance + 1e-9 * r.wall_size) {
                 r.start = "CGAL's, optimized";
                 r.cgal_vertices_held = merged.held;
                 kept.mesh = std::move(merged.mesh);
                 kept.optimization.solve = std::move(merged.optimization.solve);
-                kept.optimization.max_surface_distance = max_placed_distance(kept.mesh, cgal.dimension, boundary);
+                kept.optimization.max_surface_distance = merged_distance;
                 kept_quality = merged_quality;
             } else {
                 r.start = "CGAL's";

@@ -272,6 +272,8 @@ TEST_F(XmlVtk, BrokenFilesAreRefusedNamingTheFault) {
     EXPECT_EQ(read_vtk_mesh(write("good.vtu", one_hex_vtu("0 1 2 3 4 5 6 7", "8", "12"))).num_cells(), 1);
     std::string deep;
     for (int k = 0; k < 100000; ++k) deep += "<a>";
+    const std::string one_point_piece = "<Piece Extent=\"0 0 0 0 0 0\"><Points><DataArray type=\"Float32\" "
+                                        "NumberOfComponents=\"3\" format=\"ascii\">0 0 0</DataArray></Points></Piece>";
     const std::vector<std::pair<std::string, std::string>> cases = {
         {write("deep.vts", "<VTKFile type=\"StructuredGrid\">" + deep), "elements nested more than 64 deep"},
         {write("unclosed.vts", "<VTKFile type=\"StructuredGrid\"><StructuredGrid>"), "the file ends inside <StructuredGrid>"},
@@ -307,6 +309,34 @@ TEST_F(XmlVtk, BrokenFilesAreRefusedNamingTheFault) {
         {write("offsets_short.vtu", one_hex_vtu("0 1 2 3 4 5 6 7", "7", "12")), "the cells' offsets end at 7; the connectivity holds 8 ids"},
         {write("type.vtu", one_hex_vtu("0 1 2 3 4 5 6 7", "8", "99")), "cell 0 has type 99, which VTK does not know"},
         {write("polyhedron.vtu", one_hex_vtu("0 1 2 3 4 5 6 7", "8", "42")), "cell 0 is a polyhedron (42), which is not read"},
+        {write("extent.vts", "<VTKFile type=\"StructuredGrid\"><StructuredGrid WholeExtent=\"-5000000000000000000 "
+                             "5000000000000000000 0 0 0 0\"><Piece Extent=\"0 0 0 0 0 0\"/></StructuredGrid></VTKFile>"),
+         "WholeExtent \"-5000000000000000000 5000000000000000000...\": a range beyond what a grid holds"},
+        // A block table claiming 3 GiB from a 10-byte block: refused before anything is sized.
+        {write("inflated.vts", one_cell_vts("<PointData><DataArray type=\"UInt8\" Name=\"k\" format=\"binary\">"
+                                            "AQAAAAAAAAAAAADAAAAAAAAAAAAAAAAACgAAAAAAAAA=MDEyMzQ1Njc4OQ==</DataArray></PointData>",
+                                            " header_type=\"UInt64\" compressor=\"vtkZLibDataCompressor\"")),
+         "array 'k' of the point data: compressed block 0 of 10 bytes claims 3221225472 bytes, more than "
+         "vtkZLibDataCompressor can give"},
+        // Two arrays reading the same appended bytes.
+        {write("shared.vts", "<VTKFile type=\"StructuredGrid\" header_type=\"UInt32\"><StructuredGrid WholeExtent=\"0 0 0 0 0 0\">"
+                             "<FieldData><Array type=\"UInt8\" Name=\"a\" format=\"appended\" offset=\"0\"/>"
+                             "<Array type=\"UInt8\" Name=\"b\" format=\"appended\" offset=\"0\"/></FieldData>"
+                             + one_point_piece + "</StructuredGrid><AppendedData encoding=\"raw\">_" +
+                                 std::string("\x02\0\0\0xy", 6) + "</AppendedData></VTKFile>"),
+         "array 'b' of the field data shares its appended bytes with another array"},
+        {write("strings.vts", "<VTKFile type=\"StructuredGrid\"><StructuredGrid WholeExtent=\"0 0 0 0 0 0\"><FieldData>"
+                              "<Array type=\"String\" Name=\"s\" format=\"ascii\">97 0</Array></FieldData>" + one_point_piece +
+                                  "</StructuredGrid></VTKFile>"),
+         "string array 's' of the field data does not declare its NumberOfTuples"},
+        {write("control.vts", one_cell_vts("<CellData><DataArray type=\"Int32\x01\" Name=\"c\" format=\"ascii\">1</DataArray></CellData>")),
+         "array 'c' of the cell data has type \"Int32\\x01\""},
+        {write("attributes.vts", "<VTKFile" + [] {
+             std::string a;
+             for (int k = 0; k < 65; ++k) a += fmt::format(" a{}=\"\"", k);
+             return a;
+         }() + "/>"),
+         "<VTKFile: more than 64 attributes"},
         {write("self.vtm", "<VTKFile type=\"vtkMultiBlockDataSet\"><vtkMultiBlockDataSet><DataSet file=\"self.vts\"/></vtkMultiBlockDataSet></VTKFile>"),
          "its piece 'self.vts' does not exist"},
         {write("loop.vtm", "<VTKFile type=\"vtkMultiBlockDataSet\"><vtkMultiBlockDataSet><DataSet file=\"loop.vtm\"/></vtkMultiBlockDataSet></VTKFile>"),
@@ -317,6 +347,15 @@ TEST_F(XmlVtk, BrokenFilesAreRefusedNamingTheFault) {
         EXPECT_NE(what.find(file), std::string::npos) << what;
         EXPECT_NE(what.find(message), std::string::npos) << file << ": " << what;
     }
+    // Unnamed arrays are kept apart (as VTK's reader does), and a piece of no points may have
+    // an empty <Points> (as VTK writes an empty grid).
+    const std::string unnamed = write("unnamed.vts", one_cell_vts("<CellData><DataArray type=\"Int32\" format=\"ascii\">1</DataArray>"
+                                                               "<DataArray type=\"Int32\" format=\"ascii\">2</DataArray></CellData>"));
+    const vtkSmartPointer<vtkDataObject> two = read_xml_vtk(unnamed);
+    EXPECT_EQ(vtkDataSet::SafeDownCast(two)->GetCellData()->GetNumberOfArrays(), 2);
+    const std::string empty = write("empty.vtu", "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid><Piece NumberOfPoints=\"0\" "
+                                                 "NumberOfCells=\"0\"><Points></Points><Cells></Cells></Piece></UnstructuredGrid></VTKFile>");
+    EXPECT_EQ(vtkDataSet::SafeDownCast(read_xml_vtk(empty))->GetNumberOfPoints(), 0);
     // A .vts that names itself a multiblock file, read as a piece: refused, not read forever.
     write("disguised.vts", "<VTKFile type=\"vtkMultiBlockDataSet\"><vtkMultiBlockDataSet><DataSet file=\"disguised.vts\"/>"
                            "</vtkMultiBlockDataSet></VTKFile>");
