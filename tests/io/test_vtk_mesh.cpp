@@ -26,6 +26,7 @@
 #include "io/vtk_mesh.h"
 #include "surface/analytic.h"
 #include "tests/io/scratch_files.h"
+#include "tests/io/vtk_test_grids.h"
 #include "tests/scratch_registry.h"
 #include "volume/o_h_grid.h"
 #include "volume/single_block_grid.h"
@@ -210,21 +211,11 @@ TEST(LegacyVtk, VtkWrittenAsciiAndBinaryOldAndNewLayoutsReadToTheSameVolumeMesh)
     // Two hexahedra, a tetrahedron on top and a boundary triangle; "fixed" on every third point.
     VolumeMesh expected;
     for (int c = 0; c < 12; ++c) expected.points.emplace_back(0.25 * (c & 1), (c >> 1) & 1, 1.5 * (c >> 2));
-    expected.points.emplace_back(0.1, 0.2, 4.0);
+    expected.points.emplace_back(0.5, 0.25, 4.0);
     expected.hexes = {0, 1, 3, 2, 4, 5, 7, 6, 4, 5, 7, 6, 8, 9, 11, 10};
     expected.tets = {8, 9, 10, 12};
     for (size_t m = 0; m < expected.points.size(); ++m) expected.fixed.push_back(m % 3 == 0);
-    auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
-    vtkNew<vtkPoints> points;
-    points->SetDataTypeToDouble();
-    for (const Vec3& p : expected.points) points->InsertNextPoint(p.data());
-    grid->SetPoints(points);
-    const vtkIdType hex0[8] = {0, 1, 3, 2, 4, 5, 7, 6}, hex1[8] = {4, 5, 7, 6, 8, 9, 11, 10};
-    const vtkIdType tet[4] = {8, 9, 10, 12}, face[3] = {0, 1, 2};
-    grid->InsertNextCell(VTK_HEXAHEDRON, 8, hex0);
-    grid->InsertNextCell(VTK_TRIANGLE, 3, face);
-    grid->InsertNextCell(VTK_HEXAHEDRON, 8, hex1);
-    grid->InsertNextCell(VTK_TETRA, 4, tet);
+    const vtkSmartPointer<vtkUnstructuredGrid> grid = test::two_hexes_a_tet_and_a_triangle(VTK_DOUBLE);
     add_arrays_to_skip(grid);
     vtkNew<vtkUnsignedCharArray> fixed;  // written as a FIELD array among the point data
     fixed->SetName("fixed");

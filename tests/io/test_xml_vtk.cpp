@@ -29,6 +29,7 @@
 #include "io/vtk_mesh.h"
 #include "io/xml_vtk.h"
 #include "tests/io/scratch_files.h"
+#include "tests/io/vtk_test_grids.h"
 
 using namespace hexmesh;
 namespace fs = std::filesystem;
@@ -176,18 +177,7 @@ TEST_F(XmlVtk, EveryLayoutOfAStructuredGridReadsBackToTheGridWritten) {
 }
 
 TEST_F(XmlVtk, EveryLayoutOfAnUnstructuredGridReadsBackToTheCellsWritten) {
-    auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
-    vtkNew<vtkPoints> points;
-    points->SetDataTypeToFloat();
-    for (int c = 0; c < 12; ++c) points->InsertNextPoint(0.25 * (c & 1), (c >> 1) & 1, 1.5 * (c >> 2));
-    points->InsertNextPoint(0.5, 0.25, 4.0);
-    grid->SetPoints(points);
-    const vtkIdType hex0[8] = {0, 1, 3, 2, 4, 5, 7, 6}, hex1[8] = {4, 5, 7, 6, 8, 9, 11, 10};
-    const vtkIdType tet[4] = {8, 9, 10, 12}, face[3] = {0, 1, 2};
-    grid->InsertNextCell(VTK_HEXAHEDRON, 8, hex0);
-    grid->InsertNextCell(VTK_TRIANGLE, 3, face);
-    grid->InsertNextCell(VTK_HEXAHEDRON, 8, hex1);
-    grid->InsertNextCell(VTK_TETRA, 4, tet);
+    const vtkSmartPointer<vtkUnstructuredGrid> grid = test::two_hexes_a_tet_and_a_triangle(VTK_FLOAT);
     add_arrays(grid);
     for (const std::string& file : write_every_layout<vtkXMLUnstructuredGridWriter>(grid, dir_, ".vtu")) {
         const vtkSmartPointer<vtkDataObject> read = read_xml_vtk(file);
