@@ -115,6 +115,12 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
         const bool crawling = regularize_below == 0 && stalled >= options.stall_minimum &&
                               progress.crawling(options.stall_share);
         if (fast && !crawling && (stalled >= options.fast_stall || stuck) && stats.inverted > options.unrepairable) {
+            if (options.leave_to_next_pass && options.leave_to_next_pass(best.points)) {
+                result.left_to_next_pass = true;
+                result.stopped = fmt::format("{} inverted elements left to the next pass", best.inverted);
+                log_note(options.log, result.stopped);
+                return;
+            }
             fast = false, stalled = 0;
             x = restart, eps = restart_eps;
             stats = judge.stats(x);
@@ -229,7 +235,8 @@ bool repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
     // A part no larger than the last one, after a round that repaired nothing, ends this:
     // more rings add no freedom (few free nodes around cells that cannot be repaired).
     Id previous = 0, inverted_then = std::numeric_limits<Id>::max();
-    for (int rings = options.local_rings; best.inverted > options.unrepairable && rings < (1 << 20); rings *= 2) {
+    for (int rings = options.local_rings;
+         best.inverted > options.unrepairable && rings < (1 << 20) && !result.left_to_next_pass; rings *= 2) {
         Problem part;
         if (!local_part(problem, elements_of, rings, part)) break;
         if (part.num_elements() <= previous && best.inverted >= inverted_then) break;
@@ -280,7 +287,7 @@ UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& op
                                         start_eps);
     };
     const bool local_stalled = repair_locally(0);
-    if (best.inverted > options.unrepairable) {
+    if (best.inverted > options.unrepairable && !result.left_to_next_pass) {
         // When the largest neighbourhood the local repair tried repaired nothing, the global
         // pass gets the local stall budget too: what is left is then almost always blocked
         // (an element held by fixed vertices, or by such a neighbour).
@@ -292,7 +299,8 @@ UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& op
     // The few elements the continuation leaves often have det ~ -eps all the way down (each
     // step of eps is matched by their det): their neighbourhoods start again from room_eps,
     // where the functional lets them move.
-    if (best.inverted > options.unrepairable && options.room_eps > 0 && options.local_rings > 0) {
+    if (best.inverted > options.unrepairable && options.room_eps > 0 && options.local_rings > 0 &&
+        !result.left_to_next_pass) {
         progress.start_again(seconds());  // a new start: the stall clock starts again
         log_note(options.log, fmt::format("{} inverted elements left: their neighbourhoods start again from eps {}",
                                           best.inverted, options.room_eps));
@@ -303,7 +311,7 @@ UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& op
     // surface instead (a wall quad folded across a crease cannot unfold while its vertex is
     // held on the crease line), and the local repair runs again. Their kinds come back after.
     if (best.inverted > options.unrepairable && options.release_creases && options.local_rings > 0 &&
-        problem.project_to_surface && problem.surface_normal) {
+        problem.project_to_surface && problem.surface_normal && !result.left_to_next_pass) {
         const std::vector<VertexKind> kinds = problem.kinds;
         for (Id e = 0; e < problem.num_elements(); ++e)
             if (!(problem.det(x, e) > 0))

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <ostream>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -74,6 +75,12 @@ struct UntangleOptions {
     // magnitude (Tutte's embedding of a body with legs: 1e-20) leaves the barrier's Newton
     // steps no room, while with eps > 0 the tiny dets weigh like eps. 0: never.
     double regularize_below = 0;
+    // Whether the inverted elements of a state (its points) may be left to a later pass that
+    // repairs them better (`run`: the boundary layer laid again along the wall normals frees
+    // those at the wall and its layers). When it says so of the best state reached at the first
+    // stall of the continuation, untangling ends there (UntangleResult::left_to_next_pass)
+    // instead of starting again or trying its last resorts. Empty: never.
+    std::function<bool(const std::vector<Vec3>&)> leave_to_next_pass;
 };
 
 // One line of the progress log.
@@ -89,6 +96,7 @@ struct UntangleResult {
     Id inverted_before = 0, inverted_after = 0;  // elements with det S <= 0
     Id blocked = 0;  // inverted elements whose vertices are all held: no solve repairs them
     Id released = 0;  // crease and corner vertices let slide on the surface (release_creases)
+    bool left_to_next_pass = false;  // options.leave_to_next_pass took the inverted elements left
     // Why untangling ended with inverted elements beyond options.unrepairable, for the user
     // ("no fewer than 3 inverted elements for 12.1 s, 31 % of the untangling time"); empty
     // when it reached its goal.

@@ -268,7 +268,24 @@ GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& bo
                                    : std::vector<bool>{};
     {
         GridProblem g = make_problem(grid, grid.points, body, options.held, shaped);
-        result.solve = untangle::untangle_and_optimize(g.problem, options.untangle);
+        untangle::UntangleOptions joint = options.untangle;
+        if (options.wall_layers.layers > 0) {
+            // Inverted elements all at the wall or its layers are left to the pass below,
+            // which lays the layers again and frees them in seconds where the continuation's
+            // restarts and last resorts took minutes (the tripod outside: 1 element, 110 s).
+            joint.leave_to_next_pass = [&g, near = wall_layer_nodes(grid, options.wall_layers.layers)](
+                                           const std::vector<Vec3>& x) {
+                const untangle::Problem& p = g.problem;
+                for (Id e = 0; e < p.num_elements(); ++e) {
+                    if (p.det(x, e) > 0) continue;
+                    const auto nodes = p.element(e);
+                    if (std::none_of(nodes.begin(), nodes.end(), [&](Id v) { return bool(near[g.grid_id(v)]); }))
+                        return false;
+                }
+                return true;
+            };
+        }
+        result.solve = untangle::untangle_and_optimize(g.problem, joint);
         g.scatter(grid.points);
     }
     // Laying the layers again moves the wall's layer nodes and optimizes the cells around them

@@ -203,6 +203,45 @@ TEST(Untangle, AnImpossibleTangleEndsEarlyWithWhereItIs) {
     EXPECT_NE(r.stopped.find(": 1 interior, 3 fixed"), std::string::npos) << r.stopped;
 }
 
+// The same impossible tangle, its inverted tet one a later pass takes: the untangling ends at
+// its first stall, says so, and tries none of its restarts and last resorts; when the later pass
+// declines (the predicate says no), it goes on as before.
+TEST(Untangle, InvertedElementsALaterPassTakesEndTheUntanglingAtItsFirstStall) {
+    const auto impossible = [] {
+        Problem p;
+        p.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, -1}, {1, 0, -1}, {0, 1, -1}, {0.3, 0.3, 0.5}};
+        p.kinds.assign(7, VertexKind::fixed);
+        p.kinds[6] = VertexKind::interior;
+        p.tets = {{0, 1, 2, 6}, {3, 5, 4, 6}};
+        p.targets.assign(2, regular_tet_target(1.0));
+        return p;
+    };
+    UntangleOptions o = options_for(Method::newton_cg);
+    std::ostringstream log;
+    o.log = &log;
+    int asked = 0;
+    o.leave_to_next_pass = [&](const std::vector<Vec3>& x) {
+        ++asked;
+        EXPECT_EQ(x.size(), 7u);
+        return true;
+    };
+    Problem left = impossible();
+    const UntangleResult r = untangle_and_optimize(left, o);
+    EXPECT_TRUE(r.left_to_next_pass);
+    EXPECT_EQ(asked, 1);
+    EXPECT_EQ(r.inverted_after, 1);
+    EXPECT_NE(r.stopped.find("1 inverted elements left to the next pass"), std::string::npos) << r.stopped;
+    EXPECT_EQ(log.str().find("start again from eps"), std::string::npos) << log.str();
+    EXPECT_EQ(log.str().find("now slide on the surface"), std::string::npos) << log.str();
+
+    o.leave_to_next_pass = [&](const std::vector<Vec3>&) { return false; };
+    Problem kept = impossible();
+    const UntangleResult r2 = untangle_and_optimize(kept, o);
+    EXPECT_FALSE(r2.left_to_next_pass);
+    EXPECT_GT(r2.history.size(), r.history.size());
+    EXPECT_NE(r2.stopped.find("no fewer than 1 inverted elements"), std::string::npos) << r2.stopped;
+}
+
 TEST(Untangle, ValidInputIsOptimizedTowardsTheTarget) {
     Problem p = test_support::displaced_grid_problem(5, 0.15, 4);
     const double before = Assembly(p).energy(p.points, {0.8, 0});
