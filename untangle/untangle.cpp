@@ -115,7 +115,7 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
         const bool crawling = regularize_below == 0 && stalled >= options.stall_minimum &&
                               progress.crawling(options.stall_share);
         if (fast && !crawling && (stalled >= options.fast_stall || stuck) && stats.inverted > options.unrepairable) {
-            if (options.leave_to_next_pass && options.leave_to_next_pass(best.points)) {
+            if (regularize_below == 0 && options.leave_to_next_pass && options.leave_to_next_pass(best.points)) {
                 result.left_to_next_pass = true;
                 result.stopped = fmt::format("{} inverted elements left to the next pass", best.inverted);
                 log_note(options.log, result.stopped);

@@ -77,9 +77,11 @@ struct UntangleOptions {
     double regularize_below = 0;
     // Whether the inverted elements of a state (its points) may be left to a later pass that
     // repairs them better (`run`: the boundary layer laid again along the wall normals frees
-    // those at the wall and its layers). When it says so of the best state reached at the first
-    // stall of the continuation, untangling ends there (UntangleResult::left_to_next_pass)
-    // instead of starting again or trying its last resorts. Empty: never.
+    // those at the wall and its layers). It is asked of the best state reached whenever a
+    // continuation's fast phase stalls (the first stall of the local repair, of the global
+    // pass, ...); when it says yes, untangling ends there (UntangleResult::left_to_next_pass)
+    // instead of going on by the safe rule or trying its last resorts. Not while evening out
+    // a valid start (regularize_below). Empty: never.
     std::function<bool(const std::vector<Vec3>&)> leave_to_next_pass;
 };
 

@@ -16,8 +16,8 @@ struct GridOptimizationOptions {
     // only if every cell is then valid). Also when the joint optimization left inverted
     // elements, all at the wall or its layers: the layers laid along the normals can free them
     // (the tripod outside: 1 left by the joint pass, none after this one), so the joint pass
-    // leaves such elements to it at the first stall of its untangling instead of starting
-    // again and trying its last resorts (UntangleOptions::leave_to_next_pass). Not when one lies
+    // leaves such elements to it when its untangling first stalls, instead of going on by the
+    // safe rule and trying its last resorts (UntangleOptions::leave_to_next_pass). Not when one lies
     // away from them (GridOptimizationResult::layers_skipped): on every run measured that pass
     // freed none of those (bench/RESULTS.md), and the grid is refused as the joint pass left it.
     WallLayers wall_layers;
