@@ -122,6 +122,8 @@ public:
             compressor_ != "vtkLZMADataCompressor")
             fail(fmt::format("compressor \"{}\": expected vtkZLibDataCompressor, vtkLZ4DataCompressor or "
                              "vtkLZMADataCompressor", printable(compressor_)));
+        if (compressor_ == "vtkZLibDataCompressor") codec_ = vtkSmartPointer<vtkZLibDataCompressor>::New();
+        if (compressor_ == "vtkLZ4DataCompressor") codec_ = vtkSmartPointer<vtkLZ4DataCompressor>::New();
         if (head_.has_appended) {
             const std::string encoding = head_.appended().value("encoding");
             if (encoding != "raw" && encoding != "base64")
@@ -180,7 +182,7 @@ private:
         const std::string offset_text = array.value("offset");
         const std::optional<unsigned long long> offset = count_of(offset_text);
         const uint64_t size = data_end_ - head_.data_start;
-        if (!offset) fail(fmt::format("{} has offset \"{}\"; expected a byte offset", label, offset_text));
+        if (!offset) fail(fmt::format("{} has offset \"{}\"; expected a byte offset", label, printable(offset_text)));
         if (*offset > size)
             fail(fmt::format("{} starts at byte {} of the appended data, which has {}", label, *offset, size));
         if (!appended_base64_) return std::make_unique<FileSource>(in_, head_.data_start + *offset, data_end_);
@@ -227,22 +229,21 @@ private:
     }
 
     template <class Allocate>
-    void read_data(ByteSource& source, const std::string& label, Allocate allocate) {
-        ByteSource* from = &source;
+    void read_data(ByteSource& from, const std::string& label, Allocate allocate) {
         try {
             if (compressor_.empty()) {
-                const uint64_t bytes = header(*from, label, "byte count");
-                if (bytes > from->most_left())
-                    fail(fmt::format("{} claims {} bytes; at most {} are left", label, bytes, from->most_left()));
-                if (!from->take(bytes, allocate(bytes)))
+                const uint64_t bytes = header(from, label, "byte count");
+                if (bytes > from.most_left())
+                    fail(fmt::format("{} claims {} bytes; at most {} are left", label, bytes, from.most_left()));
+                if (!from.take(bytes, allocate(bytes)))
                     fail(fmt::format("{} claims {} bytes; the data end first", label, bytes));
                 return;
             }
             // [blocks][block size][last block's size, 0 if full][compressed size of each block]
-            const uint64_t blocks = header(*from, label, "block table");
-            const uint64_t block_size = header(*from, label, "block table");
-            const uint64_t last_size = header(*from, label, "block table");
-            if (blocks > from->most_left() / uint64_t(header_bytes_))
+            const uint64_t blocks = header(from, label, "block table");
+            const uint64_t block_size = header(from, label, "block table");
+            const uint64_t last_size = header(from, label, "block table");
+            if (blocks > from.most_left() / uint64_t(header_bytes_))
                 fail(fmt::format("{} claims {} compressed blocks; the data end first", label, blocks));
             if (last_size > block_size || (blocks > 0 && block_size == 0))
                 fail(fmt::format("{}: compressed blocks of {} bytes, the last of {}", label, block_size, last_size));
@@ -250,10 +251,10 @@ private:
             uint64_t compressed = 0;  // saturating
             constexpr uint64_t cap = uint64_t(1) << 62;
             for (uint64_t& s : sizes) {
-                s = header(*from, label, "block table");
+                s = header(from, label, "block table");
                 compressed = std::min(cap, compressed + std::min(s, cap));
             }
-            if (compressed > from->most_left())
+            if (compressed > from.most_left())
                 fail(fmt::format("{} claims {} compressed bytes; the data end first", label, compressed));
             uint64_t bytes = 0;
             if (blocks > 0) {
@@ -262,9 +263,10 @@ private:
                 bytes = (blocks - 1) * block_size + (last_size > 0 ? last_size : block_size);
             }
             // Each block no larger than its compressed bytes can expand to, before anything is sized.
+            const auto block_bytes = [&](uint64_t b) { return b + 1 == blocks && last_size > 0 ? last_size : block_size; };
             const double expansion = most_expansion(compressor_);
             for (uint64_t b = 0; b < blocks; ++b) {
-                const uint64_t want = b + 1 == blocks && last_size > 0 ? last_size : block_size;
+                const uint64_t want = block_bytes(b);
                 if (double(want) > expansion * double(sizes[size_t(b)]) + 64)
                     fail(fmt::format("{}: compressed block {} of {} bytes claims {} bytes, more than {} can give",
                                      label, b, sizes[size_t(b)], want, compressor_));
@@ -273,9 +275,9 @@ private:
             std::vector<unsigned char> packed;
             for (uint64_t b = 0; b < blocks; ++b) {
                 packed.resize(size_t(sizes[size_t(b)]));
-                if (!from->take(sizes[size_t(b)], reinterpret_cast<char*>(packed.data())))
+                if (!from.take(sizes[size_t(b)], reinterpret_cast<char*>(packed.data())))
                     fail(fmt::format("{}: compressed block {} runs past the data", label, b));
-                const uint64_t want = b + 1 == blocks && last_size > 0 ? last_size : block_size;
+                const uint64_t want = block_bytes(b);
                 const size_t got = uncompress(packed, reinterpret_cast<unsigned char*>(out + b * block_size), size_t(want));
                 if (got != want) fail(fmt::format("{}: compressed block {} does not decompress to its {} bytes", label, b, want));
             }
@@ -296,11 +298,8 @@ private:
                 return 0;
             return in_at == packed.size() ? out_at : 0;
         }
-        vtkSmartPointer<vtkDataCompressor> codec;
-        if (compressor_ == "vtkZLibDataCompressor") codec = vtkSmartPointer<vtkZLibDataCompressor>::New();
-        else codec = vtkSmartPointer<vtkLZ4DataCompressor>::New();
         vtk_support::take_message();
-        const size_t got = codec->Uncompress(packed.data(), packed.size(), out, want);
+        const size_t got = codec_->Uncompress(packed.data(), packed.size(), out, want);
         vtk_support::take_message();
         return got;
     }
@@ -324,8 +323,7 @@ private:
         uint64_t k = 0;
         for_each_word(text, [&](std::string_view word) {
             T v{};
-            std::from_chars_result r{};
-            r = std::from_chars(word.data(), word.data() + word.size(), v);  // "nan", "inf", "-inf" too
+            const auto r = std::from_chars(word.data(), word.data() + word.size(), v);  // "nan", "inf", "-inf" too
             if (r.ec != std::errc() || r.ptr != word.data() + word.size())
                 fail(fmt::format("{}: value {} is \"{}\", not a {}", label, k, printable(word),
                                  std::is_floating_point_v<T> ? "number" : "integer in the array's range"));
@@ -695,6 +693,7 @@ private:
     int header_bytes_ = 4;
     bool big_endian_ = false, appended_base64_ = false;
     std::string compressor_;  // "" when uncompressed
+    vtkSmartPointer<vtkDataCompressor> codec_;  // zlib's or LZ4's (LZMA: liblzma, with a memory limit)
     std::string appended_text_;
     std::map<uint64_t, uint64_t> appended_ranges_;  // [first, end) of each appended array read
 };
