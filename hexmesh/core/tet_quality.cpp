@@ -14,11 +14,6 @@ namespace {
 constexpr int tet_edges[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2},
                                  {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};  // edge a b, others c d
 
-std::array<Vec3, 4> tet_corners(const TetMesh& mesh, Id cell) {
-    return {mesh.points[mesh.node(cell, 0)], mesh.points[mesh.node(cell, 1)], mesh.points[mesh.node(cell, 2)],
-            mesh.points[mesh.node(cell, 3)]};
-}
-
 // Sums and extremes over a range of tets, combined in a fixed order.
 struct Tally {
     Id inverted = 0, slivers = 0;
@@ -37,6 +32,11 @@ struct Tally {
 };
 
 }  // namespace
+
+std::array<Vec3, 4> tet_corners(const TetMesh& mesh, Id cell) {
+    return {mesh.points[mesh.node(cell, 0)], mesh.points[mesh.node(cell, 1)], mesh.points[mesh.node(cell, 2)],
+            mesh.points[mesh.node(cell, 3)]};
+}
 
 std::array<double, 6> dihedral_angles(const std::array<Vec3, 4>& p) {
     std::array<double, 6> angles{};

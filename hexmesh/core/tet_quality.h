@@ -10,6 +10,9 @@ namespace hexmesh {
 // The 6 dihedral angles (degrees, in [0, 180]) of the tet p0..p3, at its edges 01 02 03 12 13 23:
 // the angle between the two faces meeting at the edge. A regular tet has 70.53 everywhere.
 // A degenerate edge or face gives 0.
+// The four points of tet `cell` of `mesh`, in its node order.
+std::array<Vec3, 4> tet_corners(const TetMesh& mesh, Id cell);
+
 std::array<double, 6> dihedral_angles(const std::array<Vec3, 4>& p);
 
 // det[p1 - p0, p2 - p0, p3 - p0] / 6: the volume, negative for an inverted tet.

@@ -236,19 +236,15 @@ TetOptimization optimize_tet_mesh(TetMesh& mesh, const std::vector<VertexKind>& 
 Id keep_fallback_where_worse(const TetMesh& fallback, TetMesh& optimized, double bound) {
     std::vector<char> back(optimized.points.size(), 0);
     Id count = 0;
-    const auto corners = [](const TetMesh& m, Id t) {
-        return std::array<Vec3, 4>{m.points[m.node(t, 0)], m.points[m.node(t, 1)], m.points[m.node(t, 2)],
-                                   m.points[m.node(t, 3)]};
-    };
     for (bool changed = true; changed;) {
         changed = false;
         for (Id t = 0; t < optimized.num_cells(); ++t) {
             bool moved = false;
             for (int k = 0; k < 4; ++k) moved = moved || !back[optimized.node(t, k)];
             if (!moved) continue;
-            const std::array<Vec3, 4> p = corners(optimized, t);
+            const std::array<Vec3, 4> p = tet_corners(optimized, t);
             const auto angles = dihedral_angles(p);
-            const bool same_side = signed_volume(p) * signed_volume(corners(fallback, t)) > 0;
+            const bool same_side = signed_volume(p) * signed_volume(tet_corners(fallback, t)) > 0;
             if (same_side && *std::min_element(angles.begin(), angles.end()) >= bound) continue;
             for (int k = 0; k < 4; ++k) {
                 const Id v = optimized.node(t, k);
@@ -285,8 +281,7 @@ HeldOptimization optimize_where_better(const PlacedTetMesh& cgal, double bound, 
     for (int round = 0; round < 4 && r.optimization.solve.inverted_after == 0; ++round) {
         Id newly = 0;
         for (Id t = 0; t < r.mesh.num_cells(); ++t) {
-            const auto angles = dihedral_angles({r.mesh.points[r.mesh.node(t, 0)], r.mesh.points[r.mesh.node(t, 1)],
-                                                 r.mesh.points[r.mesh.node(t, 2)], r.mesh.points[r.mesh.node(t, 3)]});
+            const auto angles = dihedral_angles(tet_corners(r.mesh, t));
             if (*std::min_element(angles.begin(), angles.end()) >= bound) continue;
             for (int k = 0; k < 4; ++k)
                 if (kinds[r.mesh.node(t, k)] != VertexKind::fixed) kinds[r.mesh.node(t, k)] = VertexKind::fixed, ++newly;
