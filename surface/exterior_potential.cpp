@@ -3,11 +3,12 @@
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+
+#include "hexmesh/core/parallel_sum.h"
 
 namespace hexmesh {
 namespace {
@@ -20,17 +21,7 @@ std::array<long long, 6> neighbour_offsets(const std::array<int, 3>& n) {
     return {-sx, sx, -sy, sy, -sz, sz};
 }
 
-// Sum over the flat range of f(index), in parallel, deterministic.
-template <class F>
-double parallel_sum(size_t count, F&& f) {
-    return tbb::parallel_deterministic_reduce(
-        tbb::blocked_range<size_t>(0, count, 1 << 14), 0.0,
-        [&](const tbb::blocked_range<size_t>& r, double s) {
-            for (size_t i = r.begin(); i != r.end(); ++i) s += f(i);
-            return s;
-        },
-        [](double a, double b) { return a + b; });
-}
+constexpr size_t sum_grain = 1 << 14;  // the conjugate gradients' dot products (deterministic_sum)
 
 template <class F>
 void parallel_each(size_t count, F&& f) {
@@ -107,26 +98,31 @@ ExteriorPotential::ExteriorPotential(const ImplicitFunction& body,
     });
     apply(x, q);
     parallel_each(count, [&](size_t id) { r[id] = kind[id] == NodeKind::free ? rhs[id] - q[id] : 0; });
-    const double norm_b = std::sqrt(parallel_sum(count, [&](size_t id) { return rhs[id] * rhs[id]; }));
+    const double norm_b = std::sqrt(
+        deterministic_sum(count, sum_grain, [&](size_t id) { return rhs[id] * rhs[id]; }));
     parallel_each(count, [&](size_t id) { z[id] = kind[id] == NodeKind::free ? r[id] / diag[id] : 0; });
     p = z;
-    double rz = parallel_sum(count, [&](size_t id) { return r[id] * z[id]; });
+    double rz = deterministic_sum(count, sum_grain, [&](size_t id) { return r[id] * z[id]; });
     unknowns_ = (long long)std::count(kind.begin(), kind.end(), NodeKind::free);
-    double residual = std::sqrt(parallel_sum(count, [&](size_t id) { return r[id] * r[id]; }));
+    double residual =
+        std::sqrt(deterministic_sum(count, sum_grain, [&](size_t id) { return r[id] * r[id]; }));
     int it = 0;
     for (; it < o.max_iterations && residual > o.tolerance * norm_b; ++it) {
         apply(p, q);
-        const double alpha = rz / parallel_sum(count, [&](size_t id) { return p[id] * q[id]; });
+        const double alpha =
+            rz / deterministic_sum(count, sum_grain, [&](size_t id) { return p[id] * q[id]; });
         parallel_each(count, [&](size_t id) {
             x[id] += alpha * p[id];
             r[id] -= alpha * q[id];
             z[id] = kind[id] == NodeKind::free ? r[id] / diag[id] : 0;
         });
-        const double rz_next = parallel_sum(count, [&](size_t id) { return r[id] * z[id]; });
+        const double rz_next =
+            deterministic_sum(count, sum_grain, [&](size_t id) { return r[id] * z[id]; });
         const double beta = rz_next / rz;
         rz = rz_next;
         parallel_each(count, [&](size_t id) { p[id] = z[id] + beta * p[id]; });
-        residual = std::sqrt(parallel_sum(count, [&](size_t id) { return r[id] * r[id]; }));
+        residual = std::sqrt(
+            deterministic_sum(count, sum_grain, [&](size_t id) { return r[id] * r[id]; }));
     }
     iterations_ = it;
     if (residual > o.tolerance * norm_b)

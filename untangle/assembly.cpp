@@ -1,5 +1,9 @@
 #include "untangle/assembly.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
 #include <algorithm>
 #include <bitset>
 #include <cmath>
@@ -8,9 +12,8 @@
 #include <limits>
 #include <mutex>
 #include <stdexcept>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
+
+#include "hexmesh/core/parallel_sum.h"
 
 namespace hexmesh::untangle {
 namespace {
@@ -32,19 +35,6 @@ constexpr std::array<std::array<int, 8>, 8> hex_pair_index = [] {
     }
     return index;
 }();
-
-// Deterministic sum of term(i) for i in [0, n): the split depends on n and the grain only,
-// never on the threads. Nothing is stored per term.
-template <class Term>
-double deterministic_sum(size_t n, Term&& term) {
-    return tbb::parallel_deterministic_reduce(
-        tbb::blocked_range<size_t>(0, n, grain), 0.0,
-        [&](const tbb::blocked_range<size_t>& r, double s) {
-            for (size_t i = r.begin(); i != r.end(); ++i) s += term(i);
-            return s;
-        },
-        [](double a, double b) { return a + b; }, tbb::simple_partitioner());
-}
 
 // Items 0..n-1 grouped by colour, in item order within a colour: order lists them, the
 // items of colour c at [start[c], start[c + 1]).
@@ -303,15 +293,16 @@ double Assembly::energy(const std::vector<Vec3>& x, const EnergyParams& p) const
     // Summed by hex (8 corner tets at once), plain tet and triangle.
     const Id hexes = Id(problem_.hexes.size()), tets = Id(problem_.tets.size());
     const std::vector<Vec3> normals = triangle_normals(x);
-    return deterministic_sum(size_t(hexes + tets) + problem_.triangles.size(), [&](size_t u) {
-        if (Id(u) < hexes) return hex_energy(hex_corners(x, Id(u)), problem_.hex_edges[u], p);
-        if (Id(u) < hexes + tets)
-            return tet_energy(Problem::corners(x, problem_.tets[u - hexes]),
-                              problem_.targets[u - hexes], p);
-        const Id r = Id(u) - hexes - tets;
-        return triangle_energy(Problem::corners(x, problem_.triangles[r]), normals[r],
-                               problem_.triangle_targets[r], p);
-    });
+    return deterministic_sum(
+        size_t(hexes + tets) + problem_.triangles.size(), grain, [&](size_t u) {
+            if (Id(u) < hexes) return hex_energy(hex_corners(x, Id(u)), problem_.hex_edges[u], p);
+            if (Id(u) < hexes + tets)
+                return tet_energy(Problem::corners(x, problem_.tets[u - hexes]),
+                                  problem_.targets[u - hexes], p);
+            const Id r = Id(u) - hexes - tets;
+            return triangle_energy(Problem::corners(x, problem_.triangles[r]), normals[r],
+                                   problem_.triangle_targets[r], p);
+        });
 }
 
 template <class Kernel>
@@ -323,7 +314,7 @@ double Assembly::sum_by_colour(Kernel&& kernel) const {
             const Id k = chunk_order_[m];
             chunk_value[k] = kernel(k * chunk_size_, std::min(ne, (k + 1) * chunk_size_));
         });
-    return deterministic_sum(chunk_value.size(), [&](size_t k) { return chunk_value[k]; });
+    return deterministic_sum(chunk_value.size(), grain, [&](size_t k) { return chunk_value[k]; });
 }
 
 template <class HexKernel, class TetKernel, class TriangleKernel>

@@ -1,9 +1,11 @@
 #include "untangle/pcg.h"
 
-#include <cmath>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
+
+#include <cmath>
+
+#include "hexmesh/core/parallel_sum.h"
 
 namespace hexmesh::untangle {
 
@@ -11,23 +13,10 @@ namespace {
 
 constexpr size_t grain = 2048;
 
-// Deterministic sum of term(i) over [0, n) (the split depends on n only); term may write
-// element i of vectors as it goes.
-template <class Term>
-double fused_sum(size_t n, Term&& term) {
-    return tbb::parallel_deterministic_reduce(
-        tbb::blocked_range<size_t>(0, n, grain), 0.0,
-        [&](const tbb::blocked_range<size_t>& r, double s) {
-            for (size_t i = r.begin(); i != r.end(); ++i) s += term(i);
-            return s;
-        },
-        [](double a, double b) { return a + b; }, tbb::simple_partitioner());
-}
-
 }  // namespace
 
 double dot(const VertexVector& a, const VertexVector& b) {
-    return fused_sum(a.size(), [&](size_t i) { return a[i].dot(b[i]); });
+    return deterministic_sum(a.size(), grain, [&](size_t i) { return a[i].dot(b[i]); });
 }
 
 namespace {
@@ -51,7 +40,7 @@ PcgResult pcg(const LinearOperator& apply_a, Precondition&& precondition, const 
         const double curvature = dot(p, ap);
         if (!(curvature > 0)) break;
         const double alpha = rz / curvature;
-        const double rr = fused_sum(n, [&](size_t i) {
+        const double rr = deterministic_sum(n, grain, [&](size_t i) {
             x[i] += alpha * p[i];
             r[i] -= alpha * ap[i];
             return r[i].squaredNorm();
@@ -88,7 +77,7 @@ PcgResult solve_pcg(const LinearOperator& apply_a, const BlockInverse& precondit
         apply_a,
         [&](const VertexVector& r, VertexVector& z) {
             z.resize(r.size());
-            return fused_sum(r.size(), [&](size_t i) {
+            return deterministic_sum(r.size(), grain, [&](size_t i) {
                 z[i] = (precondition[i] * r[i].cast<float>()).cast<double>();
                 return r[i].dot(z[i]);
             });
