@@ -5,8 +5,7 @@
 
 #include "hexmesh/core/quality.h"
 #include "hexmesh/core/reference_hex.h"
-#include "surface/implicit_features.h"
-#include "surface/projection.h"
+#include "hexmesh/pipeline/boundary_geometry.h"
 #include "volume/wall_extrusion.h"
 #include "volume/wall_lines.h"
 
@@ -244,15 +243,10 @@ Id give_back_crossing_lines(BlockGrid& grid, const std::vector<Vec3>& joint, std
 }  // namespace
 
 void slide_on(const ImplicitFunction& body, untangle::Problem& p) {
-    const double h = p.length_scale;
-    p.surface_normal = [&body](Id, const Vec3& x) { return body.gradient(x); };
-    p.project_to_surface = [&body, h](Id, const Vec3& x) {
-        ProjectionOptions o;
-        o.tolerance = 1e-12;
-        return project_to_surface(body, x, h, o).point;
-    };
-    p.edge_tangent = [&body, h](Id, const Vec3& x) { return crease_tangent(body, x, 1e-3 * h); };
-    p.project_to_edge = [&body, h](Id, const Vec3& x) { return project_to_crease(body, x, h); };
+    // Not owned: the caller keeps `body` alive as long as `p`.
+    const std::shared_ptr<const ImplicitFunction> unowned(std::shared_ptr<const ImplicitFunction>{},
+                                                          &body);
+    BoundaryGeometry::implicit(unowned, p.length_scale).constrain(p);
 }
 
 GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& body,
