@@ -9,24 +9,9 @@
 
 #include "hexmesh/core/types.h"
 #include "io/flow_spec.h"
+#include "io/input_error.h"
 
 namespace hexmesh {
-
-// Bad user input: the message names the file, key or line and what was expected.
-struct InputError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
-
-// f(), with a std::invalid_argument it throws (content of `file` the code cannot take: a face
-// shared by three cells, a voxel size too fine) turned into an InputError naming the file.
-template <class F>
-decltype(auto) naming_file(const std::string& file, F&& f) {
-    try {
-        return f();
-    } catch (const std::invalid_argument& e) {
-        throw InputError(file + ": " + e.what());
-    }
-}
 
 // A body as written in the case: a primitive, or a CSG node over children, with an
 // optional transform (applied as scale, then rotate, then translate).

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "hexmesh/core/types.h"
-#include "io/case_file.h"
+#include "io/input_error.h"
 
 namespace hexmesh {
 

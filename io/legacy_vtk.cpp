@@ -22,7 +22,7 @@
 #include <set>
 #include <vector>
 
-#include "io/case_file.h"
+#include "io/input_error.h"
 #include "io/legacy_vtk_tokens.h"
 
 namespace hexmesh {

@@ -17,7 +17,7 @@
 #include <string_view>
 #include <vector>
 
-#include "io/case_file.h"
+#include "io/input_error.h"
 #include "io/vtk_support.h"
 
 namespace hexmesh::legacy_vtk {

@@ -7,8 +7,8 @@
 #include <sstream>
 #include <unordered_map>
 
-#include "io/case_file.h"
 #include "io/file_sink.h"
+#include "io/input_error.h"
 
 namespace hexmesh {
 namespace {

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
-#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -12,8 +12,8 @@
 #include <sstream>
 #include <unordered_map>
 
-#include "io/case_file.h"
 #include "io/file_sink.h"
+#include "io/input_error.h"
 #include "io/neutral_map.h"
 
 namespace hexmesh {

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "hexmesh/core/triangle_surface.h"
-#include "io/case_file.h"
+#include "io/input_error.h"
 
 namespace hexmesh {
 

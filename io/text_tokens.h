@@ -1,17 +1,18 @@
 // Whitespace-separated tokens of a text file, for the mesh readers; errors name file and line.
 #pragma once
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
-#include <fmt/format.h>
 #include <fstream>
 #include <sstream>
 #include <string>
 
-#include "io/case_file.h"
+#include "io/input_error.h"
 
 namespace hexmesh {
 

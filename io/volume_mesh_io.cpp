@@ -1,9 +1,7 @@
 #include "io/volume_mesh_io.h"
 
-#include <filesystem>
 #include <fmt/format.h>
 #include <unistd.h>
-
 #include <vtkCell.h>
 #include <vtkCellArray.h>
 #include <vtkCellType.h>
@@ -17,7 +15,9 @@
 #include <vtkUnstructuredGridWriter.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
-#include "io/case_file.h"
+#include <filesystem>
+
+#include "io/input_error.h"
 #include "io/legacy_vtk.h"
 #include "io/medit_mesh.h"
 #include "io/vtk_support.h"

@@ -26,9 +26,9 @@
 
 #include "hexmesh/core/array_hash.h"
 #include "hexmesh/core/quality.h"
-#include "io/case_file.h"
 #include "io/export_grid.h"
 #include "io/gmsh_mesh.h"
+#include "io/input_error.h"
 #include "io/legacy_vtk.h"
 #include "io/markup.h"
 #include "io/medit_mesh.h"

@@ -1,22 +1,23 @@
 #include "io/vtk_support.h"
 
-#include <algorithm>
-#include <array>
-#include <cstdint>
-#include <cstdlib>
-#include <filesystem>
-#include <cctype>
-#include <sstream>
-#include <fstream>
 #include <fmt/format.h>
-#include <stdexcept>
-#include <tuple>
-#include <vector>
 #include <vtkLogger.h>
 #include <vtkObjectFactory.h>
 #include <vtkOutputWindow.h>
 
-#include "io/case_file.h"
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <tuple>
+#include <vector>
+
+#include "io/input_error.h"
 
 namespace hexmesh::vtk_support {
 namespace {

@@ -7,7 +7,7 @@
 #include <charconv>
 #include <optional>
 
-#include "io/case_file.h"
+#include "io/input_error.h"
 
 namespace hexmesh::xml {
 namespace {

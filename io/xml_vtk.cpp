@@ -1,6 +1,7 @@
 #include "io/xml_vtk.h"
 
 #include <fmt/format.h>
+#include <lzma.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkCellType.h>
@@ -30,7 +31,6 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <lzma.h>
 #include <map>
 #include <memory>
 #include <optional>
@@ -38,7 +38,7 @@
 #include <vector>
 
 #include "hexmesh/core/memory_limit.h"
-#include "io/case_file.h"
+#include "io/input_error.h"
 #include "io/vtk_support.h"
 #include "io/xml_bytes.h"
 #include "io/xml_markup.h"
