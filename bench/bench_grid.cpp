@@ -26,7 +26,8 @@ void BM_OHGridSphere(benchmark::State& state) {
         benchmark::DoNotOptimize(grid.points.data());
     }
     state.counters["cells"] = double(cells);
-    state.counters["cells/s"] = benchmark::Counter(double(cells), benchmark::Counter::kIsIterationInvariantRate);
+    state.counters["cells/s"] =
+        benchmark::Counter(double(cells), benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_OHGridSphere)->Arg(32)->Arg(64)->Arg(100)->Unit(benchmark::kMillisecond);
 

@@ -35,13 +35,27 @@ void run(benchmark::State& state, SdfSign sign, bool open) {
     state.counters["memory_MB"] = bytes / 1e6;
 }
 
-void BM_SdfClosed(benchmark::State& state) { run(state, SdfSign::flood_fill, false); }
-void BM_SdfOpenWinding(benchmark::State& state) { run(state, SdfSign::winding_number, true); }
+void BM_SdfClosed(benchmark::State& state) {
+    run(state, SdfSign::flood_fill, false);
+}
+void BM_SdfOpenWinding(benchmark::State& state) {
+    run(state, SdfSign::winding_number, true);
+}
 
-BENCHMARK(BM_SdfClosed)->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond)
-    ->Iterations(3)->UseRealTime();
-BENCHMARK(BM_SdfOpenWinding)->Arg(10000)->Arg(100000)->Arg(1000000)
-    ->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
+BENCHMARK(BM_SdfClosed)
+    ->Arg(10000)
+    ->Arg(100000)
+    ->Arg(1000000)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3)
+    ->UseRealTime();
+BENCHMARK(BM_SdfOpenWinding)
+    ->Arg(10000)
+    ->Arg(100000)
+    ->Arg(1000000)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1)
+    ->UseRealTime();
 
 }  // namespace
 

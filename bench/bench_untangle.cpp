@@ -23,14 +23,20 @@ Problem displaced_grid(int n, double amplitude) {
         for (int j = 0; j < m; ++j)
             for (int i = 0; i < m; ++i) {
                 const bool boundary = i == 0 || j == 0 || k == 0 || i == n || j == n || k == n;
-                p.points.push_back(Vec3(i, j, k) + (boundary ? Vec3::Zero() : Vec3(u(rng), u(rng), u(rng))));
+                p.points.push_back(Vec3(i, j, k) +
+                                   (boundary ? Vec3::Zero() : Vec3(u(rng), u(rng), u(rng))));
                 p.kinds.push_back(boundary ? VertexKind::fixed : VertexKind::interior);
             }
     for (int k = 0; k < n; ++k)
         for (int j = 0; j < n; ++j)
             for (int i = 0; i < n; ++i) {
-                const std::array<Id, 8> h = {id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k),
-                                             id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1),
+                const std::array<Id, 8> h = {id(i, j, k),
+                                             id(i + 1, j, k),
+                                             id(i + 1, j + 1, k),
+                                             id(i, j + 1, k),
+                                             id(i, j, k + 1),
+                                             id(i + 1, j, k + 1),
+                                             id(i + 1, j + 1, k + 1),
                                              id(i, j + 1, k + 1)};
                 p.add_hex(h, Vec3::Ones());
             }
@@ -41,7 +47,8 @@ void BM_Energy(benchmark::State& state) {
     const Problem p = displaced_grid(int(state.range(0)), 0.3);
     const Assembly a(p);
     for (auto _ : state) benchmark::DoNotOptimize(a.energy(p.points, {0.8, 0.1}));
-    state.counters["tets/s"] = benchmark::Counter(double(p.num_elements()), benchmark::Counter::kIsIterationInvariantRate);
+    state.counters["tets/s"] =
+        benchmark::Counter(double(p.num_elements()), benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_Energy)->Arg(20)->Unit(benchmark::kMillisecond);
 
@@ -50,7 +57,8 @@ void BM_Gradient(benchmark::State& state) {
     const Assembly a(p);
     std::vector<Vec3> g;
     for (auto _ : state) benchmark::DoNotOptimize(a.gradient(p.points, {0.8, 0.1}, g));
-    state.counters["tets/s"] = benchmark::Counter(double(p.num_elements()), benchmark::Counter::kIsIterationInvariantRate);
+    state.counters["tets/s"] =
+        benchmark::Counter(double(p.num_elements()), benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_Gradient)->Arg(20)->Unit(benchmark::kMillisecond);
 
@@ -60,7 +68,8 @@ void BM_Hessian(benchmark::State& state) {
     std::vector<Vec3> g;
     BlockMatrix h = a.empty_hessian();
     for (auto _ : state) benchmark::DoNotOptimize(a.hessian(p.points, {0.8, 0.1}, g, h));
-    state.counters["tets/s"] = benchmark::Counter(double(p.num_elements()), benchmark::Counter::kIsIterationInvariantRate);
+    state.counters["tets/s"] =
+        benchmark::Counter(double(p.num_elements()), benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_Hessian)->Arg(20)->Unit(benchmark::kMillisecond);
 
@@ -75,8 +84,10 @@ void BM_HessianProduct(benchmark::State& state) {
         h.multiply(v, out);
         benchmark::DoNotOptimize(out.data());
     }
-    state.counters["rows/s"] = benchmark::Counter(double(h.rows()), benchmark::Counter::kIsIterationInvariantRate);
-    state.counters["MB"] = double(h.block.size() * sizeof(HessianBlock) + h.col.size() * sizeof(int32_t)) / 1e6;
+    state.counters["rows/s"] =
+        benchmark::Counter(double(h.rows()), benchmark::Counter::kIsIterationInvariantRate);
+    state.counters["MB"] =
+        double(h.block.size() * sizeof(HessianBlock) + h.col.size() * sizeof(int32_t)) / 1e6;
 }
 BENCHMARK(BM_HessianProduct)->Arg(64)->Unit(benchmark::kMillisecond);
 

@@ -28,8 +28,7 @@ std::vector<GeometrySpec> parse_operands(const JsonFields& g, const char* op,
     if (!list.is_array() || list.size() < 2) g.fail(op, "an array of at least 2 shapes");
     std::vector<GeometrySpec> children;
     for (size_t m = 0; m < list.size(); ++m)
-        children.push_back(
-            parse_geometry(list[m], file, fmt::format("{}[{}]", g.path_of(op), m)));
+        children.push_back(parse_geometry(list[m], file, fmt::format("{}[{}]", g.path_of(op), m)));
     return children;
 }
 
@@ -75,9 +74,10 @@ void parse_surface_file(const JsonFields& g, const std::string& file, GeometrySp
                                : s.kind == "points" ? "a point cloud file name (.ply or .xyz)"
                                                     : "a cross-section file name");
     const std::filesystem::path relative(name.get<std::string>());
-    s.file = relative.is_absolute()
-                 ? relative.string()
-                 : (std::filesystem::path(file).parent_path() / relative).lexically_normal().string();
+    s.file =
+        relative.is_absolute()
+            ? relative.string()
+            : (std::filesystem::path(file).parent_path() / relative).lexically_normal().string();
     s.voxel_size = g.positive_number("voxel_size", 0);
     s.feature_angle = g.number("feature_angle", s.feature_angle);
     if (!(s.feature_angle > 0 && s.feature_angle <= 180))
@@ -86,12 +86,12 @@ void parse_surface_file(const JsonFields& g, const std::string& file, GeometrySp
 
 GeometrySpec parse_geometry(const json& value, const std::string& file, const std::string& path) {
     const JsonFields g(value, file, path);
-    static const char* primitives[] = {"sphere", "ellipsoid", "box", "cylinder", "torus", "cone",
-                                       "file", "points", "sections"};
+    static const char* primitives[] = {"sphere", "ellipsoid", "box",    "cylinder", "torus",
+                                       "cone",   "file",      "points", "sections"};
     static const char* operations[] = {"union", "intersection", "difference"};
     g.allow_only({"sphere", "ellipsoid", "box", "cylinder", "torus", "cone", "file", "points",
-                  "sections", "voxel_size", "feature_angle", "union", "intersection", "difference", "translate",
-                  "rotate", "scale"});
+                  "sections", "voxel_size", "feature_angle", "union", "intersection", "difference",
+                  "translate", "rotate", "scale"});
     GeometrySpec s;
     int shapes = 0;
     for (const char* k : primitives)
@@ -142,7 +142,8 @@ GridSpec parse_grid(const JsonFields& g, bool exterior) {
         g.fail("cell_size", "either cells_per_edge or cell_size, not both");
     grid.cell_size = g.positive_number("cell_size", 0);
     grid.wall_cells_given = g.has("wall_cells");
-    grid.wall_cells = g.integer("wall_cells", exterior ? 2 * grid.cells_per_edge : grid.wall_cells, 1, 4096);
+    grid.wall_cells =
+        g.integer("wall_cells", exterior ? 2 * grid.cells_per_edge : grid.wall_cells, 1, 4096);
     grid.core_size_given = g.has("core_size");
     grid.core_size = g.number("core_size", grid.core_size);
     if (!(grid.core_size > 0 && grid.core_size < 1)) g.fail("core_size", "a number in (0, 1)");
@@ -193,10 +194,13 @@ void parse_y_plus(const JsonFields& b, BoundaryLayerSpec& bl) {
     const double density = b.required_positive_number("density");
     const double viscosity = b.required_positive_number("viscosity");
     if (b.has("length") == b.has("reynolds"))
-        b.fail("length", "the reference length of the Reynolds number, or \"reynolds\" (one of them)");
-    bl.reynolds = b.has("reynolds") ? b.required_positive_number("reynolds")
-                                    : density * velocity * b.required_positive_number("length") / viscosity;
-    bl.first_height = first_height_from_y_plus(bl.y_plus, bl.reynolds, velocity, density, viscosity);
+        b.fail("length",
+               "the reference length of the Reynolds number, or \"reynolds\" (one of them)");
+    bl.reynolds = b.has("reynolds")
+                      ? b.required_positive_number("reynolds")
+                      : density * velocity * b.required_positive_number("length") / viscosity;
+    bl.first_height =
+        first_height_from_y_plus(bl.y_plus, bl.reynolds, velocity, density, viscosity);
 }
 
 BoundaryLayerSpec parse_boundary_layer(const JsonFields& b, const GridSpec& grid) {
@@ -208,13 +212,13 @@ BoundaryLayerSpec parse_boundary_layer(const JsonFields& b, const GridSpec& grid
     else
         bl.first_height = b.required_positive_number("first_height");
     bl.growth_ratio = b.number("growth_ratio", 1.2);
-    if (!(bl.growth_ratio >= 1 && bl.growth_ratio <= 3)) b.fail("growth_ratio", "a number in [1, 3]");
+    if (!(bl.growth_ratio >= 1 && bl.growth_ratio <= 3))
+        b.fail("growth_ratio", "a number in [1, 3]");
     const int available = grid.topology == "o-h"
                               ? grid.wall_cells - 1
                               : std::min({grid.cells[0], grid.cells[1], grid.cells[2]}) / 2 - 1;
     if (!b.has("layers")) b.fail("layers", "an integer number of layers");
-    if (available < 1)
-        b.fail("layers", "no layers: the grid leaves no room for a boundary layer");
+    if (available < 1) b.fail("layers", "no layers: the grid leaves no room for a boundary layer");
     bl.layers = b.integer("layers", 0, 1, available);
     return bl;
 }
@@ -253,7 +257,8 @@ FlowSpec parse_flow(const JsonFields& f) {
     flow.density = f.positive_number("density", flow.density);
     flow.viscosity = f.positive_number("viscosity", flow.viscosity);
     flow.turbulence = f.choice("turbulence", flow.turbulence, {"laminar", "k-omega-sst"});
-    flow.turbulence_intensity = f.positive_number("turbulence_intensity", flow.turbulence_intensity);
+    flow.turbulence_intensity =
+        f.positive_number("turbulence_intensity", flow.turbulence_intensity);
     flow.turbulence_length = f.positive_number("turbulence_length", 0);
     return flow;
 }
@@ -266,7 +271,8 @@ TetMeshSpec parse_tet_mesh(const JsonFields& f) {
     t.grading = f.positive_number("grading", t.grading);
     t.facet_distance = f.positive_number("facet_distance", 0);
     t.feature_angle = f.number("feature_angle", t.feature_angle);
-    if (!(t.feature_angle > 0 && t.feature_angle < 180)) f.fail("feature_angle", "an angle in (0, 180) degrees");
+    if (!(t.feature_angle > 0 && t.feature_angle < 180))
+        f.fail("feature_angle", "an angle in (0, 180) degrees");
     if (t.cell_size > 0 && t.wall_cell_size > t.cell_size)
         f.fail("wall_cell_size", "a size at most cell_size (" + std::to_string(t.cell_size) + ")");
     return t;
@@ -274,21 +280,25 @@ TetMeshSpec parse_tet_mesh(const JsonFields& f) {
 
 std::vector<std::string> parse_outputs(const JsonFields& top, const std::string& file) {
     const json& list = top.at("outputs");
-    if (!list.is_array()) top.fail("outputs", "an array of format names (" + export_format_list() + ")");
+    if (!list.is_array())
+        top.fail("outputs", "an array of format names (" + export_format_list() + ")");
     std::vector<std::string> outputs;
     for (size_t m = 0; m < list.size(); ++m) {
         if (!list[m].is_string() || !is_export_format(list[m].get<std::string>())) {
             // "(vtk)" kept first: tests/io/test_case_file.cpp matches that wording.
-            throw InputError(fmt::format("{}: outputs[{}]: expected a format name (vtk), got {}; "
-                                         "the formats are {}",
-                                         file, m, describe(list[m]), export_format_list()));
+            throw InputError(
+                fmt::format("{}: outputs[{}]: expected a format name (vtk), got {}; "
+                            "the formats are {}",
+                            file, m, describe(list[m]), export_format_list()));
         }
         outputs.push_back(list[m].get<std::string>());
     }
     return outputs;
 }
 
-json vec3_json(const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
+json vec3_json(const Vec3& v) {
+    return json::array({v.x(), v.y(), v.z()});
+}
 
 json geometry_json(const GeometrySpec& s) {
     json g;
@@ -332,8 +342,10 @@ std::string case_to_json(const Case& c) {
                  {"wall_cells", c.grid.wall_cells},
                  {"core_size", c.grid.core_size},
                  {"cells", c.grid.cells}};
-    if (c.grid.cell_size > 0) grid["cell_size"] = c.grid.cell_size;
-    else grid["cells_per_edge"] = c.grid.cells_per_edge;
+    if (c.grid.cell_size > 0)
+        grid["cell_size"] = c.grid.cell_size;
+    else
+        grid["cells_per_edge"] = c.grid.cells_per_edge;
     if (c.grid.center) grid["center"] = vec3_json(*c.grid.center);
     grid["axis"] = c.grid.axis;
     if (c.grid.axis != "none" && c.grid.ring_cells > 0) grid["ring_cells"] = c.grid.ring_cells;
@@ -353,7 +365,8 @@ std::string case_to_json(const Case& c) {
                     {"turbulence", c.flow.turbulence}};
     if (c.flow.turbulence != "laminar") {
         root["flow"]["turbulence_intensity"] = c.flow.turbulence_intensity;
-        if (c.flow.turbulence_length > 0) root["flow"]["turbulence_length"] = c.flow.turbulence_length;
+        if (c.flow.turbulence_length > 0)
+            root["flow"]["turbulence_length"] = c.flow.turbulence_length;
     }
     root["solver"] = {{"untangle", c.solver.untangle},
                       {"optimize", c.solver.optimize},
@@ -396,10 +409,12 @@ Case parse_case(const std::string& text, const std::string& path) {
         top.object("grid").fail(
             "axis", "\"none\" or \"auto\" (an exterior domain is gridded by the O-grid)");
     if (c.domain == "exterior" && c.grid.topology != "o-h")
-        top.fail("grid.topology", "\"o-h\" (an exterior domain is gridded by the O-grid of its "
-                                  "six wall patches)");
+        top.fail("grid.topology",
+                 "\"o-h\" (an exterior domain is gridded by the O-grid of its "
+                 "six wall patches)");
     if (top.has("far_field")) {
-        if (c.domain != "exterior") top.fail("far_field", "no far_field: it goes with \"domain\": \"exterior\"");
+        if (c.domain != "exterior")
+            top.fail("far_field", "no far_field: it goes with \"domain\": \"exterior\"");
         c.far_field = parse_far_field(top.object("far_field"));
     }
     if (top.has("boundary_layer"))
@@ -418,7 +433,8 @@ Case parse_case(const std::string& text, const std::string& path) {
 
 Case read_case(const std::string& path) {
     std::ifstream in(path);
-    if (!in) throw InputError(fmt::format("{}: cannot open case file ({})", path, std::strerror(errno)));
+    if (!in)
+        throw InputError(fmt::format("{}: cannot open case file ({})", path, std::strerror(errno)));
     std::ostringstream text;
     text << in.rdbuf();
     if (in.bad()) throw InputError(fmt::format("{}: cannot read case file", path));

@@ -19,17 +19,17 @@ struct GeometrySpec {
     std::string kind;  // sphere ellipsoid box cylinder torus cone file points sections
                        // | union intersection difference
     Vec3 center = Vec3::Zero();
-    double radius = 0;        // sphere, cylinder
-    Vec3 semi_axes = Vec3::Zero();  // ellipsoid
-    Vec3 size = Vec3::Zero();       // box: full edge lengths
-    double height = 0;              // cylinder, cone: full height along z
+    double radius = 0;                          // sphere, cylinder
+    Vec3 semi_axes = Vec3::Zero();              // ellipsoid
+    Vec3 size = Vec3::Zero();                   // box: full edge lengths
+    double height = 0;                          // cylinder, cone: full height along z
     double major_radius = 0, minor_radius = 0;  // torus in the xy plane
     double bottom_radius = 0, top_radius = 0;   // cone (frustum), bottom at lower z
     std::vector<GeometrySpec> children;         // CSG operands, in order
     // file: surface (STL OBJ OFF PLY); points: oriented point cloud (PLY XYZ); sections: a
     // cross-section stack (io/sample_readers.h). Resolved against the case's folder.
     std::string file;
-    double voxel_size = 0;   // file: voxel of its signed distance field (0: longest side / 256)
+    double voxel_size = 0;      // file: voxel of its signed distance field (0: longest side / 256)
     double feature_angle = 30;  // file: edges turning more than this are sharp creases (degrees)
     Vec3 translate = Vec3::Zero();
     Vec3 rotate_axis = Vec3::UnitZ();
@@ -39,14 +39,14 @@ struct GeometrySpec {
 
 struct GridSpec {
     std::string topology = "o-h";  // "o-h" | "single-block" (interior domain only)
-    int cells_per_edge = 20;        // o-h, o-grid: cells along each core/patch edge
-    double cell_size = 0;           // > 0: cells_per_edge from the body's size instead
+    int cells_per_edge = 20;       // o-h, o-grid: cells along each core/patch edge
+    double cell_size = 0;          // > 0: cells_per_edge from the body's size instead
     // o-h: cells from the core to the wall; o-grid: to the far field (default twice
     // cells_per_edge for an exterior domain)
     int wall_cells = 10;
     bool wall_cells_given = false;
-    double core_size = 0.45;        // o-h: core half-size / body half extents
-    bool core_size_given = false;   // else smaller when 0.45 would reach the wall (run_case)
+    double core_size = 0.45;       // o-h: core half-size / body half extents
+    bool core_size_given = false;  // else smaller when 0.45 would reach the wall (run_case)
     std::array<int, 3> cells = {20, 20, 20};  // single-block
     std::optional<Vec3> center;
     // o-h: "x" | "y" | "z": the core and the patches across that axis O-gridded around it;
@@ -62,8 +62,8 @@ struct BoundaryLayerSpec {
     double first_height = 0;  // geometry units
     double growth_ratio = 1;
     int layers = 0;
-    double y_plus = 0;         // > 0 when first_height was derived from y+
-    double reynolds = 0;       // Reynolds number of the y+ estimate
+    double y_plus = 0;    // > 0 when first_height was derived from y+
+    double reynolds = 0;  // Reynolds number of the y+ estimate
 };
 
 // The far-field boundary of an exterior grid: a sphere of radius `size` or a cube of
@@ -81,8 +81,8 @@ struct SolverSpec {
     // Volume weight of the functional while optimizing. Below DESIGN §4's 0.8: weighing shape
     // more gives better wall-layer grids (README, "solver"; bench/RESULTS.md).
     double theta = 0.2;
-    int max_iterations = 200;       // untangling outer iterations
-    int optimize_iterations = 10;   // barrier outer iterations; 0 keeps the constructed grid
+    int max_iterations = 200;      // untangling outer iterations
+    int optimize_iterations = 10;  // barrier outer iterations; 0 keeps the constructed grid
     // Barrier outer iterations of the surface pass (the wall grid alone on u = 0 with the 2D
     // functional, before the volume); 0 skips it.
     int surface_iterations = 10;
@@ -109,7 +109,7 @@ struct Case {
     GeometrySpec geometry;
     std::string domain = "interior";  // "interior": grid inside the body; "exterior": around it
     GridSpec grid;
-    FarFieldSpec far_field;           // exterior only
+    FarFieldSpec far_field;  // exterior only
     std::optional<BoundaryLayerSpec> boundary_layer;
     SolverSpec solver;
     std::vector<std::string> outputs = {"vtk"};

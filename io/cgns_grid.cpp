@@ -1,8 +1,9 @@
 #include "io/cgns_grid.h"
 
-#include <algorithm>
 #include <cgnslib.h>
 #include <fmt/format.h>
+
+#include <algorithm>
 #include <set>
 #include <stdexcept>
 #include <unordered_map>
@@ -32,7 +33,7 @@ std::set<Id> corner_ids(const Block& b, int face) {
 }
 
 class CgnsFile {
-public:
+  public:
     explicit CgnsFile(const std::string& path) : path_(path) {
         check(cg_open(path.c_str(), CG_MODE_WRITE, &fn_));
     }
@@ -40,7 +41,8 @@ public:
         if (fn_ >= 0) cg_close(fn_);
     }
     void check(int status) const {
-        if (status != CG_OK) throw std::runtime_error(fmt::format("{}: CGNS: {}", path_, cg_get_error()));
+        if (status != CG_OK)
+            throw std::runtime_error(fmt::format("{}: CGNS: {}", path_, cg_get_error()));
     }
     void close() {
         const int f = fn_;
@@ -49,7 +51,7 @@ public:
     }
     int fn() const { return fn_; }
 
-private:
+  private:
     std::string path_;
     int fn_ = -1;
 };
@@ -83,10 +85,13 @@ void write_1to1(const CgnsFile& file, int base, const std::vector<int>& zones,
     std::unordered_map<Id, std::array<int, 3>> in_b;  // node id -> index on face fb of b
     for (int k = box_b.lo[2]; k <= box_b.hi[2]; ++k)
         for (int j = box_b.lo[1]; j <= box_b.hi[1]; ++j)
-            for (int i = box_b.lo[0]; i <= box_b.hi[0]; ++i) in_b.emplace(B.node(i, j, k), std::array<int, 3>{i, j, k});
+            for (int i = box_b.lo[0]; i <= box_b.hi[0]; ++i)
+                in_b.emplace(B.node(i, j, k), std::array<int, 3>{i, j, k});
     auto donor = [&](const std::array<int, 3>& ijk) {
         const auto it = in_b.find(A.node(ijk[0], ijk[1], ijk[2]));
-        if (it == in_b.end()) throw std::runtime_error(fmt::format("blocks '{}' and '{}': interface nodes do not match", A.name, B.name));
+        if (it == in_b.end())
+            throw std::runtime_error(
+                fmt::format("blocks '{}' and '{}': interface nodes do not match", A.name, B.name));
         return it->second;
     };
     const std::array<int, 3> begin_b = donor(box_a.lo), end_b = donor(box_a.hi);
@@ -114,7 +119,8 @@ void write_1to1(const CgnsFile& file, int base, const std::vector<int>& zones,
         donor_range[m + 3] = end_b[m] + 1;
     }
     int index = 0;
-    const std::string name = fmt::format("{}_{}_to_{}", names[a], block_face_names[fa], names[b]).substr(0, 32);
+    const std::string name =
+        fmt::format("{}_{}_to_{}", names[a], block_face_names[fa], names[b]).substr(0, 32);
     file.check(cg_1to1_write(file.fn(), base, zones[a], name.c_str(), names[b].c_str(), range,
                              donor_range, transform, &index));
 }
@@ -132,7 +138,8 @@ void write_cgns_grid(const BlockGrid& grid, const std::string& path) {
     std::vector<std::string> families;
     for (const Block& b : grid.blocks)
         for (const std::string& patch : b.face_patch)
-            if (!patch.empty() && std::find(families.begin(), families.end(), patch) == families.end())
+            if (!patch.empty() &&
+                std::find(families.begin(), families.end(), patch) == families.end())
                 families.push_back(patch);
     for (const std::string& family : families) {
         int f = 0, fbc = 0;
@@ -147,16 +154,19 @@ void write_cgns_grid(const BlockGrid& grid, const std::string& path) {
         const Block& b = grid.blocks[z];
         const Dims c = b.cells();
         const cgsize_t size[9] = {b.nodes.ni, b.nodes.nj, b.nodes.nk, c.ni, c.nj, c.nk, 0, 0, 0};
-        file.check(cg_zone_write(file.fn(), base, names[z].c_str(), size, CGNS_ENUMV(Structured), &zones[z]));
+        file.check(cg_zone_write(file.fn(), base, names[z].c_str(), size, CGNS_ENUMV(Structured),
+                                 &zones[z]));
         static const char* axes[3] = {"CoordinateX", "CoordinateY", "CoordinateZ"};
         coord.resize(b.nodes.count());
         for (int a = 0; a < 3; ++a) {
             for (Id m = 0; m < b.nodes.count(); ++m) coord[m] = grid.points[b.node_ids[m]][a];
             int index = 0;
-            file.check(cg_coord_write(file.fn(), base, zones[z], CGNS_ENUMV(RealDouble), axes[a], coord.data(), &index));
+            file.check(cg_coord_write(file.fn(), base, zones[z], CGNS_ENUMV(RealDouble), axes[a],
+                                      coord.data(), &index));
             // A length: exponents of mass, length, time, temperature, angle.
             const float length[5] = {0, 1, 0, 0, 0};
-            file.check(cg_goto(file.fn(), base, "Zone_t", zones[z], "GridCoordinates_t", 1, "DataArray_t", index, "end"));
+            file.check(cg_goto(file.fn(), base, "Zone_t", zones[z], "GridCoordinates_t", 1,
+                               "DataArray_t", index, "end"));
             file.check(cg_exponents_write(CGNS_ENUMV(RealSingle), length));
         }
         for (int f = 0; f < 6; ++f) {
@@ -169,9 +179,11 @@ void write_cgns_grid(const BlockGrid& grid, const std::string& path) {
             const std::string name = fmt::format("{}_{}", patch, block_face_names[f]).substr(0, 32);
             // The type lives on the patch's family (FamilyBC_t): readers that take only some BC
             // types on a BC_t (VTK's, ParaView's) take FamilySpecified with the family's name.
-            file.check(cg_boco_write(file.fn(), base, zones[z], name.c_str(), CGNS_ENUMV(FamilySpecified),
-                                     CGNS_ENUMV(PointRange), 2, range, &bc));
-            file.check(cg_goto(file.fn(), base, "Zone_t", zones[z], "ZoneBC_t", 1, "BC_t", bc, "end"));
+            file.check(cg_boco_write(file.fn(), base, zones[z], name.c_str(),
+                                     CGNS_ENUMV(FamilySpecified), CGNS_ENUMV(PointRange), 2, range,
+                                     &bc));
+            file.check(
+                cg_goto(file.fn(), base, "Zone_t", zones[z], "ZoneBC_t", 1, "BC_t", bc, "end"));
             file.check(cg_famname_write(patch.c_str()));
         }
     }

@@ -13,13 +13,13 @@ namespace hexmesh {
 namespace {
 
 // The sides of an Exodus HEX8, as 0-based local nodes (side s + 1 is entry s).
-constexpr std::array<std::array<int, 4>, 6> exodus_sides = {{
-    {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {0, 4, 7, 3}, {0, 3, 2, 1}, {4, 5, 6, 7}}};
+constexpr std::array<std::array<int, 4>, 6> exodus_sides = {
+    {{0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {0, 4, 7, 3}, {0, 3, 2, 1}, {4, 5, 6, 7}}};
 
 constexpr int name_length = 33;  // Exodus's default name length, with the terminating zero
 
 class NetcdfFile {
-public:
+  public:
     explicit NetcdfFile(const std::string& path) : path_(path) {
         check(nc_create(path.c_str(), NC_CLOBBER | NC_64BIT_OFFSET, &id_), "create");
     }
@@ -27,7 +27,9 @@ public:
         if (id_ >= 0) nc_close(id_);
     }
     void check(int status, const char* what) const {
-        if (status != NC_NOERR) throw std::runtime_error(fmt::format("{}: Exodus (netCDF) {}: {}", path_, what, nc_strerror(status)));
+        if (status != NC_NOERR)
+            throw std::runtime_error(
+                fmt::format("{}: Exodus (netCDF) {}: {}", path_, what, nc_strerror(status)));
     }
     int dim(const std::string& name, size_t length) {
         int d = 0;
@@ -50,7 +52,7 @@ public:
     }
     int id() const { return id_; }
 
-private:
+  private:
     std::string path_;
     int id_ = -1;
 };
@@ -59,7 +61,8 @@ private:
 std::vector<char> name_block(const std::vector<std::string>& names) {
     std::vector<char> block(names.size() * name_length, '\0');
     for (size_t n = 0; n < names.size(); ++n)
-        std::memcpy(&block[n * name_length], names[n].data(), std::min<size_t>(names[n].size(), name_length - 1));
+        std::memcpy(&block[n * name_length], names[n].data(),
+                    std::min<size_t>(names[n].size(), name_length - 1));
     return block;
 }
 
@@ -96,12 +99,15 @@ void write_exodus_mesh(const BlockGrid& grid, const std::string& path) {
 
     NetcdfFile f(path);
     const int id = f.id();
-    f.text_attribute(NC_GLOBAL, "title", fmt::format("hexmesh: {} hexahedra, {} boundary patches", cells.size(), npatches));
+    f.text_attribute(
+        NC_GLOBAL, "title",
+        fmt::format("hexmesh: {} hexahedra, {} boundary patches", cells.size(), npatches));
     const float version = 8.03f;
     const int word_size = 8, file_size = 1;
     f.check(nc_put_att_float(id, NC_GLOBAL, "api_version", NC_FLOAT, 1, &version), "attribute");
     f.check(nc_put_att_float(id, NC_GLOBAL, "version", NC_FLOAT, 1, &version), "attribute");
-    f.check(nc_put_att_int(id, NC_GLOBAL, "floating_point_word_size", NC_INT, 1, &word_size), "attribute");
+    f.check(nc_put_att_int(id, NC_GLOBAL, "floating_point_word_size", NC_INT, 1, &word_size),
+            "attribute");
     f.check(nc_put_att_int(id, NC_GLOBAL, "file_size", NC_INT, 1, &file_size), "attribute");
     const int len_name = f.dim("len_name", name_length);
     f.dim("len_string", name_length);
@@ -117,11 +123,13 @@ void write_exodus_mesh(const BlockGrid& grid, const std::string& path) {
     int num_side_sets = -1;
     if (npatches > 0) num_side_sets = f.dim("num_side_sets", size_t(npatches));
     std::vector<int> side_dims(npatches);
-    for (int p = 0; p < npatches; ++p) side_dims[p] = f.dim(fmt::format("num_side_ss{}", p + 1), element[p].size());
+    for (int p = 0; p < npatches; ++p)
+        side_dims[p] = f.dim(fmt::format("num_side_ss{}", p + 1), element[p].size());
 
     f.var("time_whole", NC_DOUBLE, {time_step});
     const int coord_names = f.var("coor_names", NC_CHAR, {num_dim, len_name});
-    const int coord[3] = {f.var("coordx", NC_DOUBLE, {num_nodes}), f.var("coordy", NC_DOUBLE, {num_nodes}),
+    const int coord[3] = {f.var("coordx", NC_DOUBLE, {num_nodes}),
+                          f.var("coordy", NC_DOUBLE, {num_nodes}),
                           f.var("coordz", NC_DOUBLE, {num_nodes})};
     const int eb_status = f.var("eb_status", NC_INT, {num_el_blk});
     const int eb_prop = f.var("eb_prop1", NC_INT, {num_el_blk});

@@ -1,19 +1,20 @@
 #include "io/export_grid.h"
 
-#include <filesystem>
 #include <fmt/format.h>
+
+#include <filesystem>
 
 #include "io/case_file.h"
 #include "io/cgns_grid.h"
 #include "io/exodus_mesh.h"
 #include "io/fluent_mesh.h"
 #include "io/gmsh_mesh.h"
-#include "io/su2_mesh.h"
-#include "io/ugrid_mesh.h"
 #include "io/medit_mesh.h"
 #include "io/openfoam_mesh.h"
 #include "io/plot3d.h"
 #include "io/staged_output.h"
+#include "io/su2_mesh.h"
+#include "io/ugrid_mesh.h"
 #include "io/vtk_mesh.h"
 
 namespace hexmesh {
@@ -29,10 +30,14 @@ bool parse_plot3d(const std::string& format, Plot3dFormat& out) {
         out.single_precision = true;
         rest.resize(rest.size() - 7);
     }
-    if (rest.empty() || rest == "-fortran") out.encoding = Plot3dEncoding::fortran;
-    else if (rest == "-c") out.encoding = Plot3dEncoding::c_binary;
-    else if (rest == "-ascii") out.encoding = Plot3dEncoding::ascii;
-    else return false;
+    if (rest.empty() || rest == "-fortran")
+        out.encoding = Plot3dEncoding::fortran;
+    else if (rest == "-c")
+        out.encoding = Plot3dEncoding::c_binary;
+    else if (rest == "-ascii")
+        out.encoding = Plot3dEncoding::ascii;
+    else
+        return false;
     return true;
 }
 
@@ -47,14 +52,17 @@ std::string lower_extension(const std::string& path) {
 bool is_export_format(const std::string& format) {
     Plot3dFormat p;
     return format == "vtk" || format == "openfoam" || format == "cgns" || format == "gmsh" ||
-           format == "medit" || format == "su2" || format == "ugrid" || format == "fluent" || format == "exodus" || parse_plot3d(format, p);
+           format == "medit" || format == "su2" || format == "ugrid" || format == "fluent" ||
+           format == "exodus" || parse_plot3d(format, p);
 }
 
 std::string export_format_list() {
-    return "vtk, openfoam, cgns, gmsh, medit, su2, ugrid, fluent, exodus, plot3d[-fortran|-c|-ascii][-single]";
+    return "vtk, openfoam, cgns, gmsh, medit, su2, ugrid, fluent, exodus, "
+           "plot3d[-fortran|-c|-ascii][-single]";
 }
 
-std::string export_file_name(const std::string& format, const std::string& stem, const BlockGrid& grid) {
+std::string export_file_name(const std::string& format, const std::string& stem,
+                             const BlockGrid& grid) {
     if (format == "vtk") return stem + (grid.blocks.size() == 1 ? ".vts" : ".vtm");
     if (format == "openfoam") return stem + "_openfoam";
     if (format == "cgns") return stem + ".cgns";
@@ -73,23 +81,36 @@ std::string export_file_name(const std::string& format, const std::string& stem,
 void write_grid_format(const BlockGrid& grid, const std::string& format, const std::string& path,
                        const FlowSpec& flow) {
     Plot3dFormat plot3d;
-    if (format == "vtk") write_vtk_grid(grid, path);
-    else if (format == "openfoam") write_openfoam_mesh(grid, path, flow);
-    else if (format == "cgns") write_cgns_grid(grid, path);
-    else if (format == "gmsh") write_gmsh_mesh(grid, path);
-    else if (format == "medit") write_medit_mesh(grid, path);
-    else if (format == "su2") write_su2_mesh(grid, path);
-    else if (format == "ugrid") write_ugrid_mesh(grid, path);
-    else if (format == "fluent") write_fluent_mesh(grid, path);
-    else if (format == "exodus") write_exodus_mesh(grid, path);
-    else if (parse_plot3d(format, plot3d)) write_plot3d(grid, path, plot3d);
-    else throw InputError(fmt::format("unknown export format '{}' (expected one of: {})", format, export_format_list()));
+    if (format == "vtk")
+        write_vtk_grid(grid, path);
+    else if (format == "openfoam")
+        write_openfoam_mesh(grid, path, flow);
+    else if (format == "cgns")
+        write_cgns_grid(grid, path);
+    else if (format == "gmsh")
+        write_gmsh_mesh(grid, path);
+    else if (format == "medit")
+        write_medit_mesh(grid, path);
+    else if (format == "su2")
+        write_su2_mesh(grid, path);
+    else if (format == "ugrid")
+        write_ugrid_mesh(grid, path);
+    else if (format == "fluent")
+        write_fluent_mesh(grid, path);
+    else if (format == "exodus")
+        write_exodus_mesh(grid, path);
+    else if (parse_plot3d(format, plot3d))
+        write_plot3d(grid, path, plot3d);
+    else
+        throw InputError(fmt::format("unknown export format '{}' (expected one of: {})", format,
+                                     export_format_list()));
 }
 
 std::vector<std::string> export_grid(const BlockGrid& grid, const std::string& format,
                                      const std::string& path, const FlowSpec& flow) {
     if (!is_export_format(format))
-        throw InputError(fmt::format("unknown export format '{}' (expected one of: {})", format, export_format_list()));
+        throw InputError(fmt::format("unknown export format '{}' (expected one of: {})", format,
+                                     export_format_list()));
     const fs::path target(path);
     if (target.filename().empty() || target.filename() == "." || target.filename() == "..")
         throw InputError(fmt::format("{}: expected a file name to write", path));
@@ -101,9 +122,11 @@ std::vector<std::string> export_grid(const BlockGrid& grid, const std::string& f
         return out.commit();
     }
     const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
-    StagedOutput out(folder.string(), StagedOutput::Scope::named_entries);  // the user's folder: one file
+    StagedOutput out(folder.string(),
+                     StagedOutput::Scope::named_entries);  // the user's folder: one file
     write_grid_format(grid, format, out.path(target.filename().string()), flow);
-    if (format == "ugrid") out.path(ugrid_mapbc_path(target.filename().string()));  // written beside it
+    if (format == "ugrid")
+        out.path(ugrid_mapbc_path(target.filename().string()));  // written beside it
     if (format.rfind("plot3d", 0) == 0) {
         out.path(plot3d_patch_file(target.filename().string()));
         out.path(plot3d_map_file(target.filename().string()));
@@ -120,7 +143,8 @@ BlockGrid read_block_grid(const std::string& path) {
     if (is_plot3d_path(path)) return read_plot3d(path);
     const std::string ext = lower_extension(path);
     if (ext == ".vts" || ext == ".vtm") return read_vtk_block_grid(path);
-    throw InputError(fmt::format("{}: not a block grid (expected .vts, .vtm or Plot3D .xyz .x .p3d .g)", path));
+    throw InputError(
+        fmt::format("{}: not a block grid (expected .vts, .vtm or Plot3D .xyz .x .p3d .g)", path));
 }
 
 }  // namespace hexmesh

@@ -9,15 +9,17 @@
 
 namespace hexmesh {
 
-// Format names: vtk, openfoam, cgns, gmsh, medit, su2, ugrid, fluent, exodus, and plot3d[-fortran|-c|-ascii][-single]
-// (plot3d alone is Fortran-unformatted, double precision).
+// Format names: vtk, openfoam, cgns, gmsh, medit, su2, ugrid, fluent, exodus, and
+// plot3d[-fortran|-c|-ascii][-single] (plot3d alone is Fortran-unformatted, double precision).
 bool is_export_format(const std::string& format);
 std::string export_format_list();  // the names above, for messages
 
 // Output name of a format for grid files named `stem` in a folder: stem.vtm (stem.vts for one
-// block), stem_openfoam (a case folder), stem.cgns, stem.msh, stem.mesh, stem.su2, stem.ugrid (and stem.mapbc), stem_fluent.msh, stem.exo, stem.xyz for plot3d
-// and stem_<variant>.xyz for its other variants (plot3d-c-single -> stem_c_single.xyz).
-std::string export_file_name(const std::string& format, const std::string& stem, const BlockGrid& grid);
+// block), stem_openfoam (a case folder), stem.cgns, stem.msh, stem.mesh, stem.su2, stem.ugrid (and
+// stem.mapbc), stem_fluent.msh, stem.exo, stem.xyz for plot3d and stem_<variant>.xyz for its other
+// variants (plot3d-c-single -> stem_c_single.xyz).
+std::string export_file_name(const std::string& format, const std::string& stem,
+                             const BlockGrid& grid);
 
 // Writes `grid` in `format` at `path` directly (no staging). Plot3D adds PATH.patches.json;
 // an OpenFOAM case is set up for `flow`.

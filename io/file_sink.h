@@ -1,8 +1,9 @@
 // Buffered output file for the exporters: every write error (full disk, no permission) throws.
 #pragma once
 
-#include <cstdio>
 #include <fmt/format.h>
+
+#include <cstdio>
 #include <string>
 
 namespace hexmesh {
@@ -12,7 +13,7 @@ namespace hexmesh {
 // at close(), where a full disk shows up. The destructor closes without checking: call
 // close() on the success path.
 class FileSink {
-public:
+  public:
     explicit FileSink(std::string path, bool binary = true);
     ~FileSink();
     FileSink(const FileSink&) = delete;
@@ -20,7 +21,9 @@ public:
 
     void write(const void* data, size_t bytes);
     template <class T>
-    void put(const T& value) { write(&value, sizeof(T)); }
+    void put(const T& value) {
+        write(&value, sizeof(T));
+    }
     template <class... Args>
     void print(fmt::format_string<Args...> format, Args&&... args) {
         fmt::format_to(std::back_inserter(text_), format, std::forward<Args>(args)...);
@@ -29,7 +32,7 @@ public:
     void close();
     const std::string& path() const { return path_; }
 
-private:
+  private:
     void flush_text();
     [[noreturn]] void fail(const char* what);
 

@@ -12,7 +12,7 @@ namespace hexmesh {
 struct FlowSpec {
     Vec3 velocity = Vec3(1, 0, 0);  // free stream, geometry units per second
     double density = 1;
-    double viscosity = 0.01;        // dynamic; the kinematic one is viscosity / density
+    double viscosity = 0.01;  // dynamic; the kinematic one is viscosity / density
     // "laminar", or "k-omega-sst" (Menter's SST: k and omega from turbulence_intensity and
     // turbulence_length, wall functions that also hold at y+ ~ 1).
     std::string turbulence = "laminar";

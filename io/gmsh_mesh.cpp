@@ -31,8 +31,8 @@ void write_gmsh_mesh(const BlockGrid& grid, const std::string& path) {
     for (int p = 0; p < npatches; ++p)
         out.print("{} {} {} {} {} {} {} 1 {} 0\n", p + 1, lo.x(), lo.y(), lo.z(), hi.x(), hi.y(),
                   hi.z(), p + 1);
-    out.print("1 {} {} {} {} {} {} 1 {} {}", lo.x(), lo.y(), lo.z(), hi.x(), hi.y(), hi.z(),
-              fluid, npatches);
+    out.print("1 {} {} {} {} {} {} 1 {} {}", lo.x(), lo.y(), lo.z(), hi.x(), hi.y(), hi.z(), fluid,
+              npatches);
     for (int p = 0; p < npatches; ++p) out.print(" {}", p + 1);
     out.print("\n$EndEntities\n");
 
@@ -48,8 +48,8 @@ void write_gmsh_mesh(const BlockGrid& grid, const std::string& path) {
     Id tag = 1;
     for (const Block& b : grid.blocks)
         for_each_cell(b, [&](int, int, int, const std::array<Id, 8>& n) {
-            out.print("{} {} {} {} {} {} {} {} {}\n", tag++, n[0] + 1, n[1] + 1, n[2] + 1,
-                      n[3] + 1, n[4] + 1, n[5] + 1, n[6] + 1, n[7] + 1);
+            out.print("{} {} {} {} {} {} {} {} {}\n", tag++, n[0] + 1, n[1] + 1, n[2] + 1, n[3] + 1,
+                      n[4] + 1, n[5] + 1, n[6] + 1, n[7] + 1);
         });
     for (int p = 0; p < npatches; ++p) {
         out.print("2 {} 3 {}\n", p + 1, patch_faces[p]);
@@ -78,8 +78,10 @@ HexMesh read_gmsh_mesh(const std::string& path) {
         const std::string section = in.word();
         if (section == "$MeshFormat") {
             const std::string version = in.word();
-            if (version != "4.1") in.fail(fmt::format("MSH version {} is not supported (expected 4.1)", version));
-            if (in.integer("the file type") != 0) in.fail("binary MSH is not supported (expected ASCII)");
+            if (version != "4.1")
+                in.fail(fmt::format("MSH version {} is not supported (expected 4.1)", version));
+            if (in.integer("the file type") != 0)
+                in.fail("binary MSH is not supported (expected ASCII)");
             in.integer("the data size");
             seen_format = true;
         } else if (section == "$Nodes") {
@@ -92,7 +94,8 @@ HexMesh read_gmsh_mesh(const std::string& path) {
             const long long max_tag = in.integer("maxNodeTag");
             // A node takes at least 8 characters (its tag and three coordinates).
             if (count < 0 || count > (long long)(in.size() / 8) || blocks < 0 || blocks > count)
-                in.fail(fmt::format("{} nodes in {} blocks do not fit in the file's {} bytes", count, blocks, in.size()));
+                in.fail(fmt::format("{} nodes in {} blocks do not fit in the file's {} bytes",
+                                    count, blocks, in.size()));
             if (max_tag < 1 && count > 0) in.fail(fmt::format("maxNodeTag {} is below 1", max_tag));
             if (max_tag <= 4 * count + 1024) node_of_tag.assign(max_tag + 1, -1);
             sparse_node_of_tag.reserve(node_of_tag.empty() ? size_t(count) : 0);
@@ -101,16 +104,20 @@ HexMesh read_gmsh_mesh(const std::string& path) {
                 in.integer("entityTag");
                 if (in.integer("parametric") != 0) in.fail("parametric nodes are not supported");
                 const long long n = in.integer("numNodesInBlock");
-                if (n < 0 || n > count) in.fail(fmt::format("a block of {} nodes in a file of {}", n, count));
+                if (n < 0 || n > count)
+                    in.fail(fmt::format("a block of {} nodes in a file of {}", n, count));
                 std::vector<long long> tags(n);
                 for (auto& t : tags) {
                     t = in.integer("a node tag");
-                    if (t < 1 || t > max_tag) in.fail(fmt::format("node tag {} outside [1, {}]", t, max_tag));
+                    if (t < 1 || t > max_tag)
+                        in.fail(fmt::format("node tag {} outside [1, {}]", t, max_tag));
                 }
                 for (long long t : tags) {
                     const double x = in.real("x"), y = in.real("y"), z = in.real("z");
-                    if (node_of_tag.empty()) sparse_node_of_tag[t] = mesh.num_points();
-                    else node_of_tag[t] = mesh.num_points();
+                    if (node_of_tag.empty())
+                        sparse_node_of_tag[t] = mesh.num_points();
+                    else
+                        node_of_tag[t] = mesh.num_points();
                     mesh.points.emplace_back(x, y, z);
                 }
             }
@@ -141,7 +148,8 @@ HexMesh read_gmsh_mesh(const std::string& path) {
         } else if (section.size() > 1 && section[0] == '$' && section.rfind("$End", 0) != 0) {
             // A section we do not need: skip to its $End line.
             const std::string end = "$End" + section.substr(1);
-            while (!in.done() && in.word() != end) {}
+            while (!in.done() && in.word() != end) {
+            }
         }
     }
     if (!seen_format) in.fail("not a Gmsh file (no $MeshFormat)");

@@ -1,7 +1,8 @@
 #include "io/grid_faces.h"
 
-#include <algorithm>
 #include <fmt/format.h>
+
+#include <algorithm>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -65,7 +66,8 @@ GridFaces make_grid_faces(const BlockGrid& grid) {
                     if (other.cell < 0 || other.cell == slot.cell) {
                         throw std::invalid_argument(fmt::format(
                             "block grid: a face of cell {} (block '{}') is shared by more than "
-                            "two cells", slot.cell, block.name));
+                            "two cells",
+                            slot.cell, block.name));
                     }
                     out.across[b][face][slot.index] = other.cell;
                     out.across[other.block][other.face][other.index] = slot.cell;
@@ -91,7 +93,8 @@ GridFaces make_grid_faces(const BlockGrid& grid) {
             // block's, or the blocks do not conform there.
             if (name.empty())
                 throw std::invalid_argument(fmt::format(
-                    "block grid: face {} of block '{}' is an interface (no patch), but {} of its {} cell "
+                    "block grid: face {} of block '{}' is an interface (no patch), but {} of its "
+                    "{} cell "
                     "faces meet no other block's: the blocks do not conform there",
                     block_face_names[face], grid.blocks[b].name, open_faces, across.size()));
             out.face_patch_index[b][face] = patch_index(name);
@@ -105,7 +108,8 @@ std::vector<Id> patch_face_counts(const BlockGrid& grid, const GridFaces& faces)
     for (size_t b = 0; b < grid.blocks.size(); ++b) {
         const Dims c = grid.blocks[b].cells();
         for (int face = 0; face < 6; ++face)
-            if (const int p = faces.face_patch_index[b][face]; p >= 0) counts[size_t(p)] += c.count() / c[face / 2];
+            if (const int p = faces.face_patch_index[b][face]; p >= 0)
+                counts[size_t(p)] += c.count() / c[face / 2];
     }
     return counts;
 }

@@ -1,9 +1,9 @@
 // Face topology of a block grid for the unstructured exporters (OpenFOAM, Gmsh, Medit).
 #pragma once
 
-#include <utility>
 #include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "hexmesh/core/block_grid.h"

@@ -147,7 +147,6 @@ std::array<unsigned char, 3> edge_colour(const std::array<unsigned char, 3>& fac
     return shaded(face, 1 - 0.75 * strength);
 }
 
-
 std::string fmt_cut(const char* axis, double at) {
     return fmt::format("cut at {} = {:.4g}", axis, at);
 }
@@ -215,7 +214,8 @@ void GridPictures::add_wall_face(const std::array<Vec3, 4>& q, double value) {
             smallest = std::min(smallest, (s[(k + 1) % corners] - s[k]).head<2>().norm());
         if (smallest < 2) continue;
         const double bias = 1e-3 * (c.view.width / c.view.pixels_per_unit);
-        for (int k = 0; k < corners; ++k) c.line(s[k], s[(k + 1) % corners], edge_colour(col, smallest), bias);
+        for (int k = 0; k < corners; ++k)
+            c.line(s[k], s[(k + 1) % corners], edge_colour(col, smallest), bias);
     }
 }
 
@@ -282,7 +282,8 @@ void GridPictures::add_block(const BlockGrid& grid, const Block& block, const do
         const double value = values[d.flat(i, j, k)];
         add_cell(p.data(), 8, value);
         for (int f = 0; f < 6; ++f) {
-            const bool shown = all_boundary ? !block.face_patch[f].empty() : block.face_patch[f] == "wall";
+            const bool shown =
+                all_boundary ? !block.face_patch[f].empty() : block.face_patch[f] == "wall";
             if (!shown || !on_block_face(d, {i, j, k}, f)) continue;
             std::array<Vec3, 4> q;
             for (int m = 0; m < 4; ++m) q[m] = p[hex_faces[f][m]];

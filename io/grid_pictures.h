@@ -30,7 +30,7 @@ struct Picture {
     std::string title;
     View view;
     bool cut = false;  // a plane cut (else a view of the wall)
-    std::string png;  // the image file's bytes
+    std::string png;   // the image file's bytes
 };
 
 // Colours of a value over [lo, hi]: red at lo through orange and yellow to green and blue at

@@ -1,7 +1,8 @@
 #include "io/json_fields.h"
 
-#include <cmath>
 #include <fmt/format.h>
+
+#include <cmath>
 
 namespace hexmesh {
 
@@ -49,7 +50,8 @@ std::string JsonFields::path_of(const std::string& key) const {
 
 void JsonFields::fail(const std::string& key, const std::string& expected) const {
     const std::string got = object_.contains(key) ? describe(object_.at(key)) : "nothing";
-    throw InputError(fmt::format("{}: {}: expected {}, got {}", file_, path_of(key), expected, got));
+    throw InputError(
+        fmt::format("{}: {}: expected {}, got {}", file_, path_of(key), expected, got));
 }
 
 void JsonFields::allow_only(std::initializer_list<const char*> allowed) const {

@@ -14,7 +14,7 @@ namespace hexmesh {
 // A JSON object at a key path ("grid", "geometry.union[1]") of a file. Accessors throw
 // InputError "FILE: PATH.KEY: expected ..., got ..." on a wrong type or range.
 class JsonFields {
-public:
+  public:
     JsonFields(const nlohmann::json& object, std::string file, std::string path);
 
     // Rejects keys outside `allowed`, listing the allowed ones.
@@ -35,7 +35,7 @@ public:
     std::string path_of(const std::string& key) const;
     [[noreturn]] void fail(const std::string& key, const std::string& expected) const;
 
-private:
+  private:
     const nlohmann::json& object_;
     std::string file_, path_;
 };

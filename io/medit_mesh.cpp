@@ -22,8 +22,8 @@ void write_medit_mesh(const BlockGrid& grid, const std::string& path) {
     out.print("\nHexahedra\n{}\n", grid.num_cells());
     for (const Block& b : grid.blocks)
         for_each_cell(b, [&](int, int, int, const std::array<Id, 8>& n) {
-            out.print("{} {} {} {} {} {} {} {} 1\n", n[0] + 1, n[1] + 1, n[2] + 1,
-                      n[3] + 1, n[4] + 1, n[5] + 1, n[6] + 1, n[7] + 1);
+            out.print("{} {} {} {} {} {} {} {} 1\n", n[0] + 1, n[1] + 1, n[2] + 1, n[3] + 1,
+                      n[4] + 1, n[5] + 1, n[6] + 1, n[7] + 1);
         });
     out.print("\nEnd\n");
     out.close();
@@ -36,7 +36,8 @@ HexMesh read_medit_mesh(const std::string& path) {
     // Number of integers after the vertex ids of an element keyword: 1 (its reference).
     auto skip_elements = [&](int per_element) {
         const long long n = in.integer("an element count");
-        if (n < 0 || n > (long long)in.size()) in.fail(fmt::format("{} elements do not fit in the file", n));
+        if (n < 0 || n > (long long)in.size())
+            in.fail(fmt::format("{} elements do not fit in the file", n));
         for (long long e = 0; e < n * per_element; ++e) in.integer("an element entry");
     };
     while (!in.done()) {
@@ -61,7 +62,8 @@ HexMesh read_medit_mesh(const std::string& path) {
                 for (int v = 0; v < 8; ++v) {
                     const long long id = in.integer("a vertex number");
                     if (id < 1 || id > mesh.num_points())
-                        in.fail(fmt::format("hexahedron {} uses vertex {} (have {})", e + 1, id, mesh.num_points()));
+                        in.fail(fmt::format("hexahedron {} uses vertex {} (have {})", e + 1, id,
+                                            mesh.num_points()));
                     mesh.hexes.push_back(id - 1);
                 }
                 in.integer("a hexahedron reference");

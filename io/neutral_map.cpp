@@ -21,12 +21,18 @@ struct FaceAxes {
 
 FaceAxes face_axes(int face) {
     switch (face) {
-        case 1: return {2, 0, 1, false};
-        case 2: return {2, 0, 1, true};
-        case 3: return {0, 1, 2, false};
-        case 4: return {0, 1, 2, true};
-        case 5: return {1, 2, 0, false};
-        default: return {1, 2, 0, true};
+        case 1:
+            return {2, 0, 1, false};
+        case 2:
+            return {2, 0, 1, true};
+        case 3:
+            return {0, 1, 2, false};
+        case 4:
+            return {0, 1, 2, true};
+        case 5:
+            return {1, 2, 0, false};
+        default:
+            return {1, 2, 0, true};
     }
 }
 
@@ -79,8 +85,8 @@ NeutralMap neutral_map(const BlockGrid& grid) {
                 map.boundaries.push_back({type_of(patch), r});
                 continue;
             }
-            std::array<Id, 4> corners = {node(b, face, 1, 1), node(b, face, r.e1, 1), node(b, face, 1, r.e2),
-                                         node(b, face, r.e1, r.e2)};
+            std::array<Id, 4> corners = {node(b, face, 1, 1), node(b, face, r.e1, 1),
+                                         node(b, face, 1, r.e2), node(b, face, r.e1, r.e2)};
             std::sort(corners.begin(), corners.end());
             by_corners[corners].push_back({b, face});
         }
@@ -113,18 +119,25 @@ NeutralMap neutral_map(const BlockGrid& grid) {
 void write_neutral_map(const NeutralMap& map, const std::string& path) {
     FileSink out(path, false);
     const std::string rule(83, '=');
-    out.print("# ===== Neutral Map File written by hexmesh {}\n# Block#   IDIM   JDIM   KDIM\n# {}\n{:8}\n",
-              std::string(55, '='), std::string(81, '-'), map.dims.size());
+    out.print(
+        "# ===== Neutral Map File written by hexmesh {}\n# Block#   IDIM   JDIM   KDIM\n# "
+        "{}\n{:8}\n",
+        std::string(55, '='), std::string(81, '-'), map.dims.size());
     for (size_t b = 0; b < map.dims.size(); ++b)
         out.print("{:8} {:6} {:6} {:6}\n", b + 1, map.dims[b][0], map.dims[b][1], map.dims[b][2]);
-    out.print("# {}\n# Type           B1  F1     S1   E1     S2   E2     B2  F2     S1   E1     S2   E2   Swap\n# {}\n",
-              std::string(81, '='), std::string(81, '-'));
+    out.print(
+        "# {}\n# Type           B1  F1     S1   E1     S2   E2     B2  F2     S1   E1     S2   E2  "
+        " Swap\n# {}\n",
+        std::string(81, '='), std::string(81, '-'));
     const auto range = [](const NmfFaceRange& r) {
-        return fmt::format("{:4} {:3} {:6} {:4} {:6} {:4}", r.block, r.face, r.s1, r.e1, r.s2, r.e2);
+        return fmt::format("{:4} {:3} {:6} {:4} {:6} {:4}", r.block, r.face, r.s1, r.e1, r.s2,
+                           r.e2);
     };
-    for (const NmfBoundary& b : map.boundaries) out.print("{:<14} {}\n", "'" + b.type + "'", range(b.range));
+    for (const NmfBoundary& b : map.boundaries)
+        out.print("{:<14} {}\n", "'" + b.type + "'", range(b.range));
     for (const NmfInterface& i : map.interfaces)
-        out.print("{:<14} {} {} {}\n", "'ONE_TO_ONE'", range(i.first), range(i.second), i.swap ? "TRUE" : "FALSE");
+        out.print("{:<14} {} {} {}\n", "'ONE_TO_ONE'", range(i.first), range(i.second),
+                  i.swap ? "TRUE" : "FALSE");
     out.close();
 }
 
@@ -150,7 +163,8 @@ NeutralMap read_neutral_map(const std::string& path) {
             char* end = nullptr;
             const long v = std::strtol(w[k].c_str(), &end, 10);
             if (*end || end == w[k].c_str() || v < low || v > high)
-                fail(fmt::format("{} is '{}'; expected an integer in [{}, {}]", what, w[k], low, high));
+                fail(fmt::format("{} is '{}'; expected an integer in [{}, {}]", what, w[k], low,
+                                 high));
             return int(v);
         };
         if (!have_count) {
@@ -168,7 +182,8 @@ NeutralMap read_neutral_map(const std::string& path) {
             continue;
         }
         std::string type = w[0];
-        if (type.size() >= 2 && type.front() == '\'' && type.back() == '\'') type = type.substr(1, type.size() - 2);
+        if (type.size() >= 2 && type.front() == '\'' && type.back() == '\'')
+            type = type.substr(1, type.size() - 2);
         const auto face_range = [&](size_t k) {
             NmfFaceRange r;
             r.block = integer(k, 1, long(blocks), "the block");
@@ -184,19 +199,26 @@ NeutralMap read_neutral_map(const std::string& path) {
         std::string upper = type;
         for (char& c : upper) c = char(std::toupper(static_cast<unsigned char>(c)));
         if (upper == "ONE_TO_ONE") {
-            if (w.size() != 14) fail("a ONE_TO_ONE line has 14 fields: type, two face ranges and Swap");
+            if (w.size() != 14)
+                fail("a ONE_TO_ONE line has 14 fields: type, two face ranges and Swap");
             NmfInterface link{face_range(1), face_range(7), false};
             std::string swap = w[13];
             for (char& c : swap) c = char(std::toupper(static_cast<unsigned char>(c)));
-            if (swap != "TRUE" && swap != "FALSE") fail(fmt::format("Swap is '{}'; expected TRUE or FALSE", w[13]));
+            if (swap != "TRUE" && swap != "FALSE")
+                fail(fmt::format("Swap is '{}'; expected TRUE or FALSE", w[13]));
             link.swap = swap == "TRUE";
-            const int n1 = std::abs(link.first.e1 - link.first.s1), n2 = std::abs(link.first.e2 - link.first.s2);
-            const int m1 = std::abs(link.second.e1 - link.second.s1), m2 = std::abs(link.second.e2 - link.second.s2);
-            if ((link.swap ? std::array<int, 2>{m2, m1} : std::array<int, 2>{m1, m2}) != std::array<int, 2>{n1, n2})
+            const int n1 = std::abs(link.first.e1 - link.first.s1),
+                      n2 = std::abs(link.first.e2 - link.first.s2);
+            const int m1 = std::abs(link.second.e1 - link.second.s1),
+                      m2 = std::abs(link.second.e2 - link.second.s2);
+            if ((link.swap ? std::array<int, 2>{m2, m1} : std::array<int, 2>{m1, m2}) !=
+                std::array<int, 2>{n1, n2})
                 fail("the two faces of a ONE_TO_ONE interface have different sizes");
             map.interfaces.push_back(link);
         } else {
-            if (w.size() != 7) fail(fmt::format("a boundary line ('{}') has 7 fields: type and one face range", type));
+            if (w.size() != 7)
+                fail(fmt::format("a boundary line ('{}') has 7 fields: type and one face range",
+                                 type));
             map.boundaries.push_back({type, face_range(1)});
         }
     }

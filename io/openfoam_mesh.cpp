@@ -14,17 +14,20 @@ namespace {
 namespace fs = std::filesystem;
 
 void write_header(FileSink& out, const char* cls, const char* object, const std::string& note) {
-    out.print("/*--------------------------------*- C++ -*----------------------------------*\\\n"
-              "  written by hexmesh\n"
-              "\\*---------------------------------------------------------------------------*/\n"
-              "FoamFile\n{{\n    version     2.0;\n    format      ascii;\n"
-              "    class       {};\n", cls);
+    out.print(
+        "/*--------------------------------*- C++ -*----------------------------------*\\\n"
+        "  written by hexmesh\n"
+        "\\*---------------------------------------------------------------------------*/\n"
+        "FoamFile\n{{\n    version     2.0;\n    format      ascii;\n"
+        "    class       {};\n",
+        cls);
     if (!note.empty()) out.print("    note        \"{}\";\n", note);
     out.print("    location    \"constant/polyMesh\";\n    object      {};\n}}\n\n", object);
 }
 
 void write_footer(FileSink& out) {
-    out.print(")\n\n// ************************************************************************* //\n");
+    out.print(
+        ")\n\n// ************************************************************************* //\n");
 }
 
 // Point numbers in the order the blocks first reach them (block by block, i fastest): the same
@@ -49,12 +52,14 @@ void write_openfoam_polymesh(const BlockGrid& grid, const std::string& polymesh_
     const fs::path mesh_dir(polymesh_dir);
     std::error_code ec;
     fs::create_directories(mesh_dir, ec);
-    if (ec) throw std::runtime_error(fmt::format("{}: cannot create directory ({})", mesh_dir.string(), ec.message()));
+    if (ec)
+        throw std::runtime_error(
+            fmt::format("{}: cannot create directory ({})", mesh_dir.string(), ec.message()));
     std::vector<Id> order;
     const std::vector<Id> number = point_numbers(grid, order);
-    const std::string note = fmt::format("nPoints:{} nCells:{} nFaces:{} nInternalFaces:{}",
-                                         order.size(), grid.num_cells(), nfaces,
-                                         faces.internal_faces);
+    const std::string note =
+        fmt::format("nPoints:{} nCells:{} nFaces:{} nInternalFaces:{}", order.size(),
+                    grid.num_cells(), nfaces, faces.internal_faces);
     {
         FileSink out((mesh_dir / "points").string());
         write_header(out, "vectorField", "points", "");
@@ -91,7 +96,8 @@ void write_openfoam_polymesh(const BlockGrid& grid, const std::string& polymesh_
             neighbour.print("{}\n", n);
         });
         for (int p = 0; p < int(faces.patch_names.size()); ++p)
-            for_each_patch_face(grid, faces, p, [&](Id o, const std::array<Id, 4>&) { owner.print("{}\n", o); });
+            for_each_patch_face(grid, faces, p,
+                                [&](Id o, const std::array<Id, 4>&) { owner.print("{}\n", o); });
         write_footer(owner);
         write_footer(neighbour);
         owner.close();
@@ -109,7 +115,8 @@ void write_openfoam_polymesh(const BlockGrid& grid, const std::string& polymesh_
             const char* type = name == "wall" ? "wall" : "patch";
             out.print("    {}\n    {{\n        type            {};\n", name, type);
             if (name == "wall") out.print("        inGroups        List<word> 1(wall);\n");
-            out.print("        nFaces          {};\n        startFace       {};\n    }}\n", count, start);
+            out.print("        nFaces          {};\n        startFace       {};\n    }}\n", count,
+                      start);
             start += count;
         }
         write_footer(out);
@@ -125,14 +132,17 @@ struct TurbulenceInflow {
     double k = 0, omega = 0;
 };
 
-TurbulenceInflow turbulence_inflow(const BlockGrid& grid, const GridFaces& faces, const FlowSpec& flow) {
+TurbulenceInflow turbulence_inflow(const BlockGrid& grid, const GridFaces& faces,
+                                   const FlowSpec& flow) {
     double length = flow.turbulence_length;
     if (!(length > 0)) {
         Box3 box{Vec3::Constant(1e300), Vec3::Constant(-1e300)};
         for (int p = 0; p < int(faces.patch_names.size()); ++p)
             if (faces.patch_names[p] == "wall")
                 for_each_patch_face(grid, faces, p, [&](Id, const std::array<Id, 4>& n) {
-                    for (Id v : n) box.lo = box.lo.cwiseMin(grid.points[v]), box.hi = box.hi.cwiseMax(grid.points[v]);
+                    for (Id v : n)
+                        box.lo = box.lo.cwiseMin(grid.points[v]),
+                        box.hi = box.hi.cwiseMax(grid.points[v]);
                 });
         length = box.hi.x() >= box.lo.x() ? 0.1 * (box.hi - box.lo).maxCoeff() : 0.1;
     }
@@ -148,22 +158,25 @@ TurbulenceInflow turbulence_inflow(const BlockGrid& grid, const GridFaces& faces
 std::string field_file(const char* cls, const char* object, const char* dimensions,
                        const std::string& value, const std::vector<std::string>& patches,
                        const std::string& wall, const std::string& far) {
-    std::string text = fmt::format("FoamFile\n{{\n    version     2.0;\n    format      ascii;\n"
-                                   "    class       {};\n    location    \"0\";\n    object      {};\n}}\n\n"
-                                   "dimensions      {};\n\ninternalField   uniform {};\n\nboundaryField\n{{\n",
-                                   cls, object, dimensions, value);
+    std::string text = fmt::format(
+        "FoamFile\n{{\n    version     2.0;\n    format      ascii;\n"
+        "    class       {};\n    location    \"0\";\n    object      {};\n}}\n\n"
+        "dimensions      {};\n\ninternalField   uniform {};\n\nboundaryField\n{{\n",
+        cls, object, dimensions, value);
     for (const std::string& patch : patches) {
         std::string condition = patch == "wall" ? wall : far;
-        for (size_t at; (at = condition.find("{value}")) != std::string::npos;) condition.replace(at, 7, value);
+        for (size_t at; (at = condition.find("{value}")) != std::string::npos;)
+            condition.replace(at, 7, value);
         text += fmt::format("    {}\n    {{\n{}    }}\n", patch, condition);
     }
     return text + "}\n";
 }
 
 std::string dictionary(const char* location, const char* object, const std::string& body) {
-    return fmt::format("FoamFile\n{{\n    version     2.0;\n    format      ascii;\n"
-                       "    class       dictionary;\n    location    \"{}\";\n    object      {};\n}}\n\n{}",
-                       location, object, body);
+    return fmt::format(
+        "FoamFile\n{{\n    version     2.0;\n    format      ascii;\n"
+        "    class       dictionary;\n    location    \"{}\";\n    object      {};\n}}\n\n{}",
+        location, object, body);
 }
 
 }  // namespace
@@ -178,71 +191,89 @@ void write_openfoam_mesh(const BlockGrid& grid, const std::string& case_dir, con
         const fs::path file = fs::path(case_dir) / relative;
         if (fs::exists(file, ec)) return;
         fs::create_directories(file.parent_path(), ec);
-        if (ec) throw std::runtime_error(fmt::format("{}: cannot create directory ({})", file.parent_path().string(), ec.message()));
+        if (ec)
+            throw std::runtime_error(fmt::format("{}: cannot create directory ({})",
+                                                 file.parent_path().string(), ec.message()));
         FileSink out(file.string(), false);
         out.print("{}", text);
         out.close();
     };
-    write_if_absent("system/controlDict",
-                    dictionary("system", "controlDict",
-                               "application     simpleFoam;\nstartFrom       latestTime;\nstartTime       0;\n"
-                               "stopAt          endTime;\nendTime         2000;\ndeltaT          1;\n"
-                               "writeControl    timeStep;\nwriteInterval   200;\npurgeWrite      2;\n"
-                               "writeFormat     ascii;\nwritePrecision  8;\ntimeFormat      general;\n"
-                               "runTimeModifiable true;\n"));
-    write_if_absent("system/fvSchemes",
-                    dictionary("system", "fvSchemes",
-                               "ddtSchemes { default steadyState; }\n"
-                               "gradSchemes { default Gauss linear; grad(U) cellLimited Gauss linear 1; }\n"
-                               "divSchemes\n{\n    default none;\n    div(phi,U) bounded Gauss linearUpwind grad(U);\n"
-                               "    div(phi,k) bounded Gauss upwind;\n    div(phi,omega) bounded Gauss upwind;\n"
-                               "    div((nuEff*dev2(T(grad(U))))) Gauss linear;\n}\n"
-                               "laplacianSchemes { default Gauss linear limited corrected 0.5; }\n"
-                               "interpolationSchemes { default linear; }\n"
-                               "snGradSchemes { default limited corrected 0.5; }\n"
-                               "wallDist { method meshWave; }\n"));
-    write_if_absent("system/fvSolution",
-                    dictionary("system", "fvSolution",
-                               "solvers\n{\n    p { solver GAMG; smoother GaussSeidel; tolerance 1e-7; relTol 0.05; }\n"
-                               "    \"(U|k|omega)\" { solver smoothSolver; smoother symGaussSeidel; tolerance 1e-8; relTol 0.1; }\n}\n"
-                               "SIMPLE\n{\n    nNonOrthogonalCorrectors 1;\n    consistent      yes;\n"
-                               "    pRefCell        0;\n    pRefValue       0;\n"
-                               "    residualControl { p 1e-5; U 1e-6; \"(k|omega)\" 1e-6; }\n}\n"
-                               "relaxationFactors { equations { U 0.9; \".*\" 0.7; } }\n"));
+    write_if_absent(
+        "system/controlDict",
+        dictionary("system", "controlDict",
+                   "application     simpleFoam;\nstartFrom       latestTime;\nstartTime       0;\n"
+                   "stopAt          endTime;\nendTime         2000;\ndeltaT          1;\n"
+                   "writeControl    timeStep;\nwriteInterval   200;\npurgeWrite      2;\n"
+                   "writeFormat     ascii;\nwritePrecision  8;\ntimeFormat      general;\n"
+                   "runTimeModifiable true;\n"));
+    write_if_absent(
+        "system/fvSchemes",
+        dictionary(
+            "system", "fvSchemes",
+            "ddtSchemes { default steadyState; }\n"
+            "gradSchemes { default Gauss linear; grad(U) cellLimited Gauss linear 1; }\n"
+            "divSchemes\n{\n    default none;\n    div(phi,U) bounded Gauss linearUpwind grad(U);\n"
+            "    div(phi,k) bounded Gauss upwind;\n    div(phi,omega) bounded Gauss upwind;\n"
+            "    div((nuEff*dev2(T(grad(U))))) Gauss linear;\n}\n"
+            "laplacianSchemes { default Gauss linear limited corrected 0.5; }\n"
+            "interpolationSchemes { default linear; }\n"
+            "snGradSchemes { default limited corrected 0.5; }\n"
+            "wallDist { method meshWave; }\n"));
+    write_if_absent(
+        "system/fvSolution",
+        dictionary("system", "fvSolution",
+                   "solvers\n{\n    p { solver GAMG; smoother GaussSeidel; tolerance 1e-7; relTol "
+                   "0.05; }\n"
+                   "    \"(U|k|omega)\" { solver smoothSolver; smoother symGaussSeidel; tolerance "
+                   "1e-8; relTol 0.1; }\n}\n"
+                   "SIMPLE\n{\n    nNonOrthogonalCorrectors 1;\n    consistent      yes;\n"
+                   "    pRefCell        0;\n    pRefValue       0;\n"
+                   "    residualControl { p 1e-5; U 1e-6; \"(k|omega)\" 1e-6; }\n}\n"
+                   "relaxationFactors { equations { U 0.9; \".*\" 0.7; } }\n"));
     write_if_absent("constant/transportProperties",
                     dictionary("constant", "transportProperties",
                                fmt::format("transportModel  Newtonian;\nnu              {};\n",
                                            flow.viscosity / flow.density)));
-    write_if_absent("constant/turbulenceProperties",
-                    dictionary("constant", "turbulenceProperties",
-                               sst ? "simulationType  RAS;\nRAS\n{\n    RASModel        kOmegaSST;\n"
-                                     "    turbulence      on;\n    printCoeffs     on;\n}\n"
-                                   : "simulationType  laminar;\n"));
+    write_if_absent(
+        "constant/turbulenceProperties",
+        dictionary("constant", "turbulenceProperties",
+                   sst ? "simulationType  RAS;\nRAS\n{\n    RASModel        kOmegaSST;\n"
+                         "    turbulence      on;\n    printCoeffs     on;\n}\n"
+                       : "simulationType  laminar;\n"));
     const Vec3& u = flow.velocity;
     const std::string velocity = fmt::format("({} {} {})", u.x(), u.y(), u.z());
     const std::vector<std::string>& patches = faces.patch_names;
     write_if_absent("0/U", field_file("volVectorField", "U", "[0 1 -1 0 0 0 0]", velocity, patches,
                                       "        type            noSlip;\n",
                                       "        type            freestreamVelocity;\n"
-                                      "        freestreamValue uniform {value};\n        value           uniform {value};\n"));
+                                      "        freestreamValue uniform {value};\n        value     "
+                                      "      uniform {value};\n"));
     write_if_absent("0/p", field_file("volScalarField", "p", "[0 2 -2 0 0 0 0]", "0", patches,
                                       "        type            zeroGradient;\n",
                                       "        type            freestreamPressure;\n"
-                                      "        freestreamValue uniform {value};\n        value           uniform {value};\n"));
+                                      "        freestreamValue uniform {value};\n        value     "
+                                      "      uniform {value};\n"));
     if (sst) {
         const TurbulenceInflow t = turbulence_inflow(grid, faces, flow);
-        const std::string inlet_outlet = "        type            inletOutlet;\n        inletValue      uniform {value};\n"
-                                         "        value           uniform {value};\n";
-        write_if_absent("0/k", field_file("volScalarField", "k", "[0 2 -2 0 0 0 0]", fmt::format("{}", t.k), patches,
-                                          "        type            kqRWallFunction;\n        value           uniform {value};\n",
+        const std::string inlet_outlet =
+            "        type            inletOutlet;\n        inletValue      uniform {value};\n"
+            "        value           uniform {value};\n";
+        write_if_absent("0/k", field_file("volScalarField", "k", "[0 2 -2 0 0 0 0]",
+                                          fmt::format("{}", t.k), patches,
+                                          "        type            kqRWallFunction;\n        value "
+                                          "          uniform {value};\n",
                                           inlet_outlet));
-        write_if_absent("0/omega", field_file("volScalarField", "omega", "[0 0 -1 0 0 0 0]", fmt::format("{}", t.omega),
-                                              patches,
-                                              "        type            omegaWallFunction;\n        value           uniform {value};\n",
+        write_if_absent("0/omega", field_file("volScalarField", "omega", "[0 0 -1 0 0 0 0]",
+                                              fmt::format("{}", t.omega), patches,
+                                              "        type            omegaWallFunction;\n        "
+                                              "value           uniform {value};\n",
                                               inlet_outlet));
-        write_if_absent("0/nut", field_file("volScalarField", "nut", "[0 2 -1 0 0 0 0]", "0", patches,
-                                            "        type            nutkWallFunction;\n        value           uniform 0;\n",
-                                            "        type            calculated;\n        value           uniform 0;\n"));
+        write_if_absent(
+            "0/nut",
+            field_file(
+                "volScalarField", "nut", "[0 2 -1 0 0 0 0]", "0", patches,
+                "        type            nutkWallFunction;\n        value           uniform 0;\n",
+                "        type            calculated;\n        value           uniform 0;\n"));
     }
 }
 

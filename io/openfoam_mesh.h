@@ -20,7 +20,8 @@ namespace hexmesh {
 // condition (freestreamVelocity / freestreamPressure, inletOutlet for k and omega). The
 // dictionaries and fields are written only where absent. Throws std::runtime_error naming the
 // file on a write error.
-void write_openfoam_mesh(const BlockGrid& grid, const std::string& case_dir, const FlowSpec& flow = {});
+void write_openfoam_mesh(const BlockGrid& grid, const std::string& case_dir,
+                         const FlowSpec& flow = {});
 
 // The same polyMesh files directly in `polymesh_dir` (created if missing), nothing else.
 void write_openfoam_polymesh(const BlockGrid& grid, const std::string& polymesh_dir);

@@ -26,7 +26,8 @@ static_assert(sizeof(float) == 4 && sizeof(double) == 8, "IEEE floats expected")
 // Fortran's byte-count marker: 4-byte little-endian; records must fit in 2^31 - 1 bytes.
 void put_marker(FileSink& out, Id bytes) {
     if (bytes > 0x7fffffff)
-        throw std::runtime_error(fmt::format("{}: a block of {} bytes exceeds Fortran's 2 GB record limit", out.path(), bytes));
+        throw std::runtime_error(fmt::format(
+            "{}: a block of {} bytes exceeds Fortran's 2 GB record limit", out.path(), bytes));
     out.put(std::int32_t(bytes));
 }
 
@@ -61,8 +62,10 @@ void write_ascii(const BlockGrid& grid, FileSink& out, bool single) {
             const Id n = b.nodes.count();
             for (Id m = 0; m < n; ++m) {
                 const double x = grid.points[b.node_ids[m]][a];
-                if (single) out.print("{}", float(x));
-                else out.print("{}", x);
+                if (single)
+                    out.print("{}", float(x));
+                else
+                    out.print("{}", x);
                 out.print("{}", (m % 4 == 3 || m + 1 == n) ? '\n' : ' ');
             }
         }
@@ -103,17 +106,21 @@ BinaryLayout binary_layout(const std::string& bytes, bool fortran, const std::st
     const size_t head = fortran ? 4 : 0;
     const std::int32_t nb = int_at(bytes, head);
     if (nb <= 0 || bytes.size() < head + 4 + size_t(nb) * 12)
-        throw InputError(fmt::format("{}: not a Plot3D multi-block grid (block count {})", path, nb));
+        throw InputError(
+            fmt::format("{}: not a Plot3D multi-block grid (block count {})", path, nb));
     const size_t dims_at = fortran ? 16 : 4;
     for (int b = 0; b < nb; ++b) {
         Dims d{int_at(bytes, dims_at + 12 * b), int_at(bytes, dims_at + 12 * b + 4),
                int_at(bytes, dims_at + 12 * b + 8)};
         if (d.ni < 2 || d.nj < 2 || d.nk < 2)
-            throw InputError(fmt::format("{}: block {} has dims {} {} {}; a 3D grid needs >= 2", path, b + 1, d.ni, d.nj, d.nk));
+            throw InputError(fmt::format("{}: block {} has dims {} {} {}; a 3D grid needs >= 2",
+                                         path, b + 1, d.ni, d.nj, d.nk));
         // Single-precision coordinates take 12 bytes a point: the file must hold them.
         if (double(l.points) + double(d.ni) * d.nj * d.nk > double(bytes.size()) / 12)
-            throw InputError(fmt::format("{}: block {} has dims {} {} {}: more coordinates than the file's {} "
-                                         "bytes can hold", path, b + 1, d.ni, d.nj, d.nk, bytes.size()));
+            throw InputError(
+                fmt::format("{}: block {} has dims {} {} {}: more coordinates than the file's {} "
+                            "bytes can hold",
+                            path, b + 1, d.ni, d.nj, d.nk, bytes.size()));
         l.points += d.count();
         l.dims.push_back(d);
     }
@@ -132,31 +139,41 @@ bool is_fortran(const std::string& bytes) {
 void patches_from_map(BlockGrid& grid, const std::string& file) {
     const NeutralMap map = read_neutral_map(file);
     if (map.dims.size() != grid.blocks.size())
-        throw InputError(fmt::format("{}: lists {} blocks, the grid has {}", file, map.dims.size(), grid.blocks.size()));
+        throw InputError(fmt::format("{}: lists {} blocks, the grid has {}", file, map.dims.size(),
+                                     grid.blocks.size()));
     for (size_t b = 0; b < map.dims.size(); ++b) {
         const Dims& d = grid.blocks[b].nodes;
         if (map.dims[b] != std::array<int, 3>{d.ni, d.nj, d.nk})
-            throw InputError(fmt::format("{}: block {} is {} x {} x {}, the grid's {} x {} x {}", file, b + 1,
-                                         map.dims[b][0], map.dims[b][1], map.dims[b][2], d.ni, d.nj, d.nk));
+            throw InputError(fmt::format("{}: block {} is {} x {} x {}, the grid's {} x {} x {}",
+                                         file, b + 1, map.dims[b][0], map.dims[b][1],
+                                         map.dims[b][2], d.ni, d.nj, d.nk));
     }
     for (const NmfBoundary& e : map.boundaries) {
         const NmfFaceRange& r = e.range;
         const std::array<int, 3>& d = map.dims[size_t(r.block - 1)];
-        const std::array<int, 3> far = nmf_face_node(d, r.face, std::max(r.s1, r.e1), std::max(r.s2, r.e2));
-        const std::array<int, 3> near = nmf_face_node(d, r.face, std::min(r.s1, r.e1), std::min(r.s2, r.e2));
+        const std::array<int, 3> far =
+            nmf_face_node(d, r.face, std::max(r.s1, r.e1), std::max(r.s2, r.e2));
+        const std::array<int, 3> near =
+            nmf_face_node(d, r.face, std::min(r.s1, r.e1), std::min(r.s2, r.e2));
         const int normal = nmf_face_to_block_face(r.face) / 2;
         for (int a = 0; a < 3; ++a)
             if (a != normal && (near[a] != 0 || far[a] != d[a] - 1))
-                throw InputError(fmt::format("{}: '{}' on block {} face {} covers part of the face; only whole "
-                                             "faces are read", file, e.type, r.block, r.face));
+                throw InputError(
+                    fmt::format("{}: '{}' on block {} face {} covers part of the face; only whole "
+                                "faces are read",
+                                file, e.type, r.block, r.face));
         grid.blocks[size_t(r.block - 1)].face_patch[nmf_face_to_block_face(r.face)] =
-            e.type == "WALL" ? "wall" : e.type == "FARFIELD" ? "farfield" : e.type;
+            e.type == "WALL"       ? "wall"
+            : e.type == "FARFIELD" ? "farfield"
+                                   : e.type;
     }
 }
 
 }  // namespace
 
-std::string plot3d_patch_file(const std::string& path) { return path + ".patches.json"; }
+std::string plot3d_patch_file(const std::string& path) {
+    return path + ".patches.json";
+}
 
 std::string plot3d_map_file(const std::string& path) {
     return std::filesystem::path(path).replace_extension(".nmf").string();
@@ -167,9 +184,12 @@ void write_plot3d(const BlockGrid& grid, const std::string& path, const Plot3dFo
         const bool text = format.encoding == Plot3dEncoding::ascii;
         FileSink out(path, !text);
         const bool fortran = format.encoding == Plot3dEncoding::fortran;
-        if (text) write_ascii(grid, out, format.single_precision);
-        else if (format.single_precision) write_binary<float>(grid, out, fortran);
-        else write_binary<double>(grid, out, fortran);
+        if (text)
+            write_ascii(grid, out, format.single_precision);
+        else if (format.single_precision)
+            write_binary<float>(grid, out, fortran);
+        else
+            write_binary<double>(grid, out, fortran);
         out.close();
     }
     json side = {{"format", "hexmesh-plot3d-patches"}, {"version", 1}, {"blocks", json::array()}};
@@ -196,10 +216,13 @@ static Plot3dFormat detect_format(const std::string& bytes, const std::string& p
     // opening markers.
     const size_t markers = fortran ? 4 * (2 * l.dims.size() - 1) : 0;
     const size_t payload = bytes.size() - std::min(bytes.size(), l.data + markers);
-    if (payload == size_t(3 * l.points) * 4) f.single_precision = true;
+    if (payload == size_t(3 * l.points) * 4)
+        f.single_precision = true;
     else if (payload != size_t(3 * l.points) * 8)
-        throw InputError(fmt::format("{}: {} bytes of coordinates for {} points: neither single "
-                                     "nor double precision", path, payload, l.points));
+        throw InputError(
+            fmt::format("{}: {} bytes of coordinates for {} points: neither single "
+                        "nor double precision",
+                        path, payload, l.points));
     return f;
 }
 
@@ -220,7 +243,9 @@ BlockGrid read_plot3d(const std::string& path) {
         char* end = nullptr;
         auto next = [&](const char* what) {
             const double v = std::strtod(p, &end);
-            if (end == p) throw InputError(fmt::format("{}: expected {} at byte {}", path, what, p - bytes.c_str()));
+            if (end == p)
+                throw InputError(
+                    fmt::format("{}: expected {} at byte {}", path, what, p - bytes.c_str()));
             p = end;
             return v;
         };
@@ -229,7 +254,8 @@ BlockGrid read_plot3d(const std::string& path) {
         const auto count = [&](const char* what, double lo, double hi) {
             const double v = next(what);
             if (!(v >= lo && v <= hi) || v != std::floor(v))
-                throw InputError(fmt::format("{}: {} is {}; expected a whole number in [{}, {}]", path, what, v, lo, hi));
+                throw InputError(fmt::format("{}: {} is {}; expected a whole number in [{}, {}]",
+                                             path, what, v, lo, hi));
             return Id(v);
         };
         const double room = double(bytes.size()) / 2;
@@ -238,23 +264,29 @@ BlockGrid read_plot3d(const std::string& path) {
         for (Id b = 0; b < nb; ++b) {
             Dims d{int(count("ni", 2, room)), int(count("nj", 2, room)), int(count("nk", 2, room))};
             if (double(d.ni) * d.nj * d.nk * 3 > room)
-                throw InputError(fmt::format("{}: block {} has dims {} {} {}: more coordinates than the file's {} "
-                                             "bytes can hold", path, b + 1, d.ni, d.nj, d.nk, bytes.size()));
+                throw InputError(fmt::format(
+                    "{}: block {} has dims {} {} {}: more coordinates than the file's {} "
+                    "bytes can hold",
+                    path, b + 1, d.ni, d.nj, d.nk, bytes.size()));
             total += d.count();
             dims.push_back(d);
         }
         if (double(total) * 3 > room)
-            throw InputError(fmt::format("{}: {} points: more coordinates than the file's {} bytes can hold", path,
-                                         total, bytes.size()));
+            throw InputError(
+                fmt::format("{}: {} points: more coordinates than the file's {} bytes can hold",
+                            path, total, bytes.size()));
         coords.resize(3 * total);
         for (double& v : coords) {
             v = next("a coordinate");
-            if (!std::isfinite(v)) throw InputError(fmt::format("{}: a coordinate is {} at byte {}", path, v, p - bytes.c_str()));
+            if (!std::isfinite(v))
+                throw InputError(
+                    fmt::format("{}: a coordinate is {} at byte {}", path, v, p - bytes.c_str()));
         }
         while (*p && std::isspace(static_cast<unsigned char>(*p))) ++p;
         if (*p)
-            throw InputError(fmt::format("{}: more data after the {} coordinates the header announces (byte {})",
-                                         path, coords.size(), p - bytes.c_str()));
+            throw InputError(
+                fmt::format("{}: more data after the {} coordinates the header announces (byte {})",
+                            path, coords.size(), p - bytes.c_str()));
     } else {
         const bool fortran = format.encoding == Plot3dEncoding::fortran;
         const BinaryLayout l = binary_layout(bytes, fortran, path);
@@ -266,7 +298,8 @@ BlockGrid read_plot3d(const std::string& path) {
             const size_t n = 3 * size_t(d.count());
             if (at + n * real > bytes.size()) throw InputError(fmt::format("{}: truncated", path));
             for (size_t v = 0; v < n; ++v, at += real) {
-                if (real == 8) std::memcpy(&coords[m++], bytes.data() + at, 8);
+                if (real == 8)
+                    std::memcpy(&coords[m++], bytes.data() + at, 8);
                 else {
                     float x;
                     std::memcpy(&x, bytes.data() + at, 4);
@@ -283,10 +316,12 @@ BlockGrid read_plot3d(const std::string& path) {
         try {
             side = json::parse(in);
         } catch (const json::exception& e) {
-            throw InputError(fmt::format("{}: malformed patch file: {}", plot3d_patch_file(path), e.what()));
+            throw InputError(
+                fmt::format("{}: malformed patch file: {}", plot3d_patch_file(path), e.what()));
         }
         if (!side.contains("blocks") || side["blocks"].size() != dims.size())
-            throw InputError(fmt::format("{}: lists a different number of blocks than {}", plot3d_patch_file(path), path));
+            throw InputError(fmt::format("{}: lists a different number of blocks than {}",
+                                         plot3d_patch_file(path), path));
     }
 
     BlockGrid grid;
@@ -300,7 +335,8 @@ BlockGrid read_plot3d(const std::string& path) {
         block.node_ids.resize(n);
         for (Id v = 0; v < n; ++v) {
             const double x[3] = {coords[m + v], coords[m + n + v], coords[m + 2 * n + v]};
-            auto [it, inserted] = ids.emplace(std::string(reinterpret_cast<const char*>(x), sizeof x), Id(grid.points.size()));
+            auto [it, inserted] = ids.emplace(
+                std::string(reinterpret_cast<const char*>(x), sizeof x), Id(grid.points.size()));
             if (inserted) grid.points.emplace_back(x[0], x[1], x[2]);
             block.node_ids[v] = it->second;
         }
@@ -311,13 +347,15 @@ BlockGrid read_plot3d(const std::string& path) {
                 block.name = entry.at("name").get<std::string>();
                 block.face_patch = entry.at("face_patch").get<std::array<std::string, 6>>();
             } catch (const json::exception& e) {
-                throw InputError(fmt::format("{}: blocks[{}]: {}", plot3d_patch_file(path), b, e.what()));
+                throw InputError(
+                    fmt::format("{}: blocks[{}]: {}", plot3d_patch_file(path), b, e.what()));
             }
         }
         grid.blocks.push_back(std::move(block));
     }
     grid.kinds.assign(grid.points.size(), VertexKind::interior);
-    if (side.is_null() && std::filesystem::exists(plot3d_map_file(path), ec)) patches_from_map(grid, plot3d_map_file(path));
+    if (side.is_null() && std::filesystem::exists(plot3d_map_file(path), ec))
+        patches_from_map(grid, plot3d_map_file(path));
     return grid;
 }
 

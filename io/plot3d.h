@@ -39,8 +39,8 @@ std::string plot3d_map_file(const std::string& path);
 
 // Reads any of the variants above (encoding and precision detected from the file), merging
 // points that are exactly equal across blocks into shared nodes; patches from PATH.patches.json,
-// else from the neutral map file (boundary types WALL and FARFIELD as "wall" and "farfield"). Throws InputError when the
-// file is missing, truncated or not a Plot3D whole grid.
+// else from the neutral map file (boundary types WALL and FARFIELD as "wall" and "farfield").
+// Throws InputError when the file is missing, truncated or not a Plot3D whole grid.
 BlockGrid read_plot3d(const std::string& path);
 
 // The variant read_plot3d detects for `path`.

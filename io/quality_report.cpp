@@ -1,7 +1,8 @@
 #include "io/quality_report.h"
 
-#include <algorithm>
 #include <fmt/format.h>
+
+#include <algorithm>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
 
@@ -50,8 +51,9 @@ std::string wall_rows(const WallQuality& w) {
                          {fmt::format("{:.3f}", *w.surface_in_cells_max),
                           fmt::format("{:.3f}", w.surface_in_cells_p99.value_or(0))});
     if (w.surface_in_cells_at)
-        out += table_row("  at", {fmt::format("({:.4g}, {:.4g}, {:.4g})", w.surface_in_cells_at->x(),
-                                              w.surface_in_cells_at->y(), w.surface_in_cells_at->z())});
+        out += table_row("  at",
+                         {fmt::format("({:.4g}, {:.4g}, {:.4g})", w.surface_in_cells_at->x(),
+                                      w.surface_in_cells_at->y(), w.surface_in_cells_at->z())});
     return out;
 }
 
@@ -93,24 +95,29 @@ nlohmann::ordered_json wall_json(const WallQuality& w) {
 }  // namespace
 
 bool follows_body(const GridReport& r) {
-    return !(r.wall && r.wall->surface_in_cells_max && *r.wall->surface_in_cells_max > follows_body_wall_cells);
+    return !(r.wall && r.wall->surface_in_cells_max &&
+             *r.wall->surface_in_cells_max > follows_body_wall_cells);
 }
 
 std::string body_missed(const GridReport& r) {
     if (follows_body(r)) return {};
     const WallQuality& w = *r.wall;
     const Vec3 at = w.surface_in_cells_at.value_or(Vec3::Zero());
-    return fmt::format("the grid's wall misses the body by {:.3g} ({:.4g} wall cells, more than {}) at the surface "
-                       "point ({:.4g}, {:.4g}, {:.4g}): the wall cuts off or bridges that part of the body (a limb, a "
-                       "fin, a groove, a sharp edge or corner)",
-                       w.surface_in_cells_distance.value_or(0), *w.surface_in_cells_max, follows_body_wall_cells,
-                       at.x(), at.y(), at.z());
+    return fmt::format(
+        "the grid's wall misses the body by {:.3g} ({:.4g} wall cells, more than {}) at the "
+        "surface "
+        "point ({:.4g}, {:.4g}, {:.4g}): the wall cuts off or bridges that part of the body (a "
+        "limb, a "
+        "fin, a groove, a sharp edge or corner)",
+        w.surface_in_cells_distance.value_or(0), *w.surface_in_cells_max, follows_body_wall_cells,
+        at.x(), at.y(), at.z());
 }
 
 std::string body_missed_warning(const GridReport& r, const std::string& prefix) {
     const std::string missed = body_missed(r);
     if (missed.empty()) return {};
-    return "\nwarning: " + prefix + missed + "; the grid is written, but a solver would see the body without that part\n";
+    return "\nwarning: " + prefix + missed +
+           "; the grid is written, but a solver would see the body without that part\n";
 }
 
 std::string format_quality_table(const GridReport& r) {
@@ -129,8 +136,8 @@ std::string format_quality_table(const GridReport& r) {
         const Vec3& c = q.worst_cell_centre;
         row("  worst cell at", fmt::format("({:.4g}, {:.4g}, {:.4g})", c.x(), c.y(), c.z()));
         if (r.worst_cell)
-            row("  block, cell", fmt::format("{} ({}, {}, {}){}", r.worst_cell->block, r.worst_cell->i,
-                                             r.worst_cell->j, r.worst_cell->k,
+            row("  block, cell", fmt::format("{} ({}, {}, {}){}", r.worst_cell->block,
+                                             r.worst_cell->i, r.worst_cell->j, r.worst_cell->k,
                                              r.worst_cell->on_wall ? ", on the wall" : ""));
         else
             row("  cell", fmt::format("{}", q.worst_cell));
@@ -157,8 +164,10 @@ std::string quality_json(const GridReport& r) {
     nlohmann::ordered_json j;
     j["valid"] = q.solver_valid();
     // null when no surface was measured (a body given by a formula, `hexmesh quality` of a file)
-    if (r.wall && r.wall->surface_in_cells_max) j["follows_body"] = follows_body(r);
-    else j["follows_body"] = nullptr;
+    if (r.wall && r.wall->surface_in_cells_max)
+        j["follows_body"] = follows_body(r);
+    else
+        j["follows_body"] = nullptr;
     j["cells"] = q.cells;
     j["inverted_corner_tets"] = q.inverted_corner_tets;
     j["inverted_cells"] = q.inverted_cells;
@@ -197,7 +206,8 @@ std::string quality_json(const GridReport& r) {
 
 std::string format_tet_quality_table(const std::vector<TetQualityColumn>& columns) {
     std::string out;
-    if (std::any_of(columns.begin(), columns.end(), [](const TetQualityColumn& c) { return !c.name.empty(); })) {
+    if (std::any_of(columns.begin(), columns.end(),
+                    [](const TetQualityColumn& c) { return !c.name.empty(); })) {
         out += fmt::format("  {:<32}", "");
         for (const TetQualityColumn& c : columns) out += fmt::format("{:>20}", c.name);
         out += "\n";
@@ -210,25 +220,34 @@ std::string format_tet_quality_table(const std::vector<TetQualityColumn>& column
     auto degrees = [](double x) { return fmt::format("{:.2f}", x); };
     row("tets", [](const TetQualityColumn& c) { return std::to_string(c.quality->cells); });
     row("inverted", [](const TetQualityColumn& c) { return std::to_string(c.quality->inverted); });
-    row("min dihedral angle (deg)", [&](const TetQualityColumn& c) { return degrees(c.quality->min_dihedral); });
-    row("max dihedral angle (deg)", [&](const TetQualityColumn& c) { return degrees(c.quality->max_dihedral); });
+    row("min dihedral angle (deg)",
+        [&](const TetQualityColumn& c) { return degrees(c.quality->min_dihedral); });
+    row("max dihedral angle (deg)",
+        [&](const TetQualityColumn& c) { return degrees(c.quality->max_dihedral); });
     row("mean min dihedral angle (deg)",
         [&](const TetQualityColumn& c) { return degrees(c.quality->mean_min_dihedral); });
     if (!columns.empty())
         row(fmt::format("slivers (dihedral < {:g} deg)", columns[0].quality->sliver_degrees),
             [](const TetQualityColumn& c) { return std::to_string(c.quality->slivers); });
-    row("min radius ratio", [](const TetQualityColumn& c) { return fmt::format("{:.3f}", c.quality->min_radius_ratio); });
-    row("mean radius ratio", [](const TetQualityColumn& c) { return fmt::format("{:.3f}", c.quality->mean_radius_ratio); });
+    row("min radius ratio", [](const TetQualityColumn& c) {
+        return fmt::format("{:.3f}", c.quality->min_radius_ratio);
+    });
+    row("mean radius ratio", [](const TetQualityColumn& c) {
+        return fmt::format("{:.3f}", c.quality->mean_radius_ratio);
+    });
     auto optional = [](const std::optional<double>& x, const char* format) {
         return x ? fmt::format(fmt::runtime(format), *x) : std::string("-");
     };
-    if (std::any_of(columns.begin(), columns.end(), [](const TetQualityColumn& c) { return bool(c.boundary_distance); }))
+    if (std::any_of(columns.begin(), columns.end(),
+                    [](const TetQualityColumn& c) { return bool(c.boundary_distance); }))
         row("max boundary distance / h",
             [&](const TetQualityColumn& c) { return optional(c.boundary_distance, "{:.2e}"); });
-    if (std::any_of(columns.begin(), columns.end(), [](const TetQualityColumn& c) { return bool(c.crease_distance); }))
+    if (std::any_of(columns.begin(), columns.end(),
+                    [](const TetQualityColumn& c) { return bool(c.crease_distance); }))
         row("max crease distance / h",
             [&](const TetQualityColumn& c) { return optional(c.crease_distance, "{:.2e}"); });
-    if (std::any_of(columns.begin(), columns.end(), [](const TetQualityColumn& c) { return bool(c.seconds); }))
+    if (std::any_of(columns.begin(), columns.end(),
+                    [](const TetQualityColumn& c) { return bool(c.seconds); }))
         row("time (s)", [&](const TetQualityColumn& c) { return optional(c.seconds, "{:.2f}"); });
     return out;
 }

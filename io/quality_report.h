@@ -81,6 +81,7 @@ std::string format_tet_quality_table(const std::vector<TetQualityColumn>& column
 
 // One mesh's report as JSON: keys as in TetQualityReport, plus "valid" and, when given,
 // "max_boundary_distance_over_h".
-std::string tet_quality_json(const TetQualityReport& quality, std::optional<double> boundary_distance);
+std::string tet_quality_json(const TetQualityReport& quality,
+                             std::optional<double> boundary_distance);
 
 }  // namespace hexmesh

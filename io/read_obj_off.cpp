@@ -8,8 +8,7 @@ namespace hexmesh::surface_io {
 namespace {
 
 // "7", "7/2", "7//3", "7/2/3": 1-based, or negative = relative to the last vertex.
-int obj_vertex_id(std::string_view token, int defined, const SurfaceBuilder& builder,
-                  Place where) {
+int obj_vertex_id(std::string_view token, int defined, const SurfaceBuilder& builder, Place where) {
     long long id = 0;
     if (!parse_int(token.substr(0, token.find('/')), id) || id == 0)
         builder.fail(where, fmt::format("expected a vertex index, got '{}'",
@@ -37,7 +36,8 @@ TriangleSurface read_obj(const std::string& data, SurfaceBuilder& builder) {
         if (tokens.empty()) return true;
         if (tokens[0] == "v") {
             Vec3 p;
-            if (!parse_point(tokens, 1, p)) builder.fail(where, "expected 'v X Y Z' with 3 numbers");
+            if (!parse_point(tokens, 1, p))
+                builder.fail(where, "expected 'v X Y Z' with 3 numbers");
             builder.add_point(p, where);
         } else if (tokens[0] == "f") {
             face.clear();
@@ -93,8 +93,9 @@ TriangleSurface read_off(const std::string& data, SurfaceBuilder& builder) {
             for (long long k = 1; k <= n; ++k) {
                 long long id = 0;
                 if (!parse_int(tokens[k], id) || id < 0 || id >= vertices)
-                    builder.fail(where, fmt::format("vertex index '{}' out of range [0, {})",
-                                                    std::string(tokens[k].substr(0, 20)), vertices));
+                    builder.fail(where,
+                                 fmt::format("vertex index '{}' out of range [0, {})",
+                                             std::string(tokens[k].substr(0, 20)), vertices));
                 face.push_back(static_cast<int>(id));
             }
             builder.add_polygon(face, where);

@@ -1,7 +1,8 @@
 // PLY reader (ASCII and binary little-endian): the x y z of element "vertex" and the index
 // list of element "face"; other properties and elements are read past and dropped.
-#include <cctype>
 #include <fmt/format.h>
+
+#include <cctype>
 
 #include "io/ply_format.h"
 #include "io/surface_formats.h"
@@ -13,7 +14,7 @@ using ply::Type;
 
 // Reads values one by one from the body, binary or ASCII, tracking where it is for messages.
 class BodyReader {
-public:
+  public:
     // first_line: the line number of `start` (ASCII messages name lines).
     BodyReader(const std::string& data, size_t start, long long first_line, bool binary,
                const SurfaceBuilder& builder)
@@ -24,7 +25,7 @@ public:
         return binary_ ? next_binary(type, where) : next_ascii(where);
     }
 
-private:
+  private:
     double next_binary(Type type, Place where) {
         const size_t n = ply::type_size(type);
         if (at_ + n > data_.size()) builder_.fail(where, "truncated binary PLY data");
@@ -87,7 +88,8 @@ TriangleSurface read_ply(const std::string& data, SurfaceBuilder& builder) {
                 const double count = reader.next(prop.count_type, where);
                 if (!(count >= 0 && count < 1e6))
                     builder.fail(where, fmt::format("bad list length {}", count));
-                const bool indices = is_face && (prop.name == "vertex_indices" || prop.name == "vertex_index");
+                const bool indices =
+                    is_face && (prop.name == "vertex_indices" || prop.name == "vertex_index");
                 face.clear();
                 for (int m = 0; m < int(count); ++m) {
                     const double id = reader.next(prop.type, where);

@@ -61,7 +61,7 @@ using ply::Type;
 
 // Values of the PLY body in order, ASCII or binary; `where` says where the last one was.
 class PlyBody {
-public:
+  public:
     PlyBody(const std::string& path, const std::string& data, size_t at, long long line,
             bool binary)
         : path_(path),
@@ -97,7 +97,7 @@ public:
         throw InputError(fmt::format("{}: {}: {}", path_, where_, message));
     }
 
-private:
+  private:
     const std::string& path_;
     const std::string& data_;
     size_t at_;
@@ -169,7 +169,8 @@ OrientedPoints read_point_cloud(const std::string& path) {
 
 GeometryFileKind geometry_file_kind(const std::string& path) {
     const std::string extension = surface_io::file_extension(path);
-    if (extension == "stl" || extension == "obj" || extension == "off") return GeometryFileKind::surface;
+    if (extension == "stl" || extension == "obj" || extension == "off")
+        return GeometryFileKind::surface;
     if (extension == "xyz") return GeometryFileKind::points;
     if (extension != "ply") return GeometryFileKind::sections;
     const ply::Header header = ply::read_header(path, surface_io::read_file(path), true);

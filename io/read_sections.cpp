@@ -31,9 +31,10 @@ SectionStack read_sections(const std::string& path) {
         auto& loop = loops.back();
         if (loop.size() > 1 && loop.front() == loop.back()) loop.pop_back();
         if (loop.size() < 3)
-            throw InputError(fmt::format("{}: line {}: a closed polyline needs at least 3 points, "
-                                         "got {}",
-                                         path, loop_line, loop.size()));
+            throw InputError(
+                fmt::format("{}: line {}: a closed polyline needs at least 3 points, "
+                            "got {}",
+                            path, loop_line, loop.size()));
     };
     surface_io::for_each_line(data, [&](long long number, std::string_view line) {
         const auto fail = [&](const std::string& message) {

@@ -1,8 +1,9 @@
 // STL reader: binary or ASCII, told apart by size and content, not by the word "solid"
 // (many binary exporters start their 80-byte header with it). Corners are merged exactly.
+#include <fmt/format.h>
+
 #include <cstdint>
 #include <cstring>
-#include <fmt/format.h>
 #include <unordered_map>
 
 #include "io/surface_formats.h"
@@ -26,7 +27,7 @@ struct ExactKeyHash {
 
 // Gives identical coordinates one point id (-0.0 and 0.0 count as equal).
 class PointMerger {
-public:
+  public:
     explicit PointMerger(SurfaceBuilder& builder) : builder_(builder) {}
     int id(const Vec3& p, Place where) {
         const auto [it, inserted] = ids_.try_emplace(ExactKey{p.x(), p.y(), p.z()}, 0);
@@ -34,7 +35,7 @@ public:
         return it->second;
     }
 
-private:
+  private:
     SurfaceBuilder& builder_;
     std::unordered_map<ExactKey, int, ExactKeyHash> ids_;
 };
@@ -62,7 +63,8 @@ TriangleSurface read_binary(const std::string& data, std::uint32_t count, Surfac
         std::memcpy(v, record + 12, sizeof v);  // skip the stored normal; little-endian host
         const Place where{"triangle", t + 1};
         int ids[3];
-        for (int c = 0; c < 3; ++c) ids[c] = merger.id(Vec3(v[3 * c], v[3 * c + 1], v[3 * c + 2]), where);
+        for (int c = 0; c < 3; ++c)
+            ids[c] = merger.id(Vec3(v[3 * c], v[3 * c + 1], v[3 * c + 2]), where);
         builder.add_triangle(ids[0], ids[1], ids[2], where);
     }
     return builder.finish();

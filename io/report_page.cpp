@@ -164,8 +164,8 @@ std::string page_body(const ReportPage& page) {
             "wall, on the cuts those the plane crosses.</p>\n" +
             legend_svg(page) + "<div>\n";
     for (const Picture& p : page.pictures)
-        html += "<figure>" + picture_svg(p, page.worst, !p.cut) +
-                "<figcaption>" + escape_markup(p.title) + "</figcaption></figure>\n";
+        html += "<figure>" + picture_svg(p, page.worst, !p.cut) + "<figcaption>" +
+                escape_markup(p.title) + "</figcaption></figure>\n";
     html += "</div>\n";
 
     html +=
@@ -478,7 +478,8 @@ std::string write_page(const std::filesystem::path& file, const std::string& htm
 
 std::string write_report_beside(const std::string& mesh_file, const ReportPage& page) {
     const std::filesystem::path mesh(mesh_file);
-    return write_page(mesh.parent_path() / (mesh.stem().string() + ".report.html"), report_page_html(page));
+    return write_page(mesh.parent_path() / (mesh.stem().string() + ".report.html"),
+                      report_page_html(page));
 }
 
 GridPictures grid_pictures_for(const BlockGrid& grid) {

@@ -57,7 +57,8 @@ void carry(const fs::path& from, const fs::path& to) {
     std::error_code ec;
     if (fs::is_directory(from, ec)) {
         fs::create_directory(to, ec);
-        for (const auto& entry : fs::directory_iterator(from)) carry(entry.path(), to / entry.path().filename());
+        for (const auto& entry : fs::directory_iterator(from))
+            carry(entry.path(), to / entry.path().filename());
         return;
     }
     fs::create_hard_link(from, to, ec);
@@ -70,28 +71,36 @@ void step(const char* name) {
 
 }  // namespace
 
-StagedOutput::StagedOutput(std::string outdir, Scope scope) : outdir_(std::move(outdir)), scope_(scope) {
+StagedOutput::StagedOutput(std::string outdir, Scope scope)
+    : outdir_(std::move(outdir)), scope_(scope) {
     std::error_code ec;
     // A link to a folder: the folder takes the result (the link stays as the user made it).
-    if (fs::is_symlink(outdir_, ec) && fs::is_directory(outdir_, ec)) outdir_ = fs::canonical(outdir_, ec).string();
+    if (fs::is_symlink(outdir_, ec) && fs::is_directory(outdir_, ec))
+        outdir_ = fs::canonical(outdir_, ec).string();
     if (fs::exists(outdir_, ec) && !fs::is_directory(outdir_, ec))
         throw std::runtime_error(fmt::format("{}: exists and is not a directory", outdir_));
     created_outdir_ = fs::create_directories(outdir_, ec);
-    if (ec) throw std::runtime_error(fmt::format("{}: cannot create directory ({})", outdir_, ec.message()));
+    if (ec)
+        throw std::runtime_error(
+            fmt::format("{}: cannot create directory ({})", outdir_, ec.message()));
     if (scope_ == Scope::whole_folder) {
         lock_fd_ = ::open(outdir_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
         if (lock_fd_ < 0 || ::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
             const int error = errno;
             if (lock_fd_ >= 0) ::close(lock_fd_), lock_fd_ = -1;
             if (created_outdir_) fs::remove(outdir_, ec);
-            throw std::runtime_error(error == EWOULDBLOCK
-                                         ? fmt::format("{}: another hexmesh process is writing into this folder; "
-                                                       "wait for it or choose another one", outdir_)
-                                         : fmt::format("{}: cannot lock the folder ({})", outdir_, std::strerror(error)));
+            throw std::runtime_error(
+                error == EWOULDBLOCK
+                    ? fmt::format("{}: another hexmesh process is writing into this folder; "
+                                  "wait for it or choose another one",
+                                  outdir_)
+                    : fmt::format("{}: cannot lock the folder ({})", outdir_,
+                                  std::strerror(error)));
         }
     }
-    const fs::path prefix = scope_ == Scope::whole_folder ? staging_prefix(outdir_, host_name())
-                                                          : fs::path(outdir_) / (".staging-" + host_name() + "-");
+    const fs::path prefix = scope_ == Scope::whole_folder
+                                ? staging_prefix(outdir_, host_name())
+                                : fs::path(outdir_) / (".staging-" + host_name() + "-");
     remove_stale_staging(prefix);
     staging_ = prefix.string() + std::to_string(::getpid());
     fs::remove_all(staging_, ec);
@@ -100,7 +109,8 @@ StagedOutput::StagedOutput(std::string outdir, Scope scope) : outdir_(std::move(
         if (lock_fd_ >= 0) ::close(lock_fd_), lock_fd_ = -1;
         if (created_outdir_) fs::remove(outdir_, ec);
         throw std::runtime_error(fmt::format("{}: cannot write {} it ({})", outdir_,
-                                             scope_ == Scope::whole_folder ? "beside" : "into", ec.message()));
+                                             scope_ == Scope::whole_folder ? "beside" : "into",
+                                             ec.message()));
     }
 }
 
@@ -133,8 +143,8 @@ std::vector<std::string> StagedOutput::commit() {
             fs::remove_all(target, ec);
             fs::rename(entry.path(), target, ec);
             if (ec)
-                throw std::runtime_error(
-                    fmt::format("{}: cannot move output into place ({})", target.string(), ec.message()));
+                throw std::runtime_error(fmt::format("{}: cannot move output into place ({})",
+                                                     target.string(), ec.message()));
         }
     };
     if (scope_ == Scope::named_entries) {
@@ -144,21 +154,24 @@ std::vector<std::string> StagedOutput::commit() {
         std::vector<fs::path> carried;
         for (const auto& entry : fs::directory_iterator(outdir_)) {
             const fs::path target = fs::path(staging_) / entry.path().filename();
-            if (entry.path().filename().string().rfind(".staging-", 0) != 0 && !fs::exists(target, ec))
+            if (entry.path().filename().string().rfind(".staging-", 0) != 0 &&
+                !fs::exists(target, ec))
                 carry(entry.path(), target), carried.push_back(target);
         }
         step("carried");
-        if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, outdir_.c_str(), RENAME_EXCHANGE) == 0) {
+        if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, outdir_.c_str(), RENAME_EXCHANGE) ==
+            0) {
             step("exchanged");
             fs::remove_all(staging_, ec);  // the old contents now
-        } else if (errno == EINVAL || errno == ENOSYS || errno == EOPNOTSUPP || errno == EBUSY || errno == EXDEV) {
+        } else if (errno == EINVAL || errno == ENOSYS || errno == EOPNOTSUPP || errno == EBUSY ||
+                   errno == EXDEV) {
             // No atomic exchange here (a file system without it, the current folder, a mount
             // point): the written entries move one by one; the carried copies go.
             for (const fs::path& copy : carried) fs::remove_all(copy, ec);
             move_entries();
         } else {
-            throw std::runtime_error(fmt::format("{}: cannot move the output into place ({})", outdir_,
-                                                 std::strerror(errno)));
+            throw std::runtime_error(fmt::format("{}: cannot move the output into place ({})",
+                                                 outdir_, std::strerror(errno)));
         }
     }
     std::vector<std::string> finals;

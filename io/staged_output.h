@@ -25,7 +25,7 @@ namespace hexmesh {
 // only the entries written are replaced, each by one rename from a staging folder inside
 // OUTDIR (OUTDIR/.staging-HOST-PID); the rest of the folder is not touched, nor locked.
 class StagedOutput {
-public:
+  public:
     enum class Scope { whole_folder, named_entries };
     explicit StagedOutput(std::string outdir, Scope scope = Scope::whole_folder);
     ~StagedOutput();
@@ -42,7 +42,7 @@ public:
     // process there.
     static std::function<void(const char* step)> commit_step_hook;
 
-private:
+  private:
     std::string outdir_, staging_;
     std::vector<std::string> names_;
     Scope scope_;

@@ -13,7 +13,8 @@ void write_su2_mesh(const BlockGrid& grid, const std::string& path) {
     Id cell = 0;
     for (const Block& b : grid.blocks)
         for_each_cell(b, [&](int, int, int, const std::array<Id, 8>& n) {
-            out.print("12 {} {} {} {} {} {} {} {} {}\n", n[0], n[1], n[2], n[3], n[4], n[5], n[6], n[7], cell++);
+            out.print("12 {} {} {} {} {} {} {} {} {}\n", n[0], n[1], n[2], n[3], n[4], n[5], n[6],
+                      n[7], cell++);
         });
     out.print("NPOIN= {}\n", grid.points.size());
     for (size_t v = 0; v < grid.points.size(); ++v) {

@@ -18,19 +18,19 @@ struct Place {
 // Collects points and triangles, checking each one as it arrives, so that every error can
 // name the place it comes from.
 class SurfaceBuilder {
-public:
+  public:
     SurfaceBuilder(std::string file, bool allow_degenerate)
         : file_(std::move(file)), allow_degenerate_(allow_degenerate) {}
 
     int num_points() const { return static_cast<int>(surface_.points.size()); }
-    int add_point(const Vec3& p, Place where);              // refuses NaN and infinity
-    void add_triangle(int a, int b, int c, Place where);    // ids must exist already
+    int add_point(const Vec3& p, Place where);                   // refuses NaN and infinity
+    void add_triangle(int a, int b, int c, Place where);         // ids must exist already
     void add_polygon(const std::vector<int>& ids, Place where);  // a fan from ids[0]
-    TriangleSurface finish();                               // refuses an empty surface
+    TriangleSurface finish();                                    // refuses an empty surface
     [[noreturn]] void fail(Place where, const std::string& message) const;
     const std::string& file() const { return file_; }
 
-private:
+  private:
     std::string file_;
     bool allow_degenerate_;
     TriangleSurface surface_;

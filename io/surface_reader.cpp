@@ -1,5 +1,7 @@
 #include "io/surface_reader.h"
 
+#include <fmt/format.h>
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cctype>
@@ -7,7 +9,6 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
-#include <fmt/format.h>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -31,8 +32,8 @@ int SurfaceBuilder::add_point(const Vec3& p, Place where) {
     // Beyond 1e150 the products of two coordinates (areas, normals) overflow: the file's units
     // are wrong, and that, not a degenerate triangle further on, is what to say.
     if (p.cwiseAbs().maxCoeff() > max_coordinate)
-        fail(where, fmt::format("vertex coordinates up to {:g} are supported, got ({}, {}, {})", max_coordinate,
-                                p.x(), p.y(), p.z()));
+        fail(where, fmt::format("vertex coordinates up to {:g} are supported, got ({}, {}, {})",
+                                max_coordinate, p.x(), p.y(), p.z()));
     surface_.points.push_back(p);
     return num_points() - 1;
 }
@@ -44,13 +45,13 @@ void SurfaceBuilder::add_triangle(int a, int b, int c, Place where) {
             fail(where, fmt::format("vertex index {} out of range ({} vertices)", id, n));
     if (!allow_degenerate_) {
         const Vec3 &pa = surface_.points[a], &pb = surface_.points[b], &pc = surface_.points[c];
-        const double longest = std::max({(pb - pa).squaredNorm(), (pc - pb).squaredNorm(),
-                                         (pa - pc).squaredNorm()});
+        const double longest =
+            std::max({(pb - pa).squaredNorm(), (pc - pb).squaredNorm(), (pa - pc).squaredNorm()});
         if (!((pb - pa).cross(pc - pa).norm() > 1e-12 * longest))
             fail(where, fmt::format("zero-area triangle (corners ({}, {}, {}), ({}, {}, {}), "
                                     "({}, {}, {})); `hexmesh inspect` lists all of them",
-                                    pa.x(), pa.y(), pa.z(), pb.x(), pb.y(), pb.z(), pc.x(),
-                                    pc.y(), pc.z()));
+                                    pa.x(), pa.y(), pa.z(), pb.x(), pb.y(), pb.z(), pc.x(), pc.y(),
+                                    pc.z()));
     }
     surface_.triangles.push_back({a, b, c});
 }
@@ -62,8 +63,7 @@ void SurfaceBuilder::add_polygon(const std::vector<int>& ids, Place where) {
 }
 
 TriangleSurface SurfaceBuilder::finish() {
-    if (surface_.triangles.empty())
-        fail({}, "not a surface: the file holds no triangle");
+    if (surface_.triangles.empty()) fail({}, "not a surface: the file holds no triangle");
     return std::move(surface_);
 }
 

@@ -17,7 +17,7 @@
 namespace hexmesh {
 
 class TextTokens {
-public:
+  public:
     explicit TextTokens(std::string path) : path_(std::move(path)) {
         std::ifstream in(path_, std::ios::binary);
         if (!in) throw InputError(fmt::format("{}: cannot open ({})", path_, std::strerror(errno)));
@@ -67,7 +67,7 @@ public:
     }
     const std::string& path() const { return path_; }
 
-private:
+  private:
     void skip() {
         while (*at_ && std::isspace(static_cast<unsigned char>(*at_))) ++at_;
     }

@@ -7,7 +7,8 @@ namespace hexmesh {
 
 std::string ugrid_mapbc_path(const std::string& path) {
     const std::string suffix = ".ugrid";
-    const bool ends = path.size() >= suffix.size() && path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0;
+    const bool ends = path.size() >= suffix.size() &&
+                      path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0;
     return (ends ? path.substr(0, path.size() - suffix.size()) : path) + ".mapbc";
 }
 
@@ -23,18 +24,20 @@ void write_ugrid_mesh(const BlockGrid& grid, const std::string& path) {
                 out.print("{} {} {} {}\n", n[0] + 1, n[1] + 1, n[2] + 1, n[3] + 1);
             });
         for (int p = 0; p < npatches; ++p)
-            for_each_patch_face(grid, faces, p, [&](Id, const std::array<Id, 4>&) { out.print("{}\n", p + 1); });
+            for_each_patch_face(grid, faces, p,
+                                [&](Id, const std::array<Id, 4>&) { out.print("{}\n", p + 1); });
         for (const Block& b : grid.blocks)
             for_each_cell(b, [&](int, int, int, const std::array<Id, 8>& n) {
-                out.print("{} {} {} {} {} {} {} {}\n", n[0] + 1, n[1] + 1, n[2] + 1, n[3] + 1, n[4] + 1,
-                          n[5] + 1, n[6] + 1, n[7] + 1);
+                out.print("{} {} {} {} {} {} {} {}\n", n[0] + 1, n[1] + 1, n[2] + 1, n[3] + 1,
+                          n[4] + 1, n[5] + 1, n[6] + 1, n[7] + 1);
             });
         out.close();
     }
     FileSink map(ugrid_mapbc_path(path), false);
     map.print("{}\n", npatches);
     for (int p = 0; p < npatches; ++p)
-        map.print("{} {} {}\n", p + 1, faces.patch_names[p] == "wall" ? 4000 : 5050, faces.patch_names[p]);
+        map.print("{} {} {}\n", p + 1, faces.patch_names[p] == "wall" ? 4000 : 5050,
+                  faces.patch_names[p]);
     map.close();
 }
 

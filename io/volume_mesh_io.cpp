@@ -44,26 +44,33 @@ VolumeMesh from_vtk(vtkDataSet* data, const std::string& path) {
         const int type = data->GetCellType(c);
         data->GetCellPoints(c, ids);
         // Every cell's ids in range before VTK builds any cell from them (GetCell reads points).
-        const int takes = type == VTK_TETRA ? 4 : type == VTK_HEXAHEDRON || type == VTK_VOXEL ? 8 : 0;
+        const int takes = type == VTK_TETRA                             ? 4
+                          : type == VTK_HEXAHEDRON || type == VTK_VOXEL ? 8
+                                                                        : 0;
         vtk_support::check_cell_points(ids, takes, Id(mesh.points.size()), path, c);
         if (type == VTK_HEXAHEDRON || type == VTK_VOXEL) {
-            for (int v = 0; v < 8; ++v) mesh.hexes.push_back(ids->GetId(type == VTK_VOXEL ? voxel_to_hex[v] : v));
+            for (int v = 0; v < 8; ++v)
+                mesh.hexes.push_back(ids->GetId(type == VTK_VOXEL ? voxel_to_hex[v] : v));
         } else if (type == VTK_TETRA) {
             for (int v = 0; v < 4; ++v) mesh.tets.push_back(ids->GetId(v));
         } else if (vtkCell* cell = data->GetCell(c); !cell || cell->GetCellDimension() == 3) {
             // Types VTK names but builds no cell of (parametric, some higher-order): refused.
-            throw InputError(fmt::format("{}: cell {} has VTK type {}; only hexahedra and tetrahedra "
-                                         "are supported", path, c, type));
+            throw InputError(
+                fmt::format("{}: cell {} has VTK type {}; only hexahedra and tetrahedra "
+                            "are supported",
+                            path, c, type));
         }
     }
     if (mesh.hexes.empty() && mesh.tets.empty())
         throw InputError(fmt::format("{}: the file holds no hexahedron or tetrahedron", path));
     if (vtkDataArray* fixed = data->GetPointData()->GetArray("fixed")) {
         if (fixed->GetNumberOfTuples() != vtkIdType(mesh.points.size()))
-            throw InputError(fmt::format("{}: the point array \"fixed\" has {} values for {} points", path,
-                                         fixed->GetNumberOfTuples(), mesh.points.size()));
+            throw InputError(
+                fmt::format("{}: the point array \"fixed\" has {} values for {} points", path,
+                            fixed->GetNumberOfTuples(), mesh.points.size()));
         mesh.fixed.resize(mesh.points.size());
-        for (vtkIdType m = 0; m < fixed->GetNumberOfTuples(); ++m) mesh.fixed[m] = fixed->GetComponent(m, 0) != 0;
+        for (vtkIdType m = 0; m < fixed->GetNumberOfTuples(); ++m)
+            mesh.fixed[m] = fixed->GetComponent(m, 0) != 0;
     }
     return mesh;
 }
@@ -110,7 +117,8 @@ VolumeMesh read_volume_mesh(const std::string& path) {
     } else if (ext == ".vtu") {
         data = read_xml_vtk(path);
     } else
-        throw InputError(fmt::format("{}: unknown volume mesh format '{}' (expected .vtk, .vtu or .mesh)", path, ext));
+        throw InputError(fmt::format(
+            "{}: unknown volume mesh format '{}' (expected .vtk, .vtu or .mesh)", path, ext));
     auto* set = vtkDataSet::SafeDownCast(data);
     if (!set) throw InputError(fmt::format("{}: not a VTK data set", path));
     return from_vtk(set, path);
@@ -123,7 +131,8 @@ void check_volume_mesh_output(const std::string& path) {
     const fs::path folder = fs::absolute(path).parent_path();
     std::error_code ec;
     if (!fs::is_directory(folder, ec) || ::access(folder.c_str(), W_OK) != 0)
-        throw InputError(fmt::format("{}: folder {} does not exist or is not writable", path, folder.string()));
+        throw InputError(
+            fmt::format("{}: folder {} does not exist or is not writable", path, folder.string()));
 }
 
 void write_volume_mesh(const VolumeMesh& mesh, const std::string& path) {

@@ -95,7 +95,6 @@ vtkSmartPointer<vtkStructuredGrid> to_vtk_block(const BlockGrid& grid, const Blo
     return out;
 }
 
-
 // Points keyed by their exact coordinates, so copies of one node in several pieces merge.
 using PointIds = std::unordered_map<std::array<double, 3>, Id, ArrayHash<double, 3>>;
 
@@ -115,9 +114,10 @@ void append_hexes(vtkDataSet* data, const std::string& path, HexMesh& mesh, Poin
     for (vtkIdType c = 0; c < data->GetNumberOfCells(); ++c) {
         const int type = data->GetCellType(c);
         if (type != VTK_HEXAHEDRON && type != VTK_VOXEL) {
-            throw InputError(fmt::format("{}: cell {} has VTK type {}; only hexahedra (12) and "
-                                         "voxels (11) are supported",
-                                         path, c, type));
+            throw InputError(
+                fmt::format("{}: cell {} has VTK type {}; only hexahedra (12) and "
+                            "voxels (11) are supported",
+                            path, c, type));
         }
         data->GetCellPoints(c, ids);
         vtk_support::check_cell_points(ids, 8, Id(local.size()), path, c);
@@ -126,8 +126,6 @@ void append_hexes(vtkDataSet* data, const std::string& path, HexMesh& mesh, Poin
             mesh.hexes.push_back(local[ids->GetId(type == VTK_VOXEL ? voxel_to_hex[v] : v)]);
     }
 }
-
-
 
 // Appends one structured piece to `grid` as a block. Blocks meet only on their faces: points
 // on the block's faces are merged with equal points of earlier blocks, interior points are
@@ -139,7 +137,8 @@ void append_block(vtkStructuredGrid* piece, const std::string& fallback_name, Bl
     int dims[3];
     piece->GetDimensions(dims);
     block.nodes = {dims[0], dims[1], dims[2]};
-    auto* kinds = vtkUnsignedCharArray::SafeDownCast(piece->GetPointData()->GetArray("vertex_kind"));
+    auto* kinds =
+        vtkUnsignedCharArray::SafeDownCast(piece->GetPointData()->GetArray("vertex_kind"));
     block.node_ids.resize(piece->GetNumberOfPoints());
     grid.points.reserve(grid.points.size() + block.node_ids.size());
     grid.kinds.reserve(grid.kinds.size() + block.node_ids.size());
@@ -218,7 +217,8 @@ void VtkGridWriter::finish() {
         "header_type=\"UInt64\">\n  <vtkMultiBlockDataSet>\n";
     for (size_t b = 0; b < names_.size(); ++b)
         xml += fmt::format("    <DataSet index=\"{}\" name=\"{}\" file=\"{}/{}_{}.vts\"/>\n", b,
-                           escape_markup(names_[b]), escape_markup(pieces_), escape_markup(pieces_), b);
+                           escape_markup(names_[b]), escape_markup(pieces_), escape_markup(pieces_),
+                           b);
     xml += "  </vtkMultiBlockDataSet>\n</VTKFile>\n";
     std::ofstream out(path_, std::ios::binary);
     out << xml;
@@ -236,14 +236,21 @@ HexMesh read_vtk_mesh(const std::string& path) {
     vtk_support::require_file(path);
     const std::string ext = vtk_support::extension(path);
     vtkSmartPointer<vtkDataObject> data;
-    if (ext == ".vts" || ext == ".vtu" || ext == ".vtm") data = read_xml_vtk(path);
-    else if (ext == ".vtk") data = read_legacy_vtk(path);
-    else if (ext == ".msh") return read_gmsh_mesh(path);
-    else if (ext == ".mesh") return read_medit_mesh(path);
-    else if (is_plot3d_path(path)) return to_hex_mesh(read_plot3d(path));
+    if (ext == ".vts" || ext == ".vtu" || ext == ".vtm")
+        data = read_xml_vtk(path);
+    else if (ext == ".vtk")
+        data = read_legacy_vtk(path);
+    else if (ext == ".msh")
+        return read_gmsh_mesh(path);
+    else if (ext == ".mesh")
+        return read_medit_mesh(path);
+    else if (is_plot3d_path(path))
+        return to_hex_mesh(read_plot3d(path));
     else
-        throw InputError(fmt::format("{}: unknown mesh format '{}' (expected .vts, .vtu, .vtk, "
-                                     ".vtm, .msh, .mesh or Plot3D .xyz .x .p3d .g)", path, ext));
+        throw InputError(
+            fmt::format("{}: unknown mesh format '{}' (expected .vts, .vtu, .vtk, "
+                        ".vtm, .msh, .mesh or Plot3D .xyz .x .p3d .g)",
+                        path, ext));
 
     HexMesh mesh;
     PointIds point_ids;
@@ -267,9 +274,11 @@ BlockGrid read_vtk_block_grid(const std::string& path) {
         throw InputError(fmt::format("{}: no such grid file", path));
     const std::string ext = vtk_support::extension(path);
     vtkSmartPointer<vtkDataObject> data;
-    if (ext == ".vts" || ext == ".vtm") data = read_xml_vtk(path);
+    if (ext == ".vts" || ext == ".vtm")
+        data = read_xml_vtk(path);
     else
-        throw InputError(fmt::format("{}: a block grid is read from .vts or .vtm, not '{}'", path, ext));
+        throw InputError(
+            fmt::format("{}: a block grid is read from .vts or .vtm, not '{}'", path, ext));
 
     BlockGrid grid;
     PointIds point_ids;
@@ -284,7 +293,8 @@ BlockGrid read_vtk_block_grid(const std::string& path) {
         it.TakeReference(composite->NewIterator());
         for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem()) {
             std::string name = fmt::format("block{}", grid.blocks.size());
-            if (it->HasCurrentMetaData() && it->GetCurrentMetaData()->Has(vtkCompositeDataSet::NAME()))
+            if (it->HasCurrentMetaData() &&
+                it->GetCurrentMetaData()->Has(vtkCompositeDataSet::NAME()))
                 name = it->GetCurrentMetaData()->Get(vtkCompositeDataSet::NAME());
             add(it->GetCurrentDataObject(), name);
         }

@@ -22,7 +22,7 @@ void write_vtk_grid(const BlockGrid& grid, const std::string& path);
 // add() writes each block's piece as it comes (the grid passed holds that block's points),
 // finish() the .vtm index that names them. The files are those write_vtk_grid writes.
 class VtkGridWriter {
-public:
+  public:
     // `path`: .vts when num_blocks is 1, else .vtm (std::runtime_error otherwise); the
     // folder of a .vtm's pieces is created here.
     VtkGridWriter(std::string path, size_t num_blocks);
@@ -30,7 +30,7 @@ public:
     // Throws std::logic_error unless num_blocks blocks were added.
     void finish();
 
-private:
+  private:
     std::string path_;
     size_t num_blocks_;
     std::string pieces_;              // a .vtm's stem STEM: its pieces are STEM/STEM_<b>.vts

@@ -24,10 +24,11 @@ namespace {
 
 // Keeps VTK's first message instead of printing it.
 class CapturedMessages : public vtkOutputWindow {
-public:
+  public:
     static CapturedMessages* New();
-    vtkTypeMacro(CapturedMessages, vtkOutputWindow)
-    void DisplayText(const char* text) override { keep(text); }
+    vtkTypeMacro(CapturedMessages, vtkOutputWindow) void DisplayText(const char* text) override {
+        keep(text);
+    }
     void DisplayErrorText(const char* text) override { keep(text); }
     void DisplayWarningText(const char* text) override { keep(text); }
     void DisplayGenericWarningText(const char* text) override { keep(text); }
@@ -44,7 +45,7 @@ public:
         return m;
     }
 
-private:
+  private:
     void keep(const char* text) {
         if (first_.empty() && text) first_ = text;
     }
@@ -52,7 +53,7 @@ private:
 };
 vtkStandardNewMacro(CapturedMessages)
 
-CapturedMessages& messages() {
+    CapturedMessages& messages() {
     static CapturedMessages* window = [] {
         auto* w = CapturedMessages::New();
         vtkOutputWindow::SetInstance(w);
@@ -64,7 +65,9 @@ CapturedMessages& messages() {
 
 }  // namespace
 
-std::string take_message() { return messages().take(); }
+std::string take_message() {
+    return messages().take();
+}
 
 std::string extension(const std::string& path) {
     std::string ext = std::filesystem::path(path).extension().string();
@@ -91,14 +94,16 @@ void require_file(const std::string& path) {
         throw InputError(fmt::format("{}: no such mesh file", path));
 }
 
-void check_cell_points(vtkIdList* ids, int count, Id points, const std::string& path, vtkIdType cell) {
+void check_cell_points(vtkIdList* ids, int count, Id points, const std::string& path,
+                       vtkIdType cell) {
     if (ids->GetNumberOfIds() < count)
-        throw InputError(fmt::format("{}: cell {} has {} point ids where its type takes {}", path, cell,
-                                     ids->GetNumberOfIds(), count));
+        throw InputError(fmt::format("{}: cell {} has {} point ids where its type takes {}", path,
+                                     cell, ids->GetNumberOfIds(), count));
     for (vtkIdType v = 0; v < ids->GetNumberOfIds(); ++v)
         if (ids->GetId(v) < 0 || ids->GetId(v) >= points)
-            throw InputError(fmt::format("{}: cell {} refers to point {}, but the file has points 0 to {}",
-                                         path, cell, ids->GetId(v), points - 1));
+            throw InputError(
+                fmt::format("{}: cell {} refers to point {}, but the file has points 0 to {}", path,
+                            cell, ids->GetId(v), points - 1));
 }
 
 }  // namespace hexmesh::vtk_support

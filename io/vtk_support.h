@@ -2,14 +2,15 @@
 // checks the mesh readers share.
 #pragma once
 
-#include <string>
-
-#include "hexmesh/core/types.h"
 #include <vtkDataObject.h>
 #include <vtkIdList.h>
 #include <vtkNew.h>
 #include <vtkSmartPointer.h>
 #include <vtkXMLWriterBase.h>
+
+#include <string>
+
+#include "hexmesh/core/types.h"
 
 namespace hexmesh::vtk_support {
 
@@ -31,7 +32,8 @@ void configure_xml_writer(vtkXMLWriterBase& writer);
 
 // Throws InputError naming the file and cell when the cell has fewer than `count` point ids
 // (what its type takes) or any of them is outside [0, points).
-void check_cell_points(vtkIdList* ids, int count, Id points, const std::string& path, vtkIdType cell);
+void check_cell_points(vtkIdList* ids, int count, Id points, const std::string& path,
+                       vtkIdType cell);
 
 // Throws InputError "PATH: no such mesh file" unless `path` is a regular file.
 void require_file(const std::string& path);

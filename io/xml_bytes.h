@@ -18,7 +18,7 @@ namespace hexmesh::xml {
 
 // The bytes of one array.
 class ByteSource {
-public:
+  public:
     virtual ~ByteSource() = default;
     // Copies the next `count` bytes to `out`; false when fewer are left.
     virtual bool take(uint64_t count, char* out) = 0;
@@ -36,7 +36,7 @@ struct DecodeError {
 // new run (VTK encodes a compressed array's block table and its blocks as separate runs, an
 // uncompressed array's header and values as one).
 class Base64Source : public ByteSource {
-public:
+  public:
     // `base`: where `text` starts in what position() counts in (the appended data).
     explicit Base64Source(std::string_view text, uint64_t base = 0) : text_(text), base_(base) {}
 
@@ -51,10 +51,12 @@ public:
         }
         return true;
     }
-    uint64_t most_left() const override { return (text_.size() - at_) / 4 * 3 + 3 + uint64_t(pending_count_ - pending_at_); }
+    uint64_t most_left() const override {
+        return (text_.size() - at_) / 4 * 3 + 3 + uint64_t(pending_count_ - pending_at_);
+    }
     uint64_t position() const override { return base_ + at_; }
 
-private:
+  private:
     static int value_of(char ch) {
         if (ch >= 'A' && ch <= 'Z') return ch - 'A';
         if (ch >= 'a' && ch <= 'z') return ch - 'a' + 26;
@@ -81,8 +83,9 @@ private:
             } else {
                 v = value_of(ch);
                 if (v < 0 || padding > 0)
-                    throw DecodeError{fmt::format("its base64 text holds '{}'",
-                                                  v < 0 ? printable(std::string_view(&ch, 1)) : "a character after '='")};
+                    throw DecodeError{fmt::format(
+                        "its base64 text holds '{}'",
+                        v < 0 ? printable(std::string_view(&ch, 1)) : "a character after '='")};
             }
             bits = (bits << 6) | std::uint32_t(v);
             ++n;
@@ -104,8 +107,9 @@ private:
 
 // Raw appended bytes [at, end) of the open file.
 class FileSource : public ByteSource {
-public:
-    FileSource(std::ifstream& in, uint64_t at, uint64_t end) : in_(in), at_(at), end_(std::max(at, end)) {}
+  public:
+    FileSource(std::ifstream& in, uint64_t at, uint64_t end)
+        : in_(in), at_(at), end_(std::max(at, end)) {}
 
     bool take(uint64_t count, char* out) override {
         if (count > end_ - at_) return false;
@@ -119,7 +123,7 @@ public:
     uint64_t most_left() const override { return end_ - at_; }
     uint64_t position() const override { return at_; }
 
-private:
+  private:
     std::ifstream& in_;
     uint64_t at_, end_;
 };

@@ -20,7 +20,7 @@ constexpr int kMostDepth = 64;
 constexpr size_t kMostAttributes = 64;
 
 class XmlParser {
-public:
+  public:
     XmlParser(const std::string& path, std::string_view text) : path_(path), text_(text) {}
 
     Head parse() {
@@ -30,8 +30,10 @@ public:
         std::optional<size_t> data_start;
         while (true) {
             const size_t lt = text_.find('<', at);
-            const std::string_view between = text_.substr(at, lt == std::string_view::npos ? text_.npos : lt - at);
-            if (std::any_of(between.begin(), between.end(), [](char ch) { return !is_blank(ch); })) {
+            const std::string_view between =
+                text_.substr(at, lt == std::string_view::npos ? text_.npos : lt - at);
+            if (std::any_of(between.begin(), between.end(),
+                            [](char ch) { return !is_blank(ch); })) {
                 if (open.size() == 1) fail_at(at, "text outside the <VTKFile> element");
                 open.back()->text.append(between);
             }
@@ -47,7 +49,8 @@ public:
                 size_t p = at + 2;
                 const std::string name = read_name(p);
                 while (p < text_.size() && is_blank(text_[p])) ++p;
-                if (p >= text_.size() || text_[p] != '>') fail_at(at, fmt::format("</{}: expected '>'", name));
+                if (p >= text_.size() || text_[p] != '>')
+                    fail_at(at, fmt::format("</{}: expected '>'", name));
                 if (open.size() == 1) fail_at(at, fmt::format("</{}> closes no element", name));
                 if (open.back()->name != name)
                     fail_at(at, fmt::format("</{}> closes <{}>", name, open.back()->name));
@@ -57,7 +60,8 @@ public:
                 Element element;
                 bool closed = false;
                 at = read_start_tag(at, element, closed);
-                if (int(open.size()) > kMostDepth) fail_at(lt, fmt::format("elements nested more than {} deep", kMostDepth));
+                if (int(open.size()) > kMostDepth)
+                    fail_at(lt, fmt::format("elements nested more than {} deep", kMostDepth));
                 if (open.size() == 1 && !document.children.empty())
                     fail_at(lt, fmt::format("a second top element <{}>", element.name));
                 Element* parent = open.back();
@@ -68,17 +72,21 @@ public:
                     // Its bytes start after the first '_' with nothing but blanks before it.
                     size_t p = at;
                     while (p < text_.size() && is_blank(text_[p])) ++p;
-                    if (p >= text_.size() || text_[p] != '_') fail("its AppendedData does not start with '_' after the tag");
+                    if (p >= text_.size() || text_[p] != '_')
+                        fail("its AppendedData does not start with '_' after the tag");
                     data_start = p + 1;
                     break;
                 }
                 if (!closed) open.push_back(&added);
             }
         }
-        if (!data_start && open.size() > 1) fail(fmt::format("the file ends inside <{}>", open.back()->name));
+        if (!data_start && open.size() > 1)
+            fail(fmt::format("the file ends inside <{}>", open.back()->name));
         if (document.children.empty() || document.children[0].name != "VTKFile")
-            fail(document.children.empty() ? "no <VTKFile> element (not a VTK XML file)"
-                                           : fmt::format("its top element is <{}>; expected <VTKFile>", document.children[0].name));
+            fail(document.children.empty()
+                     ? "no <VTKFile> element (not a VTK XML file)"
+                     : fmt::format("its top element is <{}>; expected <VTKFile>",
+                                   document.children[0].name));
         Head head;
         head.root = std::move(document.children[0]);
         if (data_start) {
@@ -90,8 +98,10 @@ public:
         return head;
     }
 
-private:
-    bool starts(size_t at, std::string_view what) const { return text_.compare(at, what.size(), what) == 0; }
+  private:
+    bool starts(size_t at, std::string_view what) const {
+        return text_.compare(at, what.size(), what) == 0;
+    }
 
     size_t skip_past(size_t at, std::string_view end, const char* what) const {
         const size_t found = text_.find(end, at);
@@ -100,7 +110,8 @@ private:
     }
 
     static bool name_char(char ch) {
-        return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == ':' || ch == '.' || ch == '-';
+        return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == ':' ||
+               ch == '.' || ch == '-';
     }
 
     std::string read_name(size_t& p) const {
@@ -117,27 +128,36 @@ private:
         while (true) {
             const size_t before = p;
             while (p < text_.size() && is_blank(text_[p])) ++p;
-            if (p >= text_.size()) fail_at(at, fmt::format("the file ends inside the tag <{}", element.name));
+            if (p >= text_.size())
+                fail_at(at, fmt::format("the file ends inside the tag <{}", element.name));
             if (text_[p] == '>') return p + 1;
             if (text_[p] == '/') {
-                if (p + 1 >= text_.size() || text_[p + 1] != '>') fail_at(p, fmt::format("<{}: expected '>' after '/'", element.name));
+                if (p + 1 >= text_.size() || text_[p + 1] != '>')
+                    fail_at(p, fmt::format("<{}: expected '>' after '/'", element.name));
                 closed = true;
                 return p + 2;
             }
-            if (p == before) fail_at(p, fmt::format("<{}: expected a blank before an attribute", element.name));
+            if (p == before)
+                fail_at(p, fmt::format("<{}: expected a blank before an attribute", element.name));
             std::string key = read_name(p);
             while (p < text_.size() && is_blank(text_[p])) ++p;
-            if (p >= text_.size() || text_[p] != '=') fail_at(p, fmt::format("<{}: attribute {} without '='", element.name, key));
+            if (p >= text_.size() || text_[p] != '=')
+                fail_at(p, fmt::format("<{}: attribute {} without '='", element.name, key));
             ++p;
             while (p < text_.size() && is_blank(text_[p])) ++p;
             if (p >= text_.size() || (text_[p] != '"' && text_[p] != '\''))
-                fail_at(p, fmt::format("<{}: attribute {} without a quoted value", element.name, key));
+                fail_at(p,
+                        fmt::format("<{}: attribute {} without a quoted value", element.name, key));
             const size_t end = text_.find(text_[p], p + 1);
-            if (end == std::string_view::npos) fail_at(p, fmt::format("<{}: attribute {} does not end", element.name, key));
-            if (element.find(key)) fail_at(p, fmt::format("<{}: attribute {} given twice", element.name, key));
+            if (end == std::string_view::npos)
+                fail_at(p, fmt::format("<{}: attribute {} does not end", element.name, key));
+            if (element.find(key))
+                fail_at(p, fmt::format("<{}: attribute {} given twice", element.name, key));
             if (element.attributes.size() >= kMostAttributes)
-                fail_at(p, fmt::format("<{}: more than {} attributes", element.name, kMostAttributes));
-            element.attributes.emplace_back(std::move(key), decode_entities(text_.substr(p + 1, end - p - 1), p));
+                fail_at(p,
+                        fmt::format("<{}: more than {} attributes", element.name, kMostAttributes));
+            element.attributes.emplace_back(std::move(key),
+                                            decode_entities(text_.substr(p + 1, end - p - 1), p));
             p = end + 1;
         }
     }
@@ -151,19 +171,27 @@ private:
                 continue;
             }
             const size_t semi = raw.find(';', k);
-            if (semi == std::string_view::npos) fail_at(at, "an '&' that starts no entity in an attribute value");
+            if (semi == std::string_view::npos)
+                fail_at(at, "an '&' that starts no entity in an attribute value");
             const std::string_view name = raw.substr(k + 1, semi - k - 1);
-            if (name == "lt") out += '<';
-            else if (name == "gt") out += '>';
-            else if (name == "amp") out += '&';
-            else if (name == "quot") out += '"';
-            else if (name == "apos") out += '\'';
+            if (name == "lt")
+                out += '<';
+            else if (name == "gt")
+                out += '>';
+            else if (name == "amp")
+                out += '&';
+            else if (name == "quot")
+                out += '"';
+            else if (name == "apos")
+                out += '\'';
             else if (name.size() > 1 && name[0] == '#') {
                 const bool hex = name[1] == 'x';
                 unsigned long code = 0;
                 const std::string_view digits = name.substr(hex ? 2 : 1);
-                const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), code, hex ? 16 : 10);
-                if (ec != std::errc() || end != digits.data() + digits.size() || digits.empty() || code == 0 || code > 0x10FFFF)
+                const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(),
+                                                       code, hex ? 16 : 10);
+                if (ec != std::errc() || end != digits.data() + digits.size() || digits.empty() ||
+                    code == 0 || code > 0x10FFFF)
                     fail_at(at, fmt::format("entity &{}; is not a character", printable(name)));
                 append_utf8(out, code);
             } else {
@@ -192,9 +220,13 @@ private:
         }
     }
 
-    [[noreturn]] void fail(const std::string& why) const { throw InputError(fmt::format("{}: {}", path_, why)); }
+    [[noreturn]] void fail(const std::string& why) const {
+        throw InputError(fmt::format("{}: {}", path_, why));
+    }
     [[noreturn]] void fail_at(size_t at, const std::string& why) const {
-        const long line = 1 + long(std::count(text_.begin(), text_.begin() + long(std::min(at, text_.size())), '\n'));
+        const long line =
+            1 +
+            long(std::count(text_.begin(), text_.begin() + long(std::min(at, text_.size())), '\n'));
         throw InputError(fmt::format("{}:{}: {}", path_, line, why));
     }
 
@@ -208,13 +240,17 @@ std::string printable(std::string_view text) {
     std::string out;
     for (size_t k = 0; k < text.size() && k < 40; ++k) {
         const auto ch = static_cast<unsigned char>(text[k]);
-        if (ch >= 0x20 && ch < 0x7f) out += char(ch);
-        else out += fmt::format("\\x{:02x}", ch);
+        if (ch >= 0x20 && ch < 0x7f)
+            out += char(ch);
+        else
+            out += fmt::format("\\x{:02x}", ch);
     }
     if (text.size() > 40) out += "...";
     return out;
 }
 
-Head parse_head(const std::string& path, std::string_view text) { return XmlParser(path, text).parse(); }
+Head parse_head(const std::string& path, std::string_view text) {
+    return XmlParser(path, text).parse();
+}
 
 }  // namespace hexmesh::xml

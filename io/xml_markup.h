@@ -11,7 +11,9 @@
 
 namespace hexmesh::xml {
 
-inline bool is_blank(char ch) { return ch == ' ' || ch == '\t' || ch == '\r' || ch == '\n'; }
+inline bool is_blank(char ch) {
+    return ch == ' ' || ch == '\t' || ch == '\r' || ch == '\n';
+}
 
 // `text` as a message quotes it: at most 40 characters, bytes outside printable ASCII as \xNN.
 std::string printable(std::string_view text);

@@ -66,10 +66,10 @@ struct ValueType {
 
 std::optional<ValueType> value_type(const std::string& name) {
     static const std::pair<const char*, ValueType> types[] = {
-        {"Int8", {VTK_TYPE_INT8, 1, true}},      {"UInt8", {VTK_TYPE_UINT8, 1, true}},
-        {"Int16", {VTK_TYPE_INT16, 2, true}},    {"UInt16", {VTK_TYPE_UINT16, 2, true}},
-        {"Int32", {VTK_TYPE_INT32, 4, true}},    {"UInt32", {VTK_TYPE_UINT32, 4, true}},
-        {"Int64", {VTK_TYPE_INT64, 8, true}},    {"UInt64", {VTK_TYPE_UINT64, 8, true}},
+        {"Int8", {VTK_TYPE_INT8, 1, true}},        {"UInt8", {VTK_TYPE_UINT8, 1, true}},
+        {"Int16", {VTK_TYPE_INT16, 2, true}},      {"UInt16", {VTK_TYPE_UINT16, 2, true}},
+        {"Int32", {VTK_TYPE_INT32, 4, true}},      {"UInt32", {VTK_TYPE_UINT32, 4, true}},
+        {"Int64", {VTK_TYPE_INT64, 8, true}},      {"UInt64", {VTK_TYPE_UINT64, 8, true}},
         {"Float32", {VTK_TYPE_FLOAT32, 4, false}}, {"Float64", {VTK_TYPE_FLOAT64, 8, false}},
         {"String", {VTK_STRING, 0, false}},
     };
@@ -94,40 +94,53 @@ struct Budget {
 
 // What one file shares with the reading of all of its arrays.
 class XmlVtkFile {
-public:
+  public:
     // `piece`: a piece of a multiblock file, which must not be one itself.
     XmlVtkFile(const std::string& path, Budget& budget, bool piece = false)
         : path_(path), piece_(piece), budget_(budget) {}
 
-    [[noreturn]] void fail(const std::string& why) const { throw InputError(fmt::format("{}: {}", path_, why)); }
+    [[noreturn]] void fail(const std::string& why) const {
+        throw InputError(fmt::format("{}: {}", path_, why));
+    }
 
     vtkSmartPointer<vtkDataObject> read() {
         vtk_support::require_file(path_);
         read_head();
         const Element& root = head_.root;
         const std::string type = root.value("type");
-        if (type != "StructuredGrid" && type != "UnstructuredGrid" && type != "vtkMultiBlockDataSet")
-            fail(fmt::format("a VTK XML file of type \"{}\"; expected StructuredGrid (.vts), UnstructuredGrid (.vtu) "
-                             "or vtkMultiBlockDataSet (.vtm)", printable(type)));
+        if (type != "StructuredGrid" && type != "UnstructuredGrid" &&
+            type != "vtkMultiBlockDataSet")
+            fail(
+                fmt::format("a VTK XML file of type \"{}\"; expected StructuredGrid (.vts), "
+                            "UnstructuredGrid (.vtu) "
+                            "or vtkMultiBlockDataSet (.vtm)",
+                            printable(type)));
         const std::string header_type = root.value("header_type", "UInt32");
         if (header_type != "UInt32" && header_type != "UInt64")
-            fail(fmt::format("header_type is \"{}\"; expected UInt32 or UInt64", printable(header_type)));
+            fail(fmt::format("header_type is \"{}\"; expected UInt32 or UInt64",
+                             printable(header_type)));
         header_bytes_ = header_type == "UInt64" ? 8 : 4;
         const std::string byte_order = root.value("byte_order", "LittleEndian");
         if (byte_order != "LittleEndian" && byte_order != "BigEndian")
-            fail(fmt::format("byte_order is \"{}\"; expected LittleEndian or BigEndian", printable(byte_order)));
+            fail(fmt::format("byte_order is \"{}\"; expected LittleEndian or BigEndian",
+                             printable(byte_order)));
         big_endian_ = byte_order == "BigEndian";
         compressor_ = root.value("compressor");
-        if (!compressor_.empty() && compressor_ != "vtkZLibDataCompressor" && compressor_ != "vtkLZ4DataCompressor" &&
-            compressor_ != "vtkLZMADataCompressor")
-            fail(fmt::format("compressor \"{}\": expected vtkZLibDataCompressor, vtkLZ4DataCompressor or "
-                             "vtkLZMADataCompressor", printable(compressor_)));
-        if (compressor_ == "vtkZLibDataCompressor") codec_ = vtkSmartPointer<vtkZLibDataCompressor>::New();
-        if (compressor_ == "vtkLZ4DataCompressor") codec_ = vtkSmartPointer<vtkLZ4DataCompressor>::New();
+        if (!compressor_.empty() && compressor_ != "vtkZLibDataCompressor" &&
+            compressor_ != "vtkLZ4DataCompressor" && compressor_ != "vtkLZMADataCompressor")
+            fail(fmt::format(
+                "compressor \"{}\": expected vtkZLibDataCompressor, vtkLZ4DataCompressor or "
+                "vtkLZMADataCompressor",
+                printable(compressor_)));
+        if (compressor_ == "vtkZLibDataCompressor")
+            codec_ = vtkSmartPointer<vtkZLibDataCompressor>::New();
+        if (compressor_ == "vtkLZ4DataCompressor")
+            codec_ = vtkSmartPointer<vtkLZ4DataCompressor>::New();
         if (head_.has_appended) {
             const std::string encoding = head_.appended().value("encoding");
             if (encoding != "raw" && encoding != "base64")
-                fail(fmt::format("AppendedData encoding \"{}\": expected raw or base64", printable(encoding)));
+                fail(fmt::format("AppendedData encoding \"{}\": expected raw or base64",
+                                 printable(encoding)));
             appended_base64_ = encoding == "base64";
         }
         if (type == "StructuredGrid") return structured_grid();
@@ -136,7 +149,7 @@ public:
         return multiblock();
     }
 
-private:
+  private:
     void read_head() {
         in_.open(path_, std::ios::binary);
         if (!in_) fail("cannot open the file");
@@ -154,10 +167,13 @@ private:
             text.append(chunk.data(), size_t(in_.gcount()));
             // Each search goes on from where the last one ended (a tag left open is not
             // searched again from its start with every chunk).
-            if (found == std::string::npos) found = text.find("<AppendedData", searched > 16 ? searched - 16 : 0);
+            if (found == std::string::npos)
+                found = text.find("<AppendedData", searched > 16 ? searched - 16 : 0);
             if (found == std::string::npos) continue;
             if (tag_end == std::string::npos) tag_end = text.find('>', std::max(found, searched));
-            if (tag_end != std::string::npos && text.find_first_not_of(" \t\r\n", std::max(tag_end + 1, searched)) != std::string::npos)
+            if (tag_end != std::string::npos &&
+                text.find_first_not_of(" \t\r\n", std::max(tag_end + 1, searched)) !=
+                    std::string::npos)
                 break;
         }
         head_ = parse_head(path_, text);
@@ -170,28 +186,37 @@ private:
         in_.read(tail.data(), std::streamsize(tail.size()));
         tail.resize(size_t(in_.gcount()));
         const size_t closing = tail.rfind("</AppendedData>");
-        data_end_ = closing == std::string::npos || tail_at + closing < head_.data_start ? file_size_ : tail_at + closing;
-        if (head_.data_start > data_end_) fail("its appended data starts after the end of the file");
+        data_end_ = closing == std::string::npos || tail_at + closing < head_.data_start
+                        ? file_size_
+                        : tail_at + closing;
+        if (head_.data_start > data_end_)
+            fail("its appended data starts after the end of the file");
     }
 
     // The bytes of an array stored in binary (inline base64, or appended at its offset).
     std::unique_ptr<ByteSource> source_of(const Element& array, const std::string& label) {
         const std::string format = array.value("format");
         if (format == "binary") return std::make_unique<Base64Source>(array.text);
-        if (!head_.has_appended) fail(fmt::format("{} is appended, but the file has no <AppendedData>", label));
+        if (!head_.has_appended)
+            fail(fmt::format("{} is appended, but the file has no <AppendedData>", label));
         const std::string offset_text = array.value("offset");
         const std::optional<unsigned long long> offset = count_of(offset_text);
         const uint64_t size = data_end_ - head_.data_start;
-        if (!offset) fail(fmt::format("{} has offset \"{}\"; expected a byte offset", label, printable(offset_text)));
+        if (!offset)
+            fail(fmt::format("{} has offset \"{}\"; expected a byte offset", label,
+                             printable(offset_text)));
         if (*offset > size)
-            fail(fmt::format("{} starts at byte {} of the appended data, which has {}", label, *offset, size));
-        if (!appended_base64_) return std::make_unique<FileSource>(in_, head_.data_start + *offset, data_end_);
+            fail(fmt::format("{} starts at byte {} of the appended data, which has {}", label,
+                             *offset, size));
+        if (!appended_base64_)
+            return std::make_unique<FileSource>(in_, head_.data_start + *offset, data_end_);
         if (appended_text_.empty() && size > 0) {
             charge(double(size), "its base64 appended data");
             appended_text_.resize(size_t(size));
             FileSource(in_, head_.data_start, data_end_).take(size, appended_text_.data());
         }
-        return std::make_unique<Base64Source>(std::string_view(appended_text_).substr(size_t(*offset)), *offset);
+        return std::make_unique<Base64Source>(
+            std::string_view(appended_text_).substr(size_t(*offset)), *offset);
     }
 
     uint64_t header(ByteSource& from, const std::string& label, const char* what) {
@@ -199,14 +224,16 @@ private:
         if (!from.take(uint64_t(header_bytes_), reinterpret_cast<char*>(b)))
             fail(fmt::format("{} ends before its {}", label, what));
         uint64_t v = 0;
-        for (int k = 0; k < header_bytes_; ++k) v |= uint64_t(b[k]) << (8 * (big_endian_ ? header_bytes_ - 1 - k : k));
+        for (int k = 0; k < header_bytes_; ++k)
+            v |= uint64_t(b[k]) << (8 * (big_endian_ ? header_bytes_ - 1 - k : k));
         return v;
     }
 
     // Charges `bytes` to the read's memory budget; `what` names what they are for.
     void charge(double bytes, const std::string& what) {
         if (bytes > budget_.left)
-            fail(fmt::format("{} would take the read past the memory limit of {:.2f} GB", what, memory_limit() / 1e9));
+            fail(fmt::format("{} would take the read past the memory limit of {:.2f} GB", what,
+                             memory_limit() / 1e9));
         budget_.left -= bytes;
     }
 
@@ -234,7 +261,8 @@ private:
             if (compressor_.empty()) {
                 const uint64_t bytes = header(from, label, "byte count");
                 if (bytes > from.most_left())
-                    fail(fmt::format("{} claims {} bytes; at most {} are left", label, bytes, from.most_left()));
+                    fail(fmt::format("{} claims {} bytes; at most {} are left", label, bytes,
+                                     from.most_left()));
                 if (!from.take(bytes, allocate(bytes)))
                     fail(fmt::format("{} claims {} bytes; the data end first", label, bytes));
                 return;
@@ -244,9 +272,11 @@ private:
             const uint64_t block_size = header(from, label, "block table");
             const uint64_t last_size = header(from, label, "block table");
             if (blocks > from.most_left() / uint64_t(header_bytes_))
-                fail(fmt::format("{} claims {} compressed blocks; the data end first", label, blocks));
+                fail(fmt::format("{} claims {} compressed blocks; the data end first", label,
+                                 blocks));
             if (last_size > block_size || (blocks > 0 && block_size == 0))
-                fail(fmt::format("{}: compressed blocks of {} bytes, the last of {}", label, block_size, last_size));
+                fail(fmt::format("{}: compressed blocks of {} bytes, the last of {}", label,
+                                 block_size, last_size));
             std::vector<uint64_t> sizes(static_cast<size_t>(blocks));
             uint64_t compressed = 0;  // saturating
             constexpr uint64_t cap = uint64_t(1) << 62;
@@ -255,21 +285,27 @@ private:
                 compressed = std::min(cap, compressed + std::min(s, cap));
             }
             if (compressed > from.most_left())
-                fail(fmt::format("{} claims {} compressed bytes; the data end first", label, compressed));
+                fail(fmt::format("{} claims {} compressed bytes; the data end first", label,
+                                 compressed));
             uint64_t bytes = 0;
             if (blocks > 0) {
                 if (blocks - 1 > (UINT64_MAX - block_size) / block_size)
                     fail(fmt::format("{} claims {} blocks of {} bytes", label, blocks, block_size));
                 bytes = (blocks - 1) * block_size + (last_size > 0 ? last_size : block_size);
             }
-            // Each block no larger than its compressed bytes can expand to, before anything is sized.
-            const auto block_bytes = [&](uint64_t b) { return b + 1 == blocks && last_size > 0 ? last_size : block_size; };
+            // Each block no larger than its compressed bytes can expand to, before anything is
+            // sized.
+            const auto block_bytes = [&](uint64_t b) {
+                return b + 1 == blocks && last_size > 0 ? last_size : block_size;
+            };
             const double expansion = most_expansion(compressor_);
             for (uint64_t b = 0; b < blocks; ++b) {
                 const uint64_t want = block_bytes(b);
                 if (double(want) > expansion * double(sizes[size_t(b)]) + 64)
-                    fail(fmt::format("{}: compressed block {} of {} bytes claims {} bytes, more than {} can give",
-                                     label, b, sizes[size_t(b)], want, compressor_));
+                    fail(
+                        fmt::format("{}: compressed block {} of {} bytes claims {} bytes, more "
+                                    "than {} can give",
+                                    label, b, sizes[size_t(b)], want, compressor_));
             }
             char* out = allocate(bytes);
             std::vector<unsigned char> packed;
@@ -278,23 +314,27 @@ private:
                 if (!from.take(sizes[size_t(b)], reinterpret_cast<char*>(packed.data())))
                     fail(fmt::format("{}: compressed block {} runs past the data", label, b));
                 const uint64_t want = block_bytes(b);
-                const size_t got = uncompress(packed, reinterpret_cast<unsigned char*>(out + b * block_size), size_t(want));
-                if (got != want) fail(fmt::format("{}: compressed block {} does not decompress to its {} bytes", label, b, want));
+                const size_t got = uncompress(
+                    packed, reinterpret_cast<unsigned char*>(out + b * block_size), size_t(want));
+                if (got != want)
+                    fail(fmt::format("{}: compressed block {} does not decompress to its {} bytes",
+                                     label, b, want));
             }
         } catch (const DecodeError& e) {
             fail(fmt::format("{}: {}", label, e.why));
         }
     }
 
-
     // Decompresses one block into `out` (room for `want` bytes); returns the bytes it gave (0
     // when the block is broken). LZMA is decoded with a memory limit near the block's size (a
     // block's header can ask for a 4 GB dictionary).
-    size_t uncompress(const std::vector<unsigned char>& packed, unsigned char* out, size_t want) const {
+    size_t uncompress(const std::vector<unsigned char>& packed, unsigned char* out,
+                      size_t want) const {
         if (compressor_ == "vtkLZMADataCompressor") {
             uint64_t limit = uint64_t(want) + (uint64_t(16) << 20);
             size_t in_at = 0, out_at = 0;
-            if (lzma_stream_buffer_decode(&limit, 0, nullptr, packed.data(), &in_at, packed.size(), out, &out_at, want) != LZMA_OK)
+            if (lzma_stream_buffer_decode(&limit, 0, nullptr, packed.data(), &in_at, packed.size(),
+                                          out, &out_at, want) != LZMA_OK)
                 return 0;
             return in_at == packed.size() ? out_at : 0;
         }
@@ -323,28 +363,34 @@ private:
         uint64_t k = 0;
         for_each_word(text, [&](std::string_view word) {
             T v{};
-            const auto r = std::from_chars(word.data(), word.data() + word.size(), v);  // "nan", "inf", "-inf" too
+            const auto r = std::from_chars(word.data(), word.data() + word.size(),
+                                           v);  // "nan", "inf", "-inf" too
             if (r.ec != std::errc() || r.ptr != word.data() + word.size())
-                fail(fmt::format("{}: value {} is \"{}\", not a {}", label, k, printable(word),
-                                 std::is_floating_point_v<T> ? "number" : "integer in the array's range"));
+                fail(fmt::format(
+                    "{}: value {} is \"{}\", not a {}", label, k, printable(word),
+                    std::is_floating_point_v<T> ? "number" : "integer in the array's range"));
             out[k++] = v;
         });
     }
 
     // One <DataArray> (or <Array>) with `tuples` tuples (-1: any number; then NumberOfTuples, if
     // given, must be what the array holds).
-    vtkSmartPointer<vtkAbstractArray> read_array(const Element& array, long long tuples, const std::string& where) {
+    vtkSmartPointer<vtkAbstractArray> read_array(const Element& array, long long tuples,
+                                                 const std::string& where) {
         const std::string* name = array.find("Name");  // VTK keeps unnamed arrays apart
-        const std::string label = fmt::format("array '{}' of {}", printable(name ? *name : ""), where);
+        const std::string label =
+            fmt::format("array '{}' of {}", printable(name ? *name : ""), where);
         const std::string type_name = array.value("type");
         const std::optional<ValueType> type = value_type(type_name);
         if (!type)
-            fail(fmt::format("{} has type \"{}\"; expected one of Int8 ... UInt64, Float32, Float64, String", label,
-                             printable(type_name)));
+            fail(fmt::format(
+                "{} has type \"{}\"; expected one of Int8 ... UInt64, Float32, Float64, String",
+                label, printable(type_name)));
         const std::string components_text = array.value("NumberOfComponents", "1");
         const std::optional<unsigned long long> components = count_of(components_text);
         if (!components || *components == 0 || *components > 1000000)
-            fail(fmt::format("{} has NumberOfComponents \"{}\"", label, printable(components_text)));
+            fail(
+                fmt::format("{} has NumberOfComponents \"{}\"", label, printable(components_text)));
         long long declared = -1;
         if (const std::string* t = array.find("NumberOfTuples")) {
             const std::optional<unsigned long long> n = count_of(*t);
@@ -357,29 +403,35 @@ private:
         if (tuples < 0) tuples = declared;
         const std::string format = array.value("format");
         if (format != "ascii" && format != "binary" && format != "appended")
-            fail(fmt::format("{} has format \"{}\"; expected ascii, binary or appended", label, printable(format)));
+            fail(fmt::format("{} has format \"{}\"; expected ascii, binary or appended", label,
+                             printable(format)));
         // The value count the array must hold, when known.
         const auto want_values = [&]() -> long long {
             if (tuples < 0) return -1;
-            if (uint64_t(tuples) > uint64_t(std::numeric_limits<long long>::max()) / *components) return -2;
+            if (uint64_t(tuples) > uint64_t(std::numeric_limits<long long>::max()) / *components)
+                return -2;
             return tuples * (long long)*components;
         };
         const auto check_count = [&](uint64_t values) {
             const long long want = want_values();
             if (want == -2 || (want >= 0 && uint64_t(want) != values) || values % *components != 0)
-                fail(fmt::format("{} holds {} values; expected {} of {} components", label, values,
-                                 want < 0 ? "a whole number of tuples" : fmt::format("{} tuples", tuples), *components));
+                fail(fmt::format(
+                    "{} holds {} values; expected {} of {} components", label, values,
+                    want < 0 ? "a whole number of tuples" : fmt::format("{} tuples", tuples),
+                    *components));
         };
 
         if (type->vtk == VTK_STRING) {
             // Zero-terminated strings (ascii: their bytes as numbers), as many as declared: each
             // takes a std::string however short, charged before the bytes are read.
             const long long want = want_values();
-            if (want == -2) fail(fmt::format("string {} declares {} x {} values", label, tuples, *components));
+            if (want == -2)
+                fail(fmt::format("string {} declares {} x {} values", label, tuples, *components));
             if (want < 0) fail(fmt::format("string {} does not declare its NumberOfTuples", label));
             const auto room = [&](uint64_t count) {
                 if (count < uint64_t(want))
-                    fail(fmt::format("string {} declares {} x {} values but holds {} bytes", label, tuples, *components, count));
+                    fail(fmt::format("string {} declares {} x {} values but holds {} bytes", label,
+                                     tuples, *components, count));
                 charge(double(count) + double(want) * sizeof(std::string), label);
             };
             std::string bytes;
@@ -405,7 +457,8 @@ private:
                 fail(fmt::format("string {} ends inside a string (no terminating zero)", label));
             const uint64_t held = uint64_t(std::count(bytes.begin(), bytes.end(), '\0'));
             if (uint64_t(want) != held)
-                fail(fmt::format("string {} declares {} x {} values but holds {}", label, tuples, *components, held));
+                fail(fmt::format("string {} declares {} x {} values but holds {}", label, tuples,
+                                 *components, held));
             auto out = vtkSmartPointer<vtkStringArray>::New();
             if (name) out->SetName(name->c_str());
             out->SetNumberOfComponents(int(*components));
@@ -442,24 +495,29 @@ private:
         }
         read_binary(array, label, [&](uint64_t bytes) {
             if (bytes % uint64_t(type->size) != 0)
-                fail(fmt::format("{} holds {} bytes, not a whole number of {}-byte values", label, bytes, type->size));
+                fail(fmt::format("{} holds {} bytes, not a whole number of {}-byte values", label,
+                                 bytes, type->size));
             return allocate(bytes / uint64_t(type->size));
         });
         if (big_endian_ && type->size > 1) {
             auto* bytes = static_cast<unsigned char*>(out->GetVoidPointer(0));
             const uint64_t values = uint64_t(out->GetNumberOfValues());
-            for (uint64_t v = 0; v < values; ++v) std::reverse(bytes + v * uint64_t(type->size), bytes + (v + 1) * uint64_t(type->size));
+            for (uint64_t v = 0; v < values; ++v)
+                std::reverse(bytes + v * uint64_t(type->size),
+                             bytes + (v + 1) * uint64_t(type->size));
         }
         return out;
     }
 
     // The arrays of a <PointData>, <CellData> or <FieldData> section, each of `tuples` tuples (-1
     // for field data: any).
-    void read_arrays(const Element* section, long long tuples, vtkFieldData* into, const std::string& where) {
+    void read_arrays(const Element* section, long long tuples, vtkFieldData* into,
+                     const std::string& where) {
         if (!section) return;
         for (const Element& array : section->children) {
             if (array.name != "DataArray" && array.name != "Array")
-                fail(fmt::format("<{}> holds a <{}> element; expected arrays only", section->name, array.name));
+                fail(fmt::format("<{}> holds a <{}> element; expected arrays only", section->name,
+                                 array.name));
             into->AddArray(read_array(array, tuples, where));
         }
     }
@@ -467,7 +525,8 @@ private:
     // The only array of a <Points> or similar section.
     const Element& only_array(const Element& section) {
         if (section.children.size() != 1 || section.children[0].name != "DataArray")
-            fail(fmt::format("<{}> holds {} elements; expected one <DataArray>", section.name, section.children.size()));
+            fail(fmt::format("<{}> holds {} elements; expected one <DataArray>", section.name,
+                             section.children.size()));
         return section.children[0];
     }
 
@@ -477,19 +536,21 @@ private:
             if (points == 0) return vtkSmartPointer<vtkPoints>::New();
             fail("its piece has no <Points>");
         }
-        if (points == 0 && section->children.empty()) return vtkSmartPointer<vtkPoints>::New();  // as VTK writes none
+        if (points == 0 && section->children.empty())
+            return vtkSmartPointer<vtkPoints>::New();  // as VTK writes none
         const Element& array = only_array(*section);
         if (array.value("NumberOfComponents", "1") != "3")
-            fail(fmt::format("the points array '{}' has {} components; expected 3", printable(array.value("Name")),
+            fail(fmt::format("the points array '{}' has {} components; expected 3",
+                             printable(array.value("Name")),
                              printable(array.value("NumberOfComponents", "1"))));
         vtkSmartPointer<vtkAbstractArray> read = read_array(array, points, "the points");
         auto* xyz = vtkDataArray::SafeDownCast(read);
         if (!xyz) fail("its points are strings");
         if (xyz->GetDataType() == VTK_FLOAT || xyz->GetDataType() == VTK_DOUBLE)
-        for (vtkIdType m = 0; m < xyz->GetNumberOfTuples(); ++m)
-            for (int a = 0; a < 3; ++a)
-                if (!std::isfinite(xyz->GetComponent(m, a)))
-                    fail(fmt::format("point {} has a non-finite coordinate", m));
+            for (vtkIdType m = 0; m < xyz->GetNumberOfTuples(); ++m)
+                for (int a = 0; a < 3; ++a)
+                    if (!std::isfinite(xyz->GetComponent(m, a)))
+                        fail(fmt::format("point {} has a non-finite coordinate", m));
         auto out = vtkSmartPointer<vtkPoints>::New();
         out->SetData(xyz);
         return out;
@@ -501,7 +562,8 @@ private:
         for (const Element& c : set.children)
             if (c.name == "Piece") pieces.push_back(&c);
         if (pieces.size() != 1)
-            fail(fmt::format("its <{}> holds {} pieces; this reader reads files of one piece", set.name, pieces.size()));
+            fail(fmt::format("its <{}> holds {} pieces; this reader reads files of one piece",
+                             set.name, pieces.size()));
         return *pieces[0];
     }
 
@@ -518,15 +580,19 @@ private:
         for (long long& v : e) {
             while (at < text.size() && is_blank(text[at])) ++at;
             const auto r = std::from_chars(text.data() + at, text.data() + text.size(), v);
-            if (r.ec != std::errc()) fail(fmt::format("{} \"{}\": expected six integers", what, printable(text)));
+            if (r.ec != std::errc())
+                fail(fmt::format("{} \"{}\": expected six integers", what, printable(text)));
             at = size_t(r.ptr - text.data());
         }
         if (text.find_first_not_of(" \t\r\n", at) != std::string::npos)
             fail(fmt::format("{} \"{}\": expected six integers", what, printable(text)));
         for (int a = 0; a < 3; ++a) {
-            if (e[2 * a] > e[2 * a + 1]) fail(fmt::format("{} \"{}\": a range runs backwards", what, printable(text)));
-            if (e[2 * a] < -(1LL << 40) || e[2 * a + 1] > (1LL << 40) || e[2 * a + 1] - e[2 * a] >= std::numeric_limits<int>::max())
-                fail(fmt::format("{} \"{}\": a range beyond what a grid holds", what, printable(text)));
+            if (e[2 * a] > e[2 * a + 1])
+                fail(fmt::format("{} \"{}\": a range runs backwards", what, printable(text)));
+            if (e[2 * a] < -(1LL << 40) || e[2 * a + 1] > (1LL << 40) ||
+                e[2 * a + 1] - e[2 * a] >= std::numeric_limits<int>::max())
+                fail(fmt::format("{} \"{}\": a range beyond what a grid holds", what,
+                                 printable(text)));
         }
         return e;
     }
@@ -538,7 +604,8 @@ private:
         const std::array<long long, 6> e = extent(piece, "Extent", "Piece Extent");
         for (int a = 0; a < 3; ++a)
             if (e[2 * a] < whole[2 * a] || e[2 * a + 1] > whole[2 * a + 1])
-                fail(fmt::format("a Piece Extent reaches outside the WholeExtent on axis {}", "xyz"[a]));
+                fail(fmt::format("a Piece Extent reaches outside the WholeExtent on axis {}",
+                                 "xyz"[a]));
         std::array<int, 3> dims{};
         long long points = 1, cells = 1;
         for (int a = 0; a < 3; ++a) {
@@ -584,16 +651,20 @@ private:
         const std::optional<ValueType> type = value_type(found->value("type"));
         auto* values = vtkDataArray::SafeDownCast(read);
         if (!values || !type->integer)
-            fail(fmt::format("the cells' '{}' array has type {}; expected an integer type", name, found->value("type")));
-        charge(8.0 * double(values->GetNumberOfValues()), fmt::format("the cells' '{}' array", name));
+            fail(fmt::format("the cells' '{}' array has type {}; expected an integer type", name,
+                             found->value("type")));
+        charge(8.0 * double(values->GetNumberOfValues()),
+               fmt::format("the cells' '{}' array", name));
         std::vector<vtkTypeInt64> out(size_t(values->GetNumberOfValues()));
         long long too_large = -1;
         switch (values->GetDataType()) {
-            vtkTemplateMacro(too_large = widen(static_cast<const VTK_TT*>(values->GetVoidPointer(0)), out));
+            vtkTemplateMacro(too_large =
+                                 widen(static_cast<const VTK_TT*>(values->GetVoidPointer(0)), out));
             default:
                 break;
         }
-        if (too_large >= 0) fail(fmt::format("the cells' '{}' value {} is beyond 64-bit ids", name, too_large));
+        if (too_large >= 0)
+            fail(fmt::format("the cells' '{}' value {} is beyond 64-bit ids", name, too_large));
         return out;
     }
 
@@ -610,8 +681,10 @@ private:
         auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
         grid->SetPoints(read_points(piece, points));
         const Element* section = piece.child("Cells");
-        if (!section && cells > 0) fail(fmt::format("its piece has {} cells but no <Cells>", cells));
-        if (section && !(cells == 0 && section->children.empty())) {  // VTK writes an empty grid's <Cells> empty
+        if (!section && cells > 0)
+            fail(fmt::format("its piece has {} cells but no <Cells>", cells));
+        if (section && !(cells == 0 &&
+                         section->children.empty())) {  // VTK writes an empty grid's <Cells> empty
             const std::vector<vtkTypeInt64> types = integers(*section, "types", cells);
             const std::vector<vtkTypeInt64> ends = integers(*section, "offsets", cells);
             const std::vector<vtkTypeInt64> ids = integers(*section, "connectivity", -1);
@@ -623,24 +696,32 @@ private:
             offsets->SetValue(0, 0);
             for (long long c = 0; c < cells; ++c) {
                 const vtkTypeInt64 type = types[size_t(c)];
-                if (type < 0 || type > 255 || std::strcmp(vtkCellTypes::GetClassNameFromTypeId(int(type)), "UnknownClass") == 0)
+                if (type < 0 || type > 255 ||
+                    std::strcmp(vtkCellTypes::GetClassNameFromTypeId(int(type)), "UnknownClass") ==
+                        0)
                     fail(fmt::format("cell {} has type {}, which VTK does not know", c, type));
-                if (type == VTK_POLYHEDRON) fail(fmt::format("cell {} is a polyhedron (42), which is not read", c));
+                if (type == VTK_POLYHEDRON)
+                    fail(fmt::format("cell {} is a polyhedron (42), which is not read", c));
                 cell_types->SetValue(c, static_cast<unsigned char>(type));
                 const vtkTypeInt64 from = offsets->GetValue(c), to = ends[size_t(c)];
                 if (to < from || to > vtkTypeInt64(ids.size()))
-                    fail(fmt::format("the cells' offsets: cell {} ends at {}, after {} and within the {} ids of the "
-                                     "connectivity expected", c, to, from, ids.size()));
+                    fail(
+                        fmt::format("the cells' offsets: cell {} ends at {}, after {} and within "
+                                    "the {} ids of the "
+                                    "connectivity expected",
+                                    c, to, from, ids.size()));
                 offsets->SetValue(c + 1, to);
             }
             if (offsets->GetValue(cells) != vtkTypeInt64(ids.size()))
-                fail(fmt::format("the cells' offsets end at {}; the connectivity holds {} ids", offsets->GetValue(cells), ids.size()));
+                fail(fmt::format("the cells' offsets end at {}; the connectivity holds {} ids",
+                                 offsets->GetValue(cells), ids.size()));
             connectivity->SetNumberOfValues(vtkIdType(ids.size()));
             for (long long c = 0; c < cells; ++c)
                 for (vtkTypeInt64 k = offsets->GetValue(c); k < offsets->GetValue(c + 1); ++k) {
                     if (ids[size_t(k)] < 0 || ids[size_t(k)] >= points)
-                        fail(fmt::format("cell {} refers to point {}, but the file has {}", c, ids[size_t(k)],
-                                         points == 0 ? "no points" : fmt::format("points 0 to {}", points - 1)));
+                        fail(fmt::format(
+                            "cell {} refers to point {}, but the file has {}", c, ids[size_t(k)],
+                            points == 0 ? "no points" : fmt::format("points 0 to {}", points - 1)));
                     connectivity->SetValue(k, ids[size_t(k)]);
                 }
             vtkNew<vtkCellArray> list;
@@ -663,23 +744,29 @@ private:
         // Depth first, in file order.
         const auto visit = [&](const Element& e, auto& self) -> void {
             for (const Element& c : e.children) {
-                if (c.name == "DataSet") found.push_back(&c);
-                else self(c, self);
+                if (c.name == "DataSet")
+                    found.push_back(&c);
+                else
+                    self(c, self);
             }
         };
         visit(set, visit);
         for (const Element* piece : found) {
             const std::string file = piece->value("file");
             if (file.empty()) continue;  // an empty block
-            const fs::path piece_path = fs::path(file).is_absolute() ? fs::path(file) : folder / file;
+            const fs::path piece_path =
+                fs::path(file).is_absolute() ? fs::path(file) : folder / file;
             const std::string ext = vtk_support::extension(piece_path.string());
             if (ext != ".vts" && ext != ".vtu")
-                fail(fmt::format("its piece '{}' is a '{}' file; expected .vts or .vtu", file, ext));
+                fail(
+                    fmt::format("its piece '{}' is a '{}' file; expected .vts or .vtu", file, ext));
             std::error_code ec;
-            if (!fs::is_regular_file(piece_path, ec)) fail(fmt::format("its piece '{}' does not exist", file));
+            if (!fs::is_regular_file(piece_path, ec))
+                fail(fmt::format("its piece '{}' does not exist", file));
             const unsigned index = out->GetNumberOfBlocks();
             out->SetBlock(index, XmlVtkFile(piece_path.string(), budget_, true).read());
-            if (const std::string* name = piece->find("name")) out->GetMetaData(index)->Set(vtkCompositeDataSet::NAME(), name->c_str());
+            if (const std::string* name = piece->find("name"))
+                out->GetMetaData(index)->Set(vtkCompositeDataSet::NAME(), name->c_str());
         }
         return out;
     }
@@ -693,7 +780,8 @@ private:
     int header_bytes_ = 4;
     bool big_endian_ = false, appended_base64_ = false;
     std::string compressor_;  // "" when uncompressed
-    vtkSmartPointer<vtkDataCompressor> codec_;  // zlib's or LZ4's (LZMA: liblzma, with a memory limit)
+    vtkSmartPointer<vtkDataCompressor>
+        codec_;  // zlib's or LZ4's (LZMA: liblzma, with a memory limit)
     std::string appended_text_;
     std::map<uint64_t, uint64_t> appended_ranges_;  // [first, end) of each appended array read
 };

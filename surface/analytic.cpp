@@ -65,7 +65,9 @@ Sphere::Sphere(const Vec3& center, double radius) : center_(center), radius_(rad
     require_positive(radius, "Sphere radius");
 }
 
-double Sphere::value(const Vec3& p) const { return (p - center_).norm() - radius_; }
+double Sphere::value(const Vec3& p) const {
+    return (p - center_).norm() - radius_;
+}
 
 Vec3 Sphere::gradient(const Vec3& p) const {
     const Vec3 d = p - center_;
@@ -87,14 +89,16 @@ Ellipsoid::Ellipsoid(const Vec3& center, const Vec3& semi_axes)
 
 double Ellipsoid::value(const Vec3& p) const {
     const Vec3 d = p - center_;
-    const Vec3 s = d.cwiseQuotient(semi_axes_);                          // x_i / a_i
-    const double r = s.norm();                                           // g + 1
-    const double grad_r = s.cwiseQuotient(semi_axes_).norm();            // |grad g| * r
+    const Vec3 s = d.cwiseQuotient(semi_axes_);                // x_i / a_i
+    const double r = s.norm();                                 // g + 1
+    const double grad_r = s.cwiseQuotient(semi_axes_).norm();  // |grad g| * r
     if (grad_r == 0) return -semi_axes_.minCoeff();
     return (r - 1) * r / grad_r;
 }
 
-Box3 Ellipsoid::bounds() const { return {center_ - semi_axes_, center_ + semi_axes_}; }
+Box3 Ellipsoid::bounds() const {
+    return {center_ - semi_axes_, center_ + semi_axes_};
+}
 
 // ---------------------------------------------------------------- Box
 
@@ -130,7 +134,9 @@ void Box::active_pieces(const Vec3& p, double tolerance, std::vector<Piece>& out
     add_pieces_near_max(faces, 3, tolerance, out);
 }
 
-Box3 Box::bounds() const { return {center_ - half_sizes_, center_ + half_sizes_}; }
+Box3 Box::bounds() const {
+    return {center_ - half_sizes_, center_ + half_sizes_};
+}
 
 // ---------------------------------------------------------------- Cylinder
 
@@ -248,9 +254,9 @@ Cone::Cone(const Vec3& center, double bottom_radius, double top_radius, double h
       half_height_(half_height) {
     require_positive(half_height, "Cone half height");
     if (!(bottom_radius >= 0) || !(top_radius >= 0) || !(std::max(bottom_radius, top_radius) > 0))
-        throw std::invalid_argument(
-            "Cone radii must be >= 0 and not both 0, got bottom " + std::to_string(bottom_radius) +
-            ", top " + std::to_string(top_radius));
+        throw std::invalid_argument("Cone radii must be >= 0 and not both 0, got bottom " +
+                                    std::to_string(bottom_radius) + ", top " +
+                                    std::to_string(top_radius));
 }
 
 double Cone::value(const Vec3& p) const {
@@ -262,8 +268,8 @@ double Cone::value(const Vec3& p) const {
 
 Vec3 Cone::gradient(const Vec3& p) const {
     const Vec3 d = p - center_;
-    const MeridianDistance m = cone_meridian(Vec2(std::hypot(d.x(), d.y()), d.z()),
-                                             bottom_radius_, top_radius_, half_height_);
+    const MeridianDistance m = cone_meridian(Vec2(std::hypot(d.x(), d.y()), d.z()), bottom_radius_,
+                                             top_radius_, half_height_);
     return from_meridian(d, m.gradient);
 }
 

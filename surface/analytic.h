@@ -17,13 +17,13 @@
 namespace hexmesh {
 
 class Sphere : public ImplicitFunction {
-public:
+  public:
     Sphere(const Vec3& center, double radius);
     double value(const Vec3& p) const override;
     Vec3 gradient(const Vec3& p) const override;  // +z at the centre
     Box3 bounds() const override;
 
-private:
+  private:
     Vec3 center_;
     double radius_;
 };
@@ -32,19 +32,19 @@ private:
 // the exact distance along the three axes. At the centre u = -min(a_i).
 // Gradient: the base-class central differences.
 class Ellipsoid : public ImplicitFunction {
-public:
+  public:
     Ellipsoid(const Vec3& center, const Vec3& semi_axes);
     double value(const Vec3& p) const override;
     Box3 bounds() const override;
 
-private:
+  private:
     Vec3 center_;
     Vec3 semi_axes_;
 };
 
 // Axis-aligned box |x_i - c_i| <= h_i with sharp edges and corners.
 class Box : public ImplicitFunction {
-public:
+  public:
     Box(const Vec3& center, const Vec3& half_sizes);
     double value(const Vec3& p) const override;
     Vec3 gradient(const Vec3& p) const override;  // ties inside: the lowest axis index
@@ -52,14 +52,14 @@ public:
     void active_pieces(const Vec3& p, double tolerance, std::vector<Piece>& out) const override;
     Box3 bounds() const override;
 
-private:
+  private:
     Vec3 center_;
     Vec3 half_sizes_;
 };
 
 // Capped cylinder, axis z: rho <= radius, |z - c_z| <= half_height.
 class Cylinder : public ImplicitFunction {
-public:
+  public:
     Cylinder(const Vec3& center, double radius, double half_height);
     double value(const Vec3& p) const override;
     Vec3 gradient(const Vec3& p) const override;
@@ -67,7 +67,7 @@ public:
     void active_pieces(const Vec3& p, double tolerance, std::vector<Piece>& out) const override;
     Box3 bounds() const override;
 
-private:
+  private:
     Vec3 center_;
     double radius_;
     double half_height_;
@@ -75,13 +75,13 @@ private:
 
 // Ring torus, axis z, symmetric about the plane z = c_z: 0 < minor_radius < major_radius.
 class Torus : public ImplicitFunction {
-public:
+  public:
     Torus(const Vec3& center, double major_radius, double minor_radius);
     double value(const Vec3& p) const override;
     Vec3 gradient(const Vec3& p) const override;
     Box3 bounds() const override;
 
-private:
+  private:
     Vec3 center_;
     double major_radius_;
     double minor_radius_;
@@ -90,7 +90,7 @@ private:
 // Capped cone (frustum), axis z: radius bottom_radius at z = c_z - half_height, top_radius
 // at z = c_z + half_height, linear in between. Either radius may be 0 (apex), not both.
 class Cone : public ImplicitFunction {
-public:
+  public:
     Cone(const Vec3& center, double bottom_radius, double top_radius, double half_height);
     double value(const Vec3& p) const override;
     Vec3 gradient(const Vec3& p) const override;
@@ -100,7 +100,7 @@ public:
     void active_pieces(const Vec3& p, double tolerance, std::vector<Piece>& out) const override;
     Box3 bounds() const override;
 
-private:
+  private:
     Vec3 center_;
     double bottom_radius_;
     double top_radius_;

@@ -180,7 +180,8 @@ SectionDiagnostics diagnose_sections(const SectionStack& stack) {
             d.self_intersecting_loops += !polygons.back().is_simple();
         }
         for (size_t a = 0; a < polygons.size(); ++a)
-            for (size_t b = a + 1; b < polygons.size(); ++b) d.crossing_loops += loops_cross(polygons[a], polygons[b]);
+            for (size_t b = a + 1; b < polygons.size(); ++b)
+                d.crossing_loops += loops_cross(polygons[a], polygons[b]);
     }
     if (d.loops == 0) d.smallest_loop_area = 0;
     return d;

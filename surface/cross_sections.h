@@ -18,7 +18,7 @@ namespace hexmesh {
 // shape); between changing sections it is an interpolation (|grad u| != 1 for a cone).
 // value() costs O(points of two sections); thread safe.
 class CrossSectionSdf : public ImplicitFunction {
-public:
+  public:
     // Throws std::invalid_argument for fewer than 2 sections, z not strictly increasing,
     // a section without polyline, a polyline with fewer than 3 points, or a non-finite
     // number.
@@ -32,7 +32,7 @@ public:
 
     const SectionStack& stack() const { return stack_; }
 
-private:
+  private:
     // The side piece s at p and its gradient.
     Piece side(const Vec3& p) const;
 
@@ -48,11 +48,11 @@ double section_distance(const Section& section, const Eigen::Vector2d& q,
 // Health report of a cross-section stack, for `hexmesh inspect`.
 struct SectionDiagnostics {
     long long sections = 0, loops = 0, points = 0;
-    Box3 bounds;                                // the sections' xy box from bottom to top z
-    double min_spacing = 0, max_spacing = 0;    // between consecutive sections along z
-    double smallest_loop_area = 0;              // |area| of the smallest polyline
-    long long self_intersecting_loops = 0;      // polylines crossing themselves (not simple)
-    long long crossing_loops = 0;               // pairs of polylines of a section that cross
+    Box3 bounds;                              // the sections' xy box from bottom to top z
+    double min_spacing = 0, max_spacing = 0;  // between consecutive sections along z
+    double smallest_loop_area = 0;            // |area| of the smallest polyline
+    long long self_intersecting_loops = 0;    // polylines crossing themselves (not simple)
+    long long crossing_loops = 0;             // pairs of polylines of a section that cross
 };
 
 // Simplicity and crossings with CGAL's exact predicates. Expects what read_sections

@@ -33,9 +33,13 @@ Csg::Active Csg::evaluate(const Vec3& p) const {
     return best;
 }
 
-int Csg::active_child(const Vec3& p) const { return evaluate(p).child; }
+int Csg::active_child(const Vec3& p) const {
+    return evaluate(p).child;
+}
 
-double Csg::value(const Vec3& p) const { return evaluate(p).value; }
+double Csg::value(const Vec3& p) const {
+    return evaluate(p).value;
+}
 
 Vec3 Csg::gradient(const Vec3& p) const {
     const int i = evaluate(p).child;

@@ -14,7 +14,7 @@ enum class CsgOp { Union, Intersection, Difference };
 
 // Throws std::invalid_argument if there is no child or a child is null.
 class Csg : public ImplicitFunction {
-public:
+  public:
     Csg(CsgOp op, std::vector<Body> children);
 
     double value(const Vec3& p) const override;
@@ -33,7 +33,7 @@ public:
     CsgOp op() const { return op_; }
     const std::vector<Body>& children() const { return children_; }
 
-private:
+  private:
     struct Active {
         int child;
         double value;  // value(p), already negated for a subtracted child

@@ -4,11 +4,12 @@
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Simple_cartesian.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
 #include <Eigen/Geometry>
 #include <cmath>
 #include <stdexcept>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_reduce.h>
 
 namespace hexmesh {
 namespace {
@@ -18,12 +19,14 @@ using Triangles = std::vector<Kernel::Triangle_3>;
 using Primitive = CGAL::AABB_triangle_primitive<Kernel, Triangles::const_iterator>;
 using AabbTree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
 
-Kernel::Point_3 to_cgal(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
+Kernel::Point_3 to_cgal(const Vec3& p) {
+    return {p.x(), p.y(), p.z()};
+}
 
 }  // namespace
 
 struct ExactDistance::Tree {
-    Triangles triangles;  // must outlive the tree, which holds iterators into it
+    Triangles triangles;     // must outlive the tree, which holds iterators into it
     std::vector<int> index;  // of each in the surface's triangles (degenerate ones are left out)
     AabbTree tree;
 };

@@ -12,7 +12,7 @@ namespace hexmesh {
 // Zero-area triangles are skipped (they add nothing to the distance). Queries are const and
 // safe to run concurrently.
 class ExactDistance {
-public:
+  public:
     // Throws std::invalid_argument if the surface has no triangle of non-zero area.
     explicit ExactDistance(const TriangleSurface& surface);
     ~ExactDistance();
@@ -34,7 +34,7 @@ public:
     // distance(p), negative where winding_number(p) > 0.5.
     double signed_distance(const Vec3& p) const;
 
-private:
+  private:
     struct Tree;
     std::unique_ptr<Tree> tree_;
     TriangleSurface surface_;

@@ -40,8 +40,9 @@ constexpr double min_theta = 0.05;
 ExteriorPotential::ExteriorPotential(const ImplicitFunction& body,
                                      const ExteriorPotentialOptions& o) {
     if (!(o.margin > 0) || o.resolution < 8 || !(o.tolerance > 0) || o.max_iterations < 1)
-        throw std::invalid_argument("ExteriorPotential: margin, resolution (>= 8), tolerance and "
-                                    "iterations must be positive");
+        throw std::invalid_argument(
+            "ExteriorPotential: margin, resolution (>= 8), tolerance and "
+            "iterations must be positive");
     const Box3 b = body.bounds();
     const double longest = b.size().maxCoeff();
     if (!(longest > 0 && std::isfinite(longest) && b.lo.allFinite()))
@@ -53,7 +54,8 @@ ExteriorPotential::ExteriorPotential(const ImplicitFunction& body,
     box_ = {lo, lo + h_ * Vec3(n_[0] - 1, n_[1] - 1, n_[2] - 1)};
     const size_t count = size_t(n_[0]) * n_[1] * n_[2];
     const auto at = [&](size_t id) {
-        const int i = int(id % n_[0]), j = int((id / n_[0]) % n_[1]), k = int(id / (size_t(n_[0]) * n_[1]));
+        const int i = int(id % n_[0]), j = int((id / n_[0]) % n_[1]),
+                  k = int(id / (size_t(n_[0]) * n_[1]));
         return std::array<int, 3>{i, j, k};
     };
 
@@ -62,7 +64,8 @@ ExteriorPotential::ExteriorPotential(const ImplicitFunction& body,
     parallel_each(count, [&](size_t id) {
         const auto [i, j, k] = at(id);
         u[id] = body.value(lo + h_ * Vec3(i, j, k));
-        const bool face = i == 0 || j == 0 || k == 0 || i == n_[0] - 1 || j == n_[1] - 1 || k == n_[2] - 1;
+        const bool face =
+            i == 0 || j == 0 || k == 0 || i == n_[0] - 1 || j == n_[1] - 1 || k == n_[2] - 1;
         kind[id] = face ? NodeKind::box : u[id] <= 0 ? NodeKind::body : NodeKind::free;
     });
     const std::array<long long, 6> step = neighbour_offsets(n_);
@@ -97,10 +100,12 @@ ExteriorPotential::ExteriorPotential(const ImplicitFunction& body,
         if (kind[id] == NodeKind::free) x[id] = std::min(1.0, u[id] / margin);
     });
     apply(x, q);
-    parallel_each(count, [&](size_t id) { r[id] = kind[id] == NodeKind::free ? rhs[id] - q[id] : 0; });
+    parallel_each(count,
+                  [&](size_t id) { r[id] = kind[id] == NodeKind::free ? rhs[id] - q[id] : 0; });
     const double norm_b = std::sqrt(
         deterministic_sum(count, sum_grain, [&](size_t id) { return rhs[id] * rhs[id]; }));
-    parallel_each(count, [&](size_t id) { z[id] = kind[id] == NodeKind::free ? r[id] / diag[id] : 0; });
+    parallel_each(count,
+                  [&](size_t id) { z[id] = kind[id] == NodeKind::free ? r[id] / diag[id] : 0; });
     p = z;
     double rz = deterministic_sum(count, sum_grain, [&](size_t id) { return r[id] * z[id]; });
     unknowns_ = (long long)std::count(kind.begin(), kind.end(), NodeKind::free);
@@ -153,7 +158,8 @@ ExteriorPotential::ExteriorPotential(const ImplicitFunction& body,
         if (slope[id] > 0) total += slope[id], ++counted;
     const double mean_slope = counted ? total / double(counted) : 1 / margin;
     parallel_each(count, [&](size_t id) {
-        if (kind[id] == NodeKind::body) values_[id] = u[id] * (slope[id] > 0 ? slope[id] : mean_slope);
+        if (kind[id] == NodeKind::body)
+            values_[id] = u[id] * (slope[id] > 0 ? slope[id] : mean_slope);
     });
 }
 

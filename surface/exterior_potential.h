@@ -28,7 +28,7 @@ struct ExteriorPotentialOptions {
 // trilinearly (the gradient piecewise, exact for the interpolant); outside the box value() is
 // 1 plus the distance to it. Thread safe for concurrent calls.
 class ExteriorPotential : public ImplicitFunction {
-public:
+  public:
     // `body` is sampled at the lattice nodes (u < 0 inside, a distance near u = 0). Throws
     // std::invalid_argument for bad options, and std::runtime_error when the solve does not
     // reach the tolerance.
@@ -42,8 +42,10 @@ public:
     int iterations() const { return iterations_; }
     long long unknowns() const { return unknowns_; }
 
-private:
-    double node(int i, int j, int k) const { return values_[i + n_[0] * (size_t(j) + size_t(n_[1]) * k)]; }
+  private:
+    double node(int i, int j, int k) const {
+        return values_[i + n_[0] * (size_t(j) + size_t(n_[1]) * k)];
+    }
     // The lattice cell holding p (inside the box): its lowest node and p's place in it, [0, 1]^3.
     struct Cell {
         int i, j, k;

@@ -4,6 +4,7 @@
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/Simple_cartesian.h>
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -22,7 +23,9 @@ using Segments = std::vector<Kernel::Segment_3>;
 using Primitive = CGAL::AABB_segment_primitive<Kernel, Segments::const_iterator>;
 using AabbTree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
 
-Kernel::Point_3 to_cgal(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
+Kernel::Point_3 to_cgal(const Vec3& p) {
+    return {p.x(), p.y(), p.z()};
+}
 
 // A triangle's plane: n . x = offset, n the unit normal out of the body.
 struct Plane {
@@ -97,7 +100,8 @@ MeshCreases::MeshCreases(const TriangleSurface& surface, double angle_degrees,
         }
         x.ends.push_back(ends[e]);
         x.edge_planes.push_back(edge_planes[e]);
-        x.segments.emplace_back(to_cgal(surface.points[ends[e][0]]), to_cgal(surface.points[ends[e][1]]));
+        x.segments.emplace_back(to_cgal(surface.points[ends[e][0]]),
+                                to_cgal(surface.points[ends[e][1]]));
     }
     if (x.segments.empty()) return;
     x.tree.insert(x.segments.begin(), x.segments.end());
@@ -107,7 +111,9 @@ MeshCreases::MeshCreases(const TriangleSurface& surface, double angle_degrees,
 
 MeshCreases::~MeshCreases() = default;
 
-int MeshCreases::crease_edges() const { return int(index_->segments.size()); }
+int MeshCreases::crease_edges() const {
+    return int(index_->segments.size());
+}
 
 int MeshCreases::corners() const {
     return int(std::count_if(index_->corners.begin(), index_->corners.end(),

@@ -15,7 +15,7 @@
 namespace hexmesh {
 
 class MeshCreases {
-public:
+  public:
     // Creases are the edges of two triangles whose normals turn by more than angle_degrees
     // (surface/sharp_features.h; open and non-manifold edges are not creases here); corners
     // are the points where 1 or at least 3 of them meet. Each triangle's plane is oriented
@@ -42,7 +42,7 @@ public:
     bool add_pieces(const Vec3& p, double tolerance, double value, double slack,
                     std::vector<ImplicitFunction::Piece>& out) const;
 
-private:
+  private:
     struct Index;
     std::unique_ptr<Index> index_;
 };

@@ -1,8 +1,7 @@
 #include "surface/mesh_sdf.h"
 
-#include <fmt/format.h>
-
 #include <dlfcn.h>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
@@ -74,7 +73,7 @@ struct MeshSdf::Grid {
     double voxel = 0;
     double exterior = 0;  // band half-widths, geometry units
     double interior = 0;
-    Box3 band_box;        // world box of the active voxels
+    Box3 band_box;  // world box of the active voxels
     bool by_winding = false;
 };
 
@@ -93,16 +92,20 @@ MeshSdf::MeshSdf(const TriangleSurface& surface, const MeshSdfOptions& options)
         voxel = extent / options.resolution;
     }
     if (!(voxel > 0) || !std::isfinite(voxel) || extent / voxel > 1e5)
-        throw std::invalid_argument("the voxel size must be positive and at least 1e-5 of "
-                                    "the surface's extent");
+        throw std::invalid_argument(
+            "the voxel size must be positive and at least 1e-5 of "
+            "the surface's extent");
 
     const double limit = options.max_bytes > 0 ? options.max_bytes : memory_limit();
-    const double needed = sdf_memory_estimate(surface, voxel, options.exterior_band, options.interior_band);
+    const double needed =
+        sdf_memory_estimate(surface, voxel, options.exterior_band, options.interior_band);
     if (needed > limit)
-        throw std::invalid_argument(fmt::format(
-            "a distance field of voxel size {:.3g} ({:.0f} voxels along the longest side) would take about "
-            "{:.3g} GB, more than the limit of {:.3g} GB: use a larger voxel size (or --max-memory)",
-            voxel, extent / voxel, needed / 1e9, limit / 1e9));
+        throw std::invalid_argument(
+            fmt::format("a distance field of voxel size {:.3g} ({:.0f} voxels along the longest "
+                        "side) would take about "
+                        "{:.3g} GB, more than the limit of {:.3g} GB: use a larger voxel size (or "
+                        "--max-memory)",
+                        voxel, extent / voxel, needed / 1e9, limit / 1e9));
 
     Grid& g = *grid_;
     g.voxel = voxel;
@@ -120,7 +123,8 @@ MeshSdf::MeshSdf(const TriangleSurface& surface, const MeshSdfOptions& options)
     g.grid = build_sdf_grid(surface, spec);
 
     const std::array<int, 6> box = g.grid->active_box();
-    if (box[0] > box[3]) throw std::invalid_argument("the distance field has no voxel near the surface");
+    if (box[0] > box[3])
+        throw std::invalid_argument("the distance field has no voxel near the surface");
     for (int a = 0; a < 3; ++a) {
         g.band_box.lo[a] = g.origin[a] + voxel * box[a];
         g.band_box.hi[a] = g.origin[a] + voxel * box[3 + a];
@@ -132,7 +136,8 @@ MeshSdf::~MeshSdf() = default;
 
 double sdf_memory_estimate(const TriangleSurface& surface, double voxel, double exterior_band,
                            double interior_band) {
-    const double voxels = surface_area(surface) / (voxel * voxel) * (exterior_band + interior_band + 1);
+    const double voxels =
+        surface_area(surface) / (voxel * voxel) * (exterior_band + interior_band + 1);
     return 2 * 16 * voxels;
 }
 
@@ -142,10 +147,18 @@ Box3 MeshSdf::bounds() const {
     const Vec3 margin = Vec3::Constant(1e-2 * grid_->voxel);
     return {bounds_.lo - margin, bounds_.hi + margin};
 }
-double MeshSdf::voxel_size() const { return grid_->voxel; }
-long long MeshSdf::active_voxels() const { return grid_->grid->active_voxels(); }
-size_t MeshSdf::memory_bytes() const { return grid_->grid->memory_bytes(); }
-bool MeshSdf::signed_by_winding_number() const { return grid_->by_winding; }
+double MeshSdf::voxel_size() const {
+    return grid_->voxel;
+}
+long long MeshSdf::active_voxels() const {
+    return grid_->grid->active_voxels();
+}
+size_t MeshSdf::memory_bytes() const {
+    return grid_->grid->memory_bytes();
+}
+bool MeshSdf::signed_by_winding_number() const {
+    return grid_->by_winding;
+}
 
 double MeshSdf::value(const Vec3& p) const {
     const Grid& g = *grid_;
@@ -159,7 +172,8 @@ double MeshSdf::value(const Vec3& p) const {
     double v = 0;
     for (int corner = 0; corner < 8; ++corner) {
         const int i = corner & 1, j = (corner >> 1) & 1, k = corner >> 2;
-        const double w = (i ? t.x() : 1 - t.x()) * (j ? t.y() : 1 - t.y()) * (k ? t.z() : 1 - t.z());
+        const double w =
+            (i ? t.x() : 1 - t.x()) * (j ? t.y() : 1 - t.y()) * (k ? t.z() : 1 - t.z());
         v += w * f[corner];
     }
     return v;
@@ -169,7 +183,8 @@ Vec3 MeshSdf::gradient(const Vec3& p) const {
     const Grid& g = *grid_;
     const Vec3 outward = p - bounds_.center();
     const Vec3 fallback = outward.norm() > 0 ? Vec3(outward.normalized()) : Vec3(Vec3::UnitZ());
-    if (!(p.array() >= g.band_box.lo.array()).all() || !(p.array() <= g.band_box.hi.array()).all()) {
+    if (!(p.array() >= g.band_box.lo.array()).all() ||
+        !(p.array() <= g.band_box.hi.array()).all()) {
         const Vec3 away = p - p.cwiseMax(bounds_.lo).cwiseMin(bounds_.hi);
         return away.norm() > g.exterior ? Vec3(away.normalized()) : fallback;
     }
@@ -193,9 +208,12 @@ Vec3 MeshSdf::gradient(const Vec3& p) const {
 
 void MeshSdf::active_pieces(const Vec3& p, double tolerance, std::vector<Piece>& out) const {
     const double u = value(p);
-    if (!creases_->add_pieces(p, tolerance, u, 0.5 * grid_->voxel, out)) out.push_back({u, gradient(p)});
+    if (!creases_->add_pieces(p, tolerance, u, 0.5 * grid_->voxel, out))
+        out.push_back({u, gradient(p)});
 }
 
-void MeshSdf::write_vdb(const std::string& path) const { grid_->grid->write_vdb(path); }
+void MeshSdf::write_vdb(const std::string& path) const {
+    grid_->grid->write_vdb(path);
+}
 
 }  // namespace hexmesh

@@ -41,7 +41,6 @@ struct MeshSdfOptions {
 double sdf_memory_estimate(const TriangleSurface& surface, double voxel, double exterior_band,
                            double interior_band);
 
-
 // u(x): the distance to the surface, negative inside, computed by OpenVDB's mesh-to-volume
 // conversion in a band around the surface and interpolated trilinearly from the voxel
 // centres (value and its exact piecewise gradient); the sign as MeshSdfOptions::sign says.
@@ -54,7 +53,7 @@ double sdf_memory_estimate(const TriangleSurface& surface, double voxel, double 
 // triangles meeting there (surface/mesh_creases.h), elsewhere the one smooth piece.
 // Thread safe for concurrent value()/gradient()/active_pieces() calls.
 class MeshSdf : public ImplicitFunction {
-public:
+  public:
     // Throws std::invalid_argument for an empty surface or bad options.
     explicit MeshSdf(const TriangleSurface& surface, const MeshSdfOptions& options = {});
     ~MeshSdf() override;
@@ -75,7 +74,7 @@ public:
     // Writes the grid (named "sdf", a level set) to an OpenVDB .vdb file.
     void write_vdb(const std::string& path) const;
 
-private:
+  private:
     struct Grid;
     std::unique_ptr<Grid> grid_;
     std::unique_ptr<MeshCreases> creases_;

@@ -46,7 +46,7 @@ openvdb::FloatGrid::Ptr winding_signed_grid(const IndexSpaceMesh& mesh,
     // udf(a) + udf(b) > voxel: then b copies a's sign instead of a winding-number query.
     // Voxels are visited in offset order, so the -x, -y, -z neighbours in the leaf are done.
     const float step = float(voxel);
-    leaves.foreach([&](openvdb::FloatTree::LeafNodeType& leaf, size_t) {
+    leaves.foreach ([&](openvdb::FloatTree::LeafNodeType& leaf, size_t) {
         using Leaf = openvdb::FloatTree::LeafNodeType;
         for (openvdb::Index offset = 0; offset < Leaf::SIZE; ++offset) {
             if (!leaf.isValueOn(offset)) continue;
@@ -74,7 +74,7 @@ openvdb::FloatGrid::Ptr winding_signed_grid(const IndexSpaceMesh& mesh,
 }
 
 class OpenVdbGrid : public SdfGrid {
-public:
+  public:
     explicit OpenVdbGrid(openvdb::FloatGrid::Ptr grid) : grid_(std::move(grid)) {}
 
     void corner_values(int i, int j, int k, double (&values)[8]) const override {
@@ -97,7 +97,7 @@ public:
         file.close();
     }
 
-private:
+  private:
     openvdb::FloatGrid::Ptr grid_;
 };
 

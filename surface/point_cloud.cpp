@@ -175,8 +175,9 @@ PointCloudDiagnostics diagnose_point_cloud(const OrientedPoints& cloud, int neig
     }
     if (n == 1) return d;
     const PointMap map{&points};
-    Search::Tree tree(boost::counting_iterator<std::size_t>(0), boost::counting_iterator<std::size_t>(n),
-                      Search::Tree::Splitter(), Traits(map));
+    Search::Tree tree(boost::counting_iterator<std::size_t>(0),
+                      boost::counting_iterator<std::size_t>(n), Search::Tree::Splitter(),
+                      Traits(map));
     tree.build();
     const Search::Distance distance(map);
     const double same = 1e-12 * std::max(d.bounds.diagonal(), 1e-300);

@@ -25,7 +25,7 @@ struct PointCloudSdfOptions {
 // neighbours come from a CGAL k-d tree built in the constructor; value() and gradient()
 // are safe to call concurrently.
 class PointCloudSdf : public ImplicitFunction {
-public:
+  public:
     // Throws std::invalid_argument for no point, points and normals of different counts,
     // a zero or non-finite normal or point, or bad options.
     explicit PointCloudSdf(const OrientedPoints& cloud, const PointCloudSdfOptions& options = {});
@@ -41,7 +41,7 @@ public:
     double bandwidth() const { return bandwidth_; }
     double mean_spacing() const { return mean_spacing_; }
 
-private:
+  private:
     double evaluate(const Vec3& p, Vec3* gradient) const;
 
     struct Tree;
@@ -56,9 +56,9 @@ private:
 struct PointCloudDiagnostics {
     long long points = 0;
     Box3 bounds;
-    double mean_spacing = 0;      // mean distance from a point to its nearest other point
-    double largest_gap = 0;       // the largest such distance (an undersampled region)
-    long long duplicates = 0;     // points with another at the same place (1e-12 of the box)
+    double mean_spacing = 0;   // mean distance from a point to its nearest other point
+    double largest_gap = 0;    // the largest such distance (an undersampled region)
+    long long duplicates = 0;  // points with another at the same place (1e-12 of the box)
     // Points whose normal points against the summed normals of their `neighbours` nearest
     // points: flipped normals, or sheets closer than the spacing (thin walls).
     long long inconsistent_normals = 0;

@@ -16,12 +16,14 @@ constexpr double tiny_gradient = 1e-12;
 constexpr double max_step_factor = 4.0;  // a projection step is at most this times |u|
 constexpr int max_halvings = 40;
 constexpr int max_bisections = 200;
-constexpr double march_safety = 0.9;  // sphere-tracing step as a fraction of |u|
+constexpr double march_safety = 0.9;     // sphere-tracing step as a fraction of |u|
 constexpr double march_min_step = 1e-3;  // relative to length_scale
 constexpr int max_march_steps = 1000000;
 
 // True when going from a value a to b crosses (or touches) u = 0; a is never 0 here.
-bool crosses(double a, double b) { return a < 0 ? b >= 0 : b <= 0; }
+bool crosses(double a, double b) {
+    return a < 0 ? b >= 0 : b <= 0;
+}
 
 struct Sample {
     Vec3 x;
@@ -58,7 +60,7 @@ Sample refine_bracket(const ImplicitFunction& u, Sample a, Sample b, double tol,
         }
         const Vec3 lo = origin + s0 * span, hi = origin + s1 * span;
         if (lo == hi || (hi - lo).norm() <= 4 * std::numeric_limits<double>::epsilon() *
-                                                 std::max(1.0, lo.cwiseAbs().maxCoeff()))
+                                                std::max(1.0, lo.cwiseAbs().maxCoeff()))
             break;
     }
     return best;
@@ -111,8 +113,7 @@ Step v_step(const ImplicitFunction& u, const Sample& s, double tau, const Vec3& 
 // The nearest point to a where the linear models of u at a (gradient ga) and at b (gb) both
 // vanish: the step onto a crease when a and b see different pieces of a CSG body, where
 // plain steps would zigzag between the two surfaces. nullopt if the gradients are parallel.
-std::optional<Vec3> crease_point(const Sample& a, const Vec3& ga, const Sample& b,
-                                 const Vec3& gb) {
+std::optional<Vec3> crease_point(const Sample& a, const Vec3& ga, const Sample& b, const Vec3& gb) {
     if (ga.cross(gb).norm() < 1e-3 * ga.norm() * gb.norm()) return std::nullopt;
     Eigen::Matrix<double, 2, 3> jacobian;
     jacobian << ga.transpose(), gb.transpose();
@@ -121,7 +122,9 @@ std::optional<Vec3> crease_point(const Sample& a, const Vec3& ga, const Sample& 
     return Vec3(a.x + jacobian.transpose() * y);
 }
 
-Sample sample(const ImplicitFunction& u, const Vec3& x) { return {x, u.value(x)}; }
+Sample sample(const ImplicitFunction& u, const Vec3& x) {
+    return {x, u.value(x)};
+}
 
 }  // namespace
 

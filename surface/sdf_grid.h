@@ -26,7 +26,7 @@ struct SdfGridSpec {
 };
 
 class SdfGrid {
-public:
+  public:
     virtual ~SdfGrid() = default;
     // The values at the voxels (i + a, j + b, k + c), a, b, c in {0, 1}, entry a + 2 b + 4 c
     // (the band's constant where a voxel is not active). Safe to call concurrently.

@@ -1,13 +1,14 @@
 #include "surface/sharp_features.h"
 
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <stdexcept>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 
 #include "surface/surface_diagnostics.h"
 
@@ -52,7 +53,8 @@ std::vector<std::pair<int, int>> feature_edges(const TriangleSurface& s, const F
         bool feature = false;
         if (j - i == 2) {
             const double flip = uses[i].forward == uses[i + 1].forward ? -1 : 1;
-            feature = flip * normals[uses[i].triangle].dot(normals[uses[i + 1].triangle]) < cos_limit;
+            feature =
+                flip * normals[uses[i].triangle].dot(normals[uses[i + 1].triangle]) < cos_limit;
         } else {
             feature = o.include_boundary;
         }

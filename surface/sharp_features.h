@@ -33,14 +33,14 @@ FeatureCurves detect_sharp_features(const TriangleSurface& surface,
                                     const FeatureOptions& options = {});
 
 struct FeatureProjection {
-    Vec3 point;          // the closest point on any chain
-    int chain = -1;      // index into FeatureCurves::chains (-1: there is no chain)
-    int segment = -1;    // the segment chain[segment] -> chain[segment + 1]
+    Vec3 point;        // the closest point on any chain
+    int chain = -1;    // index into FeatureCurves::chains (-1: there is no chain)
+    int segment = -1;  // the segment chain[segment] -> chain[segment + 1]
     double distance = 0;
 };
 
 // Nearest point of the crease polylines to p (brute force: O(#feature edges) per call).
-FeatureProjection project_to_features(const TriangleSurface& surface,
-                                      const FeatureCurves& features, const Vec3& p);
+FeatureProjection project_to_features(const TriangleSurface& surface, const FeatureCurves& features,
+                                      const Vec3& p);
 
 }  // namespace hexmesh

@@ -5,6 +5,7 @@
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Surface_mesh.h>
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cstdint>

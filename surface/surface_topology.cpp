@@ -24,9 +24,10 @@ std::vector<int> welded_ids(const std::vector<Vec3>& points) {
     std::map<std::array<double, 3>, int> first;
     std::vector<int> id(points.size());
     for (size_t i = 0; i < points.size(); ++i)
-        id[i] = first.emplace(std::array<double, 3>{points[i].x(), points[i].y(), points[i].z()},
-                              int(i))
-                    .first->second;
+        id[i] =
+            first
+                .emplace(std::array<double, 3>{points[i].x(), points[i].y(), points[i].z()}, int(i))
+                .first->second;
     return id;
 }
 
@@ -78,7 +79,7 @@ SurfaceTopology surface_topology(const TriangleSurface& surface) {
     for (int p = 0; p < np; ++p) {
         if (!on_boundary[p]) continue;
         SurfaceComponent& c = comps[component_of(p)];
-        --c.boundary_loops;                        // - V
+        --c.boundary_loops;                             // - V
         if (boundary.find(p) == p) ++c.boundary_loops;  // + C
     }
     for (SurfaceComponent& c : comps) {

@@ -25,7 +25,9 @@ Vec3 Transformed::to_child(const Vec3& p) const {
     return rotation_.transpose() * (p - translation_) / scale_;
 }
 
-double Transformed::value(const Vec3& p) const { return scale_ * child_->value(to_child(p)); }
+double Transformed::value(const Vec3& p) const {
+    return scale_ * child_->value(to_child(p));
+}
 
 Vec3 Transformed::gradient(const Vec3& p) const {
     return rotation_ * child_->gradient(to_child(p));

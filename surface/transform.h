@@ -11,7 +11,7 @@ namespace hexmesh {
 // stays exact. Throws std::invalid_argument if child is null, rotation is not orthonormal
 // (to 1e-9) or scale is not > 0.
 class Transformed : public ImplicitFunction {
-public:
+  public:
     Transformed(Body child, const Vec3& translation, const Mat3& rotation = Mat3::Identity(),
                 double scale = 1.0);
     double value(const Vec3& p) const override;
@@ -20,7 +20,7 @@ public:
     void active_pieces(const Vec3& p, double tolerance, std::vector<Piece>& out) const override;
     Box3 bounds() const override;  // axis-aligned hull of the moved child box's 8 corners
 
-private:
+  private:
     Vec3 to_child(const Vec3& p) const;
 
     Body child_;

@@ -16,16 +16,16 @@ namespace hexmesh {
 // decides inside), cost O(log T) per query.
 // Queries are const and safe to run concurrently.
 class WindingNumber {
-public:
+  public:
     explicit WindingNumber(const TriangleSurface& surface, double accuracy = 2.0);
     double operator()(const Vec3& p) const;
 
-private:
+  private:
     struct Node {
         Vec3 lo, hi;
-        Vec3 centre;   // area-weighted centroid of the cluster
-        Vec3 normal;   // sum of area-weighted normals (|n| = area)
-        double radius; // of a ball about centre holding the cluster
+        Vec3 centre;       // area-weighted centroid of the cluster
+        Vec3 normal;       // sum of area-weighted normals (|n| = area)
+        double radius;     // of a ball about centre holding the cluster
         int first, count;  // triangles order[first, first + count) when a leaf
         int left = -1, right = -1;
     };

@@ -13,7 +13,7 @@ namespace hexmesh::test {
 // exits unless a test failed: a failed test's files stay for a look (their paths are in its
 // messages).
 class ScratchRegistry {
-public:
+  public:
     // gtest's UnitTest is made first so that it outlives this registry (asked at exit).
     ScratchRegistry() { ::testing::UnitTest::GetInstance(); }
     ~ScratchRegistry() {
@@ -23,7 +23,7 @@ public:
     }
     void add(const std::filesystem::path& path) { paths_.insert(path); }
 
-private:
+  private:
     std::set<std::filesystem::path> paths_;
 };
 

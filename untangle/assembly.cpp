@@ -38,7 +38,8 @@ constexpr std::array<std::array<int, 8>, 8> hex_pair_index = [] {
 
 // Items 0..n-1 grouped by colour, in item order within a colour: order lists them, the
 // items of colour c at [start[c], start[c + 1]).
-void group_by_colour(const std::vector<int>& colour, int colours, std::vector<Id>& start, std::vector<Id>& order) {
+void group_by_colour(const std::vector<int>& colour, int colours, std::vector<Id>& start,
+                     std::vector<Id>& order) {
     start.assign(colours + 1, 0);
     for (int c : colour) ++start[c + 1];
     for (int c = 0; c < colours; ++c) start[c + 1] += start[c];
@@ -57,24 +58,29 @@ Id BlockMatrix::find(Id row, Id column) const {
 
 void BlockMatrix::multiply(const std::vector<Vec3>& x, std::vector<Vec3>& y, int component) const {
     y.resize(x.size());
-    if (component >= 0)  // summed into y; the whole product is summed in float and copied at the end
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, y.size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
-            std::fill(y.begin() + r.begin(), y.begin() + r.end(), Vec3::Zero());
-        });
+    if (component >=
+        0)  // summed into y; the whole product is summed in float and copied at the end
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, y.size(), 1 << 14),
+                          [&](const tbb::blocked_range<size_t>& r) {
+                              std::fill(y.begin() + r.begin(), y.begin() + r.end(), Vec3::Zero());
+                          });
     const Id n = rows();
-    if (n > 0 && colour_start.empty()) throw std::logic_error("BlockMatrix::multiply before schedule_products()");
+    if (n > 0 && colour_start.empty())
+        throw std::logic_error("BlockMatrix::multiply before schedule_products()");
     // Rows [first, last): each stored block adds its product to its row and, transposed
     // (a < b), to its column's row. In single precision, as the blocks are.
-    std::vector<Float4>& xf = product_x_, & yf = product_y_;
+    std::vector<Float4>&xf = product_x_, &yf = product_y_;
     if (component < 0) {
         xf.resize(x.size());
         yf.resize(x.size());
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, x.size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
-            for (size_t i = r.begin(); i != r.end(); ++i) {
-                xf[i] = Float4{float(x[i][0]), float(x[i][1]), float(x[i][2]), 0.0f};
-                yf[i] = Float4{};
-            }
-        });
+        tbb::parallel_for(
+            tbb::blocked_range<size_t>(0, x.size(), 1 << 14),
+            [&](const tbb::blocked_range<size_t>& r) {
+                for (size_t i = r.begin(); i != r.end(); ++i) {
+                    xf[i] = Float4{float(x[i][0]), float(x[i][1]), float(x[i][2]), 0.0f};
+                    yf[i] = Float4{};
+                }
+            });
     }
     // A block's columns as 4 floats (the 4th is junk and meets x's zero 4th entry), from its
     // 9 consecutive floats without reading past them.
@@ -91,7 +97,8 @@ void BlockMatrix::multiply(const std::vector<Vec3>& x, std::vector<Vec3>& y, int
     const auto rows_product = [&](Id first, Id last) {
         for (Id a = first; a < last; ++a) {
             Id m = row_start[a];
-            const Float4 xa = xf[a], xa0 = broadcast(xa, 0), xa1 = broadcast(xa, 1), xa2 = broadcast(xa, 2);
+            const Float4 xa = xf[a], xa0 = broadcast(xa, 0), xa1 = broadcast(xa, 1),
+                         xa2 = broadcast(xa, 2);
             Float4 c0, c1, c2;
             columns(block[m], c0, c1, c2);
             Float4 sum = c0 * xa0 + c1 * xa1 + c2 * xa2;
@@ -105,7 +112,8 @@ void BlockMatrix::multiply(const std::vector<Vec3>& x, std::vector<Vec3>& y, int
                 const Float4 t1 = __builtin_shuffle(m0, m1, Lane4{2, 6, 3, 7});
                 const Float4 t2 = __builtin_shuffle(m2, zero, Lane4{0, 4, 1, 5});
                 const Float4 t3 = __builtin_shuffle(m2, zero, Lane4{2, 6, 3, 7});
-                yf[col[m]] += __builtin_shuffle(t0, t2, Lane4{0, 1, 4, 5}) + __builtin_shuffle(t0, t2, Lane4{2, 3, 6, 7}) +
+                yf[col[m]] += __builtin_shuffle(t0, t2, Lane4{0, 1, 4, 5}) +
+                              __builtin_shuffle(t0, t2, Lane4{2, 3, 6, 7}) +
                               __builtin_shuffle(t1, t3, Lane4{0, 1, 4, 5});
             }
             yf[a] += sum;
@@ -134,9 +142,11 @@ void BlockMatrix::multiply(const std::vector<Vec3>& x, std::vector<Vec3>& y, int
                 rows_component_product(first, last);
         });
     if (component < 0)
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, y.size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
-            for (size_t i = r.begin(); i != r.end(); ++i) y[i] = Vec3(yf[i][0], yf[i][1], yf[i][2]);
-        });
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, y.size(), 1 << 14),
+                          [&](const tbb::blocked_range<size_t>& r) {
+                              for (size_t i = r.begin(); i != r.end(); ++i)
+                                  y[i] = Vec3(yf[i][0], yf[i][1], yf[i][2]);
+                          });
 }
 
 void BlockMatrix::schedule_products() {
@@ -177,9 +187,11 @@ Assembly::Assembly(const Problem& problem, Id chunk_elements) : problem_(problem
         throw std::invalid_argument("one target per element is required");
     const auto valid = [nv](Id v) { return v >= 0 && v < nv; };
     for (const auto& h : problem.hexes)
-        if (!std::all_of(h.begin(), h.end(), valid)) throw std::invalid_argument("element refers to a missing vertex");
+        if (!std::all_of(h.begin(), h.end(), valid))
+            throw std::invalid_argument("element refers to a missing vertex");
     for (const auto& t : problem.tets)
-        if (!std::all_of(t.begin(), t.end(), valid)) throw std::invalid_argument("element refers to a missing vertex");
+        if (!std::all_of(t.begin(), t.end(), valid))
+            throw std::invalid_argument("element refers to a missing vertex");
     for (const auto& t : problem.triangles)
         if (!std::all_of(t.begin(), t.end(), valid))
             throw std::invalid_argument("element refers to a missing vertex");
@@ -202,7 +214,8 @@ Assembly::Assembly(const Problem& problem, Id chunk_elements) : problem_(problem
         const ElementNodes t = problem.element(e);
         for (Id a : t)
             for (Id b : t)
-                if (a < b && std::find(adjacent[a].begin(), adjacent[a].end(), int32_t(b)) == adjacent[a].end())
+                if (a < b && std::find(adjacent[a].begin(), adjacent[a].end(), int32_t(b)) ==
+                                 adjacent[a].end())
                     adjacent[a].push_back(int32_t(b));
     }
     pattern_.row_start.assign(nv + 1, 0);
@@ -255,7 +268,8 @@ ElementStats Assembly::stats(const std::vector<Vec3>& x) const {
     if (ne == 0) return {};
     const std::vector<Vec3> normals = triangle_normals(x);
     return tbb::parallel_reduce(
-        tbb::blocked_range<Id>(0, ne, grain), ElementStats{std::numeric_limits<double>::infinity(), 0},
+        tbb::blocked_range<Id>(0, ne, grain),
+        ElementStats{std::numeric_limits<double>::infinity(), 0},
         [&](const tbb::blocked_range<Id>& r, ElementStats s) {
             for (Id e = r.begin(); e != r.end(); ++e) {
                 const Id t = e - first_triangle;
@@ -350,7 +364,8 @@ double Assembly::assemble_hessian(const std::vector<Vec3>& x, const EnergyParams
         [&](Id h) {
             Mat38 gh;
             HexHessian hh;
-            const double value = hex_energy_hessian(hex_corners(x, h), problem_.hex_edges[h], p, gh, hh);
+            const double value =
+                hex_energy_hessian(hex_corners(x, h), problem_.hex_edges[h], p, gh, hh);
             if (!std::isfinite(value)) return value;
             for (int a = 0; a < 8; ++a) g[problem_.hexes[h][a]] += gh.col(a);
             scatter_hex(h, hh);
@@ -360,7 +375,8 @@ double Assembly::assemble_hessian(const std::vector<Vec3>& x, const EnergyParams
             const std::array<Id, 4> t = problem_.element(e).id;
             Mat34 ge;
             Mat12 he;
-            const double value = tet_energy_hessian(Problem::corners(x, t), problem_.target(e), p, ge, he);
+            const double value =
+                tet_energy_hessian(Problem::corners(x, t), problem_.target(e), p, ge, he);
             if (!std::isfinite(value)) return value;
             for (int a = 0; a < 4; ++a) g[t[a]] += ge.col(a);
             scatter_tet(e, t, he);
@@ -422,7 +438,8 @@ void Assembly::hessian_product(const std::vector<Vec3>& x, const EnergyParams& p
         });
 }
 
-double Assembly::gradient(const std::vector<Vec3>& x, const EnergyParams& p, std::vector<Vec3>& g) const {
+double Assembly::gradient(const std::vector<Vec3>& x, const EnergyParams& p,
+                          std::vector<Vec3>& g) const {
     g.assign(x.size(), Vec3::Zero());
     const std::vector<Vec3> normals = triangle_normals(x);
     return sum_by_colour_elements(
@@ -436,7 +453,8 @@ double Assembly::gradient(const std::vector<Vec3>& x, const EnergyParams& p, std
         [&](Id e) {
             const std::array<Id, 4> t = problem_.element(e).id;
             Mat34 ge;
-            const double value = tet_energy_gradient(Problem::corners(x, t), problem_.target(e), p, ge);
+            const double value =
+                tet_energy_gradient(Problem::corners(x, t), problem_.target(e), p, ge);
             if (std::isfinite(value))
                 for (int a = 0; a < 4; ++a) g[t[a]] += ge.col(a);
             return value;
@@ -484,9 +502,11 @@ double Assembly::hessian(const std::vector<Vec3>& x, const EnergyParams& p, std:
                          BlockMatrix& h) const {
     const Slots& slots = hessian_slots();
     const Id hex_elements = 8 * Id(problem_.hexes.size());
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, h.block.size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
-        std::fill(h.block.begin() + r.begin(), h.block.begin() + r.end(), HessianBlock::Zero());
-    });
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, h.block.size(), 1 << 14),
+                      [&](const tbb::blocked_range<size_t>& r) {
+                          std::fill(h.block.begin() + r.begin(), h.block.begin() + r.end(),
+                                    HessianBlock::Zero());
+                      });
     // Block (a, b) of the element goes to the row of the lower vertex id, transposed if that
     // is b's.
     return assemble_hessian(
@@ -496,7 +516,8 @@ double Assembly::hessian(const std::vector<Vec3>& x, const EnergyParams& p, std:
             for (size_t q = 0; q < hex_hessian_pairs.size(); ++q) {
                 const auto& [a, b] = hex_hessian_pairs[q];
                 const HessianBlock block = hh.block[a][b].cast<float>();
-                HessianBlock& target = h.block[h.row_start[std::min(n[a], n[b])] + slots.hex[hex][q]];
+                HessianBlock& target =
+                    h.block[h.row_start[std::min(n[a], n[b])] + slots.hex[hex][q]];
                 if (a == b || n[a] < n[b])
                     target += block;
                 else if (n[a] > n[b])
@@ -511,8 +532,10 @@ double Assembly::hessian(const std::vector<Vec3>& x, const EnergyParams& p, std:
                 for (int b = 0; b < 4; ++b) {
                     if (t[a] > t[b]) continue;  // stored from t[b]'s row as (b, a)
                     const uint16_t slot =
-                        e < hex_elements ? slots.hex[e / 8][hex_pair_index[hex_corner_tets[e % 8][a]][hex_corner_tets[e % 8][b]]]
-                                         : slots.tet[e - hex_elements][4 * a + b];
+                        e < hex_elements
+                            ? slots.hex[e / 8][hex_pair_index[hex_corner_tets[e % 8][a]]
+                                                             [hex_corner_tets[e % 8][b]]]
+                            : slots.tet[e - hex_elements][4 * a + b];
                     row[slot] += he.block<3, 3>(3 * a, 3 * b).cast<float>();
                 }
             }

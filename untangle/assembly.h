@@ -31,8 +31,8 @@ struct BlockMatrix {
     // row of the result (their own rows and their columns): colours one after the other,
     // the ranges of a colour in parallel. The result does not depend on the thread count.
     Id range_rows = 0;
-    std::vector<Id> range_order;   // range numbers, by colour
-    std::vector<Id> colour_start;  // offsets into range_order
+    std::vector<Id> range_order;                         // range numbers, by colour
+    std::vector<Id> colour_start;                        // offsets into range_order
     mutable std::vector<Float4> product_x_, product_y_;  // multiply()'s x and y in float
 
     Id rows() const { return Id(row_start.size()) - 1; }
@@ -56,10 +56,11 @@ struct ElementStats {
 // Precomputes the element schedule and the Hessian's block pattern, so that every sum below
 // is parallel yet deterministic (the same input gives the same bits whatever the number of
 // threads). Elements are cut into chunks of consecutive elements; chunks are coloured so
-// that no two chunks of one colour share a vertex. Colours run one after the other, the chunks of a colour in parallel, the elements
-// of a chunk in order: few synchronizations, and neighbouring elements share the cache.
+// that no two chunks of one colour share a vertex. Colours run one after the other, the chunks of a
+// colour in parallel, the elements of a chunk in order: few synchronizations, and neighbouring
+// elements share the cache.
 class Assembly {
-public:
+  public:
     // Elements go in chunks of chunk_elements (fewer if the colouring needs it); a hex whose
     // corner tets a chunk boundary splits is assembled tet by tet.
     explicit Assembly(const Problem& problem, Id chunk_elements = 256);
@@ -75,8 +76,8 @@ public:
     // The Hessian's pattern with zero blocks (the pattern itself keeps no values).
     BlockMatrix empty_hessian() const;
     // F(x), gradient and only the diagonal blocks of the PSD Hessian (#V blocks).
-    double diagonal_hessian(const std::vector<Vec3>& x, const EnergyParams& p,
-                            std::vector<Vec3>& g, std::vector<Mat3>& diagonal) const;
+    double diagonal_hessian(const std::vector<Vec3>& x, const EnergyParams& p, std::vector<Vec3>& g,
+                            std::vector<Mat3>& diagonal) const;
     // out = H(x) v without storing H: element Hessians recomputed and applied one by one.
     void hessian_product(const std::vector<Vec3>& x, const EnergyParams& p,
                          const std::vector<Vec3>& v, std::vector<Vec3>& out) const;
@@ -84,7 +85,7 @@ public:
     int colours() const { return int(colour_start_.size()) - 1; }
     Id chunks() const { return Id(chunk_order_.size()); }
 
-private:
+  private:
     Mat38 hex_corners(const std::vector<Vec3>& x, Id h) const;
     // Runs kernel(first, last) on the elements [first, last) of every chunk, colour after
     // colour, the chunks of a colour in parallel, and returns the sum of what it returned
@@ -125,10 +126,11 @@ private:
     const Slots& hessian_slots() const;
 
     const Problem& problem_;
-    Id chunk_size_ = 0;              // elements per chunk (the last one may be shorter)
-    std::vector<Id> chunk_order_;    // chunk numbers (chunk k = elements from k chunk_size_), by colour
-    std::vector<Id> colour_start_;   // offsets into chunk_order_
-    BlockMatrix pattern_;  // row_start and col only
+    Id chunk_size_ = 0;  // elements per chunk (the last one may be shorter)
+    std::vector<Id>
+        chunk_order_;  // chunk numbers (chunk k = elements from k chunk_size_), by colour
+    std::vector<Id> colour_start_;  // offsets into chunk_order_
+    BlockMatrix pattern_;           // row_start and col only
     mutable std::once_flag slots_once_;
     mutable Slots slots_;
 };

@@ -1,15 +1,17 @@
 #include "untangle/constraints.h"
 
-#include <Eigen/Geometry>
-#include <cmath>
 #include <fmt/format.h>
-#include <stdexcept>
 #include <tbb/parallel_for.h>
 
+#include <Eigen/Geometry>
+#include <cmath>
+#include <stdexcept>
 
 namespace hexmesh::untangle {
 
-int active_directions(VertexKind kind) { return degrees_of_freedom(kind); }
+int active_directions(VertexKind kind) {
+    return degrees_of_freedom(kind);
+}
 
 void check_constraints(const Problem& problem) {
     if (problem.kinds.size() != problem.points.size())
@@ -27,13 +29,15 @@ void check_constraints(const Problem& problem) {
             if (v < 0 || v >= Id(problem.points.size()))
                 throw std::invalid_argument("element refers to a missing vertex");
             else if (problem.kinds[v] == VertexKind::interior)  // no stiffness along the normal
-                throw std::invalid_argument(fmt::format("a surface triangle has an interior vertex ({})", v));
+                throw std::invalid_argument(
+                    fmt::format("a surface triangle has an interior vertex ({})", v));
     for (const auto& t : problem.triangles) {
         if (problem.triangle_normal(problem.points, t).norm() > 0.5) continue;  // unit
         const Vec3 c = (problem.points[t[0]] + problem.points[t[1]] + problem.points[t[2]]) / 3;
-        throw std::runtime_error(fmt::format("no normal of u = 0 at the surface triangle with centroid "
-                                             "({:.6g}, {:.6g}, {:.6g}): grad u vanishes or is not finite there",
-                                             c[0], c[1], c[2]));
+        throw std::runtime_error(
+            fmt::format("no normal of u = 0 at the surface triangle with centroid "
+                        "({:.6g}, {:.6g}, {:.6g}): grad u vanishes or is not finite there",
+                        c[0], c[1], c[2]));
     }
 }
 
@@ -41,7 +45,9 @@ std::vector<Mat3> movement_bases(const Problem& problem, const std::vector<Vec3>
     std::vector<Mat3> basis(x.size(), Mat3::Zero());
     tbb::parallel_for(size_t(0), x.size(), [&](size_t v) {
         switch (problem.kinds[v]) {
-            case VertexKind::interior: basis[v] = Mat3::Identity(); break;
+            case VertexKind::interior:
+                basis[v] = Mat3::Identity();
+                break;
             case VertexKind::slip: {
                 const Vec3 n = problem.surface_normal(Id(v), x[v]).normalized();
                 const Vec3 helper = std::abs(n.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
@@ -53,7 +59,8 @@ std::vector<Mat3> movement_bases(const Problem& problem, const std::vector<Vec3>
                 basis[v].col(0) = problem.edge_tangent(Id(v), x[v]).normalized();
                 break;
             case VertexKind::corner:
-            case VertexKind::fixed: break;
+            case VertexKind::fixed:
+                break;
         }
     });
     return basis;

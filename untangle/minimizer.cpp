@@ -1,10 +1,11 @@
 #include "untangle/minimizer.h"
 
+#include <tbb/parallel_for.h>
+
 #include <Eigen/Dense>
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCore>
 #include <cmath>
-#include <tbb/parallel_for.h>
 
 #include "untangle/constraints.h"
 #include "untangle/pcg.h"
@@ -46,8 +47,9 @@ struct DiagonalShift {
 BlockInverse diagonal_preconditioner(Preconditioner kind, const std::vector<Mat3>& diagonal) {
     BlockInverse inverse(diagonal.size());
     tbb::parallel_for(size_t(0), diagonal.size(), [&](size_t a) {
-        const Mat3 m = kind == Preconditioner::jacobi ? Mat3(diagonal[a].diagonal().cwiseInverse().asDiagonal())
-                                                      : Mat3(diagonal[a].inverse());
+        const Mat3 m = kind == Preconditioner::jacobi
+                           ? Mat3(diagonal[a].diagonal().cwiseInverse().asDiagonal())
+                           : Mat3(diagonal[a].inverse());
         inverse[a] = m.cast<float>();
     });
     return inverse;
@@ -65,7 +67,8 @@ LinearOperator incomplete_cholesky(const BlockMatrix& r) {
                 for (int j = 0; j < 3; ++j)
                     if (r.block[m](i, j) != 0) {
                         entries.emplace_back(3 * a + i, 3 * r.col[m] + j, r.block[m](i, j));
-                        if (r.col[m] != a) entries.emplace_back(3 * r.col[m] + j, 3 * a + i, r.block[m](i, j));
+                        if (r.col[m] != a)
+                            entries.emplace_back(3 * r.col[m] + j, 3 * a + i, r.block[m](i, j));
                     }
     Eigen::SparseMatrix<double> a(n, n);
     a.setFromTriplets(entries.begin(), entries.end());
@@ -102,11 +105,14 @@ double Minimizer::newton_direction(const std::vector<Vec3>& x, const EnergyParam
             for (Id m = hessian_.row_start[a]; m < hessian_.row_start[a + 1]; ++m) {
                 const Id b = hessian_.col[m];
                 if (kinds[a] == VertexKind::interior && kinds[b] == VertexKind::interior) continue;
-                hessian_.block[m] = (basis[a].transpose() * hessian_.block[m].cast<double>() * basis[b]).cast<float>();
+                hessian_.block[m] =
+                    (basis[a].transpose() * hessian_.block[m].cast<double>() * basis[b])
+                        .cast<float>();
             }
         });
         diagonal.resize(n);
-        for (size_t a = 0; a < n; ++a) diagonal[a] = hessian_.block[hessian_.row_start[a]].cast<double>();
+        for (size_t a = 0; a < n; ++a)
+            diagonal[a] = hessian_.block[hessian_.row_start[a]].cast<double>();
     }
     if (!std::isfinite(f)) return f;
     if (matrix_free)
@@ -114,7 +120,8 @@ double Minimizer::newton_direction(const std::vector<Vec3>& x, const EnergyParam
     const DiagonalShift shift(basis, diagonal);
     for (size_t a = 0; a < n; ++a) diagonal[a] += shift.shift[a].asDiagonal();
     if (!matrix_free)
-        for (size_t a = 0; a < n; ++a) hessian_.block[hessian_.row_start[a]] = diagonal[a].cast<float>();
+        for (size_t a = 0; a < n; ++a)
+            hessian_.block[hessian_.row_start[a]] = diagonal[a].cast<float>();
 
     std::vector<Vec3> rhs(n), reduced(n);
     for (size_t a = 0; a < n; ++a) rhs[a] = -(basis[a].transpose() * g[a]);
@@ -131,8 +138,9 @@ double Minimizer::newton_direction(const std::vector<Vec3>& x, const EnergyParam
                 z.assign(r.size(), Vec3::Zero());
                 for (size_t a = 0; a < r.size(); ++a) z[a][c] = r[a][c] / diagonal[a](c, c);
             };
-            const PcgResult res = solve_pcg(apply, options_.preconditioner == Preconditioner::none ? LinearOperator{} : jacobi,
-                                            b, xc, options_.cg_tolerance, options_.cg_max_iterations);
+            const PcgResult res = solve_pcg(
+                apply, options_.preconditioner == Preconditioner::none ? LinearOperator{} : jacobi,
+                b, xc, options_.cg_tolerance, options_.cg_max_iterations);
             iterations += res.iterations;
             for (size_t a = 0; a < n; ++a) reduced[a][c] = xc[a][c];
         }
@@ -153,15 +161,17 @@ double Minimizer::newton_direction(const std::vector<Vec3>& x, const EnergyParam
         const Preconditioner kind = options_.preconditioner;
         PcgResult solved;
         if (kind == Preconditioner::incomplete_cholesky && !matrix_free)
-            solved = solve_pcg(apply, incomplete_cholesky(hessian_), rhs, reduced, options_.cg_tolerance,
-                               options_.cg_max_iterations);
+            solved = solve_pcg(apply, incomplete_cholesky(hessian_), rhs, reduced,
+                               options_.cg_tolerance, options_.cg_max_iterations);
         else if (kind == Preconditioner::none)
-            solved = solve_pcg(apply, LinearOperator{}, rhs, reduced, options_.cg_tolerance, options_.cg_max_iterations);
+            solved = solve_pcg(apply, LinearOperator{}, rhs, reduced, options_.cg_tolerance,
+                               options_.cg_max_iterations);
         else  // incomplete Cholesky needs the matrix: block Jacobi without one
-            solved = solve_pcg(apply,
-                               diagonal_preconditioner(kind == Preconditioner::jacobi ? kind : Preconditioner::block_jacobi,
-                                                       diagonal),
-                               rhs, reduced, options_.cg_tolerance, options_.cg_max_iterations);
+            solved = solve_pcg(
+                apply,
+                diagonal_preconditioner(
+                    kind == Preconditioner::jacobi ? kind : Preconditioner::block_jacobi, diagonal),
+                rhs, reduced, options_.cg_tolerance, options_.cg_max_iterations);
         iterations += solved.iterations;
     }
     d.resize(n);
@@ -229,14 +239,16 @@ double Minimizer::direction(const std::vector<Vec3>& x, const EnergyParams& p, s
             d.resize(n);
             for (size_t a = 0; a < n; ++a) d[a] = -(basis[a] * (basis[a].transpose() * g[a]));
             const double m = max_norm(d);
-            if (m > 0) for (Vec3& v : d) v *= problem_.length_scale / m;
+            if (m > 0)
+                for (Vec3& v : d) v *= problem_.length_scale / m;
             return f;
         }
         case Method::block_diagonal: {
             std::vector<Vec3> g;
             std::vector<Mat3> diagonal;
             const double f = assembly_.diagonal_hessian(x, p, g, diagonal);
-            for (size_t a = 0; a < n; ++a) diagonal[a] = basis[a].transpose() * diagonal[a] * basis[a];
+            for (size_t a = 0; a < n; ++a)
+                diagonal[a] = basis[a].transpose() * diagonal[a] * basis[a];
             const DiagonalShift shift(basis, diagonal);
             d.resize(n);
             for (size_t a = 0; a < n; ++a) {
@@ -246,8 +258,10 @@ double Minimizer::direction(const std::vector<Vec3>& x, const EnergyParams& p, s
             return f;
         }
         case Method::coordinate_split:
-        case Method::newton_cg: return newton_direction(x, p, basis, d, linear_iterations);
-        case Method::lbfgs: return lbfgs_direction(x, p, basis, d);
+        case Method::newton_cg:
+            return newton_direction(x, p, basis, d, linear_iterations);
+        case Method::lbfgs:
+            return lbfgs_direction(x, p, basis, d);
     }
     return 0;
 }

@@ -12,13 +12,13 @@ namespace hexmesh::untangle {
 
 struct MinimizeOutcome {
     double energy = 0;
-    int steps = 0;           // accepted steps
+    int steps = 0;              // accepted steps
     int linear_iterations = 0;  // CG iterations over all steps
 };
 
 // Holds what lives across steps: the Hessian pattern and the L-BFGS history.
 class Minimizer {
-public:
+  public:
     Minimizer(const Problem& problem, const Assembly& assembly, const SolverOptions& options);
 
     // Up to max_steps descent steps on F at fixed p, stopping when a step lowers F by less
@@ -29,7 +29,7 @@ public:
                              double tolerance,
                              const std::function<bool(const std::vector<Vec3>&)>& done = {});
 
-private:
+  private:
     // Direction d for the current x (in 3D, inside the allowed bases); returns F(x).
     double direction(const std::vector<Vec3>& x, const EnergyParams& p, std::vector<Vec3>& d,
                      int& linear_iterations);

@@ -51,9 +51,11 @@ PcgResult pcg(const LinearOperator& apply_a, Precondition&& precondition, const 
         const double rz_next = precondition(r, z);
         const double beta = rz_next / rz;
         rz = rz_next;
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, grain), [&](const tbb::blocked_range<size_t>& range) {
-            for (size_t i = range.begin(); i != range.end(); ++i) p[i] = z[i] + beta * p[i];
-        });
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, grain),
+                          [&](const tbb::blocked_range<size_t>& range) {
+                              for (size_t i = range.begin(); i != range.end(); ++i)
+                                  p[i] = z[i] + beta * p[i];
+                          });
     }
     return result;
 }
@@ -65,7 +67,10 @@ PcgResult solve_pcg(const LinearOperator& apply_a, const LinearOperator& precond
     return pcg(
         apply_a,
         [&](const VertexVector& r, VertexVector& z) {
-            if (precondition) precondition(r, z); else z = r;
+            if (precondition)
+                precondition(r, z);
+            else
+                z = r;
             return dot(r, z);
         },
         b, x, tolerance, max_iterations);

@@ -20,8 +20,9 @@ namespace hexmesh::untangle {
 // lengths: the box corner with the tet's three edges in the tet's column order.
 inline TetTarget hex_corner_target(int c, const Vec3& edges) {
     const auto& t = hex_corner_tets[c];
-    return box_corner_target(
-        Vec3(edges[hex_edge_axis(t[0], t[1])], edges[hex_edge_axis(t[0], t[2])], edges[hex_edge_axis(t[0], t[3])]));
+    return box_corner_target(Vec3(edges[hex_edge_axis(t[0], t[1])],
+                                  edges[hex_edge_axis(t[0], t[2])],
+                                  edges[hex_edge_axis(t[0], t[3])]));
 }
 
 // The vertex ids of one element: 4 for a tet, 3 for a surface triangle.
@@ -56,12 +57,12 @@ struct ElementNodes {
 // those of the energy in the current tangent planes, which is what a step that slides on
 // u = 0 changes to first order.
 struct Problem {
-    std::vector<Vec3> points;                // #V
-    std::vector<VertexKind> kinds;           // #V
-    std::vector<std::array<Id, 8>> hexes;    // #H, VTK node order
-    std::vector<Vec3> hex_edges;             // #H, box edge lengths along x (0-1), y (0-3), z (0-4)
-    std::vector<std::array<Id, 4>> tets;     // #T, vertex ids, positively oriented target
-    std::vector<TetTarget> targets;          // #T
+    std::vector<Vec3> points;              // #V
+    std::vector<VertexKind> kinds;         // #V
+    std::vector<std::array<Id, 8>> hexes;  // #H, VTK node order
+    std::vector<Vec3> hex_edges;           // #H, box edge lengths along x (0-1), y (0-3), z (0-4)
+    std::vector<std::array<Id, 4>> tets;   // #T, vertex ids, positively oriented target
+    std::vector<TetTarget> targets;        // #T
     // #R, vertex ids, counter-clockwise seen from the side surface_normal points to
     std::vector<std::array<Id, 3>> triangles;
     std::vector<TriangleTarget> triangle_targets;  // #R
@@ -98,16 +99,19 @@ struct Problem {
         const Vec3 n0 = surface_normal(t[0], x[t[0]]).normalized();  // zero stays zero
         const Vec3 n = surface_normal(t[0], (x[t[0]] + x[t[1]] + x[t[2]]) / 3).normalized();
         if (n.dot(n0) > -0.5) return n;
-        return (n0 + surface_normal(t[1], x[t[1]]).normalized() + surface_normal(t[2], x[t[2]]).normalized())
+        return (n0 + surface_normal(t[1], x[t[1]]).normalized() +
+                surface_normal(t[2], x[t[2]]).normalized())
             .normalized();
     }
     TetTarget target(Id e) const {
-        return is_hex_corner(e) ? hex_corner_target(int(e % 8), hex_edges[e / 8]) : targets[e - 8 * Id(hexes.size())];
+        return is_hex_corner(e) ? hex_corner_target(int(e % 8), hex_edges[e / 8])
+                                : targets[e - 8 * Id(hexes.size())];
     }
     // The positions in x of the given vertices, as columns (3 x 4 for a tet, 3 x 3 for a
     // triangle).
     template <size_t N>
-    static Eigen::Matrix<double, 3, int(N)> corners(const std::vector<Vec3>& x, const std::array<Id, N>& nodes) {
+    static Eigen::Matrix<double, 3, int(N)> corners(const std::vector<Vec3>& x,
+                                                    const std::array<Id, N>& nodes) {
         Eigen::Matrix<double, 3, int(N)> y;
         for (size_t a = 0; a < N; ++a) y.col(a) = x[nodes[a]];
         return y;
@@ -124,7 +128,8 @@ struct Problem {
     // Whether every vertex of element e is held (fixed or corner): nothing can change its det.
     bool held(Id e) const {
         const ElementNodes nodes = element(e);
-        return std::all_of(nodes.begin(), nodes.end(), [&](Id v) { return degrees_of_freedom(kinds[v]) == 0; });
+        return std::all_of(nodes.begin(), nodes.end(),
+                           [&](Id v) { return degrees_of_freedom(kinds[v]) == 0; });
     }
     // The inverted elements that are held: no solve can repair them.
     std::vector<Id> blocked_elements() const {

@@ -13,14 +13,20 @@ inline double regularization_radius(double d, double eps) {
 // chi(d, eps) = (d + sqrt(eps^2 + d^2)) / 2: > 0 for every d when eps > 0, -> max(d, 0) as
 // eps -> 0. For d <= 0 it is evaluated as eps^2 / (2 (sqrt(eps^2 + d^2) - d)), which has no
 // cancellation (DESIGN §4). r is regularization_radius(d, eps).
-inline double chi(double d, double eps, double r) { return d > 0 ? 0.5 * (d + r) : eps * eps / (2 * (r - d)); }
-inline double chi(double d, double eps) { return chi(d, eps, regularization_radius(d, eps)); }
+inline double chi(double d, double eps, double r) {
+    return d > 0 ? 0.5 * (d + r) : eps * eps / (2 * (r - d));
+}
+inline double chi(double d, double eps) {
+    return chi(d, eps, regularization_radius(d, eps));
+}
 
 // d chi / d d = (1 + d / sqrt(eps^2 + d^2)) / 2, in (0, 1]; for d < 0 evaluated as
 // eps^2 / (2 r (r - d)) with r = sqrt(eps^2 + d^2), free of cancellation.
 inline double chi_derivative(double d, double eps, double r) {
     return d > 0 ? 0.5 * (1 + d / r) : eps * eps / (2 * r * (r - d));
 }
-inline double chi_derivative(double d, double eps) { return chi_derivative(d, eps, regularization_radius(d, eps)); }
+inline double chi_derivative(double d, double eps) {
+    return chi_derivative(d, eps, regularization_radius(d, eps));
+}
 
 }  // namespace hexmesh::untangle

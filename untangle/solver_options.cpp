@@ -28,7 +28,8 @@ auto from_name(const Table& table, const std::string& name, const char* what) {
         if (name == text) return value;
         valid += (valid.empty() ? "" : ", ") + std::string(text);
     }
-    throw std::invalid_argument("unknown " + std::string(what) + " '" + name + "' (valid: " + valid + ")");
+    throw std::invalid_argument("unknown " + std::string(what) + " '" + name +
+                                "' (valid: " + valid + ")");
 }
 
 template <class Table, class Value>
@@ -40,11 +41,17 @@ std::string to_name(const Table& table, Value v) {
 
 }  // namespace
 
-Method method_from_name(const std::string& name) { return from_name(methods, name, "solver"); }
+Method method_from_name(const std::string& name) {
+    return from_name(methods, name, "solver");
+}
 Preconditioner preconditioner_from_name(const std::string& name) {
     return from_name(preconditioners, name, "preconditioner");
 }
-std::string to_string(Method m) { return to_name(methods, m); }
-std::string to_string(Preconditioner p) { return to_name(preconditioners, p); }
+std::string to_string(Method m) {
+    return to_name(methods, m);
+}
+std::string to_string(Preconditioner p) {
+    return to_name(preconditioners, p);
+}
 
 }  // namespace hexmesh::untangle

@@ -11,7 +11,6 @@
 #endif
 
 #include "hexmesh/core/reference_hex.h"
-
 #include "untangle/regularization.h"
 
 namespace hexmesh::untangle {
@@ -86,12 +85,12 @@ Invariants phi(double i, double d, double v0, const EnergyParams& p, bool second
     if (second) {
         const double mu2 = v0 * y3 * y3 * y3, nu2 = 10.0 / 27 * i * y5 * y3;
         const double nu1i = -2.0 / 9 * y5;
-        f.f_dd = (theta * mu2 + (1 - theta) * nu2) * x1 * x1 + (theta * mu1 + (1 - theta) * nu1) * x2;
+        f.f_dd =
+            (theta * mu2 + (1 - theta) * nu2) * x1 * x1 + (theta * mu1 + (1 - theta) * nu1) * x2;
         f.f_id = (1 - theta) * nu1i * x1;
     }
     return f;
 }
-
 
 // Signed SVD S = U diag(sigma) V^T with U, V rotations (sigma[2] < 0 when det S < 0), from
 // the closed-form eigensystem of S^T S: V its eigenvectors (largest first), U by
@@ -125,7 +124,9 @@ bool phi_at(const Mat3& s, double v0, const EnergyParams& p, Invariants& f) {
 }
 
 // d phi / d S.
-Mat3 phi_gradient(const Mat3& s, const Invariants& f) { return 2 * f.f_i * s + f.f_d * cofactor(s); }
+Mat3 phi_gradient(const Mat3& s, const Invariants& f) {
+    return 2 * f.f_i * s + f.f_d * cofactor(s);
+}
 
 // S = Q H^-1, the derivatives of phi at S and the vertex gradient; false (nothing set
 // beyond s) when eps = 0 and det S <= 0, where the barrier is infinite.
@@ -155,8 +156,8 @@ bool evaluate(const Mat34& y, const TetTarget& t, const EnergyParams& p, Mat3& s
 // (o: entrywise product), a+ = `a` clamped, and for i != j with k = 3 - i - j:
 // B_ij = (lambda_flip - lambda_twist) / 2, A_ij = (lambda_flip + lambda_twist) / 2 (clamped).
 // Vertex 0 moves S by minus the sum of the others: its blocks are minus sums.
-void hessian_blocks(const Mat3& s, const Invariants& f, const Mat3& g, double weight, bool project_psd,
-                    TetBlocks& blocks) {
+void hessian_blocks(const Mat3& s, const Invariants& f, const Mat3& g, double weight,
+                    bool project_psd, TetBlocks& blocks) {
     Mat3 u, v;
     Vec3 sigma;
     signed_svd(s, u, sigma, v);
@@ -164,9 +165,10 @@ void hessian_blocks(const Mat3& s, const Invariants& f, const Mat3& g, double we
     Mat3 a;
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j)
-            a(i, j) = 2 * f.f_id * (sigma[i] * d_i[j] + sigma[j] * d_i[i]) + f.f_dd * d_i[i] * d_i[j] +
-                      (i == j ? 2 * f.f_i : f.f_d * sigma[3 - i - j]);
-    const bool definite = a(0, 0) > 0 && a(0, 0) * a(1, 1) - a(0, 1) * a(0, 1) > 0 && a.determinant() > 0;
+            a(i, j) = 2 * f.f_id * (sigma[i] * d_i[j] + sigma[j] * d_i[i]) +
+                      f.f_dd * d_i[i] * d_i[j] + (i == j ? 2 * f.f_i : f.f_d * sigma[3 - i - j]);
+    const bool definite =
+        a(0, 0) > 0 && a(0, 0) * a(1, 1) - a(0, 1) * a(0, 1) > 0 && a.determinant() > 0;
     Mat3 scaling;  // weight a+
     if (definite || !project_psd) {
         scaling = weight * a;
@@ -188,7 +190,8 @@ void hessian_blocks(const Mat3& s, const Invariants& f, const Mat3& g, double we
     for (int a1 = 0; a1 < 3; ++a1)
         for (int b1 = a1; b1 < 3; ++b1) {
             const Vec3 xa = x.col(a1), xb = x.col(b1);
-            Mat3 k = scaling.cwiseProduct(xa * xb.transpose()) + twist_flip.cwiseProduct(xb * xa.transpose());
+            Mat3 k = scaling.cwiseProduct(xa * xb.transpose()) +
+                     twist_flip.cwiseProduct(xb * xa.transpose());
             k.diagonal() += pair * xa.cwiseProduct(xb);
             blocks[a1 + 1][b1 + 1] = u * k * u.transpose();
             if (b1 != a1) blocks[b1 + 1][a1 + 1] = blocks[a1 + 1][b1 + 1].transpose();
@@ -287,7 +290,8 @@ HEXMESH_LANE_INLINE LanePhi phi_lanes(Lanes i, Lanes d, const EnergyParams& p) {
         f.f_i = (1 - theta) / 3 * y2;
         f.f_d = first * x1;
         if (order >= 2) {
-            f.f_dd = (theta * (y3 * y3 * y3) + (1 - theta) * (10.0 / 27 * i * y5 * y3)) * x1 * x1 + first * x2;
+            f.f_dd = (theta * (y3 * y3 * y3) + (1 - theta) * (10.0 / 27 * i * y5 * y3)) * x1 * x1 +
+                     first * x2;
             f.f_id = (1 - theta) * (-2.0 / 9 * y5) * x1;
         }
     }
@@ -298,7 +302,8 @@ HEXMESH_LANE_INLINE LanePhi phi_lanes(Lanes i, Lanes d, const EnergyParams& p) {
 constexpr std::array<std::array<int, 3>, 8> corner_axes = [] {
     std::array<std::array<int, 3>, 8> axes{};
     for (int c = 0; c < 8; ++c)
-        for (int k = 0; k < 3; ++k) axes[c][k] = hex_edge_axis(hex_corner_tets[c][0], hex_corner_tets[c][k + 1]);
+        for (int k = 0; k < 3; ++k)
+            axes[c][k] = hex_edge_axis(hex_corner_tets[c][0], hex_corner_tets[c][k + 1]);
     return axes;
 }();
 
@@ -490,10 +495,11 @@ HEXMESH_LANE_INLINE void corner_hessian_lanes(int g, const Lanes (&s)[9], const 
     Lanes a[3][3];
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j)
-            a[i][j] = 2 * f.f_id * (sigma[i] * d_i[j] + sigma[j] * d_i[i]) + f.f_dd * d_i[i] * d_i[j] +
-                      (i == j ? 2 * f.f_i : f.f_d * sigma[3 - i - j]);
+            a[i][j] = 2 * f.f_id * (sigma[i] * d_i[j] + sigma[j] * d_i[i]) +
+                      f.f_dd * d_i[i] * d_i[j] + (i == j ? 2 * f.f_i : f.f_d * sigma[3 - i - j]);
     const Lanes minor = a[0][0] * a[1][1] - a[0][1] * a[0][1];
-    const Lanes det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+    const Lanes det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+                      a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
                       a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
     const LaneInts definite = (a[0][0] > 0) & (minor > 0) & (det > 0);
     Lanes scaling[3][3];
@@ -559,10 +565,12 @@ HEXMESH_LANE_INLINE void corner_hessian_lanes(int g, const Lanes (&s)[9], const 
                     if (j != i) k[i][i] += pair[3 - i - j] * x[j][a1] * x[j][b1];
             Lanes uk[3][3];
             for (int r = 0; r < 3; ++r)
-                for (int j = 0; j < 3; ++j) uk[r][j] = u[r][0] * k[0][j] + u[r][1] * k[1][j] + u[r][2] * k[2][j];
+                for (int j = 0; j < 3; ++j)
+                    uk[r][j] = u[r][0] * k[0][j] + u[r][1] * k[1][j] + u[r][2] * k[2][j];
             auto& out = block[a1 + 1][b1 + 1];
             for (int r = 0; r < 3; ++r)
-                for (int c = 0; c < 3; ++c) out[r][c] = uk[r][0] * u[c][0] + uk[r][1] * u[c][1] + uk[r][2] * u[c][2];
+                for (int c = 0; c < 3; ++c)
+                    out[r][c] = uk[r][0] * u[c][0] + uk[r][1] * u[c][1] + uk[r][2] * u[c][2];
             if (b1 != a1)
                 for (int r = 0; r < 3; ++r)
                     for (int c = 0; c < 3; ++c) block[b1 + 1][a1 + 1][c][r] = out[r][c];
@@ -604,7 +612,8 @@ HEXMESH_LANE_INLINE bool hex_corner_lanes(int g, const Mat38& y, const Vec3& inv
         const auto& t = hex_corner_tets[corner];
         for (int k = 0; k < 3; ++k) {
             scale[k][l] = inverse[corner_axes[corner][k]];
-            for (int c = 0; c < 3; ++c) s[3 * k + c][l] = (y(c, t[k + 1]) - y(c, t[0])) * scale[k][l];
+            for (int c = 0; c < 3; ++c)
+                s[3 * k + c][l] = (y(c, t[k + 1]) - y(c, t[0])) * scale[k][l];
         }
     }
     // Cofactor columns: s1 x s2, s2 x s0, s0 x s1.
@@ -628,7 +637,8 @@ HEXMESH_LANE_INLINE bool hex_corner_lanes(int g, const Mat38& y, const Vec3& inv
     Lanes dq[9];
     for (int k = 0; k < 3; ++k) {
         const Lanes w = weight * scale[k];
-        for (int c = 0; c < 3; ++c) dq[3 * k + c] = w * (2 * f_i * s[3 * k + c] + f_d * cof[3 * k + c]);
+        for (int c = 0; c < 3; ++c)
+            dq[3 * k + c] = w * (2 * f_i * s[3 * k + c] + f_d * cof[3 * k + c]);
     }
     for (int l = 0; l < lane_count; ++l) {
         const auto& t = hex_corner_tets[4 * g + l];

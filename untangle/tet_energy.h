@@ -38,15 +38,14 @@ double tet_energy(const Mat34& y, const TetTarget& t, const EnergyParams& p);
 
 // Value and gradient (column a = dE/dy_a). Returns the value; `grad` is left unspecified
 // when the value is infinite.
-double tet_energy_gradient(const Mat34& y, const TetTarget& t, const EnergyParams& p,
-                           Mat34& grad);
+double tet_energy_gradient(const Mat34& y, const TetTarget& t, const EnergyParams& p, Mat34& grad);
 
 // Value, gradient and a positive semi-definite 12 x 12 Hessian (vertex-major: row 3a + c),
 // obtained by clamping the negative eigenvalues of the 9 x 9 Hessian in S (known in closed
 // form) to zero
 // (project_psd = false gives the exact, possibly indefinite, Hessian).
-double tet_energy_hessian(const Mat34& y, const TetTarget& t, const EnergyParams& p,
-                          Mat34& grad, Mat12& hess, bool project_psd = true);
+double tet_energy_hessian(const Mat34& y, const TetTarget& t, const EnergyParams& p, Mat34& grad,
+                          Mat12& hess, bool project_psd = true);
 
 // The sum of the energies of the 8 corner tets of a hex (columns of y: its nodes in VTK
 // order) whose targets are the corners of a box with edge lengths `edges` along the hex's

@@ -1,10 +1,11 @@
 #include "untangle/untangle.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
-#include <functional>
 #include <cmath>
-#include <fmt/format.h>
+#include <functional>
 #include <limits>
 
 #include "untangle/assembly.h"
@@ -56,13 +57,13 @@ void log_note(std::ostream* log, const std::string& note) {
 
 void log_line(std::ostream* log, const IterationRecord& r) {
     if (!log) return;
-    *log << fmt::format("  {:<9} {:4d}  E {:12.6e}  eps {:9.3e}  min det {:+10.3e}  inverted {:7d}  "
-                        "steps {:3d}  cg {:5d}  {:7.2f} s\n",
-                        r.barrier ? "optimize" : "untangle", r.iteration, r.energy, r.eps, r.min_det,
-                        r.inverted, r.steps, r.linear_iterations, r.seconds);
+    *log << fmt::format(
+        "  {:<9} {:4d}  E {:12.6e}  eps {:9.3e}  min det {:+10.3e}  inverted {:7d}  "
+        "steps {:3d}  cg {:5d}  {:7.2f} s\n",
+        r.barrier ? "optimize" : "untangle", r.iteration, r.energy, r.eps, r.min_det, r.inverted,
+        r.steps, r.linear_iterations, r.seconds);
     log->flush();
 }
-
 
 // The eps continuation on `problem` (DESIGN §4), from x = problem.points, until at most
 // options.unrepairable elements are inverted, the iteration budget is spent or progress
@@ -95,17 +96,27 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
         const double e_prev = assembly.energy(x, p);
         // Untangled is the goal of this phase: stop as soon as it is reached.
         const auto untangled = [&](const std::vector<Vec3>& y) { return done(judge.stats(y)); };
-        const MinimizeOutcome m = minimizer.minimize(x, p, options.inner_steps, options.inner_tolerance, untangled);
+        const MinimizeOutcome m =
+            minimizer.minimize(x, p, options.inner_steps, options.inner_tolerance, untangled);
         stats = judge.stats(x);
         const ElementStats local = assembly.stats(x);
-        IterationRecord r{it, false, m.energy, eps, stats.min_det, seconds(), stats.inverted, m.steps,
+        IterationRecord r{it,
+                          false,
+                          m.energy,
+                          eps,
+                          stats.min_det,
+                          seconds(),
+                          stats.inverted,
+                          m.steps,
                           m.linear_iterations};
         result.history.push_back(r);
         log_line(options.log, r);
-        best.offer(x, stats.inverted, stats.inverted ? infinity : judge.energy(x, {options.theta, 0}));
+        best.offer(x, stats.inverted,
+                   stats.inverted ? infinity : judge.energy(x, {options.theta, 0}));
         progress.offer(stats.inverted, 1.0 + double(m.linear_iterations), r.seconds);
         if (stats.inverted < fewest || (regularize_below > 0 && stats.inverted == 0)) {
-            fewest = stats.inverted, restart = x, restart_eps = eps, stalled = 0, restart_iteration = it;
+            fewest = stats.inverted, restart = x, restart_eps = eps, stalled = 0,
+            restart_iteration = it;
         } else {
             ++stalled;
         }
@@ -114,41 +125,51 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
         const bool stuck = stalled > 0 && eps < negligible_eps;
         const bool crawling = regularize_below == 0 && stalled >= options.stall_minimum &&
                               progress.crawling(options.stall_share);
-        if (fast && !crawling && (stalled >= options.fast_stall || stuck) && stats.inverted > options.unrepairable) {
-            if (regularize_below == 0 && options.leave_to_next_pass && options.leave_to_next_pass(best.points)) {
+        if (fast && !crawling && (stalled >= options.fast_stall || stuck) &&
+            stats.inverted > options.unrepairable) {
+            if (regularize_below == 0 && options.leave_to_next_pass &&
+                options.leave_to_next_pass(best.points)) {
                 result.left_to_next_pass = true;
-                result.stopped = fmt::format("{} inverted elements left to the next pass", best.inverted);
+                result.stopped =
+                    fmt::format("{} inverted elements left to the next pass", best.inverted);
                 log_note(options.log, result.stopped);
                 return;
             }
             fast = false, stalled = 0;
             x = restart, eps = restart_eps;
             stats = judge.stats(x);
-            log_note(options.log, fmt::format("no fewer inverted elements in {} iterations: back to {} "
-                                              "({} inverted, eps {:.3e}), eps now shrinks by the safe rule",
-                                              options.fast_stall,
-                                              restart_iteration ? fmt::format("iteration {}", restart_iteration)
-                                                                : std::string("the start of this pass"),
-                                              fewest, eps));
+            log_note(options.log,
+                     fmt::format("no fewer inverted elements in {} iterations: back to {} "
+                                 "({} inverted, eps {:.3e}), eps now shrinks by the safe rule",
+                                 options.fast_stall,
+                                 restart_iteration ? fmt::format("iteration {}", restart_iteration)
+                                                   : std::string("the start of this pass"),
+                                 fewest, eps));
             continue;
         }
         if (stalled >= options.stall_iterations || stuck || crawling) {
-            result.stopped =
-                stuck ? fmt::format("eps fell to {:.1e} with {} inverted elements left", eps, progress.fewest)
-                      : fmt::format("no fewer than {} inverted elements for {:.1f} s ({:.0f} % of the untangling "
-                                    "work, {} outer iterations of this pass)",
-                                    progress.fewest, r.seconds - progress.last_fewer_seconds,
-                                    100 * (progress.work - progress.last_fewer) / std::max(progress.work, 1e-9),
-                                    stalled);
+            result.stopped = stuck
+                                 ? fmt::format("eps fell to {:.1e} with {} inverted elements left",
+                                               eps, progress.fewest)
+                                 : fmt::format(
+                                       "no fewer than {} inverted elements for {:.1f} s ({:.0f} % "
+                                       "of the untangling "
+                                       "work, {} outer iterations of this pass)",
+                                       progress.fewest, r.seconds - progress.last_fewer_seconds,
+                                       100 * (progress.work - progress.last_fewer) /
+                                           std::max(progress.work, 1e-9),
+                                       stalled);
             return;
         }
-        const double sigma = std::max(1 - m.energy / e_prev, fast ? options.fast_sigma : options.safe_sigma);
+        const double sigma =
+            std::max(1 - m.energy / e_prev, fast ? options.fast_sigma : options.safe_sigma);
         const double mu = (1 - sigma) * chi(local.min_det, eps);
         eps = local.min_det < mu ? 2 * std::sqrt(mu * (mu - local.min_det)) : tiny_eps;
     }
     if (!done(stats))
-        result.stopped = fmt::format("the budget of {} outer iterations is spent with {} inverted elements left",
-                                     options.max_untangle_iterations, progress.fewest);
+        result.stopped =
+            fmt::format("the budget of {} outer iterations is spent with {} inverted elements left",
+                        options.max_untangle_iterations, progress.fewest);
 }
 
 // The part of `problem` around its inverted elements: vertices within `rings` element rings
@@ -214,9 +235,12 @@ std::string describe_inverted(const Problem& problem, int most) {
         for (Id v : nodes) centre += problem.points[v] / nodes.size, ++kinds[int(problem.kinds[v])];
         std::string how;
         for (int k = 0; k < 5; ++k)
-            if (kinds[k]) how += fmt::format("{}{} {}", how.empty() ? "" : ", ", kinds[k], to_string(VertexKind(k)));
+            if (kinds[k])
+                how += fmt::format("{}{} {}", how.empty() ? "" : ", ", kinds[k],
+                                   to_string(VertexKind(k)));
         out += fmt::format("{}{} at ({:.4g}, {:.4g}, {:.4g}): {}", n ? "; " : "",
-                           problem.is_triangle(e) ? "surface triangle" : "tet", centre.x(), centre.y(), centre.z(), how);
+                           problem.is_triangle(e) ? "surface triangle" : "tet", centre.x(),
+                           centre.y(), centre.z(), how);
         ++n;
     }
     return out;
@@ -227,16 +251,18 @@ std::string describe_inverted(const Problem& problem, int most) {
 // problem and the last round repaired something or grew. Returns whether the last round
 // repaired nothing.
 bool repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
-                              const std::vector<std::vector<Id>>& elements_of, const UntangleOptions& options,
-                              const std::function<double()>& seconds, Best& best, Progress& progress,
-                              UntangleResult& result, double start_eps = 0) {
+                              const std::vector<std::vector<Id>>& elements_of,
+                              const UntangleOptions& options,
+                              const std::function<double()>& seconds, Best& best,
+                              Progress& progress, UntangleResult& result, double start_eps = 0) {
     bool stalled = false;
     if (best.inverted <= options.unrepairable || options.local_rings <= 0) return stalled;
     // A part no larger than the last one, after a round that repaired nothing, ends this:
     // more rings add no freedom (few free nodes around cells that cannot be repaired).
     Id previous = 0, inverted_then = std::numeric_limits<Id>::max();
     for (int rings = options.local_rings;
-         best.inverted > options.unrepairable && rings < (1 << 20) && !result.left_to_next_pass; rings *= 2) {
+         best.inverted > options.unrepairable && rings < (1 << 20) && !result.left_to_next_pass;
+         rings *= 2) {
         Problem part;
         if (!local_part(problem, elements_of, rings, part)) break;
         if (part.num_elements() <= previous && best.inverted >= inverted_then) break;
@@ -283,8 +309,8 @@ UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& op
             for (Id v : problem.element(e)) elements_of[v].push_back(e);
     }
     const auto repair_locally = [&](double start_eps) {
-        return repair_in_neighbourhoods(problem, assembly, elements_of, options, seconds, best, progress, result,
-                                        start_eps);
+        return repair_in_neighbourhoods(problem, assembly, elements_of, options, seconds, best,
+                                        progress, result, start_eps);
     };
     const bool local_stalled = repair_locally(0);
     if (best.inverted > options.unrepairable && !result.left_to_next_pass) {
@@ -302,27 +328,33 @@ UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& op
     if (best.inverted > options.unrepairable && options.room_eps > 0 && options.local_rings > 0 &&
         !result.left_to_next_pass) {
         progress.start_again(seconds());  // a new start: the stall clock starts again
-        log_note(options.log, fmt::format("{} inverted elements left: their neighbourhoods start again from eps {}",
-                                          best.inverted, options.room_eps));
+        log_note(
+            options.log,
+            fmt::format("{} inverted elements left: their neighbourhoods start again from eps {}",
+                        best.inverted, options.room_eps));
         repair_locally(options.room_eps);
         x = best.points;
     }
     // Last resort: the crease and corner vertices of the elements still inverted slide on the
     // surface instead (a wall quad folded across a crease cannot unfold while its vertex is
     // held on the crease line), and the local repair runs again. Their kinds come back after.
-    if (best.inverted > options.unrepairable && options.release_creases && options.local_rings > 0 &&
-        problem.project_to_surface && problem.surface_normal && !result.left_to_next_pass) {
+    if (best.inverted > options.unrepairable && options.release_creases &&
+        options.local_rings > 0 && problem.project_to_surface && problem.surface_normal &&
+        !result.left_to_next_pass) {
         const std::vector<VertexKind> kinds = problem.kinds;
         for (Id e = 0; e < problem.num_elements(); ++e)
             if (!(problem.det(x, e) > 0))
                 for (Id v : problem.element(e))
-                    if (problem.kinds[v] == VertexKind::feature_edge || problem.kinds[v] == VertexKind::corner)
+                    if (problem.kinds[v] == VertexKind::feature_edge ||
+                        problem.kinds[v] == VertexKind::corner)
                         problem.kinds[v] = VertexKind::slip, ++result.released;
         if (result.released > 0) {
             progress.start_again(seconds());  // new freedom: the stall clock starts again
-            log_note(options.log, fmt::format("{} crease and corner vertices of the inverted elements now slide on "
-                                              "the surface",
-                                              result.released));
+            log_note(
+                options.log,
+                fmt::format("{} crease and corner vertices of the inverted elements now slide on "
+                            "the surface",
+                            result.released));
             repair_locally(options.room_eps);
             x = best.points;
         }
@@ -330,7 +362,8 @@ UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& op
     }
     if (best.inverted == 0 && options.regularize_below > 0 &&
         assembly.stats(x).min_det < options.regularize_below) {
-        continuation(problem, assembly, options, seconds, best, progress, result, options.regularize_below);
+        continuation(problem, assembly, options, seconds, best, progress, result,
+                     options.regularize_below);
         x = best.points;  // the valid state of lowest barrier energy
     }
 
@@ -341,9 +374,17 @@ UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& op
         const EnergyParams p{options.theta, 0};
         double e_prev = assembly.energy(x, p);
         for (int it = 1; it <= options.max_optimize_iterations; ++it) {
-            const MinimizeOutcome m = minimizer.minimize(x, p, options.inner_steps, options.optimize_tolerance);
+            const MinimizeOutcome m =
+                minimizer.minimize(x, p, options.inner_steps, options.optimize_tolerance);
             stats = assembly.stats(x);
-            IterationRecord r{it, true, m.energy, 0.0, stats.min_det, seconds(), stats.inverted, m.steps,
+            IterationRecord r{it,
+                              true,
+                              m.energy,
+                              0.0,
+                              stats.min_det,
+                              seconds(),
+                              stats.inverted,
+                              m.steps,
                               m.linear_iterations};
             result.history.push_back(r);
             log_line(options.log, r);
@@ -359,10 +400,12 @@ UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& op
 
     x = best.points;
     stats = assembly.stats(x);
-    if (stats.inverted <= options.unrepairable) result.stopped.clear();
+    if (stats.inverted <= options.unrepairable)
+        result.stopped.clear();
     else if (result.blocked > options.unrepairable)
-        result.stopped = fmt::format("{} inverted elements have every vertex held (fixed): no solve can repair them",
-                                     result.blocked);
+        result.stopped = fmt::format(
+            "{} inverted elements have every vertex held (fixed): no solve can repair them",
+            result.blocked);
     if (!result.stopped.empty()) result.stopped += "; inverted: " + describe_inverted(problem, 3);
     result.inverted_after = stats.inverted;
     result.min_det_after = stats.min_det;
@@ -374,14 +417,18 @@ UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& op
 std::string format_untangle_summary(const UntangleResult& r) {
     std::string out;
     out += fmt::format("  {:<28}{:>14}{:>14}\n", "", "before", "after");
-    out += fmt::format("  {:<28}{:>14}{:>14}\n", "inverted elements", r.inverted_before, r.inverted_after);
-    out += fmt::format("  {:<28}{:>14.4g}{:>14.4g}\n", "min det (target units)", r.min_det_before, r.min_det_after);
+    out += fmt::format("  {:<28}{:>14}{:>14}\n", "inverted elements", r.inverted_before,
+                       r.inverted_after);
+    out += fmt::format("  {:<28}{:>14.4g}{:>14.4g}\n", "min det (target units)", r.min_det_before,
+                       r.min_det_after);
     int untangle_its = 0, optimize_its = 0;
     for (const IterationRecord& h : r.history) (h.barrier ? optimize_its : untangle_its)++;
-    out += fmt::format("  {:<28}{:>28}\n", "outer iterations", fmt::format("{} untangle + {} optimize", untangle_its, optimize_its));
+    out += fmt::format("  {:<28}{:>28}\n", "outer iterations",
+                       fmt::format("{} untangle + {} optimize", untangle_its, optimize_its));
     out += fmt::format("  {:<28}{:>28.2f}\n", "time (s)", r.seconds);
     if (r.released > 0)
-        out += fmt::format("  {:<28}{:>28}\n", "crease vertices released", fmt::format("{} (slide on the surface)", r.released));
+        out += fmt::format("  {:<28}{:>28}\n", "crease vertices released",
+                           fmt::format("{} (slide on the surface)", r.released));
     if (!r.stopped.empty()) out += fmt::format("  untangling stopped: {}\n", r.stopped);
     return out;
 }

@@ -1,8 +1,8 @@
 // The continuation driver: untangle with a shrinking eps, then optimize with the pure barrier.
 #pragma once
 
-#include <ostream>
 #include <functional>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -19,7 +19,7 @@ inline SolverOptions loose_solve() {
 }
 
 struct UntangleOptions {
-    SolverOptions untangle_solver;   // while some det <= 0 (global method recommended)
+    SolverOptions untangle_solver;  // while some det <= 0 (global method recommended)
     // Once all det > 0, eps = 0 (barrier). Its linear solves stop at a relative residual of
     // 0.1: the optimized grid is the same to the digits reported (min and mean scaled
     // Jacobian) as with 0.01, for about half the CG iterations.
@@ -56,7 +56,7 @@ struct UntangleOptions {
     // surface instead and the local repair runs again (validity before the crease's sharpness).
     bool release_creases = true;
     int max_optimize_iterations = 20;
-    int inner_steps = 30;               // descent steps per outer iteration
+    int inner_steps = 30;  // descent steps per outer iteration
     // Relative energy decrease that ends an inner untangling solve. Each eps is one stage of
     // the continuation, not worth solving to the end: with 1e-3 instead of 1e-6 every shared
     // mesh untangles in the same outer iterations, 2-3x faster, to about the same min scaled
@@ -65,7 +65,7 @@ struct UntangleOptions {
     // Relative energy change that ends optimization: a barrier step (and so an outer
     // iteration) that lowers F by less ends it.
     double optimize_tolerance = 1e-5;
-    std::ostream* log = nullptr;        // one progress line per outer iteration
+    std::ostream* log = nullptr;  // one progress line per outer iteration
     // Elements known to stay inverted whatever is done (all their vertices fixed): untangling
     // stops once only that many remain.
     Id unrepairable = 0;
@@ -96,7 +96,7 @@ struct IterationRecord {
 
 struct UntangleResult {
     Id inverted_before = 0, inverted_after = 0;  // elements with det S <= 0
-    Id blocked = 0;  // inverted elements whose vertices are all held: no solve repairs them
+    Id blocked = 0;   // inverted elements whose vertices are all held: no solve repairs them
     Id released = 0;  // crease and corner vertices let slide on the surface (release_creases)
     bool left_to_next_pass = false;  // options.leave_to_next_pass took the inverted elements left
     // Why untangling ended with inverted elements beyond options.unrepairable, for the user

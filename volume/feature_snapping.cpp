@@ -23,7 +23,8 @@ std::vector<double> shortest_wall_edge(const BlockGrid& grid) {
         for_each_cell(block, [&](int, int, int, const std::array<Id, 8>& nodes) {
             for (const auto& e : hex_edges) {
                 const Id a = nodes[e[0]], b = nodes[e[1]];
-                if (grid.kinds[a] != VertexKind::slip || grid.kinds[b] != VertexKind::slip) continue;
+                if (grid.kinds[a] != VertexKind::slip || grid.kinds[b] != VertexKind::slip)
+                    continue;
                 const double length = (grid.points[a] - grid.points[b]).norm();
                 shortest[a] = std::min(shortest[a], length);
                 shortest[b] = std::min(shortest[b], length);
@@ -54,11 +55,10 @@ std::optional<Vec3> corner_within(const ImplicitFunction& body, const Vec3& x, d
 std::vector<Vec3> body_corners_near(const ImplicitFunction& body, const std::vector<Vec3>& points,
                                     double reach) {
     std::vector<std::optional<Vec3>> found(points.size());
-    tbb::parallel_for(size_t(0), points.size(),
-                      [&](size_t v) {
-                          if (classify_surface_point(body, points[v], reach) == FeatureKind::corner)
-                              found[v] = corner_within(body, points[v], reach, reach);
-                      });
+    tbb::parallel_for(size_t(0), points.size(), [&](size_t v) {
+        if (classify_surface_point(body, points[v], reach) == FeatureKind::corner)
+            found[v] = corner_within(body, points[v], reach, reach);
+    });
     std::set<std::array<long long, 3>> seen;
     std::vector<Vec3> corners;
     for (const std::optional<Vec3>& c : found)

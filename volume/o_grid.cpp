@@ -47,7 +47,8 @@ void check_options(const OGridOptions& o) {
     if (o.paths && o.layers < 2)
         throw std::invalid_argument(fmt::format(
             "layers is {}: lines along paths need at least 2 cells, one to the far surface and "
-            "one beyond it to the far field", o.layers));
+            "one beyond it to the far field",
+            o.layers));
 }
 
 // Throws unless the far field encloses the bounds with the margin.
@@ -304,9 +305,11 @@ void place_nodes_on_paths(const WallPaths& paths, const std::vector<Vec3>& wall,
         l.x.front() = wall[s];
         l.level = paths.levels[s];
         l.arc.assign(l.x.size(), 0);
-        for (size_t k = 1; k < l.x.size(); ++k) l.arc[k] = l.arc[k - 1] + (l.x[k] - l.x[k - 1]).norm();
-        top[s] = std::max(l.level_at_arc(m > 0 ? layers_thickness({law.first_height, law.growth_ratio, m}) : 0.0),
-                          1e-12 * paths.far_level);
+        for (size_t k = 1; k < l.x.size(); ++k)
+            l.arc[k] = l.arc[k - 1] + (l.x[k] - l.x[k - 1]).norm();
+        top[s] = std::max(
+            l.level_at_arc(m > 0 ? layers_thickness({law.first_height, law.growth_ratio, m}) : 0.0),
+            1e-12 * paths.far_level);
     });
     // Cells between the boundary layer and the far surface, and from there to the far field:
     // as many growth-ratio steps as each part spans on a typical line.
@@ -314,11 +317,15 @@ void place_nodes_on_paths(const WallPaths& paths, const std::vector<Vec3>& wall,
     std::nth_element(sorted.begin(), sorted.begin() + ns / 2, sorted.end());
     const double typical_top = sorted[ns / 2];
     double outer = 0, beyond = 0;
-    for (Id s = 0; s < ns; ++s) outer += (lines[s].x.back() - paths.centre).norm() / double(ns), beyond += (far[s] - lines[s].x.back()).norm() / double(ns);
+    for (Id s = 0; s < ns; ++s)
+        outer += (lines[s].x.back() - paths.centre).norm() / double(ns),
+            beyond += (far[s] - lines[s].x.back()).norm() / double(ns);
     const double level_steps = std::log(paths.far_level / typical_top) / std::log(growth);
-    const double far_steps = std::log1p(beyond / std::max(outer, 1e-300) * (growth - 1)) / std::log(growth) + 1;
+    const double far_steps =
+        std::log1p(beyond / std::max(outer, 1e-300) * (growth - 1)) / std::log(growth) + 1;
     const int free_cells = nk - m;
-    const int level_cells = std::clamp(int(std::lround(free_cells * level_steps / (level_steps + far_steps))), 1, free_cells - 1);
+    const int level_cells = std::clamp(
+        int(std::lround(free_cells * level_steps / (level_steps + far_steps))), 1, free_cells - 1);
     const int k_far = m + level_cells;  // the node on the far surface
 
     tbb::parallel_for(Id(0), ns, [&](Id s) {
@@ -383,7 +390,8 @@ BlockGrid make_o_grid(const ImplicitFunction& body, const OGridOptions& options)
     const Vec3 centre = paths ? paths->centre : options.centre.value_or(box.center());
     const Vec3 half = 0.5 * box.size();
     const double h = grid_length_scale(body, n);
-    if (!paths) require_inside(body, centre);  // a continuation's centre needs only see its first level
+    if (!paths)
+        require_inside(body, centre);  // a continuation's centre needs only see its first level
     check_far_field(box, centre, options);
 
     const CubeSurfaceLattice surface = make_cube_surface_lattice(n);

@@ -5,8 +5,8 @@
 
 #include "hexmesh/core/block_grid.h"
 #include "hexmesh/core/implicit_function.h"
-#include "volume/wall_paths.h"
 #include "volume/stretching.h"
+#include "volume/wall_paths.h"
 
 namespace hexmesh {
 

@@ -129,7 +129,8 @@ namespace {
 
 // make_o_h_grid; with `fitted_core_size`, only its wall and rays are laid out and the core
 // size that fits them (core_size_within_wall) is written there, the grid left empty.
-BlockGrid o_h_grid(const ImplicitFunction& body, const OHGridOptions& options, double* fitted_core_size) {
+BlockGrid o_h_grid(const ImplicitFunction& body, const OHGridOptions& options,
+                   double* fitted_core_size) {
     check_options(options);
     const int n = options.cells_per_edge, nk = options.wall_cells;
     const Box3 box = body.bounds();
@@ -169,9 +170,10 @@ BlockGrid o_h_grid(const ImplicitFunction& body, const OHGridOptions& options, d
     std::vector<Vec3> wall(ns);
     const auto place_wall = [&] {
         tbb::parallel_for(Id(0), ns, [&](Id s) {
-            wall[s] = options.wall_from    ? (*options.wall_from)[node_id(on_wall[s], nk)]
-                      : options.wall_nodes ? (*options.wall_nodes)[s]
-                                           : place_on_surface(body, centre, ray(core.t[on_wall[s]]), h);
+            wall[s] = options.wall_from ? (*options.wall_from)[node_id(on_wall[s], nk)]
+                      : options.wall_nodes
+                          ? (*options.wall_nodes)[s]
+                          : place_on_surface(body, centre, ray(core.t[on_wall[s]]), h);
         });
     };
     place_wall();
@@ -216,8 +218,9 @@ BlockGrid o_h_grid(const ImplicitFunction& body, const OHGridOptions& options, d
     grid.points.assign(core_nodes + nk * ns, Vec3::Zero());
     grid.kinds.assign(grid.points.size(), VertexKind::interior);
     for (Id id = 0; id < core_nodes; ++id)
-        grid.points[id] = options.core_half ? Vec3(centre + options.core_half->cwiseProduct(inner_t[id]))
-                                            : Vec3(centre + options.core_size * ray(inner_t[id]));
+        grid.points[id] = options.core_half
+                              ? Vec3(centre + options.core_half->cwiseProduct(inner_t[id]))
+                              : Vec3(centre + options.core_size * ray(inner_t[id]));
 
     tbb::parallel_for(Id(0), ns, [&](Id s) {
         const Id core_id = on_wall[s];

@@ -11,10 +11,10 @@
 namespace hexmesh {
 
 struct OHGridOptions {
-    int cells_per_edge = 20;   // cells along each edge of the core box and of each wall patch
-    int wall_cells = 10;       // cells across each wall block, from the core to the wall
-    double core_size = 0.45;   // core box: this fraction of the rays' box (bounds or corners)
-    WallLayers wall_layers;    // law of the cells next to the wall (layers = 0: uniform)
+    int cells_per_edge = 20;  // cells along each edge of the core box and of each wall patch
+    int wall_cells = 10;      // cells across each wall block, from the core to the wall
+    double core_size = 0.45;  // core box: this fraction of the rays' box (bounds or corners)
+    WallLayers wall_layers;   // law of the cells next to the wall (layers = 0: uniform)
     // The points of a grid made with the same options (e.g. after its wall grid was
     // optimized on u = 0): its wall nodes are taken as they are instead of the radial
     // projections, and the lines built from them. nullptr: radial projection.

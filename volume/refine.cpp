@@ -91,7 +91,7 @@ void interpolate_wall_line(int coarse_count, WallEnds wall, At&& at) {
             rho = std::sqrt(length(m) / length(inner));
         else if ((from_first || from_last) && is_cell(outer))
             rho = std::sqrt(length(outer) / length(m));
-        if (!(rho > 0) || !std::isfinite(rho)) rho = 1;  // a cell of zero length
+        if (!(rho > 0) || !std::isfinite(rho)) rho = 1;                // a cell of zero length
         const double f = from_last ? rho / (1 + rho) : 1 / (1 + rho);  // of the chord from m
         const Vec3 chord = sample(m + 1) - sample(m);
         const double chord2 = chord.squaredNorm();

@@ -69,7 +69,7 @@ void add_refined_block(BlockGrid& fine, RefinedBlock&& piece);
 // blocks'); a node is dropped once its last block has taken it. Throws
 // std::invalid_argument when the grid's kinds are not sized like its points.
 class BlockRefiner {
-public:
+  public:
     // place(x, kind): where a new node on a block face goes (e.g. a wall node projected onto
     // the body); called once per such node, in parallel, before any block receives it, so a
     // node shared by blocks gets one position. Where it moves a wall node by d, the new
@@ -88,10 +88,10 @@ public:
     Id num_points() const { return num_points_; }
     Id num_cells() const { return 8 * coarse_.num_cells(); }
 
-private:
+  private:
     // The new node of a coarse edge or face (its 2 or 4 coarse ids, sorted, padded).
     struct FaceNode {
-        Id id = -1;       // assigned by the first block that reaches it
+        Id id = -1;  // assigned by the first block that reaches it
         Vec3 x = Vec3::Zero();
         VertexKind kind = VertexKind::interior;
         int remaining = 0;  // occurrences (block, fine node) not yet taken

@@ -1,7 +1,8 @@
 #include "volume/single_block_grid.h"
 
-#include <stdexcept>
 #include <tbb/parallel_for.h>
+
+#include <stdexcept>
 
 #include "volume/o_h_grid.h"
 #include "volume/surface_placement.h"

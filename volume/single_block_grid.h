@@ -12,7 +12,7 @@ namespace hexmesh {
 
 struct SingleBlockOptions {
     std::array<int, 3> cells = {20, 20, 20};  // cells along x, y, z
-    WallLayers wall_layers;  // law at both ends of every grid line (layers = 0: uniform)
+    WallLayers wall_layers;      // law at both ends of every grid line (layers = 0: uniform)
     std::optional<Vec3> centre;  // default: centre of the body's bounds
 };
 

@@ -1,7 +1,8 @@
 #include "volume/stretching.h"
 
-#include <cmath>
 #include <fmt/format.h>
+
+#include <cmath>
 #include <stdexcept>
 
 namespace hexmesh {

@@ -1,6 +1,7 @@
 #include "volume/surface_placement.h"
 
 #include <fmt/format.h>
+
 #include <stdexcept>
 
 #include "surface/projection.h"

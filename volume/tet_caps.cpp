@@ -10,11 +10,13 @@ namespace hexmesh {
 
 Id remove_boundary_caps(PlacedTetMesh& placed, double max_degrees) {
     static constexpr int faces[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
-    static constexpr int edge_ends[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};  // dihedral_angles order
+    static constexpr int edge_ends[6][2] = {{0, 1}, {0, 2}, {0, 3},
+                                            {1, 2}, {1, 3}, {2, 3}};  // dihedral_angles order
     TetMesh& mesh = placed.mesh;
     using Face = std::array<Id, 3>;
     auto face_key = [&](Id t, int f) {
-        Face key = {mesh.node(t, faces[f][0]), mesh.node(t, faces[f][1]), mesh.node(t, faces[f][2])};
+        Face key = {mesh.node(t, faces[f][0]), mesh.node(t, faces[f][1]),
+                    mesh.node(t, faces[f][2])};
         std::sort(key.begin(), key.end());
         return key;
     };
@@ -38,7 +40,8 @@ Id remove_boundary_caps(PlacedTetMesh& placed, double max_degrees) {
         // At an edge along a crease the small angle is the body's own: that tet stays.
         const bool crease_edge = placed.dimension[mesh.node(t, edge_ends[smallest][0])] <= 1 &&
                                  placed.dimension[mesh.node(t, edge_ends[smallest][1])] <= 1;
-        const bool cap = on_boundary == 4 && outer_faces >= 2 && !crease_edge && angles[smallest] < max_degrees;
+        const bool cap =
+            on_boundary == 4 && outer_faces >= 2 && !crease_edge && angles[smallest] < max_degrees;
         if (cap) {
             ++removed;
             continue;

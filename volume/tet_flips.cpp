@@ -25,7 +25,9 @@ Face face_key(Id a, Id b, Id c) {
     std::sort(f.begin(), f.end());
     return f;
 }
-Edge edge_key(Id a, Id b) { return a < b ? Edge{a, b} : Edge{b, a}; }
+Edge edge_key(Id a, Id b) {
+    return a < b ? Edge{a, b} : Edge{b, a};
+}
 
 constexpr int tet_edges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
 // Largest ring of tets around an edge that edge removal tries (7 tets become 10).
@@ -36,7 +38,7 @@ constexpr double min_gain_degrees = 1e-6;
 
 // The tets with their face and edge incidences, kept up to date as tets come and go.
 class Topology {
-public:
+  public:
     explicit Topology(const TetMesh& mesh) : points_(mesh.points) {
         for (Id t = 0; t < mesh.num_cells(); ++t)
             add({mesh.node(t, 0), mesh.node(t, 1), mesh.node(t, 2), mesh.node(t, 3)});
@@ -56,7 +58,8 @@ public:
         const Id id = Id(tets_.size());
         tets_.push_back(t);
         alive_.push_back(true);
-        for (int f = 0; f < 4; ++f) faces_[face_key(t[(f + 1) % 4], t[(f + 2) % 4], t[(f + 3) % 4])].push_back(id);
+        for (int f = 0; f < 4; ++f)
+            faces_[face_key(t[(f + 1) % 4], t[(f + 2) % 4], t[(f + 3) % 4])].push_back(id);
         for (const auto& e : tet_edges) edges_[edge_key(t[e[0]], t[e[1]])].push_back(id);
         return id;
     }
@@ -90,7 +93,7 @@ public:
         return out;
     }
 
-private:
+  private:
     std::vector<Vec3> points_;
     std::vector<Tet> tets_;
     std::vector<bool> alive_;
@@ -148,8 +151,9 @@ bool edge_ring(const Topology& topo, Id a, Id b, std::vector<Id>& ring, std::vec
     }
     // The last tet closes the cycle.
     for (size_t i = 0; i < links.size(); ++i)
-        if (!used[i]) return (links[i][0] == ring.back() && links[i][1] == ring.front()) ||
-                             (links[i][1] == ring.back() && links[i][0] == ring.front());
+        if (!used[i])
+            return (links[i][0] == ring.back() && links[i][1] == ring.front()) ||
+                   (links[i][1] == ring.back() && links[i][0] == ring.front());
     return false;
 }
 
@@ -166,12 +170,14 @@ bool remove_edge(Topology& topo, Id a, Id b) {
     // `sign`, else -1 (not allowed).
     auto quality = [&](int i, int j, int k, int sign) {
         const Id p = ring[i], q = ring[j], r = ring[k];
-        if (exact_orientation(x[p], x[q], x[r], x[a]) != sign || exact_orientation(x[p], x[r], x[q], x[b]) != sign)
+        if (exact_orientation(x[p], x[q], x[r], x[a]) != sign ||
+            exact_orientation(x[p], x[r], x[q], x[b]) != sign)
             return -1.0;
         return std::min(smallest_angle(x, {p, q, r, a}), smallest_angle(x, {p, r, q, b}));
     };
     auto usable = [&](int i, int k) {
-        return k - i == 1 || (i == 0 && k == m - 1) || !topo.around_edge(edge_key(ring[i], ring[k]));
+        return k - i == 1 || (i == 0 && k == m - 1) ||
+               !topo.around_edge(edge_key(ring[i], ring[k]));
     };
     std::vector<Tet> best_tets;
     double best = -1;
@@ -187,7 +193,8 @@ bool remove_edge(Topology& topo, Id a, Id b) {
                 best_of[i][k] = -1;
                 if (!usable(i, k)) continue;
                 for (int j = i + 1; j < k; ++j) {
-                    const double q = std::min({best_of[i][j], best_of[j][k], quality(i, j, k, sign)});
+                    const double q =
+                        std::min({best_of[i][j], best_of[j][k], quality(i, j, k, sign)});
                     if (q > best_of[i][k]) {
                         best_of[i][k] = q;
                         split[i][k] = j;
@@ -230,10 +237,12 @@ bool flip_23(Topology& topo, Id a, Id b, Id c) {
     // The three new tets fill the two old ones exactly when the apexes' edge crosses the
     // inside of abc: then all three have the same (non-zero) orientation.
     const auto& x = topo.points();
-    std::vector<Tet> fresh = {{a, b, apex[0], apex[1]}, {b, c, apex[0], apex[1]}, {c, a, apex[0], apex[1]}};
+    std::vector<Tet> fresh = {
+        {a, b, apex[0], apex[1]}, {b, c, apex[0], apex[1]}, {c, a, apex[0], apex[1]}};
     const int sign = exact_orientation(x[a], x[b], x[apex[0]], x[apex[1]]);
     for (const Tet& t : fresh)
-        if (sign == 0 || exact_orientation(x[t[0]], x[t[1]], x[t[2]], x[t[3]]) != sign) return false;
+        if (sign == 0 || exact_orientation(x[t[0]], x[t[1]], x[t[2]], x[t[3]]) != sign)
+            return false;
     if (sign < 0)
         for (Tet& t : fresh) std::swap(t[0], t[1]);
     const std::vector<Id> old = pair;
@@ -245,8 +254,8 @@ bool flip_23(Topology& topo, Id a, Id b, Id c) {
 FlipResult improve_by_flips(TetMesh& mesh, double below_degrees, int passes) {
     FlipResult result;
     for (Id t = 0; t < mesh.num_cells(); ++t)
-        if (exact_orientation(mesh.points[mesh.node(t, 0)], mesh.points[mesh.node(t, 1)], mesh.points[mesh.node(t, 2)],
-                              mesh.points[mesh.node(t, 3)]) <= 0)
+        if (exact_orientation(mesh.points[mesh.node(t, 0)], mesh.points[mesh.node(t, 1)],
+                              mesh.points[mesh.node(t, 2)], mesh.points[mesh.node(t, 3)]) <= 0)
             return result;
     Topology topo(mesh);
     for (int pass = 0; pass < passes; ++pass) {
@@ -276,7 +285,8 @@ FlipResult improve_by_flips(TetMesh& mesh, double below_degrees, int passes) {
         if (flipped == 0) break;
     }
     mesh.tets.clear();
-    for (Id t : topo.alive_tets()) mesh.tets.insert(mesh.tets.end(), topo.tet(t).begin(), topo.tet(t).end());
+    for (Id t : topo.alive_tets())
+        mesh.tets.insert(mesh.tets.end(), topo.tet(t).begin(), topo.tet(t).end());
     return result;
 }
 

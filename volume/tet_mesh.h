@@ -16,9 +16,9 @@ namespace hexmesh {
 struct TetMeshOptions {
     // Target edge length at a point (> 0, geometry units): the sizing function.
     std::function<double(const Vec3&)> size;
-    double facet_distance = 0;       // > 0: surface facets' circumcentres at most this far from u = 0
-    double facet_angle = 25;         // degrees: lower bound of the surface triangles' angles
-    double radius_edge_ratio = 3;    // upper bound of circumradius / shortest edge of a tet
+    double facet_distance = 0;     // > 0: surface facets' circumcentres at most this far from u = 0
+    double facet_angle = 25;       // degrees: lower bound of the surface triangles' angles
+    double radius_edge_ratio = 3;  // upper bound of circumradius / shortest edge of a tet
     // Crease polylines of the body to protect (surface/crease_curves.h): vertices are laid
     // along them first, so the mesh keeps the sharp edges. Open polylines meet at equal end
     // points (the corners); a closed one repeats its first point.

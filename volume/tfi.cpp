@@ -44,16 +44,15 @@ void fill_interior_tfi(const Block& block, std::vector<Vec3>& points) {
                 const double s0 = 1 - S, t0 = 1 - T, u0 = 1 - U;
                 const Vec3 faces = s0 * P(0, j, k) + S * P(I, j, k) + t0 * P(i, 0, k) +
                                    T * P(i, J, k) + u0 * P(i, j, 0) + U * P(i, j, K);
-                const Vec3 edges =
-                    s0 * t0 * P(0, 0, k) + S * t0 * P(I, 0, k) + s0 * T * P(0, J, k) +
-                    S * T * P(I, J, k) + s0 * u0 * P(0, j, 0) + S * u0 * P(I, j, 0) +
-                    s0 * U * P(0, j, K) + S * U * P(I, j, K) + t0 * u0 * P(i, 0, 0) +
-                    T * u0 * P(i, J, 0) + t0 * U * P(i, 0, K) + T * U * P(i, J, K);
-                const Vec3 corners =
-                    s0 * t0 * u0 * P(0, 0, 0) + S * t0 * u0 * P(I, 0, 0) +
-                    s0 * T * u0 * P(0, J, 0) + S * T * u0 * P(I, J, 0) +
-                    s0 * t0 * U * P(0, 0, K) + S * t0 * U * P(I, 0, K) +
-                    s0 * T * U * P(0, J, K) + S * T * U * P(I, J, K);
+                const Vec3 edges = s0 * t0 * P(0, 0, k) + S * t0 * P(I, 0, k) +
+                                   s0 * T * P(0, J, k) + S * T * P(I, J, k) + s0 * u0 * P(0, j, 0) +
+                                   S * u0 * P(I, j, 0) + s0 * U * P(0, j, K) + S * U * P(I, j, K) +
+                                   t0 * u0 * P(i, 0, 0) + T * u0 * P(i, J, 0) +
+                                   t0 * U * P(i, 0, K) + T * U * P(i, J, K);
+                const Vec3 corners = s0 * t0 * u0 * P(0, 0, 0) + S * t0 * u0 * P(I, 0, 0) +
+                                     s0 * T * u0 * P(0, J, 0) + S * T * u0 * P(I, J, 0) +
+                                     s0 * t0 * U * P(0, 0, K) + S * t0 * U * P(I, 0, K) +
+                                     s0 * T * U * P(0, J, K) + S * T * U * P(I, J, K);
                 points[block.node(i, j, k)] = faces - edges + corners;
             }
         }

@@ -24,8 +24,10 @@ std::vector<bool> crossed_lines(const BlockGrid& grid, const std::vector<WallFac
                 const Id s = f.node(p, q, 0);
                 for (int m = 0; m < f.depth - 1; ++m) {  // from the wall node: it must not move
                     Id& owner = start[f.node(p, q, m)];
-                    if (owner == nobody) owner = s;
-                    else if (owner != s) crossed[f.node(p, q, m)] = true;
+                    if (owner == nobody)
+                        owner = s;
+                    else if (owner != s)
+                        crossed[f.node(p, q, m)] = true;
                 }
             }
     return crossed;

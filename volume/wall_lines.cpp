@@ -54,7 +54,8 @@ void append_wall_normals(const ImplicitFunction& body, const Vec3& x0, double si
     for (const auto& piece : pieces) {
         if (!(piece.gradient.norm() > 0) || !piece.gradient.allFinite()) continue;
         const Vec3 n = side * piece.gradient.normalized();
-        if (std::none_of(normals.begin(), normals.end(), [&](const Vec3& m) { return m.dot(n) > same; }))
+        if (std::none_of(normals.begin(), normals.end(),
+                         [&](const Vec3& m) { return m.dot(n) > same; }))
             normals.push_back(n);
     }
 }

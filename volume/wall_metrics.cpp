@@ -246,7 +246,8 @@ HausdorffDistance hausdorff_to_surface(const TriangleSurface& wall,
         in_cells[v] = to_wall.distance(samples[v]) / std::max(size, 1e-300);
     });
     if (!in_cells.empty()) {
-        const size_t worst = size_t(std::max_element(in_cells.begin(), in_cells.end()) - in_cells.begin());
+        const size_t worst =
+            size_t(std::max_element(in_cells.begin(), in_cells.end()) - in_cells.begin());
         d.surface_in_cells_at = samples[worst];
         d.surface_in_cells_distance = to_wall.distance(samples[worst]);
         std::sort(in_cells.begin(), in_cells.end());

@@ -29,12 +29,12 @@ WallQuality measure_wall(const BlockGrid& grid, const ImplicitFunction& body,
 // block, in order, with the grid holding its points (the whole grid or one of its own), then
 // result(). The same numbers as measure_wall of the whole grid.
 class WallMeter {
-public:
+  public:
     WallMeter(const ImplicitFunction& body, const WallLayers& law);
     void add(const BlockGrid& grid, const Block& block);
     WallQuality result() const;
 
-private:
+  private:
     const ImplicitFunction& body_;
     WallLayers law_;
     WallQuality w_;  // counts, extremes and targets so far

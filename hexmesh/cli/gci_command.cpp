@@ -27,8 +27,9 @@ void add_gci_command(CLI::App& app, int& exit_code) {
     cmd->add_option("F1", args->phi1, "result on the fine grid")->required();
     cmd->add_option("F2", args->phi2, "result on the medium grid")->required();
     cmd->add_option("F3", args->phi3, "result on the coarse grid")->required();
-    CLI::Option* ratio = cmd->add_option("--ratio", args->ratio, "refinement ratio h2/h1 (and h3/h2)")
-                             ->capture_default_str();
+    CLI::Option* ratio =
+        cmd->add_option("--ratio", args->ratio, "refinement ratio h2/h1 (and h3/h2)")
+            ->capture_default_str();
     cmd->add_option("--ratio32", args->ratio32, "refinement ratio h3/h2 (default: --ratio)");
     cmd->add_flag("--allow-oscillatory", args->allow_oscillatory,
                   "accept values that go up and down (oscillatory convergence, s = -1)");
@@ -42,14 +43,23 @@ void add_gci_command(CLI::App& app, int& exit_code) {
         in.r21 = args->ratio;
         in.r32 = args->ratio32.value_or(args->ratio);
         // Every number as given: a NaN or a ratio <= 1 is refused, never replaced by a default.
-        const std::pair<const char*, double> given[] = {{"F1", in.phi1}, {"F2", in.phi2}, {"F3", in.phi3},
-                                                        {"--ratio", in.r21}, {"--ratio32", in.r32}};
+        const std::pair<const char*, double> given[] = {{"F1", in.phi1},
+                                                        {"F2", in.phi2},
+                                                        {"F3", in.phi3},
+                                                        {"--ratio", in.r21},
+                                                        {"--ratio32", in.r32}};
         for (const auto& [name, value] : given)
-            if (!std::isfinite(value)) throw InputError(fmt::format("gci: {} is {}: expected a finite number", name, value));
+            if (!std::isfinite(value))
+                throw InputError(
+                    fmt::format("gci: {} is {}: expected a finite number", name, value));
         for (const auto& [name, value] : {given[3], given[4]})
-            if (!(value > 1)) throw InputError(fmt::format("gci: {} is {}: a refinement ratio must be > 1", name, value));
+            if (!(value > 1))
+                throw InputError(
+                    fmt::format("gci: {} is {}: a refinement ratio must be > 1", name, value));
         if (!(args->order > 0) || !std::isfinite(args->order))
-            throw InputError(fmt::format("gci: --order is {}: expected the scheme's formal order, a number > 0", args->order));
+            throw InputError(
+                fmt::format("gci: --order is {}: expected the scheme's formal order, a number > 0",
+                            args->order));
         GridConvergence g;
         try {
             g = grid_convergence(in);

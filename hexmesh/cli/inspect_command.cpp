@@ -1,6 +1,7 @@
 // `hexmesh inspect FILE`: what a surface, point cloud or cross-section file holds and whether
 // it bounds a solid.
 #include <fmt/format.h>
+
 #include <iostream>
 #include <memory>
 
@@ -83,7 +84,8 @@ void inspect_sections(const std::string& path) {
     row("smallest polyline area", fmt::format("{:.6g}", d.smallest_loop_area));
     row("self-intersecting polylines", fmt::format("{}", d.self_intersecting_loops));
     row("crossing polyline pairs", fmt::format("{}", d.crossing_loops));
-    std::cout << (d.self_intersecting_loops == 0 && d.crossing_loops == 0 && d.smallest_loop_area > 0
+    std::cout << (d.self_intersecting_loops == 0 && d.crossing_loops == 0 &&
+                          d.smallest_loop_area > 0
                       ? "  valid: yes (simple polylines, none crossing another)\n"
                       : "  valid: no (the even-odd rule gives no clean inside where polylines "
                         "cross)\n");
@@ -111,13 +113,16 @@ void add_inspect_command(CLI::App& app, int& exit_code) {
         ->capture_default_str()
         ->check(CLI::Range(0.0, 179.0));
     cmd->callback([args, &exit_code] {
-        const GeometryFileKind kind = args->as == "surface"  ? GeometryFileKind::surface
+        const GeometryFileKind kind = args->as == "surface"    ? GeometryFileKind::surface
                                       : args->as == "points"   ? GeometryFileKind::points
                                       : args->as == "sections" ? GeometryFileKind::sections
                                                                : geometry_file_kind(args->path);
-        if (kind == GeometryFileKind::surface) inspect_surface(args->path, args->feature_angle);
-        else if (kind == GeometryFileKind::points) inspect_points(args->path);
-        else inspect_sections(args->path);
+        if (kind == GeometryFileKind::surface)
+            inspect_surface(args->path, args->feature_angle);
+        else if (kind == GeometryFileKind::points)
+            inspect_points(args->path);
+        else
+            inspect_sections(args->path);
         exit_code = 0;
     });
 }

@@ -45,8 +45,8 @@ int main(int argc, char** argv) {
                      "(fewer cells, a coarser surface or a larger voxel size need less)\n";
         return 1;
     } catch (const std::length_error& e) {  // a std::vector asked for more than max_size()
-        std::cerr << "hexmesh: error: out of memory: a size beyond any machine was asked for (" << e.what()
-                  << ")\n";
+        std::cerr << "hexmesh: error: out of memory: a size beyond any machine was asked for ("
+                  << e.what() << ")\n";
         return 1;
     } catch (const std::exception& e) {
         std::cerr << "hexmesh: error: " << e.what() << "\n";

@@ -2,9 +2,10 @@
 // of a hexahedral or tetrahedral mesh file (a block grid measured against its case's body);
 // `hexmesh report MESH [-o FILE] [--case CASE.json]`: its report page;
 // `hexmesh compare A B [-o FILE]`: two such pages side by side.
+#include <fmt/format.h>
+
 #include <cctype>
 #include <filesystem>
-#include <fmt/format.h>
 #include <iostream>
 #include <memory>
 
@@ -37,14 +38,16 @@ bool is_block_grid_file(const std::string& path) {
 // `run` writes beside a grid, if any ("" for none).
 std::string case_of_grid(const std::string& path, const std::string& case_path) {
     if (!case_path.empty()) return case_path;
-    const std::filesystem::path beside = std::filesystem::path(path).parent_path() / "grid.case.json";
+    const std::filesystem::path beside =
+        std::filesystem::path(path).parent_path() / "grid.case.json";
     return std::filesystem::exists(beside) ? beside.string() : std::string();
 }
 
 // The report of a block grid: measured against the body and wall law of the case file `sidecar`
 // (case_of_grid; then also the wall's distance to a surface file, and follows_body), else ("")
 // its cells alone. `settings` gets the case as JSON (empty without one).
-GridReport block_grid_report(const BlockGrid& grid, const std::string& sidecar, std::string& settings) {
+GridReport block_grid_report(const BlockGrid& grid, const std::string& sidecar,
+                             std::string& settings) {
     settings.clear();
     if (sidecar.empty()) {
         GridReport report;
@@ -89,11 +92,13 @@ void print_tet_quality(const Args& args, const TetMesh& mesh, const TetQualityRe
 void add_quality_command(CLI::App& app, int& exit_code) {
     auto args = std::make_shared<Args>();
     CLI::App* cmd = app.add_subcommand("quality", "print the quality table of a mesh");
-    cmd->add_option("mesh", args->mesh_path, "hexahedral (.vts .vtu .vtk .vtm) or tetrahedral (.vtu .vtk) mesh")
+    cmd->add_option("mesh", args->mesh_path,
+                    "hexahedral (.vts .vtu .vtk .vtm) or tetrahedral (.vtu .vtk) mesh")
         ->required();
     cmd->add_flag("--json", args->json, "print the report as JSON");
     cmd->add_option("--surface", args->surface,
-                    "tet meshes: case file whose body the boundary should lie on (distance over its wall cell size)");
+                    "tet meshes: case file whose body the boundary should lie on (distance over "
+                    "its wall cell size)");
     cmd->add_option("--case", args->case_path,
                     "block grids: the case whose body and wall law the wall is measured against "
                     "(default: grid.case.json beside the grid, if any)");
@@ -104,10 +109,12 @@ void add_quality_command(CLI::App& app, int& exit_code) {
             exit_code = q.inverted == 0 ? 0 : 3;
             return;
         }
-        if (!args->surface.empty()) throw std::invalid_argument("--surface is for tetrahedral meshes");
+        if (!args->surface.empty())
+            throw std::invalid_argument("--surface is for tetrahedral meshes");
         GridReport report;
-        const std::string sidecar =
-            is_block_grid_file(args->mesh_path) ? case_of_grid(args->mesh_path, args->case_path) : std::string();
+        const std::string sidecar = is_block_grid_file(args->mesh_path)
+                                        ? case_of_grid(args->mesh_path, args->case_path)
+                                        : std::string();
         if (!sidecar.empty()) {
             std::string settings;
             report = block_grid_report(read_vtk_block_grid(args->mesh_path), sidecar, settings);
@@ -138,7 +145,8 @@ ReportPage block_grid_page(const std::string& path, const std::string& case_path
 // The page of any mesh file, titled by its path: a tet mesh, a block grid (see
 // block_grid_page) or a hex mesh.
 ReportPage page_of_mesh(const std::string& path, const std::string& case_path) {
-    if (!std::filesystem::exists(path)) throw InputError(fmt::format("{}: no such mesh file", path));
+    if (!std::filesystem::exists(path))
+        throw InputError(fmt::format("{}: no such mesh file", path));
     if (const auto tets = read_tet_mesh(path))
         return tet_mesh_report_page(path, *tets, measure_tet_quality(*tets));
     if (is_block_grid_file(path)) return block_grid_page(path, case_path);
@@ -169,10 +177,11 @@ void add_report_command(CLI::App& app, int& exit_code) {
         page.title = "hexmesh report " + page.title;
         page.peak_memory_bytes = peak_memory();
         std::cout << "written: "
-                  << write_page(args->output.empty()
-                                    ? std::filesystem::path(args->mesh_path).parent_path() / "report.html"
-                                    : std::filesystem::path(args->output),
-                                report_page_html(page))
+                  << write_page(
+                         args->output.empty()
+                             ? std::filesystem::path(args->mesh_path).parent_path() / "report.html"
+                             : std::filesystem::path(args->output),
+                         report_page_html(page))
                   << "\n";
         exit_code = 0;
     });
@@ -183,14 +192,17 @@ void add_compare_command(CLI::App& app, int& exit_code) {
         std::string a, b, output = "compare.html", case_a, case_b;
     };
     auto args = std::make_shared<Args>();
-    CLI::App* cmd = app.add_subcommand("compare", "write the report pages of two meshes side by side");
+    CLI::App* cmd =
+        app.add_subcommand("compare", "write the report pages of two meshes side by side");
     cmd->add_option("a", args->a, "first mesh (as for report)")->required();
     cmd->add_option("b", args->b, "second mesh")->required();
     cmd->add_option("-o,--output", args->output, "the page")->capture_default_str();
-    cmd->add_option("--case-a", args->case_a, "block grids: the first one's case (default: grid.case.json beside it)");
+    cmd->add_option("--case-a", args->case_a,
+                    "block grids: the first one's case (default: grid.case.json beside it)");
     cmd->add_option("--case-b", args->case_b, "the second one's");
     cmd->callback([args, &exit_code] {
-        const ReportPage a = page_of_mesh(args->a, args->case_a), b = page_of_mesh(args->b, args->case_b);
+        const ReportPage a = page_of_mesh(args->a, args->case_a),
+                         b = page_of_mesh(args->b, args->case_b);
         std::cout << "written: " << write_page(args->output, compare_page_html(a, b)) << "\n";
         exit_code = 0;
     });

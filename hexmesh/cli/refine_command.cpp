@@ -66,8 +66,8 @@ void add_refine_command(CLI::App& app, int& exit_code) {
         PhaseTimer timer(std::cout);
         StagedOutput out(args->outdir);  // locked from the start: a second run into it is refused
         BlockGrid grid = read_vtk_block_grid(args->grid_path);
-        timer.done("read", fmt::format("({} blocks, {} cells)", grid.blocks.size(),
-                                       grid.num_cells()));
+        timer.done("read",
+                   fmt::format("({} blocks, {} cells)", grid.blocks.size(), grid.num_cells()));
         const Body body = make_body(c.geometry);
         timer.done("geometry");
         // Every level but the last in memory (each is 8 times smaller than the next); the

@@ -1,6 +1,7 @@
 // `hexmesh run CASE.json -o OUTDIR`: the grid of a case file.
-#include <algorithm>
 #include <fmt/format.h>
+
+#include <algorithm>
 #include <iostream>
 #include <memory>
 
@@ -47,9 +48,10 @@ void add_run_command(CLI::App& app, int& exit_code) {
         bool follows = true;
         const size_t levels = std::max<size_t>(result.level_reports.size(), 1);
         for (size_t l = 0; l < levels; ++l) {
-            const GridReport& level = result.level_reports.empty() ? result.report : result.level_reports[l];
-            const std::string warning =
-                body_missed_warning(level, levels > 1 ? fmt::format("level {}: ", l + 1) : std::string());
+            const GridReport& level =
+                result.level_reports.empty() ? result.report : result.level_reports[l];
+            const std::string warning = body_missed_warning(
+                level, levels > 1 ? fmt::format("level {}: ", l + 1) : std::string());
             follows = follows && warning.empty();
             std::cout << warning;
         }

@@ -1,7 +1,8 @@
 // `hexmesh sdf SURFACE -o FIELD.vdb`: the signed distance field of a surface, for inspection.
+#include <fmt/format.h>
+
 #include <chrono>
 #include <filesystem>
-#include <fmt/format.h>
 #include <iostream>
 #include <memory>
 
@@ -53,11 +54,11 @@ void add_sdf_command(CLI::App& app, int& exit_code) {
         const std::filesystem::path out(args->output), partial(args->output + ".partial");
         sdf.write_vdb(partial.string());
         std::filesystem::rename(partial, out);
-        std::cout << fmt::format("sdf of {} ({} triangles)\n", args->input, surface.triangles.size())
+        std::cout << fmt::format("sdf of {} ({} triangles)\n", args->input,
+                                 surface.triangles.size())
                   << fmt::format("  voxel size        {:.6g}\n", sdf.voxel_size())
-                  << fmt::format("  sign              {}\n", sdf.signed_by_winding_number()
-                                                                  ? "winding number"
-                                                                  : "flood fill")
+                  << fmt::format("  sign              {}\n",
+                                 sdf.signed_by_winding_number() ? "winding number" : "flood fill")
                   << fmt::format("  sharp creases     {} edges, {} corners\n",
                                  sdf.creases().crease_edges(), sdf.creases().corners())
                   << fmt::format("  active voxels     {}\n", sdf.active_voxels())

@@ -1,6 +1,7 @@
 // `hexmesh tetmesh CASE.json -o OUT`: a sliver-free tetrahedral mesh of a case's body.
-#include <filesystem>
 #include <fmt/format.h>
+
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -25,44 +26,63 @@ void add_tetmesh_command(CLI::App& app, int& exit_code) {
         int flip_cycles = 3;
     };
     auto args = std::make_shared<Args>();
-    CLI::App* cmd = app.add_subcommand("tetmesh", "tetrahedral mesh of a case's body, slivers removed");
+    CLI::App* cmd =
+        app.add_subcommand("tetmesh", "tetrahedral mesh of a case's body, slivers removed");
     cmd->add_option("case", args->case_path, "case file (JSON)")->required();
     cmd->add_option("-o,--output", args->output, "output mesh (.vtu .vtk)")->required();
     cmd->add_flag("--compare-cgal", args->compare_cgal,
                   "also run CGAL's perturb + exude on the same mesh and print both side by side");
-    cmd->add_option("--cgal-output", args->cgal_output, "write CGAL's perturbed and exuded mesh here")
+    cmd->add_option("--cgal-output", args->cgal_output,
+                    "write CGAL's perturbed and exuded mesh here")
         ->needs("--compare-cgal");
     cmd->add_flag("--no-report", args->no_report, "do not write NAME.report.html beside the mesh");
     cmd->add_option("--theta", args->theta, "weight of volume against shape, in (0, 1)")
-        ->check(CLI::Range(0.0, 1.0))->capture_default_str();
-    cmd->add_option("--optimize-iterations", args->optimize_iterations, "outer optimization iterations")
-        ->check(CLI::NonNegativeNumber)->capture_default_str();
+        ->check(CLI::Range(0.0, 1.0))
+        ->capture_default_str();
+    cmd->add_option("--optimize-iterations", args->optimize_iterations,
+                    "outer optimization iterations")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
     cmd->add_option("--reweight-rounds", args->reweighting.rounds,
                     "rounds that reweight each tet by its distortion to lift the worst")
-        ->check(CLI::NonNegativeNumber)->capture_default_str();
-    cmd->add_option("--reweight-power", args->reweighting.power, "exponent p of sum w phi^p the rounds aim at")
-        ->check(CLI::Range(1.0, 8.0))->capture_default_str();
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
+    cmd->add_option("--reweight-power", args->reweighting.power,
+                    "exponent p of sum w phi^p the rounds aim at")
+        ->check(CLI::Range(1.0, 8.0))
+        ->capture_default_str();
     cmd->add_option("--cap-angle", args->cap_degrees,
-                    "remove boundary caps (four points on the surface) below this dihedral angle (degrees, 0: none)")
-        ->check(CLI::Range(0.0, 60.0))->capture_default_str();
+                    "remove boundary caps (four points on the surface) below this dihedral angle "
+                    "(degrees, 0: none)")
+        ->check(CLI::Range(0.0, 60.0))
+        ->capture_default_str();
     cmd->add_option("--flip-cycles", args->flip_cycles,
-                    "cycles of edge removals and 2-3 flips, each followed by the optimization again (0: none)")
-        ->check(CLI::NonNegativeNumber)->capture_default_str();
-    cmd->add_option("--flip-angle", args->flip_degrees, "flip around the tets below this dihedral angle (degrees)")
-        ->check(CLI::Range(0.0, 70.0))->capture_default_str();
+                    "cycles of edge removals and 2-3 flips, each followed by the optimization "
+                    "again (0: none)")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
+    cmd->add_option("--flip-angle", args->flip_degrees,
+                    "flip around the tets below this dihedral angle (degrees)")
+        ->check(CLI::Range(0.0, 70.0))
+        ->capture_default_str();
     cmd->add_option("--cgal-sliver-bound", args->cgal_sliver_bound,
-                    "--compare-cgal: smallest dihedral angle CGAL's perturber aims at (degrees; 0: its default, 12)")
-        ->check(CLI::Range(0.0, 60.0))->capture_default_str();
+                    "--compare-cgal: smallest dihedral angle CGAL's perturber aims at (degrees; 0: "
+                    "its default, 12)")
+        ->check(CLI::Range(0.0, 60.0))
+        ->capture_default_str();
     cmd->add_option("--cgal-time-limit", args->cgal_time_limit,
                     "--compare-cgal: seconds for CGAL's perturb and for its exude (0: no limit)")
-        ->check(CLI::NonNegativeNumber)->capture_default_str();
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
     cmd->callback([args, &exit_code] {
         const Case c = read_case(args->case_path);
         check_volume_mesh_output(args->output);
         if (!args->cgal_output.empty()) {
             check_volume_mesh_output(args->cgal_output);
-            if (std::filesystem::weakly_canonical(args->cgal_output) == std::filesystem::weakly_canonical(args->output))
-                throw std::invalid_argument("--cgal-output must differ from -o (" + args->output + ")");
+            if (std::filesystem::weakly_canonical(args->cgal_output) ==
+                std::filesystem::weakly_canonical(args->output))
+                throw std::invalid_argument("--cgal-output must differ from -o (" + args->output +
+                                            ")");
         }
         std::cout << fmt::format("hexmesh tetmesh {}\n", args->case_path);
         TetCaseOptions options;
@@ -80,10 +100,12 @@ void add_tetmesh_command(CLI::App& app, int& exit_code) {
         options.untangle.max_untangle_iterations = c.solver.max_iterations;
         options.untangle.log = &std::cout;
         const TetCaseResult r = run_tet_case(c, options, std::cout);
-        std::cout << "\n" << untangle::format_untangle_summary(r.optimization.solve) << "\n"
+        std::cout << "\n"
+                  << untangle::format_untangle_summary(r.optimization.solve) << "\n"
                   << format_tet_comparison(r);
         if (r.optimized.inverted > 0) {
-            std::cout << fmt::format("\n{} inverted tets remain: nothing written\n", r.optimized.inverted);
+            std::cout << fmt::format("\n{} inverted tets remain: nothing written\n",
+                                     r.optimized.inverted);
             exit_code = 3;
             return;
         }
@@ -100,15 +122,17 @@ void add_tetmesh_command(CLI::App& app, int& exit_code) {
         std::cout << "\nwritten: " << args->output << "\n";
         if (!args->cgal_output.empty()) std::cout << "written: " << args->cgal_output << "\n";
         if (!args->no_report) {
-            ReportPage page = tet_mesh_report_page("hexmesh tetmesh " + args->case_path, r.mesh, r.optimized);
+            ReportPage page =
+                tet_mesh_report_page("hexmesh tetmesh " + args->case_path, r.mesh, r.optimized);
             page.settings_json = case_to_json(c);
             page.peak_memory_bytes = peak_memory();
             std::cout << "written: " << write_report_beside(args->output, page) << "\n";
         }
         if (r.optimized.slivers > 0) {
-            std::cout << fmt::format("\nwarning: {} slivers remain (a dihedral angle under {:.3g} degrees; the smallest "
-                                     "{:.3g}), the mesh is written but a solver may reject them\n",
-                                     r.optimized.slivers, r.optimized.sliver_degrees, r.optimized.min_dihedral);
+            std::cout << fmt::format(
+                "\nwarning: {} slivers remain (a dihedral angle under {:.3g} degrees; the smallest "
+                "{:.3g}), the mesh is written but a solver may reject them\n",
+                r.optimized.slivers, r.optimized.sliver_degrees, r.optimized.min_dihedral);
             exit_code = 3;
             return;
         }

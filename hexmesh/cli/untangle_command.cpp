@@ -1,6 +1,7 @@
 // `hexmesh untangle IN -o OUT`: makes a tangled hex or tet mesh valid, then optimizes it.
-#include <filesystem>
 #include <fmt/format.h>
+
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -39,7 +40,9 @@ void print_quality(const QualityReport& before, const QualityReport& after) {
     GridReport b, a;
     b.quality = before;
     a.quality = after;
-    std::cout << "\nquality before\n" << format_quality_table(b) << "quality after\n" << format_quality_table(a);
+    std::cout << "\nquality before\n"
+              << format_quality_table(b) << "quality after\n"
+              << format_quality_table(a);
 }
 
 // The options the mesh was untangled with, for its report page.
@@ -64,7 +67,8 @@ std::string settings_json(const Args& a) {
 int run(const Args& args) {
     UntangleMeshOptions options;
     options.untangle.untangle_solver.method = untangle::method_from_name(args.solver);
-    for (untangle::SolverOptions* solver : {&options.untangle.untangle_solver, &options.untangle.optimize_solver}) {
+    for (untangle::SolverOptions* solver :
+         {&options.untangle.untangle_solver, &options.untangle.optimize_solver}) {
         solver->preconditioner = untangle::preconditioner_from_name(args.preconditioner);
         solver->matrix_free = args.matrix_free;
     }
@@ -92,23 +96,27 @@ int run(const Args& args) {
     }
     check_volume_mesh_output(args.output);
     VolumeMesh mesh = read_volume_mesh(args.input);
-    std::cout << fmt::format("hexmesh untangle {}: {} hexes, {} tets, {} points, boundary {}\n", args.input,
-                             mesh.num_hexes(), mesh.num_tets(), mesh.points.size(), args.boundary);
+    std::cout << fmt::format("hexmesh untangle {}: {} hexes, {} tets, {} points, boundary {}\n",
+                             args.input, mesh.num_hexes(), mesh.num_tets(), mesh.points.size(),
+                             args.boundary);
 
-    const UntangleMeshResult r = naming_file(args.input, [&] { return untangle_volume_mesh(mesh, options); });
+    const UntangleMeshResult r =
+        naming_file(args.input, [&] { return untangle_volume_mesh(mesh, options); });
     std::cout << fmt::format("vertices: {} slip, {} on creases, {} fixed\n", r.slip_vertices,
                              r.feature_vertices, r.fixed_vertices);
     if (!r.blocked.empty()) std::cout << describe_blocked(r.blocked);
     std::cout << "\n" << untangle::format_untangle_summary(r.solve);
     if (r.hex_before && r.hex_after) print_quality(*r.hex_before, *r.hex_after);
     if (options.boundary == BoundaryMode::slip)
-        std::cout << fmt::format("  {:<30}{:>14.3g}\n", "max distance to the surface", r.max_surface_distance);
+        std::cout << fmt::format("  {:<30}{:>14.3g}\n", "max distance to the surface",
+                                 r.max_surface_distance);
 
     const bool valid = r.solve.inverted_after == 0;
     if (!valid && !args.keep_invalid) {
-        std::cout << fmt::format("\nnot untangled: {} inverted elements remain; nothing written "
-                                 "(--keep-invalid writes the best mesh reached as {})\n",
-                                 r.solve.inverted_after, invalid_name(args.output));
+        std::cout << fmt::format(
+            "\nnot untangled: {} inverted elements remain; nothing written "
+            "(--keep-invalid writes the best mesh reached as {})\n",
+            r.solve.inverted_after, invalid_name(args.output));
         return 3;
     }
     const std::string out = valid ? args.output : invalid_name(args.output);
@@ -119,7 +127,8 @@ int run(const Args& args) {
         ReportPage page;
         if (mesh.num_hexes() > 0) {
             const HexMesh hexes{mesh.points, mesh.hexes};
-            page = hex_mesh_report_page(title, hexes, r.hex_after ? *r.hex_after : measure_quality(hexes));
+            page = hex_mesh_report_page(title, hexes,
+                                        r.hex_after ? *r.hex_after : measure_quality(hexes));
         } else {
             const TetMesh tets{mesh.points, mesh.tets};
             page = tet_mesh_report_page(title, tets, measure_tet_quality(tets));
@@ -135,33 +144,49 @@ int run(const Args& args) {
 
 void add_untangle_command(CLI::App& app, int& exit_code) {
     auto args = std::make_shared<Args>();
-    CLI::App* cmd = app.add_subcommand("untangle", "make a tangled hex or tet mesh valid, then optimize it");
+    CLI::App* cmd =
+        app.add_subcommand("untangle", "make a tangled hex or tet mesh valid, then optimize it");
     cmd->add_option("mesh", args->input, "input mesh (.vtk .vtu .mesh)")->required();
     cmd->add_option("-o,--output", args->output, "output mesh (.vtu .vtk .mesh)")->required();
-    cmd->add_option("--solver", args->solver, "untangling method: explicit, block-diagonal, "
-                    "coordinate-split, newton-cg, lbfgs")->capture_default_str();
+    cmd->add_option("--solver", args->solver,
+                    "untangling method: explicit, block-diagonal, "
+                    "coordinate-split, newton-cg, lbfgs")
+        ->capture_default_str();
     cmd->add_option("--optimize-solver", args->optimize_solver, "method once the mesh is valid")
         ->capture_default_str();
     cmd->add_option("--preconditioner", args->preconditioner,
-                    "newton-cg, both phases: none, jacobi, block-jacobi, incomplete-cholesky")->capture_default_str();
-    cmd->add_flag("--matrix-free", args->matrix_free, "newton-cg, both phases: Hessian products without a matrix");
+                    "newton-cg, both phases: none, jacobi, block-jacobi, incomplete-cholesky")
+        ->capture_default_str();
+    cmd->add_flag("--matrix-free", args->matrix_free,
+                  "newton-cg, both phases: Hessian products without a matrix");
     cmd->add_option("--boundary", args->boundary, "boundary vertices: fixed or slip")
-        ->check(CLI::IsMember({"fixed", "slip"}))->capture_default_str();
-    cmd->add_option("--surface", args->surface, "surface to slip on (.stl .obj .off .ply), or a case file (.json) whose geometry it is");
-    cmd->add_option("--feature-angle", args->feature_angle, "crease angle of the slip surface (degrees)")
+        ->check(CLI::IsMember({"fixed", "slip"}))
+        ->capture_default_str();
+    cmd->add_option(
+        "--surface", args->surface,
+        "surface to slip on (.stl .obj .off .ply), or a case file (.json) whose geometry it is");
+    cmd->add_option("--feature-angle", args->feature_angle,
+                    "crease angle of the slip surface (degrees)")
         ->capture_default_str();
     cmd->add_option("--target", args->target, "target cell size: cell (each cell's own) or uniform")
-        ->check(CLI::IsMember({"cell", "uniform"}))->capture_default_str();
-    cmd->add_option("--theta", args->theta, "weight of volume against shape while optimizing, in (0, 1)")
-        ->check(CLI::Range(0.0, 1.0))->capture_default_str();
+        ->check(CLI::IsMember({"cell", "uniform"}))
+        ->capture_default_str();
+    cmd->add_option("--theta", args->theta,
+                    "weight of volume against shape while optimizing, in (0, 1)")
+        ->check(CLI::Range(0.0, 1.0))
+        ->capture_default_str();
     cmd->add_option("--untangle-theta", args->untangle_theta, "the same weight while untangling")
-        ->check(CLI::Range(0.0, 1.0))->capture_default_str();
+        ->check(CLI::Range(0.0, 1.0))
+        ->capture_default_str();
     cmd->add_option("--max-iter", args->max_iterations, "outer untangling iterations")
-        ->check(CLI::PositiveNumber)->capture_default_str();
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
     cmd->add_option("--optimize-iterations", args->optimize_iterations,
                     "outer optimization iterations once valid (0: untangle only)")
-        ->check(CLI::NonNegativeNumber)->capture_default_str();
-    cmd->add_flag("--keep-invalid", args->keep_invalid, "write a mesh that stays tangled as NAME_invalid.EXT");
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
+    cmd->add_flag("--keep-invalid", args->keep_invalid,
+                  "write a mesh that stays tangled as NAME_invalid.EXT");
     cmd->add_flag("--no-report", args->no_report, "do not write NAME.report.html beside the mesh");
     cmd->callback([args, &exit_code] { exit_code = run(*args); });
 }

@@ -13,13 +13,18 @@ Id BlockGrid::num_cells() const {
 }
 
 std::array<Id, 8> cell_nodes(const Block& block, int i, int j, int k) {
-    return {block.node(i, j, k),         block.node(i + 1, j, k),
-            block.node(i + 1, j + 1, k), block.node(i, j + 1, k),
-            block.node(i, j, k + 1),     block.node(i + 1, j, k + 1),
-            block.node(i + 1, j + 1, k + 1), block.node(i, j + 1, k + 1)};
+    return {block.node(i, j, k),
+            block.node(i + 1, j, k),
+            block.node(i + 1, j + 1, k),
+            block.node(i, j + 1, k),
+            block.node(i, j, k + 1),
+            block.node(i + 1, j, k + 1),
+            block.node(i + 1, j + 1, k + 1),
+            block.node(i, j + 1, k + 1)};
 }
 
-std::vector<std::array<Id, 8>> cells_not_held(const BlockGrid& grid, const std::vector<bool>& held) {
+std::vector<std::array<Id, 8>> cells_not_held(const BlockGrid& grid,
+                                              const std::vector<bool>& held) {
     std::vector<std::array<Id, 8>> cells;
     for (const Block& block : grid.blocks) {
         const Dims d = block.cells();
@@ -28,7 +33,8 @@ std::vector<std::array<Id, 8>> cells_not_held(const BlockGrid& grid, const std::
             for (int j = 0; j < d.nj; ++j)
                 for (int i = 0; i < d.ni; ++i) {
                     const std::array<Id, 8> nodes = cell_nodes(block, i, j, k);
-                    if (!std::all_of(nodes.begin(), nodes.end(), [&](Id v) { return bool(held[v]); }))
+                    if (!std::all_of(nodes.begin(), nodes.end(),
+                                     [&](Id v) { return bool(held[v]); }))
                         slabs[k].push_back(nodes);
                 }
         });

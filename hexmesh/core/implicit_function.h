@@ -8,7 +8,7 @@
 namespace hexmesh {
 
 class ImplicitFunction {
-public:
+  public:
     // One smooth piece of a piecewise smooth body (a box face, a cylinder cap, a CSG child's
     // piece): its own signed function at a point and that function's gradient there. Where
     // several pieces vanish together the body has a crease (2 normals) or a corner (3).

@@ -18,7 +18,9 @@ double memory_limit() {
     return pages > 0 && page > 0 ? 0.5 * double(pages) * double(page) : 8e9;
 }
 
-void set_memory_limit(double bytes) { limit.store(bytes > 0 ? bytes : 0); }
+void set_memory_limit(double bytes) {
+    limit.store(bytes > 0 ? bytes : 0);
+}
 
 double peak_memory() {
     rusage usage{};

@@ -56,8 +56,12 @@ struct RankedCell {
 inline constexpr std::size_t worst_cells_listed = 20;
 
 // The bins the report counts its cells and faces in.
-inline Histogram scaled_jacobian_bins() { return Histogram(-1, 1, 20); }  // 0.1 wide
-inline Histogram non_orthogonality_bins() { return Histogram(0, 180, 18); }  // 10 degrees wide
+inline Histogram scaled_jacobian_bins() {
+    return Histogram(-1, 1, 20);
+}  // 0.1 wide
+inline Histogram non_orthogonality_bins() {
+    return Histogram(0, 180, 18);
+}  // 10 degrees wide
 
 struct QualityReport {
     Id cells = 0;
@@ -136,7 +140,7 @@ QualityReport measure_quality(const BlockGrid& grid);
 // the open faces (their points, and the centre and volume of their cell) and the node ids of
 // the paired ones: memory of the order of the block faces, not of the cells.
 class BlockQuality {
-public:
+  public:
     BlockQuality();
     ~BlockQuality();
     BlockQuality(const BlockQuality&) = delete;
@@ -150,7 +154,7 @@ public:
 
     QualityReport report() const;
 
-private:
+  private:
     struct State;
     std::unique_ptr<State> state_;
 };

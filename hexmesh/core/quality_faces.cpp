@@ -78,9 +78,9 @@ void pair_equal_faces(std::vector<std::pair<Key, Id>>& faces, F&& pair) {
         while (j < faces.size() && faces[j].first == faces[i].first) ++j;
         if (j - i > 2) {
             std::ostringstream msg;
-            msg << "a face is shared by more than two cells (cells "
-                << faces[i].second / 6 << ", " << faces[i + 1].second / 6 << ", "
-                << faces[i + 2].second / 6 << "); the mesh is not a valid hex mesh";
+            msg << "a face is shared by more than two cells (cells " << faces[i].second / 6 << ", "
+                << faces[i + 1].second / 6 << ", " << faces[i + 2].second / 6
+                << "); the mesh is not a valid hex mesh";
             throw std::invalid_argument(msg.str());
         }
         if (j - i == 2) pair(faces[i].second, faces[i + 1].second);
@@ -92,7 +92,7 @@ void pair_equal_faces(std::vector<std::pair<Key, Id>>& faces, F&& pair) {
 // when 6 #cells fits (half the memory of the per-face array), else Id.
 template <class FaceId>
 class MeshCells {
-public:
+  public:
     explicit MeshCells(const HexMesh& mesh) : mesh_(mesh) { match_faces(); }
 
     Id num_cells() const { return mesh_.num_cells(); }
@@ -110,7 +110,7 @@ public:
         return points_of(mesh_.points, cell(face / 6).nodes, hex_faces[face % 6]);
     }
 
-private:
+  private:
     // Faces are bucketed by their smallest node id (a counting sort, linear time), then
     // matched by their sorted node quadruple inside each bucket; buckets hold a handful.
     void match_faces() {
@@ -178,7 +178,8 @@ struct CellStats {
     Id inverted_tets = 0, inverted_cells = 0;
     Id negative_pyramids = 0, nonpositive_volumes = 0;
     Histogram sj_histogram = scaled_jacobian_bins();
-    std::vector<RankedCell> lowest;  // ascending by (scaled Jacobian, id), at most worst_cells_listed
+    std::vector<RankedCell>
+        lowest;  // ascending by (scaled Jacobian, id), at most worst_cells_listed
 
     // A cell's scaled Jacobian: the worst so far, one of the lowest.
     void offer_cell(double sj, Id cell, const Vec3& centre) {
@@ -186,7 +187,8 @@ struct CellStats {
         offer_lowest(RankedCell{cell, sj, centre});
     }
     void offer_worst(double sj, Id cell, const Vec3& centre) {
-        if (sj < min_sj || (sj == min_sj && cell < worst)) min_sj = sj, worst = cell, worst_centre = centre;
+        if (sj < min_sj || (sj == min_sj && cell < worst))
+            min_sj = sj, worst = cell, worst_centre = centre;
     }
     void offer_lowest(const RankedCell& r) {
         const auto before = [](const RankedCell& a, const RankedCell& b) {
@@ -258,8 +260,8 @@ QualityReport make_report(Id cells, const CellStats& per_cell, const FaceStats& 
 }
 
 // The per-cell part of the first pass: aspect ratio, volume, scaled Jacobian, validity.
-void add_cell(CellStats& acc, Id cell, const std::array<FaceGeometry, 6>& faces, const CellGeometry& g,
-              const std::array<Vec3, 8>& p) {
+void add_cell(CellStats& acc, Id cell, const std::array<FaceGeometry, 6>& faces,
+              const CellGeometry& g, const std::array<Vec3, 8>& p) {
     acc.max_aspect = std::max(acc.max_aspect, detail::cell_aspect_ratio(faces, g.volume));
     acc.min_volume = std::min(acc.min_volume, g.volume);
     acc.nonpositive_volumes += !(g.volume >= detail::foam_vsmall);
@@ -269,7 +271,8 @@ void add_cell(CellStats& acc, Id cell, const std::array<FaceGeometry, 6>& faces,
         acc.negative_pyramids += !(f.area.dot(f.centre - g.centre) / 3 >= -detail::foam_small);
     const double sj = hex_scaled_jacobian(p);
     acc.offer_cell(sj, cell, g.centre);
-    acc.sum_sj += std::clamp(sj, -1.0, 1.0);  // Verdict's 1e30 for a zero-length edge would swamp the mean
+    acc.sum_sj +=
+        std::clamp(sj, -1.0, 1.0);  // Verdict's 1e30 for a zero-length edge would swamp the mean
     acc.sj_histogram.add(sj);
     const int inverted = count_inverted_corner_tets(p);
     acc.inverted_tets += inverted;
@@ -277,7 +280,9 @@ void add_cell(CellStats& acc, Id cell, const std::array<FaceGeometry, 6>& faces,
 }
 
 // checkMesh's non-orthogonality error: the face's cosine (face_orthogonality) at most SMALL.
-bool at_90_deg_or_more(double ortho) { return !(ortho > detail::foam_small); }
+bool at_90_deg_or_more(double ortho) {
+    return !(ortho > detail::foam_small);
+}
 
 // The second pass's measures of an internal face: p, g as its owner sees it.
 void add_internal_face(FaceStats& acc, const std::array<Vec3, 4>& p, const FaceGeometry& g,
@@ -288,7 +293,8 @@ void add_internal_face(FaceStats& acc, const std::array<Vec3, 4>& p, const FaceG
     acc.over_90_deg += at_90_deg_or_more(ortho);
     // In degrees as max_non_orthogonality_deg; a face checkMesh counts at 90 or more is there.
     const double deg = std::acos(std::clamp(ortho, -1.0, 1.0)) * 180.0 / pi;
-    acc.non_orthogonality.add(at_90_deg_or_more(ortho) ? std::max(deg, 90.0) : std::min(deg, 89.999));
+    acc.non_orthogonality.add(at_90_deg_or_more(ortho) ? std::max(deg, 90.0)
+                                                       : std::min(deg, 89.999));
     acc.max_skew = std::max(acc.max_skew, detail::face_skewness(p, g, own_cc, nei_cc));
     const double vo = std::abs(own_volume), vn = std::abs(nei_volume);
     const double ratio = std::max(vo, vn) / std::max(std::min(vo, vn), detail::foam_rootvsmall);
@@ -365,7 +371,6 @@ QualityReport measure(const Cells& cells) {
 
     return make_report(report.cells, per_cell, per_face);
 }
-
 
 // One k-slab of a block as the block pass keeps it: per cell (i + ni j) its centre, volume
 // and kmax face as its owner sees it (the kmin face of the cell above).
@@ -445,8 +450,8 @@ void BlockQuality::add(const BlockGrid& grid, const Block& block, const std::vec
                 const std::array<Id, 8> nodes = cell_nodes(block, i, j, k);
                 std::array<Vec3, 8> p;
                 for (int n = 0; n < 8; ++n) p[n] = points[nodes[n]];
-                const std::array<bool, 6> inside = {i > 0, i < d.ni - 1, j > 0,
-                                                    j < d.nj - 1, k > 0, k < d.nk - 1};
+                const std::array<bool, 6> inside = {i > 0, i<d.ni - 1, j> 0, j<d.nj - 1, k> 0,
+                                                    k < d.nk - 1};
                 std::array<FaceGeometry, 6> faces;
                 for (int f = 0; f < 6; ++f) {
                     if (!inside[f] || f % 2 == 1) {  // on the boundary, or owned: own points
@@ -486,7 +491,8 @@ void BlockQuality::add(const BlockGrid& grid, const Block& block, const std::vec
                     for (int n = 0; n < 4; ++n) key[n] = global(nodes[hex_faces[f][n]]);
                     std::sort(key.begin(), key.end());
                     const Id c = first + Id(at) + Id(plane) * k;
-                    faces_acc->open.push_back({key, {c, face_of(p, hex_faces[f]), g.centre, g.volume}});
+                    faces_acc->open.push_back(
+                        {key, {c, face_of(p, hex_faces[f]), g.centre, g.volume}});
                 }
             }
         }
@@ -520,9 +526,8 @@ void BlockQuality::add(const BlockGrid& grid, const Block& block, const std::vec
     for (auto& [key, face] : block_faces.open) {
         if (const auto m = st.matched.find(key); m != st.matched.end()) {
             std::ostringstream msg;
-            msg << "a face is shared by more than two cells (cells "
-                << m->second.first << ", " << m->second.second << ", " << face.cell
-                << "); the mesh is not a valid hex mesh";
+            msg << "a face is shared by more than two cells (cells " << m->second.first << ", "
+                << m->second.second << ", " << face.cell << "); the mesh is not a valid hex mesh";
             throw std::invalid_argument(msg.str());
         }
         const auto [it, inserted] = st.open.try_emplace(key, face);
@@ -558,20 +563,22 @@ std::vector<Id> refused(const Cells& cells) {
     const std::vector<Vec3>& points = cells.points();
     std::vector<Vec3> centres(static_cast<size_t>(n));
     std::vector<char> bad(static_cast<size_t>(n), 0);
-    tbb::parallel_for(tbb::blocked_range<Id>(0, n, cells_per_task), [&](const tbb::blocked_range<Id>& r) {
-        for (Id c = r.begin(); c != r.end(); ++c) {
-            CellStats one;
-            centres[c] = measure_cell(cells, c, one).centre;
-            bad[c] = one.inverted_tets + one.negative_pyramids + one.nonpositive_volumes > 0;
-        }
-    });
+    tbb::parallel_for(
+        tbb::blocked_range<Id>(0, n, cells_per_task), [&](const tbb::blocked_range<Id>& r) {
+            for (Id c = r.begin(); c != r.end(); ++c) {
+                CellStats one;
+                centres[c] = measure_cell(cells, c, one).centre;
+                bad[c] = one.inverted_tets + one.negative_pyramids + one.nonpositive_volumes > 0;
+            }
+        });
     for (Id c = 0; c < n; ++c) {  // 90 degrees: each internal face once, from its owner
         const CellView v = cells.cell(c);
         for (int f = 0; f < 6; ++f) {
             const Id other = v.partner[f];
             if (other == no_partner || !is_owner_side(6 * c + f, other)) continue;
             const FaceGeometry g = detail::quad_geometry(points_of(points, v.nodes, hex_faces[f]));
-            if (at_90_deg_or_more(detail::face_orthogonality(centres[c], centres[other / 6], g.area)))
+            if (at_90_deg_or_more(
+                    detail::face_orthogonality(centres[c], centres[other / 6], g.area)))
                 bad[c] = bad[other / 6] = 1;
         }
     }
@@ -620,7 +627,9 @@ double solver_margin(const std::array<Vec3, 8>& p) {
     const CellGeometry cell = detail::cell_geometry(faces);
     for (const FaceGeometry& f : faces) {
         const double area = f.area.norm();
-        margin = std::min(margin, area > 0 && mean_edge > 0 ? f.area.dot(f.centre - cell.centre) / (area * mean_edge) : -1.0);
+        margin = std::min(margin, area > 0 && mean_edge > 0
+                                      ? f.area.dot(f.centre - cell.centre) / (area * mean_edge)
+                                      : -1.0);
     }
     return margin;
 }

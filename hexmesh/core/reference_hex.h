@@ -43,9 +43,18 @@ inline constexpr std::array<std::array<int, 4>, 6> hex_faces = {{
 
 // The 12 edges as node pairs: 4 along x, 4 along y, 4 along z.
 inline constexpr std::array<std::array<int, 2>, 12> hex_edges = {{
-    {0, 1}, {3, 2}, {4, 5}, {7, 6},
-    {0, 3}, {1, 2}, {4, 7}, {5, 6},
-    {0, 4}, {1, 5}, {2, 6}, {3, 7},
+    {0, 1},
+    {3, 2},
+    {4, 5},
+    {7, 6},
+    {0, 3},
+    {1, 2},
+    {4, 7},
+    {5, 6},
+    {0, 4},
+    {1, 5},
+    {2, 6},
+    {3, 7},
 }};
 
 // Axis (0 = x, 1 = y, 2 = z) of the edge between two edge-neighbour nodes.

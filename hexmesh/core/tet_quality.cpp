@@ -1,10 +1,11 @@
 #include "hexmesh/core/tet_quality.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_reduce.h>
 
 #include "hexmesh/core/quality.h"
 
@@ -34,8 +35,8 @@ struct Tally {
 }  // namespace
 
 std::array<Vec3, 4> tet_corners(const TetMesh& mesh, Id cell) {
-    return {mesh.points[mesh.node(cell, 0)], mesh.points[mesh.node(cell, 1)], mesh.points[mesh.node(cell, 2)],
-            mesh.points[mesh.node(cell, 3)]};
+    return {mesh.points[mesh.node(cell, 0)], mesh.points[mesh.node(cell, 1)],
+            mesh.points[mesh.node(cell, 2)], mesh.points[mesh.node(cell, 3)]};
 }
 
 std::array<double, 6> dihedral_angles(const std::array<Vec3, 4>& p) {
@@ -64,8 +65,8 @@ double signed_volume(const std::array<Vec3, 4>& p) {
 double signed_volume(const TetMesh& mesh) {
     double v = 0;
     for (Id t = 0; t < mesh.num_cells(); ++t)
-        v += signed_volume({mesh.points[mesh.node(t, 0)], mesh.points[mesh.node(t, 1)], mesh.points[mesh.node(t, 2)],
-                            mesh.points[mesh.node(t, 3)]});
+        v += signed_volume({mesh.points[mesh.node(t, 0)], mesh.points[mesh.node(t, 1)],
+                            mesh.points[mesh.node(t, 2)], mesh.points[mesh.node(t, 3)]});
     return v;
 }
 
@@ -74,9 +75,10 @@ double radius_ratio(const std::array<Vec3, 4>& p) {
     const double det = a.dot(b.cross(c));
     if (!(det > 0)) return 0;
     const double area = 0.5 * (a.cross(b).norm() + b.cross(c).norm() + c.cross(a).norm() +
-                                (p[2] - p[1]).cross(p[3] - p[1]).norm());
+                               (p[2] - p[1]).cross(p[3] - p[1]).norm());
     const double inradius = 0.5 * det / area;  // 3 V / area, V = det / 6
-    const Vec3 centre = (a.squaredNorm() * b.cross(c) + b.squaredNorm() * c.cross(a) + c.squaredNorm() * a.cross(b)) /
+    const Vec3 centre = (a.squaredNorm() * b.cross(c) + b.squaredNorm() * c.cross(a) +
+                         c.squaredNorm() * a.cross(b)) /
                         (2 * det);
     return 3 * inradius / centre.norm();
 }

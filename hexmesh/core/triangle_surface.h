@@ -1,8 +1,8 @@
 // A triangulated surface as read from a file: shared points and triangles of point ids.
 #pragma once
 
-#include <algorithm>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <unordered_map>
@@ -28,7 +28,8 @@ inline std::uint64_t edge_key(int a, int b) {
 
 // How many triangles use each undirected edge (edge_key): 1 on a boundary, 2 inside a closed
 // manifold surface, more where it is not manifold.
-inline std::unordered_map<std::uint64_t, int> edge_uses(const std::vector<std::array<int, 3>>& triangles) {
+inline std::unordered_map<std::uint64_t, int> edge_uses(
+    const std::vector<std::array<int, 3>>& triangles) {
     std::unordered_map<std::uint64_t, int> uses;
     uses.reserve(2 * triangles.size());
     for (const auto& t : triangles)
@@ -37,13 +38,16 @@ inline std::unordered_map<std::uint64_t, int> edge_uses(const std::vector<std::a
 }
 
 // Axis-aligned bounds of the points (lo = hi = 0 for an empty surface).
-inline Box3 surface_bounds(const TriangleSurface& s) { return bounds_of(s.points); }
+inline Box3 surface_bounds(const TriangleSurface& s) {
+    return bounds_of(s.points);
+}
 
 // The total area of the triangles.
 inline double surface_area(const TriangleSurface& s) {
     double area = 0;
     for (const auto& t : s.triangles)
-        area += 0.5 * (s.points[t[1]] - s.points[t[0]]).cross(s.points[t[2]] - s.points[t[0]]).norm();
+        area +=
+            0.5 * (s.points[t[1]] - s.points[t[0]]).cross(s.points[t[2]] - s.points[t[0]]).norm();
     return area;
 }
 

@@ -12,22 +12,31 @@ enum class VertexKind : std::uint8_t { interior, slip, feature_edge, corner, fix
 
 constexpr int degrees_of_freedom(VertexKind kind) {
     switch (kind) {
-        case VertexKind::interior: return 3;
-        case VertexKind::slip: return 2;
-        case VertexKind::feature_edge: return 1;
+        case VertexKind::interior:
+            return 3;
+        case VertexKind::slip:
+            return 2;
+        case VertexKind::feature_edge:
+            return 1;
         case VertexKind::corner:
-        case VertexKind::fixed: return 0;
+        case VertexKind::fixed:
+            return 0;
     }
     return 0;
 }
 
 constexpr std::string_view to_string(VertexKind kind) {
     switch (kind) {
-        case VertexKind::interior: return "interior";
-        case VertexKind::slip: return "slip";
-        case VertexKind::feature_edge: return "feature_edge";
-        case VertexKind::corner: return "corner";
-        case VertexKind::fixed: return "fixed";
+        case VertexKind::interior:
+            return "interior";
+        case VertexKind::slip:
+            return "slip";
+        case VertexKind::feature_edge:
+            return "feature_edge";
+        case VertexKind::corner:
+            return "corner";
+        case VertexKind::fixed:
+            return "fixed";
     }
     return "?";
 }

@@ -7,7 +7,8 @@
 
 namespace hexmesh {
 
-BoundaryGeometry BoundaryGeometry::implicit(std::shared_ptr<const ImplicitFunction> body, double h) {
+BoundaryGeometry BoundaryGeometry::implicit(std::shared_ptr<const ImplicitFunction> body,
+                                            double h) {
     BoundaryGeometry g;
     g.kind_at_ = [body](const Vec3& x, double reach) {
         return boundary_vertex_kind(classify_surface_point(*body, x, reach));
@@ -24,23 +25,27 @@ BoundaryGeometry BoundaryGeometry::implicit(std::shared_ptr<const ImplicitFuncti
     return g;
 }
 
-BoundaryGeometry BoundaryGeometry::triangles(const TriangleSurface& triangles, double feature_angle, double) {
+BoundaryGeometry BoundaryGeometry::triangles(const TriangleSurface& triangles, double feature_angle,
+                                             double) {
     auto surface = std::make_shared<const TriangleSurface>(triangles);
     auto exact = std::make_shared<const ExactDistance>(*surface);
-    auto features = std::make_shared<const FeatureCurves>(detect_sharp_features(*surface, {feature_angle, true}));
+    auto features = std::make_shared<const FeatureCurves>(
+        detect_sharp_features(*surface, {feature_angle, true}));
     BoundaryGeometry g;
     auto nearest_corner = [surface, features](const Vec3& x) {
         int best = -1;
         for (int c : features->corners)
-            if (best < 0 || (surface->points[c] - x).norm() < (surface->points[best] - x).norm()) best = c;
+            if (best < 0 || (surface->points[c] - x).norm() < (surface->points[best] - x).norm())
+                best = c;
         return best;
     };
     g.kind_at_ = [surface, features, nearest_corner](const Vec3& x, double reach) {
         if (features->chains.empty()) return VertexKind::slip;
         const int c = nearest_corner(x);
         if (c >= 0 && (surface->points[c] - x).norm() < reach) return VertexKind::corner;
-        return project_to_features(*surface, *features, x).distance < reach ? VertexKind::feature_edge
-                                                                            : VertexKind::slip;
+        return project_to_features(*surface, *features, x).distance < reach
+                   ? VertexKind::feature_edge
+                   : VertexKind::slip;
     };
     g.normal_ = [exact](const Vec3& x) { return exact->closest_normal(x); };
     g.to_surface_ = [exact](const Vec3& x) { return exact->closest_point(x); };

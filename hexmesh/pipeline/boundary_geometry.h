@@ -15,11 +15,13 @@
 namespace hexmesh {
 
 class BoundaryGeometry {
-public:
+  public:
     // u = 0 of `body` (kept alive by the shared pointer); tolerances relative to length_scale.
-    static BoundaryGeometry implicit(std::shared_ptr<const ImplicitFunction> body, double length_scale);
+    static BoundaryGeometry implicit(std::shared_ptr<const ImplicitFunction> body,
+                                     double length_scale);
     // The triangles of `surface`; edges turning more than feature_angle degrees are creases.
-    static BoundaryGeometry triangles(const TriangleSurface& surface, double feature_angle, double length_scale);
+    static BoundaryGeometry triangles(const TriangleSurface& surface, double feature_angle,
+                                      double length_scale);
 
     // The constraint of a boundary vertex at x: slip, feature_edge within `reach` of a crease,
     // corner within `reach` of a corner.
@@ -32,7 +34,7 @@ public:
     // The four geometry callbacks of the untangler.
     void constrain(untangle::Problem& problem) const;
 
-private:
+  private:
     std::function<VertexKind(const Vec3&, double)> kind_at_;
     std::function<Vec3(const Vec3&)> normal_, to_surface_, tangent_, to_crease_, to_corner_;
 };

@@ -17,7 +17,8 @@ namespace {
 
 // The quads of the lattice on the unit sphere, slid there by the 2D functional with the target
 // of each quad's own mean edge lengths: folds untangled, the rest barely moved.
-void untangle_on_sphere(std::vector<Vec3>& directions, int n, const untangle::UntangleOptions& solver) {
+void untangle_on_sphere(std::vector<Vec3>& directions, int n,
+                        const untangle::UntangleOptions& solver) {
     const CubeSurfaceLattice lattice = make_cube_surface_lattice(n);
     untangle::Problem p;
     p.points = directions;
@@ -26,19 +27,23 @@ void untangle_on_sphere(std::vector<Vec3>& directions, int n, const untangle::Un
     for (const CubePatch& patch : cube_patches)
         for (int j = 0; j < n; ++j)
             for (int i = 0; i < n; ++i) {
-                const std::array<Id, 4> q{lattice.number_of(lattice.patch_point(patch, i, j)),
-                                          lattice.number_of(lattice.patch_point(patch, i + 1, j)),
-                                          lattice.number_of(lattice.patch_point(patch, i + 1, j + 1)),
-                                          lattice.number_of(lattice.patch_point(patch, i, j + 1))};
-                const auto length = [&](int a, int b) { return (p.points[q[a]] - p.points[q[b]]).norm(); };
+                const std::array<Id, 4> q{
+                    lattice.number_of(lattice.patch_point(patch, i, j)),
+                    lattice.number_of(lattice.patch_point(patch, i + 1, j)),
+                    lattice.number_of(lattice.patch_point(patch, i + 1, j + 1)),
+                    lattice.number_of(lattice.patch_point(patch, i, j + 1))};
+                const auto length = [&](int a, int b) {
+                    return (p.points[q[a]] - p.points[q[b]]).norm();
+                };
                 // Mean lengths of the two pairs of opposite edges: (0-1, 3-2) and (0-3, 1-2).
                 const double first = std::max(0.5 * (length(0, 1) + length(3, 2)), 1e-9);
                 const double second = std::max(0.5 * (length(0, 3) + length(1, 2)), 1e-9);
                 total += first + second;
                 for (int c = 0; c < 4; ++c) {
                     p.triangles.push_back({q[c], q[(c + 1) % 4], q[(c + 3) % 4]});
-                    p.triangle_targets.push_back(c % 2 == 0 ? untangle::rectangle_corner_target(first, second)
-                                                            : untangle::rectangle_corner_target(second, first));
+                    p.triangle_targets.push_back(
+                        c % 2 == 0 ? untangle::rectangle_corner_target(first, second)
+                                   : untangle::rectangle_corner_target(second, first));
                 }
             }
     p.length_scale = total / (2.0 * 6 * n * n);
@@ -136,7 +141,8 @@ std::vector<Vec3> gradient_line_up(const ImplicitFunction& potential, Vec3 p, do
 }
 
 WallPaths exterior_paths(const ImplicitFunction& potential, const std::vector<Vec3>& wall,
-                         double c0, int n, const Vec3& centre, const untangle::UntangleOptions& solver) {
+                         double c0, int n, const Vec3& centre,
+                         const untangle::UntangleOptions& solver) {
     WallPaths paths;
     paths.cells_per_edge = n;
     paths.centre = centre;

@@ -64,7 +64,7 @@ std::string order_warning(double p, double formal, const OrderRange& range) {
             "observed order p = {} is not a finite number: the three grids are not in the "
             "asymptotic range; phi_ext and GCI mean nothing",
             p);
-    const bool low = p < range.low * formal, high = p > range.high * formal;
+    const bool low = p<range.low * formal, high = p> range.high * formal;
     if (!low && !high) return "";
     const double bound = (low ? range.low : range.high) * formal;
     return fmt::format(

@@ -22,14 +22,14 @@ namespace hexmesh {
 // faces across blocks by them). Holds the open block faces and the wall as triangles (for
 // the Hausdorff distance), never the cells.
 class GridMeter {
-public:
+  public:
     GridMeter(const ImplicitFunction& body, const WallLayers& law = {},
               const TriangleSurface* surface = nullptr);
 
     void add(const BlockGrid& grid, const Block& block, const std::vector<Id>* ids = nullptr);
     GridReport report() const;
 
-private:
+  private:
     std::optional<CellPlace> place(Id cell) const;  // of a cell added, by its id
 
     const ImplicitFunction& body_;

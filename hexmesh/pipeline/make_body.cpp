@@ -19,8 +19,7 @@ Body make_shape(const GeometrySpec& s) {
     if (s.kind == "ellipsoid") return std::make_shared<Ellipsoid>(s.center, s.semi_axes);
     if (s.kind == "box") return std::make_shared<Box>(s.center, 0.5 * s.size);
     if (s.kind == "cylinder") return std::make_shared<Cylinder>(s.center, s.radius, 0.5 * s.height);
-    if (s.kind == "torus")
-        return std::make_shared<Torus>(s.center, s.major_radius, s.minor_radius);
+    if (s.kind == "torus") return std::make_shared<Torus>(s.center, s.major_radius, s.minor_radius);
     if (s.kind == "cone")
         return std::make_shared<Cone>(s.center, s.bottom_radius, s.top_radius, 0.5 * s.height);
     if (s.kind == "file") {
@@ -58,9 +57,9 @@ Body make_body(const GeometrySpec& spec) {
     Body body = make_shape(spec);
     const bool moved = spec.translate.norm() > 0 || spec.rotate_degrees != 0 || spec.scale != 1;
     if (!moved) return body;
-    return std::make_shared<Transformed>(body, spec.translate,
-                                         rotation_from_axis_angle(spec.rotate_axis, spec.rotate_degrees),
-                                         spec.scale);
+    return std::make_shared<Transformed>(
+        body, spec.translate, rotation_from_axis_angle(spec.rotate_axis, spec.rotate_degrees),
+        spec.scale);
 }
 
 }  // namespace hexmesh

@@ -23,7 +23,9 @@ struct NodeCells {
         std::vector<Id> next(offset.begin(), offset.end() - 1);
         for (size_t i = 0; i < mesh.hexes.size(); ++i) cells[next[mesh.hexes[i]]++] = Id(i / 8);
     }
-    std::pair<const Id*, const Id*> of(Id v) const { return {&cells[offset[v]], &cells[offset[v + 1]]}; }
+    std::pair<const Id*, const Id*> of(Id v) const {
+        return {&cells[offset[v]], &cells[offset[v + 1]]};
+    }
 };
 
 // The cells around a node as a move is judged: how many the solver refuses (margin <= 0), then
@@ -68,7 +70,8 @@ MendResult mend_refused_cells(BlockGrid& grid, const ImplicitFunction& body, con
     const NodeCells around(mesh);
     const auto movable = [&](Id v) {
         const VertexKind k = grid.kinds[v];
-        return (k == VertexKind::interior || k == VertexKind::slip) && (o.held.empty() || !o.held[v]);
+        return (k == VertexKind::interior || k == VertexKind::slip) &&
+               (o.held.empty() || !o.held[v]);
     };
     // The nodes of the refused cells, then of the cells sharing a node with those.
     std::vector<Id> cells = refused, nodes;
@@ -86,8 +89,8 @@ MendResult mend_refused_cells(BlockGrid& grid, const ImplicitFunction& body, con
     };
     nodes_of_cells();
     result.min_margin_before = lowest();
-    static const std::array<Vec3, 6> directions = {Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitY(),
-                                                   -Vec3::UnitY(), Vec3::UnitZ(), -Vec3::UnitZ()};
+    static const std::array<Vec3, 6> directions = {Vec3::UnitX(),  -Vec3::UnitX(), Vec3::UnitY(),
+                                                   -Vec3::UnitY(), Vec3::UnitZ(),  -Vec3::UnitZ()};
     for (int ring = 0; ring < o.rings && !refused.empty(); ++ring) {
         if (ring > 0) {
             std::vector<Id> wider;
@@ -99,7 +102,8 @@ MendResult mend_refused_cells(BlockGrid& grid, const ImplicitFunction& body, con
             nodes_of_cells();
         }
         std::vector<double> step(nodes.size());
-        for (size_t i = 0; i < nodes.size(); ++i) step[i] = o.first_step * mean_edge_at(mesh, around, nodes[i]);
+        for (size_t i = 0; i < nodes.size(); ++i)
+            step[i] = o.first_step * mean_edge_at(mesh, around, nodes[i]);
         for (int round = 0; round < o.rounds; ++round) {
             bool moved = false, trying = false;
             for (size_t i = 0; i < nodes.size(); ++i) {
@@ -115,7 +119,8 @@ MendResult mend_refused_cells(BlockGrid& grid, const ImplicitFunction& body, con
                 Score best_score = before;
                 for (const Vec3& d : directions) {
                     Vec3 x = start + step[i] * d;
-                    if (grid.kinds[v] == VertexKind::slip) x = project_to_surface(body, x, edge).point;
+                    if (grid.kinds[v] == VertexKind::slip)
+                        x = project_to_surface(body, x, edge).point;
                     mesh.points[v] = x;
                     const Score m = score_at(mesh, around, v);
                     if (m.better_than(best_score)) best = x, best_score = m;

@@ -10,17 +10,17 @@
 namespace hexmesh {
 
 struct MendOptions {
-    int rounds = 40;            // sweeps over the nodes, per ring
-    int rings = 2;              // the refused cells' nodes, then those of the cells around them
-    double enough = 0.05;       // a node whose cells' solver margin is over this is left alone
-    double first_step = 0.25;   // trial moves: this share of the mean edge at the node, halved
-    double last_step = 1e-3;    // down to this share
-    std::vector<bool> held;     // nodes that do not move (sized like grid.points, or empty)
+    int rounds = 40;           // sweeps over the nodes, per ring
+    int rings = 2;             // the refused cells' nodes, then those of the cells around them
+    double enough = 0.05;      // a node whose cells' solver margin is over this is left alone
+    double first_step = 0.25;  // trial moves: this share of the mean edge at the node, halved
+    double last_step = 1e-3;   // down to this share
+    std::vector<bool> held;    // nodes that do not move (sized like grid.points, or empty)
 };
 
 struct MendResult {
-    Id refused_before = 0, refused_after = 0;  // find_refused_cells, whole grid
-    Id moves = 0;                              // trial moves kept
+    Id refused_before = 0, refused_after = 0;            // find_refused_cells, whole grid
+    Id moves = 0;                                        // trial moves kept
     double min_margin_before = 0, min_margin_after = 0;  // over the refused cells' neighbourhood
 };
 
@@ -32,6 +32,7 @@ struct MendResult {
 // that leaves refused cells, the nodes of the cells sharing a node with them join in. The
 // functional's corner tets do not see a face pyramid on the cell's centre; this sees exactly
 // what the solver checks. Deterministic; the grid's points are changed in place.
-MendResult mend_refused_cells(BlockGrid& grid, const ImplicitFunction& body, const MendOptions& options = {});
+MendResult mend_refused_cells(BlockGrid& grid, const ImplicitFunction& body,
+                              const MendOptions& options = {});
 
 }  // namespace hexmesh

@@ -30,7 +30,8 @@ struct GridProblem {
     Id grid_id(Id local) const { return nodes.empty() ? local : nodes[local]; }
     // The solved positions back into the grid.
     void scatter(std::vector<Vec3>& points) const {
-        if (nodes.empty()) points = problem.points;
+        if (nodes.empty())
+            points = problem.points;
         else
             for (size_t i = 0; i < nodes.size(); ++i) points[nodes[i]] = problem.points[i];
     }
@@ -98,7 +99,8 @@ GridProblem make_problem(const BlockGrid& grid, const std::vector<Vec3>& target_
     const auto each_cell = [&](auto&& f) {
         if (held.empty())
             for (const Block& block : grid.blocks)
-                for_each_cell(block, [&](int, int, int, const std::array<Id, 8>& nodes) { f(nodes); });
+                for_each_cell(block,
+                              [&](int, int, int, const std::array<Id, 8>& nodes) { f(nodes); });
         else
             for (const std::array<Id, 8>& nodes : listed) f(nodes);
     };
@@ -181,8 +183,9 @@ std::vector<bool> inverted_tet_nodes(const BlockGrid& grid, const std::vector<Ve
             const std::array<double, 8> dets = corner_determinants(p);
             for (int c = 0; c < 8; ++c) {
                 const auto& t = hex_corner_tets[c];
-                if (dets[c] > 0 ||
-                    (only_placed && !std::all_of(t.begin(), t.end(), [&](int n) { return placed[nodes[n]]; })))
+                if (dets[c] > 0 || (only_placed && !std::all_of(t.begin(), t.end(), [&](int n) {
+                                        return placed[nodes[n]];
+                                    })))
                     continue;
                 for (int n : t) hit[nodes[n]] = true;
             }
@@ -201,7 +204,8 @@ bool inverted_away_from(const BlockGrid& grid, const std::vector<bool>& near) {
             const std::array<double, 8> dets = corner_determinants(p);
             for (int c = 0; c < 8 && !found; ++c) {
                 const auto& t = hex_corner_tets[c];
-                found = !(dets[c] > 0) && std::none_of(t.begin(), t.end(), [&](int n) { return near[nodes[n]]; });
+                found = !(dets[c] > 0) &&
+                        std::none_of(t.begin(), t.end(), [&](int n) { return near[nodes[n]]; });
             }
         });
     return found;
@@ -233,10 +237,12 @@ Id give_back_lines(BlockGrid& grid, const std::vector<Vec3>& joint, std::vector<
 // tet that is inverted and has all four nodes placed, until no such tet is left (a line given
 // back can leave its neighbour's cell blocked only through its own nodes, which are no longer
 // placed). Returns the number of lines given back.
-Id give_back_crossing_lines(BlockGrid& grid, const std::vector<Vec3>& joint, std::vector<bool>& placed) {
+Id give_back_crossing_lines(BlockGrid& grid, const std::vector<Vec3>& joint,
+                            std::vector<bool>& placed) {
     Id given = 0;
     for (Id more = 1; more > 0; given += more)
-        more = give_back_lines(grid, joint, placed, inverted_tet_nodes(grid, grid.points, placed, true));
+        more = give_back_lines(grid, joint, placed,
+                               inverted_tet_nodes(grid, grid.points, placed, true));
     return given;
 }
 
@@ -267,13 +273,15 @@ GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& bo
             // Inverted elements all at the wall or its layers are left to the pass below,
             // which lays the layers again and frees them in seconds where the continuation's
             // restarts and last resorts took minutes (the tripod outside: 1 element, 110 s).
-            joint.leave_to_next_pass = [&g, near = wall_layer_nodes(grid, options.wall_layers.layers)](
+            joint.leave_to_next_pass = [&g,
+                                        near = wall_layer_nodes(grid, options.wall_layers.layers)](
                                            const std::vector<Vec3>& x) {
                 const untangle::Problem& p = g.problem;
                 for (Id e = 0; e < p.num_elements(); ++e) {
                     if (p.det(x, e) > 0) continue;
                     const auto nodes = p.element(e);
-                    if (std::none_of(nodes.begin(), nodes.end(), [&](Id v) { return bool(near[g.grid_id(v)]); }))
+                    if (std::none_of(nodes.begin(), nodes.end(),
+                                     [&](Id v) { return bool(near[g.grid_id(v)]); }))
                         return false;
                 }
                 return true;
@@ -286,14 +294,18 @@ GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& bo
     // and around the poor ones: it can free inverted elements the joint pass left at the wall
     // (the tripod outside). On every run measured it freed none that the joint pass left away
     // from the wall and its layers, and took up to minutes there (bench/RESULTS.md): skipped.
-    result.layers_skipped = options.wall_layers.layers > 0 && result.solve.inverted_after > 0 &&
-                            inverted_away_from(grid, wall_layer_nodes(grid, options.wall_layers.layers));
+    result.layers_skipped =
+        options.wall_layers.layers > 0 && result.solve.inverted_after > 0 &&
+        inverted_away_from(grid, wall_layer_nodes(grid, options.wall_layers.layers));
     if (options.wall_layers.layers > 0 && !result.layers_skipped) {
         const std::vector<Vec3> joint = grid.points;
         const std::vector<double> joint_sj = scaled_jacobians(grid);
-        const double joint_min_sj = joint_sj.empty() ? 0 : *std::min_element(joint_sj.begin(), joint_sj.end());
-        std::vector<Vec3> first_laid;  // a valid laid grid whose worst cell fell below half the joint's
-        std::vector<bool> placed = extrude_wall_layers(grid, body, options.wall_layers, options.relax_rings);
+        const double joint_min_sj =
+            joint_sj.empty() ? 0 : *std::min_element(joint_sj.begin(), joint_sj.end());
+        std::vector<Vec3>
+            first_laid;  // a valid laid grid whose worst cell fell below half the joint's
+        std::vector<bool> placed =
+            extrude_wall_layers(grid, body, options.wall_layers, options.relax_rings);
         // The layers, the cells below relax_below (scaled Jacobian, once the layers are
         // laid), and the cells up to `relax_rings` rings around both are optimized again; the
         // rest of the grid (already optimized by the joint pass, and unmoved) is held. With
@@ -322,7 +334,8 @@ GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& bo
             result.layers_blocked = Id(problem.blocked_elements().size());
             if (result.layers_blocked > 0) break;
             untangle::UntangleOptions short_budget = options.untangle;
-            short_budget.max_untangle_iterations = std::min(short_budget.max_untangle_iterations, 30);
+            short_budget.max_untangle_iterations =
+                std::min(short_budget.max_untangle_iterations, 30);
             short_budget.stall_iterations = std::min(short_budget.stall_iterations, 10);
             result.layers_held = untangle::untangle_and_optimize(problem, short_budget);
             BlockGrid tried = grid;
@@ -363,9 +376,11 @@ struct PolishRank {
     // `sj`: the grid's scaled Jacobians (scaled_jacobians).
     PolishRank(const BlockGrid& grid, const std::vector<double>& sj, double threshold) {
         const QualityReport q = measure_quality(grid);
-        refused = q.inverted_cells + q.negative_pyramids + q.faces_over_90_deg + q.nonpositive_volumes;
+        refused =
+            q.inverted_cells + q.negative_pyramids + q.faces_over_90_deg + q.nonpositive_volumes;
         min_sj = q.min_scaled_jacobian;
-        below = Id(std::count_if(sj.begin(), sj.end(), [&](double v) { return !(v >= threshold); }));
+        below =
+            Id(std::count_if(sj.begin(), sj.end(), [&](double v) { return !(v >= threshold); }));
     }
     bool better_than(const PolishRank& o) const {
         if (refused != o.refused) return refused < o.refused;
@@ -381,11 +396,13 @@ std::vector<bool> wall_layer_nodes(const BlockGrid& grid, int layers) {
     for (const WallFace& f : wall_faces(grid))
         for (int q = 0; q < f.nq; ++q)
             for (int p = 0; p < f.np; ++p)
-                for (int t = 0; t <= std::min(layers, f.depth - 1); ++t) marked[f.node(p, q, t)] = true;
+                for (int t = 0; t <= std::min(layers, f.depth - 1); ++t)
+                    marked[f.node(p, q, t)] = true;
     return marked;
 }
 
-PolishResult polish_worst_cells(BlockGrid& grid, const ImplicitFunction& body, const PolishOptions& options) {
+PolishResult polish_worst_cells(BlockGrid& grid, const ImplicitFunction& body,
+                                const PolishOptions& options) {
     PolishResult result;
     std::vector<double> sj = scaled_jacobians(grid);
     const PolishRank first(grid, sj, options.below);
@@ -405,7 +422,8 @@ PolishResult polish_worst_cells(BlockGrid& grid, const ImplicitFunction& body, c
     result.cells = result.cells_after = Id(std::count(cells.begin(), cells.end(), true));
     std::vector<Vec3> best = grid.points;
     PolishRank best_rank = first;
-    for (int round = 0; round < options.rounds && std::count(cells.begin(), cells.end(), true) > 0; ++round) {
+    for (int round = 0; round < options.rounds && std::count(cells.begin(), cells.end(), true) > 0;
+         ++round) {
         std::vector<bool> marked(grid.points.size(), false);
         size_t c = 0;
         for (const Block& block : grid.blocks)
@@ -419,7 +437,8 @@ PolishResult polish_worst_cells(BlockGrid& grid, const ImplicitFunction& body, c
             for (size_t v = 0; v < held.size(); ++v) held[v] = held[v] || options.held[v];
         GridProblem g = make_problem(grid, grid.points, body, held, {});
         if (g.nodes.empty()) break;  // every node of those cells held (the wall and its layers)
-        const untangle::UntangleResult r = untangle::untangle_and_optimize(g.problem, options.untangle);
+        const untangle::UntangleResult r =
+            untangle::untangle_and_optimize(g.problem, options.untangle);
         ++result.rounds;
         result.seconds += r.seconds;
         if (r.inverted_after > 0) break;  // the next round would start from worse

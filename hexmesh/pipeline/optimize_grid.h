@@ -17,8 +17,8 @@ struct GridOptimizationOptions {
     // elements, all at the wall or its layers: the layers laid along the normals can free them
     // (the tripod outside: 1 left by the joint pass, none after this one), so the joint pass
     // leaves such elements to it when its untangling first stalls, instead of going on by the
-    // safe rule and trying its last resorts (UntangleOptions::leave_to_next_pass). Not when one lies
-    // away from them (GridOptimizationResult::layers_skipped): on every run measured that pass
+    // safe rule and trying its last resorts (UntangleOptions::leave_to_next_pass). Not when one
+    // lies away from them (GridOptimizationResult::layers_skipped): on every run measured that pass
     // freed none of those (bench/RESULTS.md), and the grid is refused as the joint pass left it.
     WallLayers wall_layers;
     // The nodes beyond the laid layers follow them over this many nodes along each line, and
@@ -42,7 +42,7 @@ struct GridOptimizationOptions {
 };
 
 struct GridOptimizationResult {
-    untangle::UntangleResult solve;       // the joint optimization
+    untangle::UntangleResult solve;        // the joint optimization
     untangle::UntangleResult layers_held;  // the pass after the layers were laid again
     // Whether the grid keeps the laid layers: false when that pass could not make every cell
     // valid, and the joint optimization's grid was kept instead.
@@ -81,9 +81,10 @@ GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& bo
 
 struct PolishOptions {
     untangle::UntangleOptions untangle;
-    double below = 0.3;  // cells whose scaled Jacobian (Verdict's, centre frame included) is under this
-    int rings = 2;       // and the cells within this many rings of them are optimized again
-    int rounds = 4;      // at most this many times
+    double below =
+        0.3;         // cells whose scaled Jacobian (Verdict's, centre frame included) is under this
+    int rings = 2;   // and the cells within this many rings of them are optimized again
+    int rounds = 4;  // at most this many times
     // Instead of the cells under `below`, those a solver refuses (find_refused_cells).
     bool refused_only = false;
     std::vector<bool> held;  // as in GridOptimizationOptions
@@ -107,6 +108,7 @@ std::vector<bool> wall_layer_nodes(const BlockGrid& grid, int layers);
 // they weigh. Targets: each cell's box of its current edge lengths. Each round starts from the
 // one before; the grid returned is the best seen (fewer cells a solver refuses, then a
 // higher worst scaled Jacobian, then fewer cells under `below`), never worse than the input.
-PolishResult polish_worst_cells(BlockGrid& grid, const ImplicitFunction& body, const PolishOptions& options);
+PolishResult polish_worst_cells(BlockGrid& grid, const ImplicitFunction& body,
+                                const PolishOptions& options);
 
 }  // namespace hexmesh

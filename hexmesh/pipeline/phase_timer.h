@@ -13,7 +13,7 @@ namespace hexmesh {
 
 // Logs one line per finished phase and keeps (phase, seconds) for the report.
 class PhaseTimer {
-public:
+  public:
     explicit PhaseTimer(std::ostream& log) : log_(log) {}
     void done(const std::string& phase, const std::string& detail = "") {
         const auto now = std::chrono::steady_clock::now();
@@ -26,7 +26,7 @@ public:
     }
     const std::vector<std::pair<std::string, double>>& phases() const { return phases_; }
 
-private:
+  private:
     std::ostream& log_;
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
     std::vector<std::pair<std::string, double>> phases_;

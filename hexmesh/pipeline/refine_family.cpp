@@ -30,7 +30,8 @@ double cell_length_scale(const BlockGrid& grid) {
 
 // The smaller of a and b, NaN if either is (std::min would drop a NaN in second place).
 double lower(double a, double b) {
-    return std::isnan(a) || std::isnan(b) ? std::numeric_limits<double>::quiet_NaN() : std::min(a, b);
+    return std::isnan(a) || std::isnan(b) ? std::numeric_limits<double>::quiet_NaN()
+                                          : std::min(a, b);
 }
 
 // The smallest scaled Jacobian of `cells` (NaN if one is NaN).
@@ -53,22 +54,24 @@ double min_scaled_jacobian_held(const BlockGrid& grid, const std::vector<bool>& 
     double worst = std::numeric_limits<double>::infinity();
     for (const Block& block : grid.blocks) {
         const Dims d = block.cells();
-        worst = lower(worst, tbb::parallel_reduce(
-            tbb::blocked_range<int>(0, d.nk), worst,
-            [&](const tbb::blocked_range<int>& r, double w) {
-                for (int k = r.begin(); k != r.end(); ++k)
-                    for (int j = 0; j < d.nj; ++j)
-                        for (int i = 0; i < d.ni; ++i) {
-                            const std::array<Id, 8> nodes = cell_nodes(block, i, j, k);
-                            if (!std::all_of(nodes.begin(), nodes.end(), [&](Id v) { return bool(held[v]); }))
-                                continue;
-                            std::array<Vec3, 8> p;
-                            for (int n = 0; n < 8; ++n) p[n] = grid.points[nodes[n]];
-                            w = lower(w, hex_scaled_jacobian(p));
-                        }
-                return w;
-            },
-            lower));
+        worst = lower(
+            worst, tbb::parallel_reduce(
+                       tbb::blocked_range<int>(0, d.nk), worst,
+                       [&](const tbb::blocked_range<int>& r, double w) {
+                           for (int k = r.begin(); k != r.end(); ++k)
+                               for (int j = 0; j < d.nj; ++j)
+                                   for (int i = 0; i < d.ni; ++i) {
+                                       const std::array<Id, 8> nodes = cell_nodes(block, i, j, k);
+                                       if (!std::all_of(nodes.begin(), nodes.end(),
+                                                        [&](Id v) { return bool(held[v]); }))
+                                           continue;
+                                       std::array<Vec3, 8> p;
+                                       for (int n = 0; n < 8; ++n) p[n] = grid.points[nodes[n]];
+                                       w = lower(w, hex_scaled_jacobian(p));
+                                   }
+                           return w;
+                       },
+                       lower));
     }
     return worst;
 }
@@ -98,7 +101,8 @@ void keep_no_worse_than(BlockGrid& grid, const std::vector<std::array<Id, 8>>& c
             if (hex_scaled_jacobian(p) >= floor) continue;
             for (Id v : nodes) {
                 if (held[v]) continue;
-                const Vec3& back = saved[size_t(std::lower_bound(free.begin(), free.end(), v) - free.begin())];
+                const Vec3& back =
+                    saved[size_t(std::lower_bound(free.begin(), free.end(), v) - free.begin())];
                 if (grid.points[v] != back) {
                     grid.points[v] = back;
                     reverted = true;

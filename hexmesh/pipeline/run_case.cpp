@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "hexmesh/core/memory_limit.h"
 #include "hexmesh/pipeline/grid_report.h"
 #include "hexmesh/pipeline/make_body.h"
 #include "hexmesh/pipeline/mend_cells.h"
@@ -15,7 +16,6 @@
 #include "hexmesh/pipeline/phase_timer.h"
 #include "hexmesh/pipeline/refine_family.h"
 #include "hexmesh/pipeline/wall_route.h"
-#include "hexmesh/core/memory_limit.h"
 #include "io/export_grid.h"
 #include "io/report_page.h"
 #include "io/staged_output.h"
@@ -46,9 +46,10 @@ int cells_per_edge(const Case& c, const ImplicitFunction& body) {
     if (!(c.grid.cell_size > 0)) return c.grid.cells_per_edge;
     const double n = std::ceil(body.bounds().diagonal() / (std::sqrt(3.0) * c.grid.cell_size));
     if (!(n <= 4096)) {
-        throw InputError(fmt::format("{}: grid.cell_size: {} gives {:.0f} cells per edge for a body "
-                                     "of diagonal {:.4g}; expected at most 4096",
-                                     c.path, c.grid.cell_size, n, body.bounds().diagonal()));
+        throw InputError(
+            fmt::format("{}: grid.cell_size: {} gives {:.0f} cells per edge for a body "
+                        "of diagonal {:.4g}; expected at most 4096",
+                        c.path, c.grid.cell_size, n, body.bounds().diagonal()));
     }
     return std::max(2, int(n));
 }
@@ -70,11 +71,13 @@ void refuse_topology(const Case& c, const TriangleSurface& surface, std::ostream
             "{}: genus {}: the surface has {} handle{} (V - E + F = {}{}); hexmesh grids bodies "
             "without holes through them",
             file, s.genus, s.genus, s.genus > 1 ? "s" : "", s.euler,
-            s.boundary_loops > 0 ? fmt::format(", {} holes in the surface", s.boundary_loops) : ""));
+            s.boundary_loops > 0 ? fmt::format(", {} holes in the surface", s.boundary_loops)
+                                 : ""));
     if (s.boundary_edges > 0)
-        log << fmt::format("  the surface is open: {} boundary edges around {} holes; inside and "
-                           "outside come from the winding number\n",
-                           s.boundary_edges, s.boundary_loops);
+        log << fmt::format(
+            "  the surface is open: {} boundary edges around {} holes; inside and "
+            "outside come from the winding number\n",
+            s.boundary_edges, s.boundary_loops);
 }
 
 // What makes the grid invalid, for the refusal: its inverted cells, else what a finite-volume
@@ -85,7 +88,8 @@ std::string invalid_cells(const QualityReport& q) {
     if (q.negative_pyramids > 0)
         what.push_back(fmt::format("{} face pyramids of negative volume", q.negative_pyramids));
     if (q.faces_over_90_deg > 0)
-        what.push_back(fmt::format("{} faces at 90 degrees of non-orthogonality or more", q.faces_over_90_deg));
+        what.push_back(fmt::format("{} faces at 90 degrees of non-orthogonality or more",
+                                   q.faces_over_90_deg));
     if (q.nonpositive_volumes > 0)
         what.push_back(fmt::format("{} cells of volume <= 0", q.nonpositive_volumes));
     return fmt::format("cells that a finite-volume solver refuses: {}", fmt::join(what, ", "));
@@ -102,8 +106,9 @@ void refuse_invalid(const Case& c, const GridReport& report, const std::string& 
         throw std::runtime_error(fmt::format(
             "{}: the grid {}has {} (min scaled Jacobian {:.3g} at ({:.4g}, {:.4g}, {:.4g}){}); "
             "nothing written (use --keep-invalid to write it as grid_invalid.*)",
-            c.path, dir.empty() ? "" : "of " + dir.substr(0, dir.size() - 1) + " ", invalid_cells(report.quality),
-            report.quality.min_scaled_jacobian, at.x(), at.y(), at.z(),
+            c.path, dir.empty() ? "" : "of " + dir.substr(0, dir.size() - 1) + " ",
+            invalid_cells(report.quality), report.quality.min_scaled_jacobian, at.x(), at.y(),
+            at.z(),
             w ? fmt::format(", block {} cell ({}, {}, {}){}", w->block, w->i, w->j, w->k,
                             w->on_wall ? " on the wall" : "")
               : ""));
@@ -129,9 +134,10 @@ void write_level(const Case& c, const BlockGrid& grid, GridReport report, const 
     out.write_text(dir + "quality.json", quality_json(report));
     out.write_text(dir + "grid.case.json", case_to_json(c));
     if (!options.report) return;
-    ReportPage page = grid_report_page(
-        fmt::format("hexmesh run {}{}", c.path, dir.empty() ? "" : ", " + dir.substr(0, dir.size() - 1)),
-        report, draw_grid(grid), case_to_json(c));
+    ReportPage page =
+        grid_report_page(fmt::format("hexmesh run {}{}", c.path,
+                                     dir.empty() ? "" : ", " + dir.substr(0, dir.size() - 1)),
+                         report, draw_grid(grid), case_to_json(c));
     page.peak_memory_bytes = peak_memory();
     out.write_text(dir + "report.html", report_page_html(page));
     timer.done(dir.empty() ? "report" : "report " + dir.substr(0, dir.size() - 1));
@@ -169,14 +175,17 @@ BlockGrid build_grid(const Case& c, const ImplicitFunction& body,
         const Vec3 centre = c.grid.center.value_or(body.bounds().center());
         o.far_field_size = c.far_field.size > 0
                                ? c.far_field.size
-                               : 10 * (body.bounds().hi - centre).cwiseAbs().cwiseMax(
-                                          (body.bounds().lo - centre).cwiseAbs()).norm();
+                               : 10 * (body.bounds().hi - centre)
+                                          .cwiseAbs()
+                                          .cwiseMax((body.bounds().lo - centre).cwiseAbs())
+                                          .norm();
         o.centre = c.grid.center;
         if (route && !route->radial()) {
             // The lines from the wall nodes as they are now: up the potential's gradient.
-            const std::vector<Vec3> wall = wall_from ? std::vector<Vec3>(wall_from->begin(),
-                                                                         wall_from->begin() + Id(route->wall->size()))
-                                                     : *route->wall;
+            const std::vector<Vec3> wall =
+                wall_from ? std::vector<Vec3>(wall_from->begin(),
+                                              wall_from->begin() + Id(route->wall->size()))
+                          : *route->wall;
             const WallPaths paths = exterior_paths(*route, wall, o.cells_per_edge);
             o.paths = &paths;
             return make_o_grid(body, o);
@@ -232,7 +241,8 @@ void surface_pass(const Case& c, const ImplicitFunction& body, const WallRoute* 
                        s.nodes, s.triangles, s.max_move);
     if (c.domain == "exterior" || c.grid.topology != "single-block") {
         try {
-            BlockGrid rebuilt = build_grid(c, body, &grid.points, route);  // same blocks and node ids
+            BlockGrid rebuilt =
+                build_grid(c, body, &grid.points, route);  // same blocks and node ids
             grid.points = std::move(rebuilt.points);
         } catch (const std::invalid_argument& e) {  // a wall node behind its core node
             log << "  no volume can be built from that wall (" << e.what()
@@ -245,9 +255,10 @@ void surface_pass(const Case& c, const ImplicitFunction& body, const WallRoute* 
     }
     const Id bad_after = nonpositive_cells(grid);
     if (bad_after > bad_before) {
-        log << fmt::format("  the volume built from that wall has {} cells with a scaled Jacobian <= 0, "
-                           "against {} as constructed: the grid as constructed is kept\n",
-                           bad_after, bad_before);
+        log << fmt::format(
+            "  the volume built from that wall has {} cells with a scaled Jacobian <= 0, "
+            "against {} as constructed: the grid as constructed is kept\n",
+            bad_after, bad_before);
         grid.points = built;
     }
 }
@@ -256,9 +267,10 @@ void surface_pass(const Case& c, const ImplicitFunction& body, const WallRoute* 
 // to `log`; the cells still refused.
 Id mend(BlockGrid& grid, const ImplicitFunction& body, std::ostream& log) {
     const MendResult m = mend_refused_cells(grid, body);
-    log << fmt::format("  cells a solver refuses mended node by node (the solver's own checks): {} -> {}, "
-                       "smallest margin {:.3g} -> {:.3g} ({} moves)\n",
-                       m.refused_before, m.refused_after, m.min_margin_before, m.min_margin_after, m.moves);
+    log << fmt::format(
+        "  cells a solver refuses mended node by node (the solver's own checks): {} -> {}, "
+        "smallest margin {:.3g} -> {:.3g} ({} moves)\n",
+        m.refused_before, m.refused_after, m.min_margin_before, m.min_margin_after, m.moves);
     return m.refused_after;
 }
 
@@ -276,7 +288,7 @@ void polish(const Case& c, const ImplicitFunction& body, BlockGrid& grid, std::o
     }
     PolishOptions o;
     o.untangle = untangle_options(c.solver, log);
-    o.untangle.log = nullptr;  // a summary line instead
+    o.untangle.log = nullptr;              // a summary line instead
     o.untangle.optimize_tolerance = 1e-7;  // a small problem: its worst cells weigh
     o.untangle.max_optimize_iterations = 50;
     const int layers = wall_layers(c).layers;
@@ -285,15 +297,17 @@ void polish(const Case& c, const ImplicitFunction& body, BlockGrid& grid, std::o
         const PolishResult r = polish_worst_cells(grid, body, o);
         if (r.cells > 0) {
             if (o.refused_only)
-                log << fmt::format("  cells a solver refuses (checkMesh's cell checks) and {} rings around them, "
-                                   "layers free: {} -> {}",
-                                   o.rings, r.refused_before, r.refused_after);
+                log << fmt::format(
+                    "  cells a solver refuses (checkMesh's cell checks) and {} rings around them, "
+                    "layers free: {} -> {}",
+                    o.rings, r.refused_before, r.refused_after);
             else
-                log << fmt::format("  worst cells polished{}: {} -> {} cells with a scaled Jacobian under {}",
-                                   o.held.empty() ? ", layers free" : " beyond the boundary layer", r.cells,
-                                   r.cells_after, o.below);
-            log << fmt::format(", min scaled Jacobian {:.3g} -> {:.3g} ({} rounds, {:.2f} s)\n", r.min_sj_before,
-                               r.min_sj_after, r.rounds, r.seconds);
+                log << fmt::format(
+                    "  worst cells polished{}: {} -> {} cells with a scaled Jacobian under {}",
+                    o.held.empty() ? ", layers free" : " beyond the boundary layer", r.cells,
+                    r.cells_after, o.below);
+            log << fmt::format(", min scaled Jacobian {:.3g} -> {:.3g} ({} rounds, {:.2f} s)\n",
+                               r.min_sj_before, r.min_sj_after, r.rounds, r.seconds);
         }
         if (r.refused_after == 0) return;
         // A face warped past its cell's centre, which the corner tets do not see: the nodes of
@@ -333,12 +347,14 @@ RunResult run_case(const Case& given, const std::string& outdir, const RunOption
         if (axis >= 0)
             log << "  grid axis " << c.grid.axis << ": the body's creases run around it\n";
     }
-    if (c.domain != "exterior" && c.grid.topology == "o-h" && route.radial() && route.not_star_shaped.empty() &&
-        !c.grid.core_size_given) {
+    if (c.domain != "exterior" && c.grid.topology == "o-h" && route.radial() &&
+        route.not_star_shaped.empty() && !c.grid.core_size_given) {
         const double fitted = core_size_within_wall(*body, o_h_grid_options(c, *body));
         if (fitted < c.grid.core_size)
-            log << fmt::format("  core_size {:.3g}: the default {} would reach the wall near the "
-                               "centre\n", fitted, c.grid.core_size);
+            log << fmt::format(
+                "  core_size {:.3g}: the default {} would reach the wall near the "
+                "centre\n",
+                fitted, c.grid.core_size);
         c.grid.core_size = fitted;
     }
     RunResult result;
@@ -375,26 +391,30 @@ RunResult run_case(const Case& given, const std::string& outdir, const RunOption
         log << untangle::format_untangle_summary(r.solve);
         if (r.layers_skipped) {
             log << fmt::format(
-                "  boundary layer not laid again: the joint optimization left {} inverted elements, some away "
+                "  boundary layer not laid again: the joint optimization left {} inverted "
+                "elements, some away "
                 "from the wall and its layers\n",
                 r.solve.inverted_after);
         } else if (o.wall_layers.layers > 0 && r.laid_nodes == 0) {
             log << "  boundary layer kept as built (no wall-normal line can be laid alone)\n";
         } else if (r.layers_blocked > 0) {
-            log << fmt::format("  boundary layer laid along the wall normals crosses the grid ({} corner tets "
-                               "inverted between held nodes): the joint optimization's grid is kept\n",
-                               r.layers_blocked);
+            log << fmt::format(
+                "  boundary layer laid along the wall normals crosses the grid ({} corner tets "
+                "inverted between held nodes): the joint optimization's grid is kept\n",
+                r.layers_blocked);
         } else if (o.wall_layers.layers > 0) {
             log << "  boundary layer laid along the wall normals"
-                << (r.lines_given_back > 0
-                        ? fmt::format(" (but on {} wall lines, whose laid cells would cross or fall under half "
-                                      "the worst scaled Jacobian before: they keep the joint optimization's)",
-                                      r.lines_given_back)
-                        : std::string())
+                << (r.lines_given_back > 0 ? fmt::format(" (but on {} wall lines, whose laid cells "
+                                                         "would cross or fall under half "
+                                                         "the worst scaled Jacobian before: they "
+                                                         "keep the joint optimization's)",
+                                                         r.lines_given_back)
+                                           : std::string())
                 << ", rest optimized again:\n"
                 << untangle::format_untangle_summary(r.layers_held);
             if (!r.layers_laid)
-                log << "  the laid layers left inverted cells: the joint optimization's grid is kept\n";
+                log << "  the laid layers left inverted cells: the joint optimization's grid is "
+                       "kept\n";
         }
         timer.done("optimization");
         polish(c, *body, result.grid, log);
@@ -417,9 +437,9 @@ RunResult run_case(const Case& given, const std::string& outdir, const RunOption
     const RefinementOptions refinement;
     for (int level = 2; level <= c.refinement.levels; ++level) {
         RefinementResult r = refine_on_body(grids.back(), *body, refinement);
-        timer.done(fmt::format("refinement level {}", level),
-                   fmt::format("({} cells, {} wall nodes projected)", r.grid.num_cells(),
-                               r.projected));
+        timer.done(
+            fmt::format("refinement level {}", level),
+            fmt::format("({} cells, {} wall nodes projected)", r.grid.num_cells(), r.projected));
         const WallLayers law = refined_wall_layers(wall_layers(c), level);
         result.level_reports.push_back(
             measure_grid(r.grid, *body, law, surface ? &*surface : nullptr));

@@ -8,11 +8,11 @@
 #include "hexmesh/core/block_grid.h"
 #include "hexmesh/core/triangle_surface.h"
 #include "hexmesh/pipeline/grid_report.h"
+#include "hexmesh/pipeline/wall_route.h"
 #include "io/case_file.h"
 #include "io/quality_report.h"
 #include "surface/body.h"
 #include "volume/o_h_grid.h"
-#include "hexmesh/pipeline/wall_route.h"
 #include "volume/stretching.h"
 
 namespace hexmesh {
@@ -56,9 +56,9 @@ struct RunOptions {
 
 // Builds the grid, measures it and writes OUTDIR/grid.vtm (grid.vts for one block),
 // OUTDIR/quality.json, OUTDIR/grid.case.json (case_to_json: the geometry `hexmesh refine`
-// projects new wall nodes onto) and OUTDIR/report.html, all or nothing. With c.refinement.levels = N > 1, the grid is
-// level 1 of a nested family: OUTDIR/level_1 ... OUTDIR/level_N each hold those three files,
-// level L + 1 being refine_on_body of level L (its wall law refined_wall_layers), and
+// projects new wall nodes onto) and OUTDIR/report.html, all or nothing. With c.refinement.levels =
+// N > 1, the grid is level 1 of a nested family: OUTDIR/level_1 ... OUTDIR/level_N each hold those
+// three files, level L + 1 being refine_on_body of level L (its wall law refined_wall_layers), and
 // OUTDIR/family.json the study table. grid.axis "auto" is resolved once (choose_o_h_axis)
 // and written so in grid.case.json. Progress goes to `log`, one line per phase.
 RunResult run_case(const Case& c, const std::string& outdir, const RunOptions& options,

@@ -1,8 +1,8 @@
 #include "hexmesh/pipeline/sphere_map.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Surface_mesh.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
+#include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Count_stop_predicate.h>
 #include <CGAL/Surface_mesh_simplification/edge_collapse.h>
 #include <fmt/format.h>
@@ -78,9 +78,11 @@ TriangleSurface resampled(const TriangleSurface& s, size_t triangles) {
     using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
     Mesh mesh;
     std::vector<Mesh::Vertex_index> v;
-    for (const Vec3& p : s.points) v.push_back(mesh.add_vertex(Kernel::Point_3(p.x(), p.y(), p.z())));
+    for (const Vec3& p : s.points)
+        v.push_back(mesh.add_vertex(Kernel::Point_3(p.x(), p.y(), p.z())));
     for (const auto& t : s.triangles)
-        if (mesh.add_face(v[t[0]], v[t[1]], v[t[2]]) == Mesh::null_face()) return s;  // not a manifold
+        if (mesh.add_face(v[t[0]], v[t[1]], v[t[2]]) == Mesh::null_face())
+            return s;  // not a manifold
     if (s.triangles.size() > triangles) {
         namespace SMS = CGAL::Surface_mesh_simplification;
         SMS::Count_stop_predicate<Mesh> stop(triangles * 3 / 2);  // a closed surface's edges
@@ -119,15 +121,18 @@ int chord_free_pole(const TriangleSurface& s) {
         }
     std::vector<int> order(s.points.size());
     std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(), order.end(), [&](int a, int b) { return s.points[a].z() > s.points[b].z(); });
+    std::sort(order.begin(), order.end(),
+              [&](int a, int b) { return s.points[a].z() > s.points[b].z(); });
     for (int p : order) {
         std::vector<int>& ring = around[p];
         std::sort(ring.begin(), ring.end());
         ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
-        // Each ring point is joined to its two ring neighbours; any more edges among them are chords.
+        // Each ring point is joined to its two ring neighbours; any more edges among them are
+        // chords.
         size_t joined = 0;
         for (size_t a = 0; a < ring.size(); ++a)
-            for (size_t b = a + 1; b < ring.size(); ++b) joined += edges.count(edge_key(ring[a], ring[b]));
+            for (size_t b = a + 1; b < ring.size(); ++b)
+                joined += edges.count(edge_key(ring[a], ring[b]));
         if (ring.size() >= 3 && joined == ring.size()) return p;
     }
     return order.front();
@@ -179,8 +184,10 @@ std::vector<Vec3> tutte_on_sphere(const TriangleSurface& s, int pole) {
         if (row < 0) continue;
         entries.emplace_back(row, row, double(neighbours[p].size()));
         for (int q : neighbours[p]) {
-            if (unknown[q] >= 0) entries.emplace_back(row, unknown[q], -1.0);
-            else rhs.row(row) += plane[q].transpose();  // a ring point (the pole is no neighbour)
+            if (unknown[q] >= 0)
+                entries.emplace_back(row, unknown[q], -1.0);
+            else
+                rhs.row(row) += plane[q].transpose();  // a ring point (the pole is no neighbour)
         }
     }
     Eigen::SparseMatrix<double> laplacian(count, count);
@@ -222,11 +229,15 @@ struct SphereMap::Locator {
     static constexpr int m = 24;
     std::vector<std::vector<int>> cells = std::vector<std::vector<int>>(m * m * m);
     static int cell_of(double v) { return std::clamp(int((v + 1.02) / 2.04 * m), 0, m - 1); }
-    static int cell(const Vec3& p) { return cell_of(p.x()) + m * (cell_of(p.y()) + m * cell_of(p.z())); }
+    static int cell(const Vec3& p) {
+        return cell_of(p.x()) + m * (cell_of(p.y()) + m * cell_of(p.z()));
+    }
 };
 
 SphereMap::SphereMap(TriangleSurface surface, std::vector<Vec3> sphere)
-    : surface_(std::move(surface)), sphere_(std::move(sphere)), locator_(std::make_unique<Locator>()) {
+    : surface_(std::move(surface)),
+      sphere_(std::move(sphere)),
+      locator_(std::make_unique<Locator>()) {
     for (int t = 0; t < int(surface_.triangles.size()); ++t) {
         const auto& tri = surface_.triangles[t];
         const Vec3 a = sphere_[tri[0]], b = sphere_[tri[1]], c = sphere_[tri[2]];
@@ -289,15 +300,18 @@ SphereMap map_to_sphere(const TriangleSurface& input, const SphereMapOptions& o,
                         const std::function<Vec3(const Vec3&)>& start) {
     TriangleSurface s = resampled(welded_and_capped(input), size_t(o.triangles));
     if (s.triangles.empty()) throw std::invalid_argument("the surface has no triangle");
-    if (const SurfaceTopology t = surface_topology(s);
-        t.components.size() != 1 || t.components[0].euler != 2 || t.components[0].boundary_edges != 0)
-        throw std::invalid_argument(fmt::format("the surface is not one closed piece of genus 0 "
-                                                "({} pieces, the largest with V - E + F = {})",
-                                                t.components.size(), t.components[0].euler));
+    if (const SurfaceTopology t = surface_topology(s); t.components.size() != 1 ||
+                                                       t.components[0].euler != 2 ||
+                                                       t.components[0].boundary_edges != 0)
+        throw std::invalid_argument(
+            fmt::format("the surface is not one closed piece of genus 0 "
+                        "({} pieces, the largest with V - E + F = {})",
+                        t.components.size(), t.components[0].euler));
     const int pole = chord_free_pole(s);
     std::vector<Vec3> sphere(s.points.size());
     if (start)
-        tbb::parallel_for(size_t(0), sphere.size(), [&](size_t i) { sphere[i] = start(s.points[i]); });
+        tbb::parallel_for(size_t(0), sphere.size(),
+                          [&](size_t i) { sphere[i] = start(s.points[i]); });
     else
         sphere = tutte_on_sphere(s, pole);
 
@@ -337,7 +351,8 @@ SphereMap aligned_with_body(const SphereMap& map, const Vec3& centre) {
     const TriangleSurface& s = map.surface();
     Mat3 correlation = Mat3::Zero();  // sum of area * image * direction^T
     for (const auto& t : s.triangles) {
-        const double area = 0.5 * (s.points[t[1]] - s.points[t[0]]).cross(s.points[t[2]] - s.points[t[0]]).norm();
+        const double area =
+            0.5 * (s.points[t[1]] - s.points[t[0]]).cross(s.points[t[2]] - s.points[t[0]]).norm();
         for (int c = 0; c < 3; ++c) {
             const Vec3 d = s.points[t[c]] - centre;
             if (d.norm() > 0) correlation += area * map.sphere()[t[c]] * d.normalized().transpose();
@@ -349,7 +364,8 @@ SphereMap aligned_with_body(const SphereMap& map, const Vec3& centre) {
     flip(2, 2) = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0 ? -1 : 1;
     const Mat3 rotation = svd.matrixV() * flip * svd.matrixU().transpose();
     std::vector<Vec3> sphere(map.sphere().size());
-    for (size_t i = 0; i < sphere.size(); ++i) sphere[i] = (rotation * map.sphere()[i]).normalized();
+    for (size_t i = 0; i < sphere.size(); ++i)
+        sphere[i] = (rotation * map.sphere()[i]).normalized();
     return SphereMap(s, std::move(sphere));
 }
 
@@ -364,7 +380,8 @@ std::vector<Vec3> wall_from_sphere_map(const SphereMap& map, int n, const Implic
         wall[s] = project_to_surface(body, map.surface_point(q), h, o).point;
     });
     for (const Vec3& x : wall)
-        if (!x.allFinite()) throw std::runtime_error("a wall node placed through the sphere map is not finite");
+        if (!x.allFinite())
+            throw std::runtime_error("a wall node placed through the sphere map is not finite");
     return wall;
 }
 

@@ -31,7 +31,7 @@ struct SphereMapOptions {
 // The map: the surface's points (welded, holes capped) and their images on the unit sphere,
 // every triangle counter-clockwise seen from outside on both.
 class SphereMap {
-public:
+  public:
     SphereMap(TriangleSurface surface, std::vector<Vec3> sphere);
     ~SphereMap();
     SphereMap(SphereMap&&) noexcept;
@@ -44,7 +44,7 @@ public:
     const std::vector<Vec3>& sphere() const { return sphere_; }
     Id inverted() const;  // triangles turning clockwise on the sphere (0 for a one-to-one map)
 
-private:
+  private:
     struct Locator;
     TriangleSurface surface_;
     std::vector<Vec3> sphere_;

@@ -1,11 +1,12 @@
 #include "hexmesh/pipeline/tet_mesh_case.h"
 
+#include <fmt/format.h>
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <fmt/format.h>
 #include <unordered_map>
 
 #include "hexmesh/core/array_hash.h"
@@ -41,8 +42,9 @@ CreaseCurves body_creases(const Case& c, const ImplicitFunction& body, double st
     try {
         return trace_creases(body, step);
     } catch (const std::invalid_argument& e) {
-        throw InputError(fmt::format("{}: tet_mesh.wall_cell_size: too small for the body to trace its creases ({})",
-                                     c.path, e.what()));
+        throw InputError(fmt::format(
+            "{}: tet_mesh.wall_cell_size: too small for the body to trace its creases ({})", c.path,
+            e.what()));
     }
 }
 
@@ -96,7 +98,8 @@ SizingFunction tet_sizing(const Case& c, std::shared_ptr<const ImplicitFunction>
     };
 }
 
-BoundaryGeometry case_boundary(const Case& c, std::shared_ptr<const ImplicitFunction> body, double h) {
+BoundaryGeometry case_boundary(const Case& c, std::shared_ptr<const ImplicitFunction> body,
+                               double h) {
     if (auto surface = reference_surface(c.geometry))
         return BoundaryGeometry::triangles(*surface, c.tet_mesh.feature_angle, h);
     return BoundaryGeometry::implicit(std::move(body), h);
@@ -112,7 +115,8 @@ std::vector<VertexKind> kinds_from_dimensions(const std::vector<std::int8_t>& di
     return kinds;
 }
 
-std::vector<VertexKind> boundary_kinds(const TetMesh& mesh, const BoundaryGeometry& boundary, double reach) {
+std::vector<VertexKind> boundary_kinds(const TetMesh& mesh, const BoundaryGeometry& boundary,
+                                       double reach) {
     const std::vector<bool> outer = on_boundary(mesh);
     std::vector<VertexKind> kinds(mesh.points.size(), VertexKind::interior);
     for (size_t v = 0; v < kinds.size(); ++v)
@@ -128,14 +132,15 @@ double max_boundary_distance(const TetMesh& mesh, const BoundaryGeometry& bounda
     return d;
 }
 
-std::vector<untangle::TetTarget> sized_tet_targets(const std::vector<Vec3>& points, const std::vector<Id>& tets,
-                                                  const SizingFunction& size) {
+std::vector<untangle::TetTarget> sized_tet_targets(const std::vector<Vec3>& points,
+                                                   const std::vector<Id>& tets,
+                                                   const SizingFunction& size) {
     const Id cells = Id(tets.size() / 4);
     std::vector<double> edge(cells);
     double volume = 0, unsigned_volume = 0, target_volume = 0;
     for (Id t = 0; t < cells; ++t) {
-        const Vec3 &a = points[tets[4 * t]], &b = points[tets[4 * t + 1]], &c = points[tets[4 * t + 2]],
-                   &d = points[tets[4 * t + 3]];
+        const Vec3 &a = points[tets[4 * t]], &b = points[tets[4 * t + 1]],
+                   &c = points[tets[4 * t + 2]], &d = points[tets[4 * t + 3]];
         const double v = signed_volume({a, b, c, d});
         volume += v;
         unsigned_volume += std::abs(v);
@@ -151,7 +156,8 @@ std::vector<untangle::TetTarget> sized_tet_targets(const std::vector<Vec3>& poin
 
 TetOptimization optimize_tet_mesh(TetMesh& mesh, const std::vector<VertexKind>& kinds,
                                   const BoundaryGeometry& boundary, const SizingFunction& size,
-                                  const untangle::UntangleOptions& options, const Reweighting& reweighting) {
+                                  const untangle::UntangleOptions& options,
+                                  const Reweighting& reweighting) {
     untangle::Problem p;
     p.kinds = kinds;
     p.points = mesh.points;
@@ -164,7 +170,8 @@ TetOptimization optimize_tet_mesh(TetMesh& mesh, const std::vector<VertexKind>& 
         total_edge += std::cbrt(6 * std::sqrt(2.0) * p.targets[t].weight);  // the target's edge
     }
     p.length_scale = cells > 0 ? total_edge / double(cells) : 1;
-    for (size_t v = 0; v < p.points.size(); ++v) p.points[v] = boundary.place(p.points[v], kinds[v]);
+    for (size_t v = 0; v < p.points.size(); ++v)
+        p.points[v] = boundary.place(p.points[v], kinds[v]);
     boundary.constrain(p);
 
     TetOptimization result;
@@ -185,7 +192,8 @@ TetOptimization optimize_tet_mesh(TetMesh& mesh, const std::vector<VertexKind>& 
             r.inverted_before = result.solve.inverted_before;
             r.min_det_before = result.solve.min_det_before;
         }
-        r.history.insert(r.history.begin(), result.solve.history.begin(), result.solve.history.end());
+        r.history.insert(r.history.begin(), result.solve.history.begin(),
+                         result.solve.history.end());
         r.seconds += result.solve.seconds;
         result.solve = std::move(r);
     }
@@ -226,9 +234,11 @@ TetOptimization optimize_tet_mesh(TetMesh& mesh, const std::vector<VertexKind>& 
     mesh.points = p.points;
     for (size_t v = 0; v < kinds.size(); ++v) {
         if (kinds[v] == VertexKind::interior || kinds[v] == VertexKind::fixed) continue;
-        result.max_surface_distance = std::max(result.max_surface_distance, boundary.surface_distance(mesh.points[v]));
+        result.max_surface_distance =
+            std::max(result.max_surface_distance, boundary.surface_distance(mesh.points[v]));
         if (kinds[v] != VertexKind::slip)
-            result.max_crease_distance = std::max(result.max_crease_distance, boundary.crease_distance(mesh.points[v]));
+            result.max_crease_distance =
+                std::max(result.max_crease_distance, boundary.crease_distance(mesh.points[v]));
     }
     return result;
 }
@@ -269,13 +279,15 @@ struct HeldOptimization {
     Id held = 0;  // vertices at CGAL's places (held, or moved back)
 };
 
-HeldOptimization optimize_where_better(const PlacedTetMesh& cgal, double bound, const BoundaryGeometry& boundary,
-                                       const SizingFunction& size, const TetCaseOptions& options) {
+HeldOptimization optimize_where_better(const PlacedTetMesh& cgal, double bound,
+                                       const BoundaryGeometry& boundary, const SizingFunction& size,
+                                       const TetCaseOptions& options) {
     HeldOptimization r;
     std::vector<VertexKind> kinds = kinds_from_dimensions(cgal.dimension);
     const auto optimize = [&] {
         r.mesh = cgal.mesh;
-        r.optimization = optimize_tet_mesh(r.mesh, kinds, boundary, size, options.untangle, options.reweighting);
+        r.optimization =
+            optimize_tet_mesh(r.mesh, kinds, boundary, size, options.untangle, options.reweighting);
     };
     optimize();
     for (int round = 0; round < 4 && r.optimization.solve.inverted_after == 0; ++round) {
@@ -284,14 +296,18 @@ HeldOptimization optimize_where_better(const PlacedTetMesh& cgal, double bound, 
             const auto angles = dihedral_angles(tet_corners(r.mesh, t));
             if (*std::min_element(angles.begin(), angles.end()) >= bound) continue;
             for (int k = 0; k < 4; ++k)
-                if (kinds[r.mesh.node(t, k)] != VertexKind::fixed) kinds[r.mesh.node(t, k)] = VertexKind::fixed, ++newly;
+                if (kinds[r.mesh.node(t, k)] != VertexKind::fixed)
+                    kinds[r.mesh.node(t, k)] = VertexKind::fixed, ++newly;
         }
         if (newly == 0) break;
         optimize();
     }
-    if (r.optimization.solve.inverted_after > 0) r.mesh = cgal.mesh;
-    else keep_fallback_where_worse(cgal.mesh, r.mesh, bound);
-    for (size_t v = 0; v < r.mesh.points.size(); ++v) r.held += r.mesh.points[v] == cgal.mesh.points[v];
+    if (r.optimization.solve.inverted_after > 0)
+        r.mesh = cgal.mesh;
+    else
+        keep_fallback_where_worse(cgal.mesh, r.mesh, bound);
+    for (size_t v = 0; v < r.mesh.points.size(); ++v)
+        r.held += r.mesh.points[v] == cgal.mesh.points[v];
     return r;
 }
 
@@ -304,24 +320,28 @@ struct Improved {
 
 // `start` with its boundary caps removed, optimized (optimize_tet_mesh), then cycles of flips
 // and the optimization again, each kept while it raises the smallest dihedral angle.
-Improved improve_tet_mesh(const PlacedTetMesh& start, const BoundaryGeometry& boundary, const SizingFunction& size,
-                          const TetCaseOptions& options, std::ostream& log) {
+Improved improve_tet_mesh(const PlacedTetMesh& start, const BoundaryGeometry& boundary,
+                          const SizingFunction& size, const TetCaseOptions& options,
+                          std::ostream& log) {
     Improved r;
     PlacedTetMesh work = start;
     r.caps_removed = options.cap_degrees > 0 ? remove_boundary_caps(work, options.cap_degrees) : 0;
     log << fmt::format("boundary caps removed: {}\n", r.caps_removed) << std::flush;
     r.mesh = std::move(work.mesh);
     const std::vector<VertexKind> kinds = kinds_from_dimensions(work.dimension);
-    r.optimization = optimize_tet_mesh(r.mesh, kinds, boundary, size, options.untangle, options.reweighting);
+    r.optimization =
+        optimize_tet_mesh(r.mesh, kinds, boundary, size, options.untangle, options.reweighting);
     // Flips where moving points is not enough, then the points again; kept while it helps.
-    for (int cycle = 0; cycle < options.flip_cycles && r.optimization.solve.inverted_after == 0; ++cycle) {
+    for (int cycle = 0; cycle < options.flip_cycles && r.optimization.solve.inverted_after == 0;
+         ++cycle) {
         const TetMesh before = r.mesh;
         const double before_angle = measure_tet_quality(before).min_dihedral;
         const FlipResult f = improve_by_flips(r.mesh, options.flip_degrees);
         if (f.edge_removals + f.flips_23 == 0) break;
         const TetOptimization again =
             optimize_tet_mesh(r.mesh, kinds, boundary, size, options.untangle, options.reweighting);
-        if (again.solve.inverted_after > 0 || measure_tet_quality(r.mesh).min_dihedral <= before_angle) {
+        if (again.solve.inverted_after > 0 ||
+            measure_tet_quality(r.mesh).min_dihedral <= before_angle) {
             r.mesh = before;
             break;
         }
@@ -329,12 +349,13 @@ Improved improve_tet_mesh(const PlacedTetMesh& start, const BoundaryGeometry& bo
         r.edge_removals += f.edge_removals;
         r.optimization.max_surface_distance = again.max_surface_distance;
         r.optimization.max_crease_distance = again.max_crease_distance;
-        r.optimization.solve.history.insert(r.optimization.solve.history.end(), again.solve.history.begin(),
-                                            again.solve.history.end());
+        r.optimization.solve.history.insert(r.optimization.solve.history.end(),
+                                            again.solve.history.begin(), again.solve.history.end());
         r.optimization.solve.seconds += again.solve.seconds;
         r.optimization.solve.min_det_after = again.solve.min_det_after;
         r.optimization.solve.energy_after = again.solve.energy_after;
-        log << fmt::format("flips: {} edge removals, {} 2-3\n", f.edge_removals, f.flips_23) << std::flush;
+        log << fmt::format("flips: {} edge removals, {} 2-3\n", f.edge_removals, f.flips_23)
+            << std::flush;
     }
     return r;
 }
@@ -343,7 +364,8 @@ Improved improve_tet_mesh(const PlacedTetMesh& start, const BoundaryGeometry& bo
 
 TetCaseResult run_tet_case(const Case& c, const TetCaseOptions& options, std::ostream& log) {
     if (c.domain != "interior")
-        throw InputError(c.path + ": domain: tetmesh meshes the body's interior (\"domain\": \"interior\")");
+        throw InputError(c.path +
+                         ": domain: tetmesh meshes the body's interior (\"domain\": \"interior\")");
     TetCaseResult r;
     const std::shared_ptr<const ImplicitFunction> body = make_body(c.geometry);
     const TetSizes sizes = tet_sizes(c, *body);
@@ -354,7 +376,8 @@ TetCaseResult run_tet_case(const Case& c, const TetCaseOptions& options, std::os
     auto start = std::chrono::steady_clock::now();
     TetMeshOptions mesh_options;
     mesh_options.size = size;
-    mesh_options.facet_distance = c.tet_mesh.facet_distance > 0 ? c.tet_mesh.facet_distance : 0.1 * sizes.wall;
+    mesh_options.facet_distance =
+        c.tet_mesh.facet_distance > 0 ? c.tet_mesh.facet_distance : 0.1 * sizes.wall;
     CreaseCurves creases = body_creases(c, *body, 0.5 * sizes.wall);
     r.crease_polylines = Id(creases.polylines.size());
     r.corners = Id(creases.corners.size());
@@ -364,14 +387,14 @@ TetCaseResult run_tet_case(const Case& c, const TetCaseOptions& options, std::os
     mesh_options.cgal_sliver_bound = options.cgal_sliver_bound;
     mesh_options.cgal_time_limit = options.cgal_time_limit;
     r.seconds_features = elapsed(start);
-    log << fmt::format("creases: {} polylines, {} corners ({:.2f} s)\n", r.crease_polylines, r.corners,
-                       r.seconds_features)
+    log << fmt::format("creases: {} polylines, {} corners ({:.2f} s)\n", r.crease_polylines,
+                       r.corners, r.seconds_features)
         << std::flush;
 
     r.generation = generate_tet_mesh(*body, mesh_options);
     const PlacedTetMesh& refined = r.generation.refined;
-    log << fmt::format("Delaunay refinement: {} tets, {} points ({:.2f} s)\n", refined.mesh.num_cells(),
-                       refined.mesh.points.size(), r.generation.seconds);
+    log << fmt::format("Delaunay refinement: {} tets, {} points ({:.2f} s)\n",
+                       refined.mesh.num_cells(), refined.mesh.points.size(), r.generation.seconds);
     if (r.generation.cgal_optimized)
         log << fmt::format("CGAL perturb + exude: {:.2f} s\n", r.generation.cgal_seconds);
     log << std::flush;
@@ -381,8 +404,8 @@ TetCaseResult run_tet_case(const Case& c, const TetCaseOptions& options, std::os
     r.refined_surface_distance = max_placed_distance(refined.mesh, refined.dimension, boundary);
     if (r.generation.cgal_optimized) {
         r.cgal = measure_tet_quality(r.generation.cgal_optimized->mesh);
-        r.cgal_surface_distance =
-            max_placed_distance(r.generation.cgal_optimized->mesh, r.generation.cgal_optimized->dimension, boundary);
+        r.cgal_surface_distance = max_placed_distance(
+            r.generation.cgal_optimized->mesh, r.generation.cgal_optimized->dimension, boundary);
     }
 
     start = std::chrono::steady_clock::now();
@@ -394,19 +417,23 @@ TetCaseResult run_tet_case(const Case& c, const TetCaseOptions& options, std::os
     if (kept_quality.slivers > 0 || (r.cgal && r.cgal->min_dihedral > kept_quality.min_dihedral)) {
         const double ours = kept_quality.min_dihedral;
         if (!r.generation.cgal_optimized) {
-            log << fmt::format("{} slivers left (smallest dihedral angle {:.2f} degrees): CGAL's perturb + exude "
-                               "of the refined mesh, to start from\n",
-                               kept_quality.slivers, ours)
+            log << fmt::format(
+                       "{} slivers left (smallest dihedral angle {:.2f} degrees): CGAL's perturb + "
+                       "exude "
+                       "of the refined mesh, to start from\n",
+                       kept_quality.slivers, ours)
                 << std::flush;
             mesh_options.cgal_sliver_removal = true;
             TetMeshGeneration again = generate_tet_mesh(*body, mesh_options);
             r.generation.cgal_optimized = std::move(again.cgal_optimized);
             r.generation.cgal_seconds = again.cgal_seconds;
             r.cgal = measure_tet_quality(r.generation.cgal_optimized->mesh);
-            r.cgal_surface_distance = max_placed_distance(r.generation.cgal_optimized->mesh,
-                                                          r.generation.cgal_optimized->dimension, boundary);
+            r.cgal_surface_distance =
+                max_placed_distance(r.generation.cgal_optimized->mesh,
+                                    r.generation.cgal_optimized->dimension, boundary);
         }
-        Improved from_cgal = improve_tet_mesh(*r.generation.cgal_optimized, boundary, size, options, log);
+        Improved from_cgal =
+            improve_tet_mesh(*r.generation.cgal_optimized, boundary, size, options, log);
         const TetQualityReport from_cgal_quality = measure_tet_quality(from_cgal.mesh);
         const double from_cgal_angle = from_cgal_quality.min_dihedral;
         if (from_cgal_angle > ours && from_cgal_angle >= r.cgal->min_dihedral) {
@@ -419,17 +446,22 @@ TetCaseResult run_tet_case(const Case& c, const TetCaseOptions& options, std::os
             // The bound: CGAL's smallest angle, and never one that leaves a sliver.
             const double bound = std::max(r.cgal->min_dihedral, r.cgal->sliver_degrees);
             HeldOptimization merged = optimize_where_better(cgal, bound, boundary, size, options);
-            const double merged_distance = max_placed_distance(merged.mesh, cgal.dimension, boundary);
+            const double merged_distance =
+                max_placed_distance(merged.mesh, cgal.dimension, boundary);
             const TetQualityReport merged_quality = measure_tet_quality(merged.mesh);
             kept.caps_removed = kept.flips_23 = kept.edge_removals = 0;
-            kept.optimization.max_crease_distance = std::numeric_limits<double>::quiet_NaN();  // not measured
+            kept.optimization.max_crease_distance =
+                std::numeric_limits<double>::quiet_NaN();  // not measured
             const Id vertices = Id(cgal.mesh.points.size());
-            log << fmt::format("CGAL's mesh optimized, {} of its {} vertices held at their places: smallest angle "
-                               "{:.2f}, mean smallest {:.2f} degrees (CGAL's {:.2f}), {} slivers\n",
-                               merged.held, vertices, merged_quality.min_dihedral, merged_quality.mean_min_dihedral,
-                               r.cgal->mean_min_dihedral, merged_quality.slivers);
+            log << fmt::format(
+                "CGAL's mesh optimized, {} of its {} vertices held at their places: smallest angle "
+                "{:.2f}, mean smallest {:.2f} degrees (CGAL's {:.2f}), {} slivers\n",
+                merged.held, vertices, merged_quality.min_dihedral,
+                merged_quality.mean_min_dihedral, r.cgal->mean_min_dihedral,
+                merged_quality.slivers);
             if (merged.held < vertices && merged_quality.inverted == 0 &&
-                merged_quality.min_dihedral >= r.cgal->min_dihedral && merged_quality.slivers <= r.cgal->slivers &&
+                merged_quality.min_dihedral >= r.cgal->min_dihedral &&
+                merged_quality.slivers <= r.cgal->slivers &&
                 merged_quality.mean_min_dihedral > r.cgal->mean_min_dihedral &&
                 merged_distance <= r.cgal_surface_distance + 1e-9 * r.wall_size) {
                 r.start = "CGAL's, optimized";
@@ -445,9 +477,11 @@ TetCaseResult run_tet_case(const Case& c, const TetCaseOptions& options, std::os
                 kept_quality = *r.cgal;
             }
         }
-        log << fmt::format("smallest dihedral angle: variational {:.2f}, CGAL perturb+exude {:.2f}, variational "
-                           "from CGAL's {:.2f} degrees: kept {} ({:.2f})\n",
-                           ours, r.cgal->min_dihedral, from_cgal_angle, r.start, kept_quality.min_dihedral)
+        log << fmt::format(
+                   "smallest dihedral angle: variational {:.2f}, CGAL perturb+exude {:.2f}, "
+                   "variational "
+                   "from CGAL's {:.2f} degrees: kept {} ({:.2f})\n",
+                   ours, r.cgal->min_dihedral, from_cgal_angle, r.start, kept_quality.min_dihedral)
             << std::flush;
     }
     r.mesh = std::move(kept.mesh);
@@ -462,13 +496,13 @@ TetCaseResult run_tet_case(const Case& c, const TetCaseOptions& options, std::os
 
 std::string format_tet_comparison(const TetCaseResult& r) {
     const double h = r.wall_size;
-    std::vector<TetQualityColumn> columns = {
-        {"refined", &r.refined, r.refined_surface_distance / h, r.generation.seconds, std::nullopt}};
+    std::vector<TetQualityColumn> columns = {{"refined", &r.refined, r.refined_surface_distance / h,
+                                              r.generation.seconds, std::nullopt}};
     if (r.cgal)
-        columns.push_back({"CGAL perturb+exude", &*r.cgal, r.cgal_surface_distance / h, r.generation.cgal_seconds,
-                           std::nullopt});
-    columns.push_back({r.start, &r.optimized, r.optimization.max_surface_distance / h, r.seconds_optimize,
-                       r.optimization.max_crease_distance / h});
+        columns.push_back({"CGAL perturb+exude", &*r.cgal, r.cgal_surface_distance / h,
+                           r.generation.cgal_seconds, std::nullopt});
+    columns.push_back({r.start, &r.optimized, r.optimization.max_surface_distance / h,
+                       r.seconds_optimize, r.optimization.max_crease_distance / h});
     return format_tet_quality_table(columns);
 }
 

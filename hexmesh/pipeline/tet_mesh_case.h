@@ -32,21 +32,24 @@ TetSizes tet_sizes(const Case& c, const ImplicitFunction& body);
 
 // Where the boundary vertices of a mesh of the case's body slide: the triangles of a surface
 // file (creases by tet_mesh.feature_angle), else the implicit body.
-BoundaryGeometry case_boundary(const Case& c, std::shared_ptr<const ImplicitFunction> body, double length_scale);
+BoundaryGeometry case_boundary(const Case& c, std::shared_ptr<const ImplicitFunction> body,
+                               double length_scale);
 
 // Vertex kinds from CGAL's dimensions (3 interior, 2 slip, 1 crease, 0 corner).
 std::vector<VertexKind> kinds_from_dimensions(const std::vector<std::int8_t>& dimension);
 
 // Vertex kinds from the mesh's boundary faces (faces of one tet): interior inside, else as
 // boundary.kind_at(x, reach) says.
-std::vector<VertexKind> boundary_kinds(const TetMesh& mesh, const BoundaryGeometry& boundary, double reach);
+std::vector<VertexKind> boundary_kinds(const TetMesh& mesh, const BoundaryGeometry& boundary,
+                                       double reach);
 
 // Regular targets (DESIGN §4: v0 from the sizing function) whose edges follow `size` at each
 // tet's centroid, all scaled by one factor so that their volumes add up to the mesh's signed
 // volume: the domain's volume, also while the mesh is tangled (its unsigned volume if the
 // signed one is not positive). tets: 4 point ids per tet.
-std::vector<untangle::TetTarget> sized_tet_targets(const std::vector<Vec3>& points, const std::vector<Id>& tets,
-                                                  const SizingFunction& size);
+std::vector<untangle::TetTarget> sized_tet_targets(const std::vector<Vec3>& points,
+                                                   const std::vector<Id>& tets,
+                                                   const SizingFunction& size);
 
 // The largest distance of the mesh's boundary points (on faces of one tet) to `boundary`.
 double max_boundary_distance(const TetMesh& mesh, const BoundaryGeometry& boundary);
@@ -74,7 +77,8 @@ untangle::UntangleOptions tet_untangle_options();
 // kinds: one per point.
 TetOptimization optimize_tet_mesh(TetMesh& mesh, const std::vector<VertexKind>& kinds,
                                   const BoundaryGeometry& boundary, const SizingFunction& size,
-                                  const untangle::UntangleOptions& options, const Reweighting& reweighting = {});
+                                  const untangle::UntangleOptions& options,
+                                  const Reweighting& reweighting = {});
 
 // Moves back to `fallback`'s positions the vertices of `optimized` (a mesh of the same tets
 // as `fallback`, its vertices moved) wherever it is worse: the four vertices of every tet whose
@@ -120,8 +124,9 @@ struct TetCaseResult {
 
 // The whole job; one progress line per phase to `log`. The refined mesh is optimized; where
 // slivers remain or CGAL's perturb + exude of it (computed then if compare_cgal did not) has
-// a larger smallest dihedral angle, that mesh optimized too, and the best of the three kept. Throws InputError for a case it
-// cannot mesh (an exterior domain, a wall cell size too small to trace the creases at).
+// a larger smallest dihedral angle, that mesh optimized too, and the best of the three kept. Throws
+// InputError for a case it cannot mesh (an exterior domain, a wall cell size too small to trace the
+// creases at).
 TetCaseResult run_tet_case(const Case& c, const TetCaseOptions& options, std::ostream& log);
 
 // The comparison table: refined, CGAL perturb + exude (when run), variational.

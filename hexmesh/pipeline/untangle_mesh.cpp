@@ -1,8 +1,9 @@
 #include "hexmesh/pipeline/untangle_mesh.h"
 
+#include <fmt/format.h>
+
 #include <Eigen/Geometry>
 #include <algorithm>
-#include <fmt/format.h>
 #include <map>
 #include <memory>
 
@@ -42,7 +43,8 @@ TriangleSurface triangulate(const VolumeMesh& mesh, const std::vector<std::vecto
     TriangleSurface s;
     s.points = mesh.points;
     for (const auto& f : faces)
-        for (size_t k = 1; k + 1 < f.size(); ++k) s.triangles.push_back({int(f[0]), int(f[k]), int(f[k + 1])});
+        for (size_t k = 1; k + 1 < f.size(); ++k)
+            s.triangles.push_back({int(f[0]), int(f[k]), int(f[k + 1])});
     return s;
 }
 
@@ -55,12 +57,14 @@ double mean_edge_length(const Mat34& y) {
 
 // Box-corner targets for the 8 corner tets of every hex (cube of the hex's mean edge length),
 // regular targets for tets (of the tet's mean edge length).
-void add_elements(const VolumeMesh& mesh, bool uniform, untangle::Problem& p, double& total_edge, Id& edges) {
+void add_elements(const VolumeMesh& mesh, bool uniform, untangle::Problem& p, double& total_edge,
+                  Id& edges) {
     std::vector<double> size(mesh.num_hexes());
     for (Id c = 0; c < mesh.num_hexes(); ++c) {
         double h = 0;
         for (const auto& e : hex_edges)
-            h += (mesh.points[mesh.hexes[8 * c + e[0]]] - mesh.points[mesh.hexes[8 * c + e[1]]]).norm();
+            h += (mesh.points[mesh.hexes[8 * c + e[0]]] - mesh.points[mesh.hexes[8 * c + e[1]]])
+                     .norm();
         total_edge += h;
         edges += 12;
         size[c] = h / 12;
@@ -77,7 +81,8 @@ void add_elements(const VolumeMesh& mesh, bool uniform, untangle::Problem& p, do
         const double h = mean_edge_length(y);
         total_edge += 6 * h;
         edges += 6;
-        p.tets.push_back({mesh.tets[4 * c], mesh.tets[4 * c + 1], mesh.tets[4 * c + 2], mesh.tets[4 * c + 3]});
+        p.tets.push_back(
+            {mesh.tets[4 * c], mesh.tets[4 * c + 1], mesh.tets[4 * c + 2], mesh.tets[4 * c + 3]});
         p.targets.push_back(untangle::regular_tet_target(h));
     }
 }
@@ -116,10 +121,11 @@ UntangleMeshResult untangle_volume_mesh(VolumeMesh& mesh, const UntangleMeshOpti
     UntangleMeshResult result;
     std::optional<BoundaryGeometry> geometry;
     if (options.boundary == BoundaryMode::slip) {
-        geometry = options.geometry ? *options.geometry
-                                    : BoundaryGeometry::triangles(options.surface ? *options.surface
-                                                                                  : triangulate(mesh, faces),
-                                                                  options.feature_angle_degrees, p.length_scale);
+        geometry = options.geometry
+                       ? *options.geometry
+                       : BoundaryGeometry::triangles(
+                             options.surface ? *options.surface : triangulate(mesh, faces),
+                             options.feature_angle_degrees, p.length_scale);
         // Boundary vertices on a crease slide along it; at a corner they stay, exactly on it.
         // A given geometry (an implicit body) is sought further: a tet mesher lays crease
         // points on chords of curved creases, some 1e-2 h off them.
@@ -127,7 +133,8 @@ UntangleMeshResult untangle_volume_mesh(VolumeMesh& mesh, const UntangleMeshOpti
         for (size_t v = 0; v < mesh.points.size(); ++v) {
             if (!on_boundary[v]) continue;
             p.kinds[v] = geometry->kind_at(mesh.points[v], near);
-            if (p.kinds[v] == VertexKind::corner) p.points[v] = geometry->place(p.points[v], VertexKind::corner);
+            if (p.kinds[v] == VertexKind::corner)
+                p.points[v] = geometry->place(p.points[v], VertexKind::corner);
         }
         geometry->constrain(p);
     } else {
@@ -136,7 +143,7 @@ UntangleMeshResult untangle_volume_mesh(VolumeMesh& mesh, const UntangleMeshOpti
     }
     if (!mesh.fixed.empty())
         for (size_t v = 0; v < mesh.points.size(); ++v)
-            p.kinds[v] = mesh.fixed[v] ? VertexKind::fixed
+            p.kinds[v] = mesh.fixed[v]                             ? VertexKind::fixed
                          : options.boundary == BoundaryMode::fixed ? VertexKind::interior
                                                                    : p.kinds[v];
     for (VertexKind k : p.kinds) {
@@ -157,14 +164,16 @@ UntangleMeshResult untangle_volume_mesh(VolumeMesh& mesh, const UntangleMeshOpti
         untangle::UntangleOptions first = options.untangle;
         first.max_optimize_iterations = 0;
         first.unrepairable = Id(find_blocked(mesh, held).size());
-        first.stall_iterations = std::min(first.stall_iterations, 3);  // a start: slip does the rest
+        first.stall_iterations =
+            std::min(first.stall_iterations, 3);  // a start: slip does the rest
         const untangle::UntangleResult r = untangle::untangle_and_optimize(held, first);
         p.points = held.points;
         result.solve = untangle::untangle_and_optimize(p, options.untangle);
         result.solve.inverted_before = r.inverted_before;
         result.solve.min_det_before = r.min_det_before;
         result.solve.seconds += r.seconds;
-        result.solve.history.insert(result.solve.history.begin(), r.history.begin(), r.history.end());
+        result.solve.history.insert(result.solve.history.begin(), r.history.begin(),
+                                    r.history.end());
     } else {
         untangle::UntangleOptions o = options.untangle;
         o.unrepairable = Id(result.blocked.size());
@@ -175,8 +184,8 @@ UntangleMeshResult untangle_volume_mesh(VolumeMesh& mesh, const UntangleMeshOpti
     if (geometry)
         for (size_t v = 0; v < mesh.points.size(); ++v)
             if (on_boundary[v] && (mesh.fixed.empty() || !mesh.fixed[v]))
-                result.max_surface_distance =
-                    std::max(result.max_surface_distance, geometry->surface_distance(mesh.points[v]));
+                result.max_surface_distance = std::max(result.max_surface_distance,
+                                                       geometry->surface_distance(mesh.points[v]));
     return result;
 }
 
@@ -184,7 +193,8 @@ std::string describe_blocked(const std::vector<BlockedElement>& blocked) {
     std::string out;
     for (const BlockedElement& b : blocked)
         out += fmt::format(
-            "cell {} corner {} at ({:.6g}, {:.6g}, {:.6g}): its corner tet is inverted and all four "
+            "cell {} corner {} at ({:.6g}, {:.6g}, {:.6g}): its corner tet is inverted and all "
+            "four "
             "of its vertices are fixed, so no fixed-boundary method can repair it; use "
             "--boundary slip\n",
             b.cell, b.corner, b.position.x(), b.position.y(), b.position.z());

@@ -45,7 +45,7 @@ struct BlockedElement {
 struct UntangleMeshResult {
     untangle::UntangleResult solve;
     std::optional<QualityReport> hex_before, hex_after;  // for hex meshes
-    std::vector<BlockedElement> blocked;                  // found before solving
+    std::vector<BlockedElement> blocked;                 // found before solving
     Id slip_vertices = 0, feature_vertices = 0, fixed_vertices = 0;
     double max_surface_distance = 0;  // of slip/feature vertices to the surface, after
 };

@@ -17,7 +17,9 @@ namespace {
 
 constexpr int star_rays = 1000;
 
-std::string point(const Vec3& x) { return fmt::format("({:.4g}, {:.4g}, {:.4g})", x.x(), x.y(), x.z()); }
+std::string point(const Vec3& x) {
+    return fmt::format("({:.4g}, {:.4g}, {:.4g})", x.x(), x.y(), x.z());
+}
 
 // Whether F = c is star-shaped around `centre` (rays sampled every `step`, angles up to
 // max_angle_deg).
@@ -40,7 +42,8 @@ WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
     std::string what = c.grid.center ? "grid.center" : "the centre of its bounds";
     // Outside a surface file's body the centre only needs to see the potential's far level.
     if (c.grid.center && (c.domain != "exterior" || !surface) && !(body.value(route.centre) < 0))
-        throw InputError(fmt::format("{}: grid.center {} is not inside the body", c.path, point(route.centre)));
+        throw InputError(
+            fmt::format("{}: grid.center {} is not inside the body", c.path, point(route.centre)));
     if (body.value(route.centre) < 0 && star_shaped(body, 0, route.centre, step, 90)) {
         log << fmt::format("  the body is star-shaped around {} {}: wall placed radially\n", what,
                            point(route.centre));
@@ -50,16 +53,22 @@ WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
     std::optional<ExactDistance> exact;
     if (surface && c.domain != "exterior") exact.emplace(*surface);
     if (c.domain != "exterior" && !c.grid.center) {
-        const auto depth = [&](const Vec3& x) { return exact ? exact->distance(x) : -body.value(x); };
+        const auto depth = [&](const Vec3& x) {
+            return exact ? exact->distance(x) : -body.value(x);
+        };
         const std::optional<Vec3> deepest = deepest_point(body, box.diagonal() / 60, depth);
         if (!deepest)
-            throw InputError(fmt::format("{}: no point of the body is inside it (u < 0 nowhere "
-                                         "on a lattice of a sixtieth of its diagonal)", c.path));
+            throw InputError(
+                fmt::format("{}: no point of the body is inside it (u < 0 nowhere "
+                            "on a lattice of a sixtieth of its diagonal)",
+                            c.path));
         route.centre = *deepest;
         what = "its deepest point";
         if (star_shaped(body, 0, route.centre, step, 90)) {
-            log << fmt::format("  the body is star-shaped around its deepest point {}: wall "
-                               "placed radially\n", point(route.centre));
+            log << fmt::format(
+                "  the body is star-shaped around its deepest point {}: wall "
+                "placed radially\n",
+                point(route.centre));
             return route;
         }
     }
@@ -67,14 +76,17 @@ WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
         // The map onto the sphere takes a surface file: formulas and CSG are placed radially
         // all the same (the first point each ray meets), as a body whose rays cross u = 0 once
         // but a few between the lattice's may be.
-        route.not_star_shaped = fmt::format("the body is not star-shaped around {} {}", what, point(route.centre));
+        route.not_star_shaped =
+            fmt::format("the body is not star-shaped around {} {}", what, point(route.centre));
         log << "  " << route.not_star_shaped
-            << " (a surface file's would be mapped onto the sphere): wall placed radially all the same\n";
+            << " (a surface file's would be mapped onto the sphere): wall placed radially all the "
+               "same\n";
         return route;
     }
     auto start = std::chrono::steady_clock::now();
     const auto since = [&start] {
-        const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const double s =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         start = std::chrono::steady_clock::now();
         return s;
     };
@@ -85,16 +97,18 @@ WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
                            point(route.centre), depth);
     } else {
         auto potential = std::make_shared<ExteriorPotential>(body);
-        log << fmt::format("  the body is not star-shaped around {} {}: exterior potential ({} "
-                           "unknowns, {} iterations, {:.2f} s)\n", what, point(route.centre),
-                           potential->unknowns(), potential->iterations(), since());
+        log << fmt::format(
+            "  the body is not star-shaped around {} {}: exterior potential ({} "
+            "unknowns, {} iterations, {:.2f} s)\n",
+            what, point(route.centre), potential->unknowns(), potential->iterations(), since());
         for (int tenth = 1; tenth <= 9 && route.far_level == 0; ++tenth)
             if (star_shaped(*potential, 0.1 * tenth, route.centre, potential->spacing() / 2, 80))
                 route.far_level = 0.1 * tenth;
         if (route.far_level == 0)
-            throw InputError(fmt::format("{}: no level of the exterior potential is star-shaped "
-                                         "around {}: give grid.center near the middle of the body",
-                                         c.path, point(route.centre)));
+            throw InputError(
+                fmt::format("{}: no level of the exterior potential is star-shaped "
+                            "around {}: give grid.center near the middle of the body",
+                            c.path, point(route.centre)));
         route.potential = std::move(potential);
     }
     SphereMapOptions m;
@@ -103,13 +117,16 @@ WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
         try {
             return map_to_sphere(*surface, m);
         } catch (const std::invalid_argument& e) {
-            throw InputError(fmt::format("{}: the surface cannot be mapped onto the sphere: {}", c.path, e.what()));
+            throw InputError(fmt::format("{}: the surface cannot be mapped onto the sphere: {}",
+                                         c.path, e.what()));
         }
     }();
-    log << fmt::format("  its surface mapped onto the sphere ({} triangles, {} turned over, {:.2f} s)",
-                       map.surface().triangles.size(), map.inverted(), since())
-        << (route.potential ? fmt::format("; lines out to the potential's level {:.1f}\n", route.far_level)
-                            : fmt::format("; core cube of half-size {:.4g}\n", route.core_half->x()));
+    log << fmt::format(
+               "  its surface mapped onto the sphere ({} triangles, {} turned over, {:.2f} s)",
+               map.surface().triangles.size(), map.inverted(), since())
+        << (route.potential
+                ? fmt::format("; lines out to the potential's level {:.1f}\n", route.far_level)
+                : fmt::format("; core cube of half-size {:.4g}\n", route.core_half->x()));
     route.wall = std::make_shared<std::vector<Vec3>>(
         wall_from_sphere_map(aligned_with_body(map, route.centre), cells_per_edge, body));
     route.solver = solver;
@@ -117,7 +134,8 @@ WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
     return route;
 }
 
-WallPaths exterior_paths(const WallRoute& route, const std::vector<Vec3>& wall, int cells_per_edge) {
+WallPaths exterior_paths(const WallRoute& route, const std::vector<Vec3>& wall,
+                         int cells_per_edge) {
     return exterior_paths(*route.potential, wall, route.far_level, cells_per_edge, route.centre,
                           route.solver);
 }

@@ -4,8 +4,8 @@
 
 #include <memory>
 #include <optional>
-#include <string>
 #include <ostream>
+#include <string>
 
 #include "hexmesh/core/implicit_function.h"
 #include "hexmesh/core/triangle_surface.h"

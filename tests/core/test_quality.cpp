@@ -237,7 +237,8 @@ TEST(Quality, TheWorstCellIsNamedWithItsCentre) {
                 grid.points.emplace_back(i, j, k);
             }
     grid.blocks.push_back(block);
-    grid.points[block.node(3, 2, 1)] += Vec3(0.45, 0.4, 0.3);  // shears its 8 cells, (2, 1, 0) worst
+    grid.points[block.node(3, 2, 1)] +=
+        Vec3(0.45, 0.4, 0.3);  // shears its 8 cells, (2, 1, 0) worst
     const HexMesh mesh = to_hex_mesh(grid);
     const std::vector<double> sj = scaled_jacobians(mesh);
     const Id worst = Id(std::min_element(sj.begin(), sj.end()) - sj.begin());
@@ -282,7 +283,8 @@ TEST(SolverValidity, ACellInsideOutAtItsCentreIsRefusedThoughItsCornersArePositi
     EXPECT_FALSE(q.solver_valid());
     EXPECT_EQ(find_refused_cells(mesh), std::vector<Id>{2});
 
-    const QualityReport cubes = measure_quality(tensor_grid(uniform(2, 1.0), uniform(1, 1.0), uniform(1, 1.0)));
+    const QualityReport cubes =
+        measure_quality(tensor_grid(uniform(2, 1.0), uniform(1, 1.0), uniform(1, 1.0)));
     EXPECT_TRUE(cubes.solver_valid());
     EXPECT_EQ(cubes.negative_pyramids + cubes.faces_over_90_deg + cubes.nonpositive_volumes, 0);
 }
@@ -297,7 +299,8 @@ TEST(SolverValidity, TheMarginIsPositiveExactlyWhenTheSolverAcceptsTheCell) {
         std::array<Vec3, 8> p = unit_cube();
         for (Vec3& x : p) x += Vec3(jitter(rng), jitter(rng), jitter(rng));
         const bool accepts = find_refused_cells(single_hex(p)).empty();
-        EXPECT_EQ(solver_margin(p) > 0, accepts) << "trial " << trial << ", margin " << solver_margin(p);
+        EXPECT_EQ(solver_margin(p) > 0, accepts)
+            << "trial " << trial << ", margin " << solver_margin(p);
         ++(accepts ? accepted : refused);
     }
     EXPECT_GT(accepted, 300);

@@ -83,7 +83,8 @@ TEST(TetQuality, FlatAndInvertedTetsScoreZero) {
     EXPECT_NEAR(*std::min_element(a.begin(), a.end()), 0, 1e-12);
     EXPECT_EQ(radius_ratio(flat), 0);
     std::array<Vec3, 4> inverted = regular_tet();
-    if ((inverted[1] - inverted[0]).dot((inverted[2] - inverted[0]).cross(inverted[3] - inverted[0])) > 0)
+    if ((inverted[1] - inverted[0])
+            .dot((inverted[2] - inverted[0]).cross(inverted[3] - inverted[0])) > 0)
         std::swap(inverted[2], inverted[3]);
     EXPECT_EQ(radius_ratio(inverted), 0);
 }
@@ -104,11 +105,15 @@ TEST(TetQuality, AgreesWithNormalsAndVerdictOnRandomTets) {
 
 TEST(TetQuality, MeshReportCountsSliversAndInversions) {
     TetMesh mesh;
-    mesh.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1),
-                   Vec3(1, 1, 0.05), Vec3(0, 0, -1)};
-    mesh.tets = {0, 1, 2, 3,   // right corner: fine
-                 0, 1, 2, 4,   // four corners of a square, one lifted: a sliver (dihedral well below 10 degrees)
-                 0, 2, 1, 3};  // the first one inverted
+    mesh.points = {Vec3(0, 0, 0), Vec3(1, 0, 0),    Vec3(0, 1, 0),
+                   Vec3(0, 0, 1), Vec3(1, 1, 0.05), Vec3(0, 0, -1)};
+    mesh.tets = {
+        0, 1,
+        2, 3,  // right corner: fine
+        0, 1,
+        2, 4,  // four corners of a square, one lifted: a sliver (dihedral well below 10 degrees)
+        0, 2,
+        1, 3};  // the first one inverted
     const TetQualityReport r = measure_tet_quality(mesh);
     EXPECT_EQ(r.cells, 3);
     EXPECT_EQ(r.points, 6);

@@ -1,14 +1,15 @@
 // Runs the hexmesh executable (or any command) and captures its exit code and output.
 #pragma once
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <optional>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "tests/scratch_registry.h"
 

@@ -17,8 +17,8 @@ namespace hexmesh::test_support {
 
 // Writes the closed surface r(d) d (d over unit directions) as a binary STL of 8 level^2
 // triangles, counter-clockwise seen from outside.
-inline void write_star_stl(const std::string& path, const std::function<double(const Vec3&)>& radius,
-                           int level) {
+inline void write_star_stl(const std::string& path,
+                           const std::function<double(const Vec3&)>& radius, int level) {
     auto at = [&](const Vec3& v) {
         const Vec3 d = v.normalized();
         return Vec3(radius(d) * d);
@@ -33,8 +33,10 @@ inline void write_star_stl(const std::string& path, const std::function<double(c
                 };
                 const bool flip = sx * sy * sz < 0;
                 auto add = [&](const Vec3& p, const Vec3& q, const Vec3& r) {
-                    if (flip) triangles.push_back({at(p), at(r), at(q)});
-                    else triangles.push_back({at(p), at(q), at(r)});
+                    if (flip)
+                        triangles.push_back({at(p), at(r), at(q)});
+                    else
+                        triangles.push_back({at(p), at(q), at(r)});
                 };
                 for (int i = 0; i < level; ++i)
                     for (int j = 0; j < level - i; ++j) {
@@ -62,8 +64,8 @@ inline void write_star_stl(const std::string& path, const std::function<double(c
 // A peanut along x: an ellipsoid 1.4 x 0.7 x 0.7 pinched by 30 % at its waist (x = 0), so
 // its surface is concave across the waist while every ray from the origin crosses it once.
 inline double peanut_radius(const Vec3& d) {
-    const double ellipsoid =
-        1 / std::sqrt(std::pow(d.x() / 1.4, 2) + std::pow(d.y() / 0.7, 2) + std::pow(d.z() / 0.7, 2));
+    const double ellipsoid = 1 / std::sqrt(std::pow(d.x() / 1.4, 2) + std::pow(d.y() / 0.7, 2) +
+                                           std::pow(d.z() / 0.7, 2));
     return ellipsoid * (1 - 0.3 * std::exp(-d.x() * d.x() / 0.08));
 }
 

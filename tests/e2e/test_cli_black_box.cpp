@@ -18,13 +18,15 @@ namespace {
 
 struct BlackBoxCase {
     std::string name;
-    std::string case_file;   // relative to the source tree, or "" for a case written by the test
-    double min_sj;           // required minimum scaled Jacobian
+    std::string case_file;  // relative to the source tree, or "" for a case written by the test
+    double min_sj;          // required minimum scaled Jacobian
     double max_orthogonality_deg;
-    bool from_surface;       // geometry from an STL: the Hausdorff distance is reported
+    bool from_surface;  // geometry from an STL: the Hausdorff distance is reported
 };
 
-std::ostream& operator<<(std::ostream& out, const BlackBoxCase& c) { return out << c.name; }
+std::ostream& operator<<(std::ostream& out, const BlackBoxCase& c) {
+    return out << c.name;
+}
 
 // The peanut case: a non-convex STL made here, gridded inside.
 fs::path write_peanut_case() {
@@ -40,7 +42,7 @@ fs::path write_peanut_case() {
 }
 
 class BlackBox : public ::testing::TestWithParam<BlackBoxCase> {
-protected:
+  protected:
     void SetUp() override {
         const BlackBoxCase& c = GetParam();
         out = scratch("black_box_" + c.name);
@@ -67,7 +69,8 @@ TEST_P(BlackBox, GridIsValidAndKeepsTheBoundaryLayer) {
     EXPECT_GE(report.at("min_scaled_jacobian").get<double>(), c.min_sj);
     EXPECT_LT(report.at("max_surface_distance_over_h").get<double>(), 1e-3);
     const json& wall = report.at("wall");
-    EXPECT_GE(wall.at("first_layer_thickness").at("fraction_within_10_percent").get<double>(), 0.95);
+    EXPECT_GE(wall.at("first_layer_thickness").at("fraction_within_10_percent").get<double>(),
+              0.95);
     EXPECT_GE(wall.at("growth_ratio").at("fraction_within_5_percent").get<double>(), 0.95);
     EXPECT_LE(wall.at("orthogonality_deg").at("max").get<double>(), c.max_orthogonality_deg);
     EXPECT_EQ(wall.contains("hausdorff_distance"), c.from_surface);
@@ -85,12 +88,13 @@ TEST_P(BlackBox, GridIsValidAndKeepsTheBoundaryLayer) {
 
     // Second opinion on the same grid (one test per case: ctest runs each test in its own
     // process, and a run takes seconds).
-    const fs::path checker = fs::path(HEXMESH_SOURCE_DIR) / ".." / "shared" / "tools" / "check_grid.py";
+    const fs::path checker =
+        fs::path(HEXMESH_SOURCE_DIR) / ".." / "shared" / "tools" / "check_grid.py";
     if (!fs::exists(checker)) GTEST_SKIP() << "no " << checker << " beside the project";
     if (run_command("/usr/bin/python3 -c 'import vtk'").exit_code != 0)
         GTEST_SKIP() << "python3-vtk9 is not installed";
     const CommandResult check = run_command("/usr/bin/python3 '" + checker.string() + "' '" +
-                                        (out / "grid.vtm").string() + "' --json");
+                                            (out / "grid.vtm").string() + "' --json");
     ASSERT_EQ(check.exit_code, 0) << check.out << check.err;
     const json j = json::parse(check.out);
     EXPECT_EQ(j.at("inverted").get<long>(), 0);
@@ -119,16 +123,19 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(BlackBoxCsg, BoxUnionCylinderIsValidWithItsCreasesCaptured) {
     const fs::path out = scratch("black_box_csg");
     fs::remove_all(out);
-    const CommandResult r = run_hexmesh("run cases/box_cylinder/case.json -o '" + out.string() + "'");
+    const CommandResult r =
+        run_hexmesh("run cases/box_cylinder/case.json -o '" + out.string() + "'");
     ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
     EXPECT_NE(r.out.find("sharp features:"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("grid axis z"), std::string::npos) << r.out;
     EXPECT_EQ(json::parse(read_text(out / "grid.case.json")).at("grid").at("axis"), "z");
     const json q = json::parse(read_text(out / "quality.json"));
     EXPECT_TRUE(q.at("valid").get<bool>());
-    EXPECT_GT(q.at("min_scaled_jacobian").get<double>(), 0.4);  // 0.244 with one core block
+    EXPECT_GT(q.at("min_scaled_jacobian").get<double>(), 0.4);    // 0.244 with one core block
     EXPECT_GT(q.at("mean_scaled_jacobian").get<double>(), 0.92);  // 0.896 with one core block
-    EXPECT_GE(q.at("wall").at("first_layer_thickness").at("fraction_within_10_percent").get<double>(), 0.95);
+    EXPECT_GE(
+        q.at("wall").at("first_layer_thickness").at("fraction_within_10_percent").get<double>(),
+        0.95);
     EXPECT_EQ(r.out.find("the laid layers left inverted cells"), std::string::npos) << r.out;
     fs::remove_all(out);
 }
@@ -201,9 +208,11 @@ TEST(TurnedBox, InsideGetsTheUnturnedBoxsGrid) {
 TEST(BlackBoxExterior, FarFieldAndWallPatchesReachOpenFoam) {
     const fs::path out = scratch("black_box_foam");
     fs::remove_all(out);
-    const CommandResult r = run_hexmesh("run cases/sphere_exterior/case.json -o '" + out.string() + "'");
+    const CommandResult r =
+        run_hexmesh("run cases/sphere_exterior/case.json -o '" + out.string() + "'");
     ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
-    const std::string boundary = read_text(out / "grid_openfoam" / "constant" / "polyMesh" / "boundary");
+    const std::string boundary =
+        read_text(out / "grid_openfoam" / "constant" / "polyMesh" / "boundary");
     EXPECT_NE(boundary.find("wall"), std::string::npos) << boundary;
     EXPECT_NE(boundary.find("farfield"), std::string::npos) << boundary;
     fs::remove_all(out);

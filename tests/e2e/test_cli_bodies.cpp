@@ -6,8 +6,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <nlohmann/json.hpp>
+#include <regex>
 
 #include "cli.h"
 #include "star_surface.h"
@@ -30,7 +30,8 @@ struct Refusal {
 CommandResult run_case_in(const fs::path& dir, const nlohmann::json& c) {
     fs::create_directories(dir);
     std::ofstream(dir / "case.json") << c.dump();
-    return run_hexmesh("run '" + (dir / "case.json").string() + "' -o '" + (dir / "out").string() + "'");
+    return run_hexmesh("run '" + (dir / "case.json").string() + "' -o '" + (dir / "out").string() +
+                       "'");
 }
 
 // The quality.json that run_case_in(dir, ...) wrote.
@@ -59,9 +60,11 @@ void expect_refused_at_once(const Refusal& r, const std::string& message) {
 
 // The independent checker (../shared/tools/check_grid.py) finds no inverted cell in the grid.
 void expect_no_inverted_cell_by_the_checker(const fs::path& grid) {
-    const fs::path checker = fs::path(HEXMESH_SOURCE_DIR) / ".." / "shared" / "tools" / "check_grid.py";
+    const fs::path checker =
+        fs::path(HEXMESH_SOURCE_DIR) / ".." / "shared" / "tools" / "check_grid.py";
     ASSERT_TRUE(fs::exists(checker)) << checker;
-    const CommandResult check = run_command("/usr/bin/python3 '" + checker.string() + "' '" + grid.string() + "' --json");
+    const CommandResult check =
+        run_command("/usr/bin/python3 '" + checker.string() + "' '" + grid.string() + "' --json");
     ASSERT_EQ(check.exit_code, 0) << check.out << check.err;
     EXPECT_EQ(nlohmann::json::parse(check.out).at("inverted").get<long>(), 0);
 }
@@ -72,9 +75,10 @@ TEST(CliBodies, ASurfaceWithAHandleIsRefusedAtOnce) {
     const fs::path file = scratch("torus.stl");
     test::write_stl_binary(file.string(), test::torus_surface(1, 0.3, 48, 24));
     for (const char* domain : {"interior", "exterior"})
-        expect_refused_at_once(run_file(file, domain),
-                            "genus 1: the surface has 1 handle (V - E + F = 0); hexmesh grids bodies "
-                            "without holes through them");
+        expect_refused_at_once(
+            run_file(file, domain),
+            "genus 1: the surface has 1 handle (V - E + F = 0); hexmesh grids bodies "
+            "without holes through them");
 }
 
 TEST(CliBodies, TwoSolidsInOneFileAreRefusedAtOnce) {
@@ -82,18 +86,22 @@ TEST(CliBodies, TwoSolidsInOneFileAreRefusedAtOnce) {
     const TriangleSurface box = test::box_surface(Vec3(2, 2, 2), Vec3(3, 3, 3), 2);
     const int offset = int(two.points.size());
     two.points.insert(two.points.end(), box.points.begin(), box.points.end());
-    for (auto t : box.triangles) two.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+    for (auto t : box.triangles)
+        two.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
     const fs::path file = scratch("two.stl");
     test::write_stl_ascii(file.string(), two);
-    expect_refused_at_once(run_file(file, "exterior"),
-                        "2 separate bodies (the largest has 528 triangles, the next 48): hexmesh "
-                        "grids one closed body");
+    expect_refused_at_once(
+        run_file(file, "exterior"),
+        "2 separate bodies (the largest has 528 triangles, the next 48): hexmesh "
+        "grids one closed body");
 }
 
 TEST(CliBodies, TheSharedBodiesWithHandlesOrTwoSolidsAreRefusedAtOnce) {
     if (!fs::exists(bodies)) GTEST_SKIP() << "shared bodies not beside the project: " << bodies;
-    expect_refused_at_once(run_file(bodies / "knot.off", "exterior"), "genus 1: the surface has 1 handle");
-    expect_refused_at_once(run_file(bodies / "rotor.off", "interior"), "genus 1: the surface has 1 handle");
+    expect_refused_at_once(run_file(bodies / "knot.off", "exterior"),
+                           "genus 1: the surface has 1 handle");
+    expect_refused_at_once(run_file(bodies / "rotor.off", "interior"),
+                           "genus 1: the surface has 1 handle");
     expect_refused_at_once(run_file(bodies / "simpleCar.stl", "exterior"), "2 separate bodies");
 }
 
@@ -118,18 +126,23 @@ TEST(CliBodies, LaidLayersThatWouldCrossAreGivenBackLineByLine) {
     // Written; exit code 3 when the wall cuts the arms' corners (follows_body false).
     ASSERT_TRUE(r.exit_code == 0 || r.exit_code == 3) << r.out << r.err;
     EXPECT_EQ(r.exit_code, quality_in(dir).at("follows_body").get<bool>() ? 0 : 3);
-    EXPECT_NE(r.out.find("wall lines, whose laid cells would cross or fall under half the worst scaled Jacobian "
-                         "before: they keep the joint optimization's"),
-              std::string::npos)
+    EXPECT_NE(
+        r.out.find(
+            "wall lines, whose laid cells would cross or fall under half the worst scaled Jacobian "
+            "before: they keep the joint optimization's"),
+        std::string::npos)
         << r.out;
     EXPECT_EQ(r.out.find("the joint optimization's grid is kept"), std::string::npos) << r.out;
-    EXPECT_TRUE(std::regex_search(r.out, std::regex("cells a solver refuses mended node by node \\(the solver's own "
-                                                    "checks\\): [1-9][0-9]* -> 0,")))
+    EXPECT_TRUE(std::regex_search(
+        r.out, std::regex("cells a solver refuses mended node by node \\(the solver's own "
+                          "checks\\): [1-9][0-9]* -> 0,")))
         << r.out;
     const nlohmann::json q = quality_in(dir);
     EXPECT_TRUE(q.at("valid").get<bool>());
     EXPECT_EQ(q.at("negative_face_pyramids").get<long>(), 0);
-    EXPECT_GE(q.at("wall").at("first_layer_thickness").at("fraction_within_10_percent").get<double>(), 0.70);
+    EXPECT_GE(
+        q.at("wall").at("first_layer_thickness").at("fraction_within_10_percent").get<double>(),
+        0.70);
     expect_no_inverted_cell_by_the_checker(dir / "out" / "grid.vtm");
     fs::remove_all(dir);
 }
@@ -151,25 +164,29 @@ TEST(CliBodies, AGridWhoseWallBridgesAPitIsWrittenWithAWarning) {
                            return 0.5 - depth * std::max(0.0, 1 - angle / (5 * M_PI / 180));
                        },
                        64);
-        return std::pair{dir, run_case_in(dir, {{"geometry", {{"file", (dir / "body.stl").string()}}},
-                                                {"domain", "exterior"},
-                                                {"grid", {{"cells_per_edge", 8}}}})};
+        return std::pair{dir,
+                         run_case_in(dir, {{"geometry", {{"file", (dir / "body.stl").string()}}},
+                                           {"domain", "exterior"},
+                                           {"grid", {{"cells_per_edge", 8}}}})};
     };
     const auto [pitted, r] = run("pit", 0.3);
     ASSERT_EQ(r.exit_code, 3) << r.out << r.err;
-    EXPECT_NE(r.out.find("warning: the grid's wall misses the body by"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("warning: the grid's wall misses the body by"), std::string::npos)
+        << r.out;
     const nlohmann::json q = quality_in(pitted);
     EXPECT_TRUE(q.at("valid").get<bool>());
     EXPECT_FALSE(q.at("follows_body").get<bool>());
     const nlohmann::json& missed = q.at("wall").at("surface_to_wall_in_cells");
     EXPECT_GT(missed.at("max").get<double>(), 0.5);
-    const Vec3 at(missed.at("at")[0].get<double>(), missed.at("at")[1].get<double>(), missed.at("at")[2].get<double>());
+    const Vec3 at(missed.at("at")[0].get<double>(), missed.at("at")[1].get<double>(),
+                  missed.at("at")[2].get<double>());
     EXPECT_LT(at.norm(), 0.4) << at.transpose();  // deep in the pit
     EXPECT_GT(at.normalized().dot(pit), std::cos(5 * M_PI / 180)) << at.transpose();
     EXPECT_GT(missed.at("distance").get<double>(), 0.2);
     EXPECT_TRUE(fs::exists(pitted / "out" / "grid.vtm"));
     // `quality` of the written grid measures it against the case beside it: the same verdict.
-    const CommandResult again = run_hexmesh("quality --json '" + (pitted / "out" / "grid.vtm").string() + "'");
+    const CommandResult again =
+        run_hexmesh("quality --json '" + (pitted / "out" / "grid.vtm").string() + "'");
     ASSERT_EQ(again.exit_code, 0) << again.err;
     const nlohmann::json q2 = nlohmann::json::parse(again.out);
     EXPECT_FALSE(q2.at("follows_body").get<bool>());
@@ -188,16 +205,17 @@ TEST(CliBodies, AGridWhoseWallBridgesAPitIsWrittenWithAWarning) {
 // by the independent checker and by OpenFOAM's checkMesh, and most of the wall has its first
 // layer on target. The quicker ones of the table in bench/RESULTS.md (5-40 s each), and the
 // tripod outside (one to three minutes: its joint optimization leaves one inverted element at
-// the wall, which the boundary layer laid again along the normals frees; the log says so): the part and the U outside are not
-// star-shaped (wall through the sphere map, lines up the exterior potential), the others are
-// around the centre of their bounds. The issue's min scaled
-// Jacobian of 0.2 outside holds for the dragknob only (0.29), so it is not asserted here; the
-// surface's vertices lie up to 0.15-3.6 wall cells from the grid's wall (the wing's trailing
-// edge), and the run says so: exit code 3 and a warning beyond 0.5.
+// the wall, which the boundary layer laid again along the normals frees; the log says so): the part
+// and the U outside are not star-shaped (wall through the sphere map, lines up the exterior
+// potential), the others are around the centre of their bounds. The issue's min scaled Jacobian of
+// 0.2 outside holds for the dragknob only (0.29), so it is not asserted here; the surface's
+// vertices lie up to 0.15-3.6 wall cells from the grid's wall (the wing's trailing edge), and the
+// run says so: exit code 3 and a warning beyond 0.5.
 struct BodyRun {
     const char* body;
     const char* domain;
-    bool follows_body;  // every surface vertex within half a wall cell of the wall (bench/RESULTS.md)
+    bool follows_body;  // every surface vertex within half a wall cell of the wall
+                        // (bench/RESULTS.md)
 };
 
 class FromTheFileAlone : public ::testing::TestWithParam<BodyRun> {};
@@ -206,7 +224,8 @@ TEST_P(FromTheFileAlone, IsValidForTheSolverAndKeepsItsFirstLayer) {
     const BodyRun p = GetParam();
     const fs::path file = bodies / p.body;
     if (!fs::exists(file)) GTEST_SKIP() << "shared bodies not beside the project: " << bodies;
-    const fs::path dir = scratch(std::string("from_file_") + fs::path(p.body).stem().string() + "_" + p.domain);
+    const fs::path dir =
+        scratch(std::string("from_file_") + fs::path(p.body).stem().string() + "_" + p.domain);
     fs::remove_all(dir);
     const CommandResult r = run_case_in(
         dir, {{"geometry", {{"file", file.string()}}},
@@ -219,19 +238,26 @@ TEST_P(FromTheFileAlone, IsValidForTheSolverAndKeepsItsFirstLayer) {
     EXPECT_EQ(follows, p.follows_body) << q.at("wall").at("surface_to_wall_in_cells");
     EXPECT_EQ(q.at("follows_body").get<bool>(), follows);
     EXPECT_EQ(r.exit_code, follows ? 0 : 3) << r.out;
-    EXPECT_EQ(r.out.find("warning: the grid's wall misses the body by") == std::string::npos, follows) << r.out;
+    EXPECT_EQ(r.out.find("warning: the grid's wall misses the body by") == std::string::npos,
+              follows)
+        << r.out;
     EXPECT_TRUE(q.at("valid").get<bool>());
     EXPECT_EQ(r.out.find("boundary layer not laid again"), std::string::npos) << r.out;
     EXPECT_GT(q.at("min_scaled_jacobian").get<double>(), 0);
-    EXPECT_GE(q.at("wall").at("first_layer_thickness").at("fraction_within_10_percent").get<double>(), 0.85);
+    EXPECT_GE(
+        q.at("wall").at("first_layer_thickness").at("fraction_within_10_percent").get<double>(),
+        0.85);
 
     expect_no_inverted_cell_by_the_checker(dir / "out" / "grid.vtm");
 
-    const CommandResult exported = run_hexmesh("export '" + (dir / "out" / "grid.vtm").string() + "' -f openfoam -o '" +
-                                               (dir / "foam").string() + "'");
+    const CommandResult exported =
+        run_hexmesh("export '" + (dir / "out" / "grid.vtm").string() + "' -f openfoam -o '" +
+                    (dir / "foam").string() + "'");
     ASSERT_EQ(exported.exit_code, 0) << exported.out << exported.err;
-    const std::string foam = std::getenv("WM_PROJECT_DIR") ? "" : "WM_PROJECT_DIR=/usr/share/openfoam ";
-    const CommandResult mesh = run_command(foam + "checkMesh -case '" + (dir / "foam").string() + "'");
+    const std::string foam =
+        std::getenv("WM_PROJECT_DIR") ? "" : "WM_PROJECT_DIR=/usr/share/openfoam ";
+    const CommandResult mesh =
+        run_command(foam + "checkMesh -case '" + (dir / "foam").string() + "'");
     EXPECT_NE(mesh.out.find("Mesh OK."), std::string::npos) << mesh.out << mesh.err;
     fs::remove_all(dir);
 }
@@ -241,9 +267,11 @@ INSTANTIATE_TEST_SUITE_P(SharedBodies, FromTheFileAlone,
                                            BodyRun{"dragknob.off", "interior", false},
                                            BodyRun{"tripod.off", "interior", false},
                                            BodyRun{"tripod.off", "exterior", false},
-                                           BodyRun{"cross.off", "interior", true}, BodyRun{"part.off", "exterior", false},
+                                           BodyRun{"cross.off", "interior", true},
+                                           BodyRun{"part.off", "exterior", false},
                                            BodyRun{"u.off", "exterior", false},
                                            BodyRun{"NACA0012.obj", "interior", false}),
                          [](const ::testing::TestParamInfo<BodyRun>& info) {
-                             return fs::path(info.param.body).stem().string() + "_" + info.param.domain;
+                             return fs::path(info.param.body).stem().string() + "_" +
+                                    info.param.domain;
                          });

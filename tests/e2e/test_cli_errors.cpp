@@ -1,6 +1,5 @@
-#include <gtest/gtest.h>
-
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <sys/file.h>
 #include <unistd.h>
 
@@ -101,17 +100,23 @@ TEST(CliErrors, ADistanceFieldTooLargeForTheMachineIsRefusedBeforeItIsBuilt) {
                            "3 0 2 1\n3 1 2 3\n3 4 5 6\n3 5 7 6\n3 0 1 4\n3 1 5 4\n"
                            "3 2 6 3\n3 3 6 7\n3 0 4 2\n3 2 4 6\n3 1 3 5\n3 3 7 5\n";
     const fs::path out = dir / "cube.vdb";
-    CommandResult r = run_hexmesh("sdf '" + cube.string() + "' --resolution 100000 -o '" + out.string() + "'");
+    CommandResult r =
+        run_hexmesh("sdf '" + cube.string() + "' --resolution 100000 -o '" + out.string() + "'");
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_EQ(count_lines(r.err), 1) << r.err;
-    EXPECT_NE(r.err.find(cube.string() + ": a distance field of voxel size 1e-05"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(cube.string() + ": a distance field of voxel size 1e-05"),
+              std::string::npos)
+        << r.err;
     EXPECT_NE(r.err.find(" GB, more than the limit of"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(out));
     // The limit can be set: 1 MB refuses what the default allows.
-    r = run_hexmesh("--max-memory 0.001 sdf '" + cube.string() + "' --resolution 64 -o '" + out.string() + "'");
+    r = run_hexmesh("--max-memory 0.001 sdf '" + cube.string() + "' --resolution 64 -o '" +
+                    out.string() + "'");
     EXPECT_EQ(r.exit_code, 1);
-    EXPECT_NE(r.err.find("more than the limit of 0.001 GB: use a larger voxel size (or --max-memory)"),
-              std::string::npos) << r.err;
+    EXPECT_NE(
+        r.err.find("more than the limit of 0.001 GB: use a larger voxel size (or --max-memory)"),
+        std::string::npos)
+        << r.err;
     EXPECT_FALSE(fs::exists(out));
     r = run_hexmesh("sdf '" + cube.string() + "' --resolution 64 -o '" + out.string() + "'");
     EXPECT_EQ(r.exit_code, 0) << r.err;
@@ -138,28 +143,32 @@ TEST(CliErrors, TwoRunsIntoOneFolderAtOnceOneSucceedsTheOtherIsRefused) {
     fs::create_directories(dir);
     const fs::path out = dir / "out";
     const auto run = [&](const std::string& n) {
-        return std::string("'") + HEXMESH_EXE + "' run cases/sphere/case.json -o '" + out.string() + "' > '" +
-               (dir / (n + ".out")).string() + "' 2> '" + (dir / (n + ".err")).string() + "'; echo $? > '" +
-               (dir / (n + ".rc")).string() + "'";
+        return std::string("'") + HEXMESH_EXE + "' run cases/sphere/case.json -o '" + out.string() +
+               "' > '" + (dir / (n + ".out")).string() + "' 2> '" + (dir / (n + ".err")).string() +
+               "'; echo $? > '" + (dir / (n + ".rc")).string() + "'";
     };
     // The second starts while the first holds the folder (the sphere takes about a second; on
     // a loaded machine the second could otherwise start after the first has finished).
     ASSERT_EQ(std::system(("(" + run("1") + ") &").c_str()), 0);
     const auto waited = [](const auto& ready) {
-        for (int i = 0; i < 6000 && !ready(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        for (int i = 0; i < 6000 && !ready(); ++i)
+            std::this_thread::sleep_for(std::chrono::milliseconds(5));
         return ready();
     };
     ASSERT_TRUE(waited([&] { return folder_locked(out) || fs::exists(dir / "1.rc"); }));
-    ASSERT_FALSE(fs::exists(dir / "1.rc")) << "the first run ended before it was seen holding the folder";
+    ASSERT_FALSE(fs::exists(dir / "1.rc"))
+        << "the first run ended before it was seen holding the folder";
     ASSERT_EQ(std::system(run("2").c_str()), 0);
-    ASSERT_TRUE(waited([&] { return fs::exists(dir / "1.rc") && !read_text(dir / "1.rc").empty(); }));
+    ASSERT_TRUE(
+        waited([&] { return fs::exists(dir / "1.rc") && !read_text(dir / "1.rc").empty(); }));
     const int rc1 = std::stoi(read_text(dir / "1.rc")), rc2 = std::stoi(read_text(dir / "2.rc"));
     EXPECT_EQ(rc1, 0) << read_text(dir / "1.err");
     EXPECT_EQ(rc2, 1);
     const std::string refused = read_text(dir / "2.err");
     EXPECT_EQ(count_lines(refused), 1) << refused;
     EXPECT_NE(refused.find(out.string() + ": another hexmesh process is writing into this folder"),
-              std::string::npos) << refused;
+              std::string::npos)
+        << refused;
     EXPECT_TRUE(fs::exists(out / "grid.vtm"));
     EXPECT_TRUE(fs::exists(out / "quality.json"));
     fs::remove_all(dir);
@@ -179,7 +188,8 @@ TEST(CliErrors, GciRefusesNanAndRatiosNotAboveOneInsteadOfUsingADefault) {
     }
     const CommandResult ok = run_hexmesh("gci 1 1.1 1.3 --ratio32 1.5");
     EXPECT_EQ(ok.exit_code, 0) << ok.err;
-    EXPECT_NE(ok.out.find("refinement ratios r21, r32          2 1.5"), std::string::npos) << ok.out;
+    EXPECT_NE(ok.out.find("refinement ratios r21, r32          2 1.5"), std::string::npos)
+        << ok.out;
 }
 
 TEST(CliErrors, AMeshWhoseFaceIsSharedByThreeCellsIsRefusedNamingTheFile) {
@@ -187,20 +197,26 @@ TEST(CliErrors, AMeshWhoseFaceIsSharedByThreeCellsIsRefusedNamingTheFile) {
     fs::remove_all(dir);
     fs::create_directories(dir);
     const fs::path mesh = dir / "three.vtk";
-    std::string text = "# vtk DataFile Version 3.0\nthree hexes\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 8 double\n";
+    std::string text =
+        "# vtk DataFile Version 3.0\nthree hexes\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 8 "
+        "double\n";
     for (int c = 0; c < 8; ++c)
-        text += std::to_string(c & 1) + " " + std::to_string((c >> 1) & 1) + " " + std::to_string(c >> 2) + "\n";
+        text += std::to_string(c & 1) + " " + std::to_string((c >> 1) & 1) + " " +
+                std::to_string(c >> 2) + "\n";
     text += "CELLS 3 27\n";
     for (int c = 0; c < 3; ++c) text += "8 0 1 3 2 4 5 7 6\n";
     text += "CELL_TYPES 3\n12\n12\n12\n";
     std::ofstream(mesh) << text;
-    for (const std::string& command : {"quality '" + mesh.string() + "'",
-                                       "untangle '" + mesh.string() + "' -o '" + (dir / "out.vtu").string() + "'"}) {
+    for (const std::string& command :
+         {"quality '" + mesh.string() + "'",
+          "untangle '" + mesh.string() + "' -o '" + (dir / "out.vtu").string() + "'"}) {
         const CommandResult r = run_hexmesh(command);
         EXPECT_EQ(r.exit_code, 1) << command;
         EXPECT_EQ(count_lines(r.err), 1) << r.err;
-        EXPECT_NE(r.err.find(mesh.string() + ": a face is shared by more than two cells (cells 0, 1, 2)"),
-                  std::string::npos) << r.err;
+        EXPECT_NE(
+            r.err.find(mesh.string() + ": a face is shared by more than two cells (cells 0, 1, 2)"),
+            std::string::npos)
+            << r.err;
     }
     EXPECT_FALSE(fs::exists(dir / "out.vtu"));
     fs::remove_all(dir);

@@ -2,10 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <regex>
 #include <fstream>
-
 #include <nlohmann/json.hpp>
+#include <regex>
 
 #include "cli.h"
 #include "io/vtk_mesh.h"
@@ -29,7 +28,8 @@ void expect_one_error_line(const CommandResult& r, const std::string& message) {
 TEST(CliGeometry, RunsTheCapsuleSurfaceCase) {
     const fs::path out = scratch("capsule");
     fs::remove_all(out);
-    const CommandResult r = run_hexmesh("run cases/stl_capsule/case.json -o '" + out.string() + "'");
+    const CommandResult r =
+        run_hexmesh("run cases/stl_capsule/case.json -o '" + out.string() + "'");
     EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
     EXPECT_EQ(row_value(r.out, "inverted corner tets"), 0) << r.out;
     EXPECT_TRUE(fs::exists(out / "grid.vtm"));
@@ -76,8 +76,9 @@ TEST(CliGeometry, StlBoxEdgesAndCornersBecomeGridLines) {
     };
     auto run = [&](const std::string& name, const std::string& grid, const std::string& extra) {
         std::ofstream(dir / (name + ".json"))
-            << R"({"geometry": {"file": "box.stl", "voxel_size": 0.02)" << extra << "}, \"grid\": "
-            << grid << R"(, "boundary_layer": {"first_height": 0.01, "growth_ratio": 1.2, "layers": 3}})";
+            << R"({"geometry": {"file": "box.stl", "voxel_size": 0.02)" << extra
+            << "}, \"grid\": " << grid
+            << R"(, "boundary_layer": {"first_height": 0.01, "growth_ratio": 1.2, "layers": 3}})";
         return run_hexmesh("run '" + (dir / (name + ".json")).string() + "' -o '" +
                            (dir / name).string() + "'");
     };
@@ -85,9 +86,10 @@ TEST(CliGeometry, StlBoxEdgesAndCornersBecomeGridLines) {
         std::string name, grid;
         Id edge_nodes;  // grid nodes on the box's edges, corners included
     };
-    for (const Expect& e : {Expect{"single", R"({"topology": "single-block", "cells": [12, 8, 10]})",
-                                   4 * (11 + 7 + 9) + 8},
-                            Expect{"o_h", R"({"cells_per_edge": 12, "wall_cells": 6})", 4 * 3 * 11 + 8}}) {
+    for (const Expect& e :
+         {Expect{"single", R"({"topology": "single-block", "cells": [12, 8, 10]})",
+                 4 * (11 + 7 + 9) + 8},
+          Expect{"o_h", R"({"cells_per_edge": 12, "wall_cells": 6})", 4 * 3 * 11 + 8}}) {
         SCOPED_TRACE(e.name);
         const CommandResult r = run(e.name, e.grid, "");
         ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
@@ -99,28 +101,29 @@ TEST(CliGeometry, StlBoxEdgesAndCornersBecomeGridLines) {
             read_vtk_mesh((dir / e.name / (e.name == "single" ? "grid.vts" : "grid.vtm")).string());
         std::vector<Vec3> on_edges;  // distinct points: block interfaces repeat nodes in a .vtm
         for (const Vec3& p : mesh.points)
-            if (edge_distance(p) < 1e-7 && std::none_of(on_edges.begin(), on_edges.end(), [&](const Vec3& o) {
-                    return (o - p).norm() < 1e-9;
-                }))
+            if (edge_distance(p) < 1e-7 &&
+                std::none_of(on_edges.begin(), on_edges.end(),
+                             [&](const Vec3& o) { return (o - p).norm() < 1e-9; }))
                 on_edges.push_back(p);
         EXPECT_EQ(Id(on_edges.size()), e.edge_nodes);
         for (int corner = 0; corner < 8; ++corner) {
             const Vec3 c(corner & 1 ? hi.x() : lo.x(), corner & 2 ? hi.y() : lo.y(),
                          corner & 4 ? hi.z() : lo.z());
-            EXPECT_TRUE(std::any_of(on_edges.begin(), on_edges.end(),
-                                    [&](const Vec3& p) { return (p - c).norm() < 1e-7; }))
-                << c.transpose();
+            EXPECT_TRUE(std::any_of(on_edges.begin(), on_edges.end(), [&](const Vec3& p) {
+                return (p - c).norm() < 1e-7;
+            })) << c.transpose();
         }
     }
-    const CommandResult smooth = run("smooth", R"({"cells_per_edge": 12, "wall_cells": 6})",
-                                     R"(, "feature_angle": 180)");
+    const CommandResult smooth =
+        run("smooth", R"({"cells_per_edge": 12, "wall_cells": 6})", R"(, "feature_angle": 180)");
     // Without creases the wall rounds the box's corners off: written, with a warning naming a
     // corner, and exit code 3.
     ASSERT_EQ(smooth.exit_code, 3) << smooth.out << smooth.err;
     EXPECT_EQ(smooth.out.find("sharp features"), std::string::npos) << smooth.out;
-    EXPECT_TRUE(std::regex_search(smooth.out, std::regex("warning: the grid's wall misses the body by [0-9.]+ \\([0-9.]+ "
-                                                         "wall cells, more than 0.5\\) at the surface point \\(-?1, "
-                                                         "-?0.5, -?0.75\\)")))
+    EXPECT_TRUE(std::regex_search(
+        smooth.out, std::regex("warning: the grid's wall misses the body by [0-9.]+ \\([0-9.]+ "
+                               "wall cells, more than 0.5\\) at the surface point \\(-?1, "
+                               "-?0.5, -?0.75\\)")))
         << smooth.out;
     const auto q = nlohmann::json::parse(read_text(dir / "smooth" / "quality.json"));
     EXPECT_GT(q.at("wall").at("hausdorff_distance").get<double>(), 1e-3);
@@ -157,14 +160,16 @@ TEST(CliGeometry, BadSurfacesGiveOneMessage) {
     const fs::path dir = scratch("bad_surfaces");
     fs::create_directories(dir);
     std::ofstream(dir / "empty.stl");
-    std::ofstream(dir / "cut.stl", std::ios::binary) << std::string(80, 'x') << std::string("\x05\0\0\0", 4)
-                                                     << std::string(70, '\x01');
+    std::ofstream(dir / "cut.stl", std::ios::binary)
+        << std::string(80, 'x') << std::string("\x05\0\0\0", 4) << std::string(70, '\x01');
     std::ofstream(dir / "nan.obj") << "v 0 0 0\nv 1 0 0\nv 0 nan 0\nf 1 2 3\n";
     std::ofstream(dir / "flat.obj") << "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n";
-    std::ofstream(dir / "cloud.ply") << "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"
-                                        "property float y\nproperty float z\nend_header\n0 0 0\n";
+    std::ofstream(dir / "cloud.ply")
+        << "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"
+           "property float y\nproperty float z\nend_header\n0 0 0\n";
     const std::string d = dir.string() + "/";
-    expect_one_error_line(run_hexmesh("inspect '" + d + "missing.stl'"), "missing.stl: cannot open");
+    expect_one_error_line(run_hexmesh("inspect '" + d + "missing.stl'"),
+                          "missing.stl: cannot open");
     expect_one_error_line(run_hexmesh("inspect '" + d + "empty.stl'"), "empty.stl: empty file");
     expect_one_error_line(run_hexmesh("sdf '" + d + "cut.stl' -o '" + d + "x.vdb'"),
                           "cut.stl: truncated binary STL");

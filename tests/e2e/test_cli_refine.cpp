@@ -118,7 +118,8 @@ TEST_F(SphereFamily, RefineCommandWritesBlockByBlockTheGridRunHoldsWhole) {
     for (size_t b = 0; b < mine.blocks.size(); ++b) {
         EXPECT_EQ(mine.blocks[b].name, runs.blocks[b].name);
         for (size_t m = 0; m < mine.blocks[b].node_ids.size(); ++m)
-            ASSERT_EQ(mine.points[mine.blocks[b].node_ids[m]], runs.points[runs.blocks[b].node_ids[m]])
+            ASSERT_EQ(mine.points[mine.blocks[b].node_ids[m]],
+                      runs.points[runs.blocks[b].node_ids[m]])
                 << "block " << b << " node " << m;
     }
     const json a = json::parse(read_text(refined_dir / "quality.json"));

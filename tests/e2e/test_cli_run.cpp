@@ -16,7 +16,7 @@ const fs::path out_dir = scratch("sphere");
 
 // Runs the bundled sphere case once for all tests of this file.
 class SphereRun : public ::testing::Test {
-protected:
+  protected:
     static void SetUpTestSuite() {
         fs::remove_all(out_dir);
         result = run_hexmesh("run cases/sphere/case.json -o '" + out_dir.string() + "'");
@@ -72,7 +72,8 @@ TEST_F(SphereRun, QualityCommandAgreesWithTheRun) {
 
 TEST_F(SphereRun, IndependentCheckerAgrees) {
     ASSERT_EQ(result.exit_code, 0) << result.err;
-    const fs::path checker = fs::path(HEXMESH_SOURCE_DIR) / ".." / "shared" / "tools" / "check_grid.py";
+    const fs::path checker =
+        fs::path(HEXMESH_SOURCE_DIR) / ".." / "shared" / "tools" / "check_grid.py";
     if (!fs::exists(checker)) GTEST_SKIP() << "no " << checker << " beside the project";
     if (run_command("/usr/bin/python3 -c 'import vtk'").exit_code != 0)
         GTEST_SKIP() << "python3-vtk9 is not installed";

@@ -152,9 +152,10 @@ TEST(CliSamples, InspectReportsCrossSectionStacks) {
     EXPECT_NE(good.out.find("valid: yes"), std::string::npos) << good.out;
 
     // A fourth section: a bow tie (crossing itself) and a square that cuts the circle there.
-    write_circle_stack(dir / "bad.sec", "slice 2\n0 0\n0.4 0.4\n0.4 0\n0 0.4\n"
-                                        "loop\n0.9 -0.1\n1.2 -0.1\n1.2 0.1\n0.9 0.1\n"
-                                        "loop\n0 -1\n1 0\n0 1\n-1 0\n");
+    write_circle_stack(dir / "bad.sec",
+                       "slice 2\n0 0\n0.4 0.4\n0.4 0\n0 0.4\n"
+                       "loop\n0.9 -0.1\n1.2 -0.1\n1.2 0.1\n0.9 0.1\n"
+                       "loop\n0 -1\n1 0\n0 1\n-1 0\n");
     const CommandResult bad = run_hexmesh("inspect '" + (dir / "bad.sec").string() + "'");
     ASSERT_EQ(bad.exit_code, 0) << bad.err;
     EXPECT_EQ(row_value(bad.out, "self-intersecting polylines"), 1) << bad.out;

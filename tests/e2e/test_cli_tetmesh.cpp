@@ -24,7 +24,8 @@ namespace {
 std::vector<double> row_numbers(const std::string& out, const std::string& name) {
     const auto at = out.find("  " + name + " ");
     if (at == std::string::npos) return {};
-    std::istringstream line(out.substr(at + name.size() + 2, out.find('\n', at) - at - name.size() - 2));
+    std::istringstream line(
+        out.substr(at + name.size() + 2, out.find('\n', at) - at - name.size() - 2));
     std::vector<double> numbers;
     for (std::string word; line >> word;) numbers.push_back(std::stod(word));
     return numbers;
@@ -57,7 +58,8 @@ TEST(CliTetmesh, CsgBodyComparedWithCgal) {
     ASSERT_EQ(slivers.size(), 3u);
     EXPECT_GT(slivers[0], 0);
     EXPECT_EQ(slivers[2], 0);
-    const auto distance = row_numbers(r.out, "max boundary distance / h"), tets = row_numbers(r.out, "tets");
+    const auto distance = row_numbers(r.out, "max boundary distance / h"),
+               tets = row_numbers(r.out, "tets");
     ASSERT_EQ(distance.size(), 3u);
     ASSERT_EQ(tets.size(), 3u);
     EXPECT_LT(distance[2], 1e-3);
@@ -76,7 +78,8 @@ TEST(CliTetmesh, CsgBodyComparedWithCgal) {
     EXPECT_NEAR(measure_tet_quality(TetMesh{c.points, c.tets}).min_dihedral, min_angle[1], 0.01);
 
     // `quality` reads a tet mesh and measures its boundary against the case's body.
-    const CommandResult json = run_hexmesh("quality '" + out.string() + "' --json --surface '" + case_file.string() + "'");
+    const CommandResult json =
+        run_hexmesh("quality '" + out.string() + "' --json --surface '" + case_file.string() + "'");
     ASSERT_EQ(json.exit_code, 0) << json.err;
     const auto j = nlohmann::json::parse(json.out);
     EXPECT_TRUE(j["valid"].get<bool>());
@@ -87,10 +90,14 @@ TEST(CliTetmesh, CsgBodyComparedWithCgal) {
 }
 
 TEST(CliTetmesh, TangledTetMeshUntangledOnTheCaseBody) {
-    const fs::path case_file = write_case("sphere_case.json",
+    const fs::path case_file = write_case(
+        "sphere_case.json",
         R"({"geometry": {"sphere": {"center": [0, 0, 0], "radius": 1}}, "tet_mesh": {"cell_size": 0.25}})");
-    const fs::path mesh = scratch("sphere_tets.vtu"), tangled = scratch("tangled.vtu"), fixed = scratch("untangled.vtu");
-    ASSERT_EQ(run_hexmesh("tetmesh '" + case_file.string() + "' -o '" + mesh.string() + "'").exit_code, 0);
+    const fs::path mesh = scratch("sphere_tets.vtu"), tangled = scratch("tangled.vtu"),
+                   fixed = scratch("untangled.vtu");
+    ASSERT_EQ(
+        run_hexmesh("tetmesh '" + case_file.string() + "' -o '" + mesh.string() + "'").exit_code,
+        0);
     VolumeMesh m = read_volume_mesh(mesh.string());
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> shift(-0.12, 0.12);
@@ -102,8 +109,9 @@ TEST(CliTetmesh, TangledTetMeshUntangledOnTheCaseBody) {
     write_volume_mesh(m, tangled.string());
     ASSERT_GT(measure_tet_quality(TetMesh{m.points, m.tets}).inverted, 20);
 
-    const CommandResult r = run_hexmesh("untangle '" + tangled.string() + "' -o '" + fixed.string() +
-                                        "' --boundary slip --surface '" + case_file.string() + "'");
+    const CommandResult r =
+        run_hexmesh("untangle '" + tangled.string() + "' -o '" + fixed.string() +
+                    "' --boundary slip --surface '" + case_file.string() + "'");
     ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
     const VolumeMesh u = read_volume_mesh(fixed.string());
     EXPECT_EQ(measure_tet_quality(TetMesh{u.points, u.tets}).inverted, 0);
@@ -116,8 +124,11 @@ TEST(CliTetmesh, TangledTetMeshUntangledOnTheCaseBody) {
 
 TEST(CliTetmesh, TangledCsgMeshKeepsItsCreases) {
     const fs::path case_file = write_case("csg_case.json", box_cylinder);
-    const fs::path mesh = scratch("csg_tets.vtu"), tangled = scratch("csg_tangled.vtu"), fixed = scratch("csg_fixed.vtu");
-    ASSERT_EQ(run_hexmesh("tetmesh '" + case_file.string() + "' -o '" + mesh.string() + "'").exit_code, 0);
+    const fs::path mesh = scratch("csg_tets.vtu"), tangled = scratch("csg_tangled.vtu"),
+                   fixed = scratch("csg_fixed.vtu");
+    ASSERT_EQ(
+        run_hexmesh("tetmesh '" + case_file.string() + "' -o '" + mesh.string() + "'").exit_code,
+        0);
     VolumeMesh m = read_volume_mesh(mesh.string());
     // Points on the two circular creases (the cylinder's rim, where it leaves the box).
     auto on_circle = [](const Vec3& p) {
@@ -132,12 +143,14 @@ TEST(CliTetmesh, TangledCsgMeshKeepsItsCreases) {
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> shift(-0.1, 0.1);
     for (Vec3& p : m.points)
-        if (p.cwiseAbs().maxCoeff() < 0.8 && p.z() < 0.4 && p.z() > -0.4) p += Vec3(shift(rng), shift(rng), shift(rng));
+        if (p.cwiseAbs().maxCoeff() < 0.8 && p.z() < 0.4 && p.z() > -0.4)
+            p += Vec3(shift(rng), shift(rng), shift(rng));
     write_volume_mesh(m, tangled.string());
     ASSERT_GT(measure_tet_quality(TetMesh{m.points, m.tets}).inverted, 0);
 
-    const CommandResult r = run_hexmesh("untangle '" + tangled.string() + "' -o '" + fixed.string() +
-                                        "' --boundary slip --surface '" + case_file.string() + "'");
+    const CommandResult r =
+        run_hexmesh("untangle '" + tangled.string() + "' -o '" + fixed.string() +
+                    "' --boundary slip --surface '" + case_file.string() + "'");
     ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
     EXPECT_NE(r.out.find("on creases"), std::string::npos);
     const VolumeMesh u = read_volume_mesh(fixed.string());
@@ -167,18 +180,20 @@ TEST(CliTetmesh, BadInputIsNamed) {
     };
     for (const Bad& b : cases) {
         const fs::path case_file = write_case("bad.json", b.json);
-        const CommandResult r = run_hexmesh("tetmesh '" + case_file.string() + "' -o '" + out.string() + "'");
+        const CommandResult r =
+            run_hexmesh("tetmesh '" + case_file.string() + "' -o '" + out.string() + "'");
         EXPECT_NE(r.exit_code, 0) << b.json;
         EXPECT_NE(r.err.find(b.message), std::string::npos) << r.err;
         EXPECT_EQ(count_lines(r.err), 1) << r.err;
         EXPECT_FALSE(fs::exists(out));
         fs::remove(case_file);
     }
-    const CommandResult missing = run_hexmesh("tetmesh /nonexistent/case.json -o '" + out.string() + "'");
+    const CommandResult missing =
+        run_hexmesh("tetmesh /nonexistent/case.json -o '" + out.string() + "'");
     EXPECT_NE(missing.exit_code, 0);
-    EXPECT_NE(missing.err.find("/nonexistent/case.json: cannot open case file"), std::string::npos) << missing.err;
+    EXPECT_NE(missing.err.find("/nonexistent/case.json: cannot open case file"), std::string::npos)
+        << missing.err;
 }
-
 
 // Sharp, small-featured and non-convex bodies of ../shared/data/bodies at two cell sizes (a
 // tenth and a twentieth of the body's largest extent): never worse than CGAL's own sliver
@@ -191,18 +206,20 @@ struct SliverCase {
 class TetmeshAgainstCgal : public ::testing::TestWithParam<SliverCase> {};
 
 TEST_P(TetmeshAgainstCgal, SmallestAngleAtLeastCgalsAndNoSliver) {
-    const fs::path file = fs::path(HEXMESH_SOURCE_DIR) / ".." / "shared" / "data" / "bodies" / (GetParam().body + ".off");
+    const fs::path file = fs::path(HEXMESH_SOURCE_DIR) / ".." / "shared" / "data" / "bodies" /
+                          (GetParam().body + ".off");
     if (!fs::exists(file)) GTEST_SKIP() << "no " << file << " beside the project";
     const TriangleSurface surface = read_surface(file.string());
     Vec3 lo = surface.points[0], hi = lo;
     for (const Vec3& p : surface.points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
     const double size = GetParam().fraction * (hi - lo).maxCoeff();
-    const fs::path case_file = write_case(GetParam().body + "_tets.json",
-                                          R"({"geometry": {"file": ")" + file.string() +
-                                              R"("}, "tet_mesh": {"cell_size": )" + std::to_string(size) + "}}");
+    const fs::path case_file =
+        write_case(GetParam().body + "_tets.json", R"({"geometry": {"file": ")" + file.string() +
+                                                       R"("}, "tet_mesh": {"cell_size": )" +
+                                                       std::to_string(size) + "}}");
     const fs::path out = scratch(GetParam().body + "_tets.vtu");
-    const CommandResult r =
-        run_hexmesh("tetmesh '" + case_file.string() + "' -o '" + out.string() + "' --compare-cgal --no-report");
+    const CommandResult r = run_hexmesh("tetmesh '" + case_file.string() + "' -o '" + out.string() +
+                                        "' --compare-cgal --no-report");
     EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
     const auto angle = row_numbers(r.out, "min dihedral angle (deg)");
     const auto slivers = row_numbers(r.out, "slivers (dihedral < 10 deg)");
@@ -215,12 +232,14 @@ TEST_P(TetmeshAgainstCgal, SmallestAngleAtLeastCgalsAndNoSliver) {
 
 INSTANTIATE_TEST_SUITE_P(SharedBodies, TetmeshAgainstCgal,
                          ::testing::Values(SliverCase{"part", 0.1}, SliverCase{"part", 0.05},
-                                           SliverCase{"dragknob", 0.1}, SliverCase{"dragknob", 0.05},
-                                           SliverCase{"u", 0.1}, SliverCase{"u", 0.05},
-                                           SliverCase{"cross", 0.1}, SliverCase{"cross", 0.05},
-                                           SliverCase{"tripod", 0.1}, SliverCase{"tripod", 0.05}),
+                                           SliverCase{"dragknob", 0.1},
+                                           SliverCase{"dragknob", 0.05}, SliverCase{"u", 0.1},
+                                           SliverCase{"u", 0.05}, SliverCase{"cross", 0.1},
+                                           SliverCase{"cross", 0.05}, SliverCase{"tripod", 0.1},
+                                           SliverCase{"tripod", 0.05}),
                          [](const auto& info) {
-                             return info.param.body + (info.param.fraction > 0.07 ? "_tenth" : "_twentieth");
+                             return info.param.body +
+                                    (info.param.fraction > 0.07 ? "_tenth" : "_twentieth");
                          });
 
 // Slivers that nothing removed (no optimization, no flips, CGAL stopped at once): the mesh is
@@ -228,9 +247,10 @@ INSTANTIATE_TEST_SUITE_P(SharedBodies, TetmeshAgainstCgal,
 TEST(CliTetmesh, SliversLeftAreAWarningAndExitCodeThree) {
     const fs::path case_file = write_case("slivers.json", box_cylinder);
     const fs::path out = scratch("slivers.vtu");
-    const CommandResult r = run_hexmesh("tetmesh '" + case_file.string() + "' -o '" + out.string() +
-                                        "' --no-report --optimize-iterations 0 --reweight-rounds 0 --flip-cycles 0 "
-                                        "--cap-angle 0 --cgal-time-limit 0.0001");
+    const CommandResult r =
+        run_hexmesh("tetmesh '" + case_file.string() + "' -o '" + out.string() +
+                    "' --no-report --optimize-iterations 0 --reweight-rounds 0 --flip-cycles 0 "
+                    "--cap-angle 0 --cgal-time-limit 0.0001");
     EXPECT_EQ(r.exit_code, 3) << r.out << r.err;
     EXPECT_NE(r.out.find("slivers remain"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("kept"), std::string::npos) << "the fallback is not logged:\n" << r.out;

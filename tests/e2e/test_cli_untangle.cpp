@@ -23,12 +23,16 @@ Id inverted_in(const fs::path& file) {
 }
 
 // The independent checker's verdict on a hex mesh, or a skip reason.
-std::string check_independently(const fs::path& file, const std::string& surface, nlohmann::json& out) {
-    const fs::path checker = fs::path(HEXMESH_SOURCE_DIR) / ".." / "shared" / "tools" / "check_grid.py";
+std::string check_independently(const fs::path& file, const std::string& surface,
+                                nlohmann::json& out) {
+    const fs::path checker =
+        fs::path(HEXMESH_SOURCE_DIR) / ".." / "shared" / "tools" / "check_grid.py";
     if (!fs::exists(checker)) return "no check_grid.py beside the project";
-    if (run_command("/usr/bin/python3 -c 'import vtk'").exit_code != 0) return "python3-vtk9 missing";
-    const CommandResult c = run_command("/usr/bin/python3 '" + checker.string() + "' '" + file.string() + "' --json" +
-                                        (surface.empty() ? "" : " --surface '" + surface + "'"));
+    if (run_command("/usr/bin/python3 -c 'import vtk'").exit_code != 0)
+        return "python3-vtk9 missing";
+    const CommandResult c =
+        run_command("/usr/bin/python3 '" + checker.string() + "' '" + file.string() + "' --json" +
+                    (surface.empty() ? "" : " --surface '" + surface + "'"));
     out = nlohmann::json::parse(c.out);
     return "";
 }
@@ -48,14 +52,17 @@ TEST_P(UntangleData, ComesOutValid) {
     const fs::path input = data_dir / c.file;
     if (!fs::exists(input)) GTEST_SKIP() << "benchmark data not beside the project: " << input;
     const fs::path out = scratch(fs::path(c.file).stem().string() + "_" + c.boundary + ".vtu");
-    std::string args = "untangle '" + input.string() + "' -o '" + out.string() + "' --boundary " + c.boundary;
+    std::string args =
+        "untangle '" + input.string() + "' -o '" + out.string() + "' --boundary " + c.boundary;
     if (!c.surface.empty()) args += " --surface '" + (data_dir / c.surface).string() + "'";
     const CommandResult r = run_hexmesh(args);
     ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
-    EXPECT_NE(r.out.find("inverted corner tets                       0"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("inverted corner tets                       0"), std::string::npos)
+        << r.out;
     EXPECT_EQ(inverted_in(out), 0);
     nlohmann::json check;
-    const std::string skip = check_independently(out, c.surface.empty() ? "" : (data_dir / c.surface).string(), check);
+    const std::string skip =
+        check_independently(out, c.surface.empty() ? "" : (data_dir / c.surface).string(), check);
     if (skip.empty()) {
         EXPECT_EQ(check.at("inverted").get<long>(), 0) << check.dump();
         if (!c.surface.empty()) {
@@ -67,20 +74,22 @@ TEST_P(UntangleData, ComesOutValid) {
 
 INSTANTIATE_TEST_SUITE_P(
     SharedMeshes, UntangleData,
-    ::testing::Values(Case{"mesquite/hex_5_tangled.vtk", "fixed", ""}, Case{"mesquite/pave1.e.vtk", "fixed", ""},
-                      Case{"mesquite/pave3.e.vtk", "fixed", ""}, Case{"mesquite/pave_cyl.e.vtk", "fixed", ""},
-                      Case{"hexopt/CAD4Per.vtk", "fixed", ""}, Case{"hexopt/mount2Per.vtk", "fixed", ""},
-                      Case{"hexopt/lower_armPer.vtk", "fixed", ""},
-                      Case{"hexopt/CAD4Per.vtk", "slip", "hexopt/CAD4.obj"},
-                      Case{"hexopt/mount2Per.vtk", "slip", "hexopt/mount2.obj"},
-                      Case{"hexopt/mid2Fem.vtk", "slip", "hexopt/mid2Fem.obj"},
-                      Case{"hexopt/lower_armPer.vtk", "slip", ""},
-                      // its own boundary is folded where its cells are: the crease vertices
-                      // of the last inverted cells are let slide on it
-                      Case{"hexopt/mid2Fem.vtk", "slip", ""}),
+    ::testing::Values(
+        Case{"mesquite/hex_5_tangled.vtk", "fixed", ""}, Case{"mesquite/pave1.e.vtk", "fixed", ""},
+        Case{"mesquite/pave3.e.vtk", "fixed", ""}, Case{"mesquite/pave_cyl.e.vtk", "fixed", ""},
+        Case{"hexopt/CAD4Per.vtk", "fixed", ""}, Case{"hexopt/mount2Per.vtk", "fixed", ""},
+        Case{"hexopt/lower_armPer.vtk", "fixed", ""},
+        Case{"hexopt/CAD4Per.vtk", "slip", "hexopt/CAD4.obj"},
+        Case{"hexopt/mount2Per.vtk", "slip", "hexopt/mount2.obj"},
+        Case{"hexopt/mid2Fem.vtk", "slip", "hexopt/mid2Fem.obj"},
+        Case{"hexopt/lower_armPer.vtk", "slip", ""},
+        // its own boundary is folded where its cells are: the crease vertices
+        // of the last inverted cells are let slide on it
+        Case{"hexopt/mid2Fem.vtk", "slip", ""}),
     [](const auto& info) {
-        std::string name = fs::path(info.param.file).stem().string() + "_" + info.param.boundary +
-                           (info.param.surface.empty() && info.param.boundary == "slip" ? "_own_boundary" : "");
+        std::string name =
+            fs::path(info.param.file).stem().string() + "_" + info.param.boundary +
+            (info.param.surface.empty() && info.param.boundary == "slip" ? "_own_boundary" : "");
         for (char& ch : name)
             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
         return name;
@@ -90,7 +99,8 @@ TEST(Untangle, FixedBoundaryThatCannotWorkIsExplained) {
     const fs::path input = data_dir / "hexopt" / "mid2Fem.vtk";
     if (!fs::exists(input)) GTEST_SKIP() << "benchmark data not beside the project";
     const fs::path out = scratch("mid2Fem_fixed.vtu");
-    const CommandResult r = run_hexmesh("untangle '" + input.string() + "' -o '" + out.string() + "'");
+    const CommandResult r =
+        run_hexmesh("untangle '" + input.string() + "' -o '" + out.string() + "'");
     EXPECT_EQ(r.exit_code, 3);
     EXPECT_NE(r.out.find("cell 316 corner 6"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("all four of its vertices are fixed"), std::string::npos) << r.out;
@@ -116,20 +126,23 @@ TEST(Untangle, GeneratedTangleHonoursTheFixedArray) {
         for (int j = 0; j < s; ++j)
             for (int i = 0; i < s; ++i) {
                 const bool boundary = i == 0 || j == 0 || k == 0 || i == n || j == n || k == n;
-                m.points.push_back(Vec3(i, j, k) + (boundary ? Vec3::Zero() : Vec3(u(rng), u(rng), u(rng))));
+                m.points.push_back(Vec3(i, j, k) +
+                                   (boundary ? Vec3::Zero() : Vec3(u(rng), u(rng), u(rng))));
                 m.fixed.push_back(boundary);
             }
     auto id = [s](int i, int j, int k) { return Id(i + s * (j + s * k)); };
     for (int k = 0; k < n; ++k)
         for (int j = 0; j < n; ++j)
             for (int i = 0; i < n; ++i)
-                for (Id v : {id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k), id(i, j, k + 1),
-                             id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)})
+                for (Id v : {id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k),
+                             id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1),
+                             id(i, j + 1, k + 1)})
                     m.hexes.push_back(v);
     const fs::path in = scratch("tangle.vtk"), out = scratch("tangle_out.vtu");
     write_volume_mesh(m, in.string());
     ASSERT_GT(inverted_in(in), 100);
-    const CommandResult r = run_hexmesh("untangle '" + in.string() + "' -o '" + out.string() + "' --solver lbfgs");
+    const CommandResult r =
+        run_hexmesh("untangle '" + in.string() + "' -o '" + out.string() + "' --solver lbfgs");
     ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
     EXPECT_EQ(inverted_in(out), 0);
     const VolumeMesh back = read_volume_mesh(out.string());
@@ -141,10 +154,12 @@ TEST(Untangle, GeneratedTangleHonoursTheFixedArray) {
 }
 
 TEST(Untangle, BadArgumentsAreRefusedBeforeWork) {
-    const CommandResult a = run_hexmesh("untangle /nonexistent/mesh.vtk -o " + scratch("x.vtu").string());
+    const CommandResult a =
+        run_hexmesh("untangle /nonexistent/mesh.vtk -o " + scratch("x.vtu").string());
     EXPECT_EQ(a.exit_code, 1);
     EXPECT_NE(a.err.find("/nonexistent/mesh.vtk: no such mesh file"), std::string::npos) << a.err;
-    const CommandResult b = run_hexmesh("untangle cases/sphere/case.json -o " + scratch("x.stl").string());
+    const CommandResult b =
+        run_hexmesh("untangle cases/sphere/case.json -o " + scratch("x.stl").string());
     EXPECT_EQ(b.exit_code, 1);
     EXPECT_NE(b.err.find("cannot write '.stl' meshes"), std::string::npos) << b.err;
     const CommandResult c = run_hexmesh("untangle x.vtk -o y.vtu --solver magic");

@@ -1,11 +1,12 @@
 // Shared helpers of the exporter tests: small grids, scratch folders, running tools.
 #pragma once
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <string>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "hexmesh/core/block_grid.h"
 #include "surface/analytic.h"

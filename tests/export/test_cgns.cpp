@@ -1,16 +1,16 @@
-#include <gtest/gtest.h>
-
 #include <cgnslib.h>
 #include <fmt/format.h>
-#include <algorithm>
-#include <cstdlib>
-#include <map>
+#include <gtest/gtest.h>
 #include <vtkCGNSReader.h>
 #include <vtkCompositeDataSet.h>
 #include <vtkInformation.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkNew.h>
 #include <vtkStructuredGrid.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <map>
 
 #include "export_test_support.h"
 #include "io/cgns_grid.h"
@@ -66,7 +66,8 @@ TEST(Cgns, LibraryReadsBackCoordinatesBcRangesAndInterfaces) {
         static const char* axes[3] = {"CoordinateX", "CoordinateY", "CoordinateZ"};
         for (int a = 0; a < 3; ++a) {
             zone.xyz[a].resize(b.nodes.count());
-            CG(cg_coord_read(fn, 1, z, axes[a], CGNS_ENUMV(RealDouble), lo, hi, zone.xyz[a].data()));
+            CG(cg_coord_read(fn, 1, z, axes[a], CGNS_ENUMV(RealDouble), lo, hi,
+                             zone.xyz[a].data()));
             for (Id m = 0; m < b.nodes.count(); ++m)
                 ASSERT_EQ(zone.xyz[a][m], grid.points[b.node_ids[m]][a]);  // bitwise
         }
@@ -79,7 +80,8 @@ TEST(Cgns, LibraryReadsBackCoordinatesBcRangesAndInterfaces) {
             cgsize_t npnts = 0, normal_size = 0;
             int normal_index[3], ndataset = 0;
             CGNS_ENUMT(DataType_t) normal_type;
-            CG(cg_boco_info(fn, 1, z, bc, bc_name, &type, &set, &npnts, normal_index, &normal_size, &normal_type, &ndataset));
+            CG(cg_boco_info(fn, 1, z, bc, bc_name, &type, &set, &npnts, normal_index, &normal_size,
+                            &normal_type, &ndataset));
             EXPECT_EQ(type, CGNS_ENUMV(FamilySpecified));  // the type is on the family
             EXPECT_EQ(set, CGNS_ENUMV(PointRange));
             ASSERT_EQ(npnts, 2);
@@ -113,7 +115,8 @@ TEST(Cgns, LibraryReadsBackCoordinatesBcRangesAndInterfaces) {
         CG(cg_fambc_read(fn, 1, f, 1, bc_name, &type));
         family_type[name] = type;
     }
-    EXPECT_EQ(family_type, (std::map<std::string, CGNS_ENUMT(BCType_t)>{{"wall", CGNS_ENUMV(BCWall)}}));
+    EXPECT_EQ(family_type,
+              (std::map<std::string, CGNS_ENUMT(BCType_t)>{{"wall", CGNS_ENUMV(BCWall)}}));
     int patch_faces = 0, open_faces = 0;
     for (const Block& b : grid.blocks)
         for (const std::string& p : b.face_patch) (p.empty() ? open_faces : patch_faces) += 1;
@@ -151,7 +154,8 @@ TEST(Cgns, LibraryReadsBackCoordinatesBcRangesAndInterfaces) {
 }
 
 TEST(Cgns, CgnscheckAcceptsTheFile) {
-    if (!have_tool("cgnscheck")) GTEST_SKIP() << "cgnscheck not installed (Debian package cgns-convert)";
+    if (!have_tool("cgnscheck"))
+        GTEST_SKIP() << "cgnscheck not installed (Debian package cgns-convert)";
     const BlockGrid grid = small_o_h_grid();
     const fs::path file = scratch("cgnscheck") / "grid.cgns";
     write_cgns_grid(grid, file.string());
@@ -173,7 +177,8 @@ TEST(Cgns, VtkReaderShowsThePatchesByName) {
     reader->EnableAllBases();
     reader->SetLoadBndPatch(1);
     reader->Update();
-    vtkMultiBlockDataSet* base = vtkMultiBlockDataSet::SafeDownCast(reader->GetOutput()->GetBlock(0));
+    vtkMultiBlockDataSet* base =
+        vtkMultiBlockDataSet::SafeDownCast(reader->GetOutput()->GetBlock(0));
     ASSERT_NE(base, nullptr);
     ASSERT_EQ(base->GetNumberOfBlocks(), grid.blocks.size());
     std::map<std::string, Id> faces_of;  // patch name -> cells read
@@ -197,7 +202,8 @@ TEST(Cgns, VtkReaderShowsThePatchesByName) {
         for (unsigned k = 0; k < patches->GetNumberOfBlocks(); ++k) {
             auto* patch = vtkStructuredGrid::SafeDownCast(patches->GetBlock(k));
             ASSERT_NE(patch, nullptr);
-            faces_of[patches->GetMetaData(k)->Get(vtkCompositeDataSet::NAME())] += patch->GetNumberOfCells();
+            faces_of[patches->GetMetaData(k)->Get(vtkCompositeDataSet::NAME())] +=
+                patch->GetNumberOfCells();
         }
     }
     EXPECT_EQ(faces_of, expected);

@@ -1,14 +1,12 @@
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cstring>
 #include <fstream>
 #include <iterator>
 
-#include <fmt/format.h>
-
 #include "export_test_support.h"
 #include "io/case_file.h"
-#include "tests/io/scratch_files.h"
 #include "io/export_grid.h"
 #include "io/gmsh_mesh.h"
 #include "io/medit_mesh.h"
@@ -16,6 +14,7 @@
 #include "io/sample_readers.h"
 #include "io/volume_mesh_io.h"
 #include "io/vtk_mesh.h"
+#include "tests/io/scratch_files.h"
 
 using namespace hexmesh;
 using namespace hexmesh::test_export;
@@ -77,7 +76,8 @@ TEST(VtkBlockGrid, ReadBackRestoresBlocksNamesPatchesAndSharedNodes) {
         EXPECT_EQ(back.blocks[b].face_patch, grid.blocks[b].face_patch);
         ASSERT_EQ(back.blocks[b].nodes.count(), grid.blocks[b].nodes.count());
         for (Id m = 0; m < grid.blocks[b].nodes.count(); ++m)
-            ASSERT_EQ(back.points[back.blocks[b].node_ids[m]], grid.points[grid.blocks[b].node_ids[m]]);
+            ASSERT_EQ(back.points[back.blocks[b].node_ids[m]],
+                      grid.points[grid.blocks[b].node_ids[m]]);
     }
     // Shared nodes: the same node topology, so the same ids up to renumbering; vertex kinds
     // follow their nodes.
@@ -94,15 +94,20 @@ TEST(VtkBlockGrid, ReadBackRestoresBlocksNamesPatchesAndSharedNodes) {
 TEST(ExportCli, RunThenExportThenQualityAgree) {
     const fs::path dir = scratch("cli");
     const std::string exe = HEXMESH_EXE;
-    const ToolRun run = run_tool("cd '" HEXMESH_SOURCE_DIR "' && '" + exe + "' run cases/sphere/case.json -o '" + (dir / "run").string() + "'");
+    const ToolRun run =
+        run_tool("cd '" HEXMESH_SOURCE_DIR "' && '" + exe + "' run cases/sphere/case.json -o '" +
+                 (dir / "run").string() + "'");
     ASSERT_EQ(run.exit_code, 0) << run.output;
     const std::string grid = (dir / "run" / "grid.vtm").string();
     for (const char* format : {"gmsh", "medit", "plot3d-c"}) {
         SCOPED_TRACE(format);
         const std::string out = (dir / (std::string("grid.") + format + ".msh")).string();
-        const std::string file = std::string(format) == "medit" ? out.substr(0, out.size() - 4) + ".mesh"
-                                 : std::string(format) == "plot3d-c" ? out.substr(0, out.size() - 4) + ".xyz" : out;
-        const ToolRun ex = run_tool("'" + exe + "' export '" + grid + "' --format " + format + " -o '" + file + "'");
+        const std::string file =
+            std::string(format) == "medit"      ? out.substr(0, out.size() - 4) + ".mesh"
+            : std::string(format) == "plot3d-c" ? out.substr(0, out.size() - 4) + ".xyz"
+                                                : out;
+        const ToolRun ex = run_tool("'" + exe + "' export '" + grid + "' --format " + format +
+                                    " -o '" + file + "'");
         ASSERT_EQ(ex.exit_code, 0) << ex.output;
         const ToolRun q = run_tool("'" + exe + "' quality '" + file + "' --json");
         ASSERT_EQ(q.exit_code, 0) << q.output;
@@ -110,11 +115,14 @@ TEST(ExportCli, RunThenExportThenQualityAgree) {
     }
     // UGRID: the boundary conditions' file is written (and listed) beside the grid.
     const std::string ugrid = (dir / "grid.ugrid").string();
-    const ToolRun ug = run_tool("'" + exe + "' export '" + grid + "' --format ugrid -o '" + ugrid + "'");
+    const ToolRun ug =
+        run_tool("'" + exe + "' export '" + grid + "' --format ugrid -o '" + ugrid + "'");
     ASSERT_EQ(ug.exit_code, 0) << ug.output;
-    EXPECT_NE(ug.output.find("written: " + (dir / "grid.mapbc").string()), std::string::npos) << ug.output;
+    EXPECT_NE(ug.output.find("written: " + (dir / "grid.mapbc").string()), std::string::npos)
+        << ug.output;
     EXPECT_TRUE(fs::exists(dir / "grid.mapbc"));
-    const ToolRun bad = run_tool("'" + exe + "' export '" + grid + "' --format gmsh -o /proc/version/grid.msh");
+    const ToolRun bad =
+        run_tool("'" + exe + "' export '" + grid + "' --format gmsh -o /proc/version/grid.msh");
     EXPECT_EQ(bad.exit_code, 1);
     EXPECT_EQ(std::count(bad.output.begin(), bad.output.end(), '\n'), 1) << bad.output;
     EXPECT_NE(bad.output.find("hexmesh: error: "), std::string::npos) << bad.output;
@@ -125,18 +133,22 @@ TEST(ReadErrors, HeadersPromisingMoreThanTheFileHoldsAreRefusedBeforeAnythingIsS
     // Gmsh: a max node tag of 3e9 for two nodes is read with a map, not a 24 GB table; a node
     // count larger than the file is refused at once.
     const std::string sparse = (dir / "sparse.msh").string();
-    std::ofstream(sparse) << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 2 1 3000000000\n3 1 0 2\n"
-                             "1\n3000000000\n0 0 0\n1 0 0\n$EndNodes\n$Elements\n1 1 1 1\n3 1 5 1\n"
-                             "1 1 3000000000 1 1 1 1 1 1\n$EndElements\n";
+    std::ofstream(sparse)
+        << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 2 1 3000000000\n3 1 0 2\n"
+           "1\n3000000000\n0 0 0\n1 0 0\n$EndNodes\n$Elements\n1 1 1 1\n3 1 5 1\n"
+           "1 1 3000000000 1 1 1 1 1 1\n$EndElements\n";
     EXPECT_EQ(read_gmsh_mesh(sparse).num_cells(), 1);
     const std::string huge = (dir / "huge.msh").string();
-    std::ofstream(huge) << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 2000000000 1 2000000000\n";
+    std::ofstream(huge)
+        << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 2000000000 1 2000000000\n";
     std::string what = test::input_error_of(read_gmsh_mesh, huge);
-    EXPECT_NE(what.find("2000000000 nodes in 1 blocks do not fit in the file's"), std::string::npos) << what;
+    EXPECT_NE(what.find("2000000000 nodes in 1 blocks do not fit in the file's"), std::string::npos)
+        << what;
     // Plot3D (ASCII): 99999^3 points, dims 0 0 0, and data beyond what the header announces.
     const std::vector<std::pair<std::string, std::string>> plot3d = {
         {"1\n99999 99999 99999\n0 0 0\n", "ni is 99999; expected a whole number in [2, "},
-        {"1\n9 9 9\n" + std::string(300, ' ') + "0 0 0\n", "block 1 has dims 9 9 9: more coordinates than the file's"},
+        {"1\n9 9 9\n" + std::string(300, ' ') + "0 0 0\n",
+         "block 1 has dims 9 9 9: more coordinates than the file's"},
         {"1\n0 0 0\n1 2 3 4 5 6\n", "ni is 0; expected a whole number in [2,"},
     };
     int n = 0;
@@ -155,7 +167,9 @@ TEST(ReadErrors, HeadersPromisingMoreThanTheFileHoldsAreRefusedBeforeAnythingIsS
     std::ofstream(longer) << cube << "\n7 7 7\n";
     EXPECT_EQ(read_plot3d(good).num_cells(), 1);
     what = test::input_error_of(read_plot3d, longer);
-    EXPECT_NE(what.find("more data after the 24 coordinates the header announces"), std::string::npos) << what;
+    EXPECT_NE(what.find("more data after the 24 coordinates the header announces"),
+              std::string::npos)
+        << what;
 }
 
 namespace {
@@ -171,15 +185,20 @@ HexMesh read_volume_mesh_hexes(const std::string& path) {
 TEST(ReadErrors, FuzzFindingsAreRefused) {
     const fs::path dir = fs::path(HEXMESH_SOURCE_DIR) / "tests" / "fuzz" / "regressions";
     // A Fortran-record header whose block count times 12 overflowed an int (UBSan).
-    std::string what = test::input_error_of(read_plot3d, (dir / "plot3d_fortran_block_count_overflow.xyz").string());
+    std::string what = test::input_error_of(
+        read_plot3d, (dir / "plot3d_fortran_block_count_overflow.xyz").string());
     EXPECT_NE(what.find("plot3d_fortran_block_count_overflow.xyz: "), std::string::npos) << what;
     // A legacy VTK file with a misspelt keyword: VTK's reader leaked its cells on it.
     what = test::input_error_of(read_vtk_mesh, (dir / "vtk_unknown_keyword.vtk").string());
-    EXPECT_NE(what.find("unknown keyword 'CELL$_TYPES' in the UNSTRUCTURED_GRID section"), std::string::npos) << what;
+    EXPECT_NE(what.find("unknown keyword 'CELL$_TYPES' in the UNSTRUCTURED_GRID section"),
+              std::string::npos)
+        << what;
     // OFFSETS in a file whose header says version 0.1: VTK read rows there, and crashed. No
     // version before 1.0 exists.
-    what = test::input_error_of(read_vtk_mesh, (dir / "vtk_offsets_in_a_version_4_file.vtk").string());
-    EXPECT_NE(what.find("vtk_offsets_in_a_version_4_file.vtk:1: version 0.1: this reader knows versions 1.0 to 5.1"),
+    what =
+        test::input_error_of(read_vtk_mesh, (dir / "vtk_offsets_in_a_version_4_file.vtk").string());
+    EXPECT_NE(what.find("vtk_offsets_in_a_version_4_file.vtk:1: version 0.1: this reader knows "
+                        "versions 1.0 to 5.1"),
               std::string::npos)
         << what;
     // A dataset kind VTK does not know: its reader leaked on it.
@@ -187,23 +206,33 @@ TEST(ReadErrors, FuzzFindingsAreRefused) {
     EXPECT_NE(what.find("unknown dataset 'UNSTRUCTURED_GRIDshort'"), std::string::npos) << what;
     // Version "5.+": VTK took the cell lists as rows and crashed.
     what = test::input_error_of(read_vtk_mesh, (dir / "vtk_version_not_a_number.vtk").string());
-    EXPECT_NE(what.find("'# vtk DataFile Version 5.+': expected a version of two numbers"), std::string::npos) << what;
+    EXPECT_NE(what.find("'# vtk DataFile Version 5.+': expected a version of two numbers"),
+              std::string::npos)
+        << what;
     // A pixel whose ids lie beyond the points: VTK read them building the cell, and crashed.
     const std::string pixel = (dir / "vtk_pixel_with_ids_beyond_the_points.vtk").string();
-    for (const std::string& message : {test::input_error_of(read_vtk_mesh, pixel), test::input_error_of(read_volume_mesh_hexes, pixel)})
-        EXPECT_NE(message.find("CELLS: cell 0 refers to point 9007199254740999, but the file has points 0 to 7"),
-                  std::string::npos)
+    for (const std::string& message : {test::input_error_of(read_vtk_mesh, pixel),
+                                       test::input_error_of(read_volume_mesh_hexes, pixel)})
+        EXPECT_NE(
+            message.find(
+                "CELLS: cell 0 refers to point 9007199254740999, but the file has points 0 to 7"),
+            std::string::npos)
             << message;
     // Gmsh: a second $Nodes section wrote past the first one's tag table.
     what = test::input_error_of(read_gmsh_mesh, (dir / "gmsh_second_nodes_section.msh").string());
-    EXPECT_NE(what.find("gmsh_second_nodes_section.msh:92: a second $Nodes section"), std::string::npos) << what;
+    EXPECT_NE(what.find("gmsh_second_nodes_section.msh:92: a second $Nodes section"),
+              std::string::npos)
+        << what;
     // A PLY point cloud with an element of 16 578 868 067 080 items and no property: the reader
     // looped over the items reading nothing (a timeout). The surface reader shares the header.
-    what = test::input_error_of(read_point_cloud, (dir / "points_ply_element_without_properties.ply").string());
-    EXPECT_NE(what.find("PLY element 'v7rtex' declares 16578868067080 items but no property"), std::string::npos)
+    what = test::input_error_of(read_point_cloud,
+                                (dir / "points_ply_element_without_properties.ply").string());
+    EXPECT_NE(what.find("PLY element 'v7rtex' declares 16578868067080 items but no property"),
+              std::string::npos)
         << what;
     // Medit: an element count times its entries overflowed.
-    what = test::input_error_of(read_medit_mesh, (dir / "medit_element_count_overflow.mesh").string());
+    what =
+        test::input_error_of(read_medit_mesh, (dir / "medit_element_count_overflow.mesh").string());
     EXPECT_NE(what.find("elements do not fit in the file"), std::string::npos) << what;
     // XML .vts: each crashed VTK 9.1's XML reader (a string array's byte count of 7e18, a
     // misspelt header_type, an unknown array type, string arrays holding fewer or more strings
@@ -212,20 +241,29 @@ TEST(ReadErrors, FuzzFindingsAreRefused) {
     // component). Read now by the XML reader of our own: each refused with one line.
     for (const auto& [file, message] : std::vector<std::pair<std::string, std::string>>{
              {"vts_string_array_byte_count_garbage.vts",
-              "array 'Points' of the points claims 7521983764484810083 bytes; at most 651 are left"},
-             // header_type misspelt: the 4-byte headers then assumed read a byte count from the middle of one.
-             {"vts_header_type_misspelt.vts", "array 'Points' of the points claims 1885300067 bytes; at most 655 are left"},
-             {"vts_unknown_array_type.vts", "array 'Points' of the points holds 0 values; expected 27 tuples of 3 components"},
+              "array 'Points' of the points claims 7521983764484810083 bytes; at most 651 are "
+              "left"},
+             // header_type misspelt: the 4-byte headers then assumed read a byte count from the
+             // middle of one.
+             {"vts_header_type_misspelt.vts",
+              "array 'Points' of the points claims 1885300067 bytes; at most 655 are left"},
+             {"vts_unknown_array_type.vts",
+              "array 'Points' of the points holds 0 values; expected 27 tuples of 3 components"},
              {"vts_string_array_with_fewer_strings.vts",
               "string array 'block_name' of the field data declares 2 x 1 values but holds 1"},
-             {"vts_piece_extent_backwards.vts", "Piece Extent \"5 2 0 2 0 2\": a range runs backwards"},
+             {"vts_piece_extent_backwards.vts",
+              "Piece Extent \"5 2 0 2 0 2\": a range runs backwards"},
              {"vts_string_array_unterminated.vts",
-              "string array 'block_name' of the field data ends inside a string (no terminating zero)"},
+              "string array 'block_name' of the field data ends inside a string (no terminating "
+              "zero)"},
              {"vts_string_array_with_more_strings.vts",
               "string array 'face_patch' of the field data declares 2 x 1 values but holds 6"},
-             {"vts_field_data_holding_another_element.vts", "<FieldData> holds a <Arrtyyap> element; expected arrays only"},
-             {"vts_appended_data_not_starting_with_underscore.vts", "its AppendedData does not start with '_' after the tag"},
-             {"vts_points_without_their_component_count.vts", "the points array 'Points' has 1 components; expected 3"}}) {
+             {"vts_field_data_holding_another_element.vts",
+              "<FieldData> holds a <Arrtyyap> element; expected arrays only"},
+             {"vts_appended_data_not_starting_with_underscore.vts",
+              "its AppendedData does not start with '_' after the tag"},
+             {"vts_points_without_their_component_count.vts",
+              "the points array 'Points' has 1 components; expected 3"}}) {
         what = test::input_error_of(read_vtk_block_grid, (dir / file).string());
         EXPECT_NE(what.find(file + ": " + message), std::string::npos) << what;
         what = test::input_error_of(read_vtk_mesh, (dir / file).string());
@@ -259,7 +297,8 @@ TEST(ReadErrors, AVtsCellArrayShorterThanItsPieceIsRefused) {
     std::memcpy(&bytes[data + offset], &count, 8);
     std::ofstream(file, std::ios::binary) << bytes;
     const std::string what = test::input_error_of(read_vtk_block_grid, file.string());
-    EXPECT_NE(what.find(fmt::format("array 'scaled_jacobian' of the cell data holds {} values; expected {} tuples of 1 components",
+    EXPECT_NE(what.find(fmt::format("array 'scaled_jacobian' of the cell data holds {} values; "
+                                    "expected {} tuples of 1 components",
                                     count / 8, one.num_cells())),
               std::string::npos)
         << what;

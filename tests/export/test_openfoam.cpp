@@ -1,6 +1,5 @@
-#include <gtest/gtest.h>
-
 #include <fmt/format.h>
+#include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
@@ -49,7 +48,9 @@ std::string token_after(const std::string& text, const std::string& label) {
     if (at == std::string::npos) return "";
     const std::string rest = text.substr(at + label.size());
     std::smatch m;
-    if (!std::regex_search(rest, m, std::regex(R"(^\s*([-+]?[0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?))"))) return "";
+    if (!std::regex_search(rest, m,
+                           std::regex(R"(^\s*([-+]?[0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?))")))
+        return "";
     return m[1];
 }
 
@@ -92,7 +93,8 @@ std::vector<FoamPatch> read_foam_boundary(const fs::path& file, long& declared) 
     std::vector<FoamPatch> patches;
     const std::regex entry(
         R"((\w+)\s*\{\s*type\s+(\w+);[^}]*?nFaces\s+(\d+);\s*startFace\s+(\d+);\s*\})");
-    for (auto it = std::sregex_iterator(text.begin(), text.end(), entry); it != std::sregex_iterator(); ++it)
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), entry);
+         it != std::sregex_iterator(); ++it)
         patches.push_back({(*it)[1], (*it)[2], std::stol((*it)[3]), std::stol((*it)[4])});
     return patches;
 }
@@ -174,10 +176,12 @@ void check_exterior_o_grid(FarFieldShape shape, const std::string& name) {
     // checkMesh's own patch table: each patch a closed, singly connected surface.
     for (const char* patch : {"wall", "farfield"}) {
         std::smatch m;
-        EXPECT_TRUE(std::regex_search(
-            r.output, m,
-            std::regex(std::string(R"(\n\s*)") + patch + R"(\s+(\d+)\s+(\d+)\s+ok \(closed singly connected\))")))
-            << patch << "\n" << r.output;
+        EXPECT_TRUE(
+            std::regex_search(r.output, m,
+                              std::regex(std::string(R"(\n\s*)") + patch +
+                                         R"(\s+(\d+)\s+(\d+)\s+ok \(closed singly connected\))")))
+            << patch << "\n"
+            << r.output;
         if (!m.empty()) {
             EXPECT_EQ(std::stol(m[1]), 6L * n * n) << patch;
             EXPECT_EQ(std::stol(m[2]), 6L * n * n + 2) << patch;
@@ -191,7 +195,8 @@ void check_exterior_o_grid(FarFieldShape shape, const std::string& name) {
 // "Mesh OK." and agree with our cell count, min volume and max non-orthogonality (our
 // metrics follow OpenFOAM's definitions). checkMesh prints 6 significant digits.
 TEST(OpenFoam, CheckMeshAcceptsTheSphereGridAndAgreesWithOurMetrics) {
-    if (!have_tool("checkMesh")) GTEST_SKIP() << "checkMesh not installed (Debian package openfoam)";
+    if (!have_tool("checkMesh"))
+        GTEST_SKIP() << "checkMesh not installed (Debian package openfoam)";
     Case c = read_case(HEXMESH_SOURCE_DIR "/cases/sphere/case.json");
     c.outputs = {"vtk", "openfoam"};
     const fs::path dir = scratch("openfoam");
@@ -211,9 +216,11 @@ TEST(OpenFoam, CheckMeshAcceptsTheSphereGridAndAgreesWithOurMetrics) {
     const double min_volume = number_after(r.output, "Min volume = ");
     EXPECT_NEAR(min_volume, q.min_volume, 1e-5 * q.min_volume) << r.output;
     const double non_orth = number_after(r.output, "Mesh non-orthogonality Max: ");
-    EXPECT_NEAR(non_orth, q.max_non_orthogonality_deg, 1e-4 * q.max_non_orthogonality_deg) << r.output;
+    EXPECT_NEAR(non_orth, q.max_non_orthogonality_deg, 1e-4 * q.max_non_orthogonality_deg)
+        << r.output;
     EXPECT_NEAR(number_after(r.output, "Max skewness = "), q.max_skewness, 1e-5 * q.max_skewness);
-    EXPECT_NEAR(number_after(r.output, "Max aspect ratio = "), q.max_aspect_ratio, 1e-3 * q.max_aspect_ratio);
+    EXPECT_NEAR(number_after(r.output, "Max aspect ratio = "), q.max_aspect_ratio,
+                1e-3 * q.max_aspect_ratio);
     EXPECT_NE(r.output.find("Upper triangular ordering OK."), std::string::npos);
     EXPECT_NE(r.output.find("Boundary definition OK."), std::string::npos);
 }
@@ -224,7 +231,8 @@ TEST(OpenFoam, CheckMeshAcceptsTheSphereGridAndAgreesWithOurMetrics) {
 class BundledCaseInOpenFoam : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(BundledCaseInOpenFoam, ValidByOurReportMeansMeshOkByCheckMesh) {
-    if (!have_tool("checkMesh")) GTEST_SKIP() << "checkMesh not installed (Debian package openfoam)";
+    if (!have_tool("checkMesh"))
+        GTEST_SKIP() << "checkMesh not installed (Debian package openfoam)";
     Case c = read_case(std::string(HEXMESH_SOURCE_DIR "/cases/") + GetParam() + "/case.json");
     c.outputs = {"vtk", "openfoam"};
     c.refinement.levels = 1;
@@ -233,7 +241,8 @@ TEST_P(BundledCaseInOpenFoam, ValidByOurReportMeansMeshOkByCheckMesh) {
     options.report = false;
     std::ostringstream log;
     const RunResult result = run_case(c, (dir / "out").string(), options, log);
-    ASSERT_TRUE(result.report.quality.solver_valid()) << GetParam() << ": the bundled case is refused";
+    ASSERT_TRUE(result.report.quality.solver_valid())
+        << GetParam() << ": the bundled case is refused";
     const ToolRun r = run_tool(check_mesh_command(dir / "out" / "grid_openfoam"));
     EXPECT_EQ(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("Mesh OK."), std::string::npos) << r.output;
@@ -242,19 +251,22 @@ TEST_P(BundledCaseInOpenFoam, ValidByOurReportMeansMeshOkByCheckMesh) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Cases, BundledCaseInOpenFoam,
-                         ::testing::Values("sphere", "sphere_exterior", "ellipsoid", "bean", "bean_exterior",
-                                           "box_exterior", "box_cylinder", "stl_capsule"));
+                         ::testing::Values("sphere", "sphere_exterior", "ellipsoid", "bean",
+                                           "bean_exterior", "box_exterior", "box_cylinder",
+                                           "stl_capsule"));
 
 // The exterior O-grid (six shell blocks, patch wall on the sphere, farfield on a sphere of
 // radius 10) with a boundary layer of first height 0.01: checkMesh passes every check.
 TEST(OpenFoam, CheckMeshAcceptsTheExteriorOGridWithSphereFarField) {
-    if (!have_tool("checkMesh")) GTEST_SKIP() << "checkMesh not installed (Debian package openfoam)";
+    if (!have_tool("checkMesh"))
+        GTEST_SKIP() << "checkMesh not installed (Debian package openfoam)";
     check_exterior_o_grid(FarFieldShape::sphere, "openfoam_o_grid_sphere");
 }
 
 // The same with a box far field of half-size 10.
 TEST(OpenFoam, CheckMeshAcceptsTheExteriorOGridWithBoxFarField) {
-    if (!have_tool("checkMesh")) GTEST_SKIP() << "checkMesh not installed (Debian package openfoam)";
+    if (!have_tool("checkMesh"))
+        GTEST_SKIP() << "checkMesh not installed (Debian package openfoam)";
     check_exterior_o_grid(FarFieldShape::box, "openfoam_o_grid_box");
 }
 
@@ -278,7 +290,8 @@ std::string file_text(const fs::path& file) {
 std::vector<double> initial_residuals(const std::string& log, const std::string& field) {
     std::vector<double> r;
     const std::regex line("Solving for " + field + ", Initial residual = ([0-9.eE+-]+)");
-    for (auto it = std::sregex_iterator(log.begin(), log.end(), line); it != std::sregex_iterator(); ++it)
+    for (auto it = std::sregex_iterator(log.begin(), log.end(), line); it != std::sregex_iterator();
+         ++it)
         r.push_back(std::stod((*it)[1]));
     return r;
 }
@@ -287,11 +300,11 @@ std::vector<double> initial_residuals(const std::string& log, const std::string&
 ToolRun simple_foam(const fs::path& case_dir, int steps) {
     const fs::path control = case_dir / "system" / "controlDict";
     std::string text = file_text(control);
-    text = std::regex_replace(text, std::regex(R"(endTime\s+\d+;)"), "endTime         " + std::to_string(steps) + ";");
+    text = std::regex_replace(text, std::regex(R"(endTime\s+\d+;)"),
+                              "endTime         " + std::to_string(steps) + ";");
     std::ofstream(control) << text;
     return run_tool(openfoam_command("simpleFoam -case '" + case_dir.string() + "'"));
 }
-
 
 // The grid written as a Fluent mesh DIR/grid.msh, then converted by OpenFOAM's
 // fluent3DMeshToFoam into the case DIR/case (whose dictionaries an OpenFOAM export provides).
@@ -299,8 +312,8 @@ ToolRun fluent_through_openfoam(const BlockGrid& grid, const fs::path& dir) {
     write_openfoam_mesh(grid, (dir / "case").string());
     fs::remove_all(dir / "case" / "constant" / "polyMesh");
     write_fluent_mesh(grid, (dir / "grid.msh").string());
-    return run_tool(openfoam_command("fluent3DMeshToFoam -case '" + (dir / "case").string() + "' '" +
-                                     (dir / "grid.msh").string() + "'"));
+    return run_tool(openfoam_command("fluent3DMeshToFoam -case '" + (dir / "case").string() +
+                                     "' '" + (dir / "grid.msh").string() + "'"));
 }
 
 }  // namespace
@@ -310,26 +323,31 @@ ToolRun fluent_through_openfoam(const BlockGrid& grid, const fs::path& dir) {
 // simpleFoam runs the exported one as written (laminar, Re = 100) for 20 iterations with no
 // error, the velocity and pressure residuals falling by more than 20 times.
 TEST(OpenFoam, RunAndExportWriteTheSameCaseAndSimpleFoamRunsIt) {
-    if (!have_tool("simpleFoam")) GTEST_SKIP() << "simpleFoam not installed (Debian package openfoam)";
+    if (!have_tool("simpleFoam"))
+        GTEST_SKIP() << "simpleFoam not installed (Debian package openfoam)";
     const fs::path dir = scratch("simplefoam");
     const std::string exe = HEXMESH_EXE;
-    const ToolRun run = run_tool("cd '" HEXMESH_SOURCE_DIR "' && '" + exe +
-                                 "' run cases/sphere_exterior/case.json -o '" + (dir / "run").string() + "'");
+    const ToolRun run =
+        run_tool("cd '" HEXMESH_SOURCE_DIR "' && '" + exe +
+                 "' run cases/sphere_exterior/case.json -o '" + (dir / "run").string() + "'");
     ASSERT_EQ(run.exit_code, 0) << run.output;
     const fs::path from_run = dir / "run" / "grid_openfoam", from_export = dir / "exported";
     const ToolRun ex = run_tool("'" + exe + "' export '" + (dir / "run" / "grid.vtm").string() +
                                 "' --format openfoam -o '" + from_export.string() + "'");
     ASSERT_EQ(ex.exit_code, 0) << ex.output;
-    EXPECT_NE(ex.output.find("flow: velocity (1, 0, 0), density 1, viscosity 0.01, laminar (from "), std::string::npos)
+    EXPECT_NE(ex.output.find("flow: velocity (1, 0, 0), density 1, viscosity 0.01, laminar (from "),
+              std::string::npos)
         << ex.output;
     const std::vector<std::string> files = files_under(from_run);
     EXPECT_EQ(files, files_under(from_export));
-    EXPECT_EQ(files, (std::vector<std::string>{"0/U", "0/p", "constant/polyMesh/boundary", "constant/polyMesh/faces",
-                                               "constant/polyMesh/neighbour", "constant/polyMesh/owner",
-                                               "constant/polyMesh/points", "constant/transportProperties",
-                                               "constant/turbulenceProperties", "system/controlDict",
-                                               "system/fvSchemes", "system/fvSolution"}));
-    for (const std::string& f : files) EXPECT_EQ(file_text(from_run / f), file_text(from_export / f)) << f;
+    EXPECT_EQ(files, (std::vector<std::string>{
+                         "0/U", "0/p", "constant/polyMesh/boundary", "constant/polyMesh/faces",
+                         "constant/polyMesh/neighbour", "constant/polyMesh/owner",
+                         "constant/polyMesh/points", "constant/transportProperties",
+                         "constant/turbulenceProperties", "system/controlDict", "system/fvSchemes",
+                         "system/fvSolution"}));
+    for (const std::string& f : files)
+        EXPECT_EQ(file_text(from_run / f), file_text(from_export / f)) << f;
 
     const ToolRun foam = simple_foam(from_export, 20);
     ASSERT_EQ(foam.exit_code, 0) << foam.output;
@@ -346,7 +364,8 @@ TEST(OpenFoam, RunAndExportWriteTheSameCaseAndSimpleFoamRunsIt) {
 // wall functions on the wall and inletOutlet on the far field, k and omega from the intensity
 // and mixing length; simpleFoam runs 5 iterations of it with no error.
 TEST(OpenFoam, TurbulentFlowFromTheCaseFileRuns) {
-    if (!have_tool("simpleFoam")) GTEST_SKIP() << "simpleFoam not installed (Debian package openfoam)";
+    if (!have_tool("simpleFoam"))
+        GTEST_SKIP() << "simpleFoam not installed (Debian package openfoam)";
     const fs::path dir = scratch("simplefoam_sst");
     const BlockGrid grid = small_o_h_grid(6, 4);
     FlowSpec flow;
@@ -357,14 +376,17 @@ TEST(OpenFoam, TurbulentFlowFromTheCaseFileRuns) {
     flow.turbulence_intensity = 0.05;
     flow.turbulence_length = 0.1;
     write_openfoam_mesh(grid, (dir / "case").string(), flow);
-    const std::string k = file_text(dir / "case" / "0" / "k"), omega = file_text(dir / "case" / "0" / "omega");
+    const std::string k = file_text(dir / "case" / "0" / "k"),
+                      omega = file_text(dir / "case" / "0" / "omega");
     // k = 1.5 (0.05 * 20)^2 = 1.5; omega = sqrt(1.5) / (0.09^0.25 * 0.1) = 22.36...
     EXPECT_NE(k.find("internalField   uniform 1.5"), std::string::npos) << k;
     EXPECT_NE(k.find("kqRWallFunction"), std::string::npos) << k;
     EXPECT_NE(omega.find("internalField   uniform 22.36"), std::string::npos) << omega;
-    EXPECT_NE(file_text(dir / "case" / "constant" / "transportProperties").find("nu              1.5e-05;"),
+    EXPECT_NE(file_text(dir / "case" / "constant" / "transportProperties")
+                  .find("nu              1.5e-05;"),
               std::string::npos);
-    EXPECT_NE(file_text(dir / "case" / "constant" / "turbulenceProperties").find("kOmegaSST"), std::string::npos);
+    EXPECT_NE(file_text(dir / "case" / "constant" / "turbulenceProperties").find("kOmegaSST"),
+              std::string::npos);
     const ToolRun foam = simple_foam(dir / "case", 5);
     ASSERT_EQ(foam.exit_code, 0) << foam.output;
     EXPECT_EQ(foam.output.find("FOAM FATAL"), std::string::npos) << foam.output;
@@ -383,16 +405,21 @@ TEST(Fluent, OpenFoamsConverterReadsAValidMeshWithThePatches) {
     const fs::path dir = scratch("fluent");
     const ToolRun convert = fluent_through_openfoam(grid, dir);
     ASSERT_EQ(convert.exit_code, 0) << convert.output;
-    EXPECT_NE(convert.output.find("Zone: 4 name: wall type: wall"), std::string::npos) << convert.output;
-    EXPECT_NE(convert.output.find("Zone: 5 name: farfield type: pressure-far-field"), std::string::npos) << convert.output;
+    EXPECT_NE(convert.output.find("Zone: 4 name: wall type: wall"), std::string::npos)
+        << convert.output;
+    EXPECT_NE(convert.output.find("Zone: 5 name: farfield type: pressure-far-field"),
+              std::string::npos)
+        << convert.output;
     const ToolRun r = run_tool(check_mesh_command(dir / "case"));
     ASSERT_EQ(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("Mesh OK."), std::string::npos) << r.output;
     EXPECT_EQ(number_after(r.output, "    cells:"), double(grid.num_cells()));
     for (const char* patch : {"wall", "farfield"})
-        EXPECT_TRUE(std::regex_search(r.output, std::regex(std::string(R"(\n\s*)") + patch + R"(\s+)" +
-                                                            std::to_string(6 * n * n) + R"(\s)")))
-            << patch << "\n" << r.output;
+        EXPECT_TRUE(
+            std::regex_search(r.output, std::regex(std::string(R"(\n\s*)") + patch + R"(\s+)" +
+                                                   std::to_string(6 * n * n) + R"(\s)")))
+            << patch << "\n"
+            << r.output;
 }
 
 // Ten patches: Fluent zones 4 to 13, hexadecimal (4 .. d) in the face sections' headers and
@@ -412,7 +439,8 @@ TEST(Fluent, ZonesBeyondNineKeepTheirNames) {
         block.nodes = Dims{3, 3, 3};
         for (int k = 0; k <= 2; ++k)
             for (int j = 0; j <= 2; ++j)
-                for (int i = 0; i <= 2; ++i) block.node_ids.push_back(Id(2 * b + i + 5 * (j + 3 * k)));
+                for (int i = 0; i <= 2; ++i)
+                    block.node_ids.push_back(Id(2 * b + i + 5 * (j + 3 * k)));
         for (int f = 0; f < 6; ++f) block.face_patch[f] = fmt::format("p{}", 6 * b + f);
         block.face_patch[b == 0 ? 1 : 0] = "";  // the shared face
         grid.blocks.push_back(block);
@@ -424,8 +452,10 @@ TEST(Fluent, ZonesBeyondNineKeepTheirNames) {
     ASSERT_EQ(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("Mesh OK."), std::string::npos) << r.output;
     for (const char* patch : {"p0", "p2", "p3", "p4", "p5", "p7", "p8", "p9", "p10", "p11"})
-        EXPECT_TRUE(std::regex_search(r.output, std::regex(std::string(R"(\n\s*)") + patch + R"(\s+4\s)")))
-            << patch << "\n" << r.output;
+        EXPECT_TRUE(
+            std::regex_search(r.output, std::regex(std::string(R"(\n\s*)") + patch + R"(\s+4\s)")))
+            << patch << "\n"
+            << r.output;
 }
 
 // A cell from a grid of a body with legs (wall cell of a folded quad): its 8 corner tets are
@@ -433,7 +463,8 @@ TEST(Fluent, ZonesBeyondNineKeepTheirNames) {
 // beyond its centre. The quality report counts what checkMesh fails, with checkMesh's numbers,
 // and does not call the grid valid.
 TEST(OpenFoam, QualityCountsTheCellChecksCheckMeshFails) {
-    if (!have_tool("checkMesh")) GTEST_SKIP() << "checkMesh not installed (Debian package openfoam)";
+    if (!have_tool("checkMesh"))
+        GTEST_SKIP() << "checkMesh not installed (Debian package openfoam)";
     BlockGrid grid;
     grid.points = {{-0.141865, 0.190517, 0.212616}, {-0.143186, 0.199647, 0.204166},
                    {-0.158641, 0.160889, 0.142733}, {-0.156454, 0.15972, 0.139122},
@@ -455,8 +486,11 @@ TEST(OpenFoam, QualityCountsTheCellChecksCheckMeshFails) {
     write_openfoam_mesh(grid, (dir / "case").string());
     const ToolRun r = run_tool(check_mesh_command(dir / "case"));
     EXPECT_NE(r.output.find("Failed"), std::string::npos) << r.output;
-    EXPECT_EQ(number_after(r.output, "Error in face pyramids: "), double(q.negative_pyramids)) << r.output;
-    EXPECT_EQ(number_after(r.output, "Number of negative volume cells: "), double(q.nonpositive_volumes)) << r.output;
+    EXPECT_EQ(number_after(r.output, "Error in face pyramids: "), double(q.negative_pyramids))
+        << r.output;
+    EXPECT_EQ(number_after(r.output, "Number of negative volume cells: "),
+              double(q.nonpositive_volumes))
+        << r.output;
     EXPECT_GT(q.negative_pyramids, 0);
     EXPECT_EQ(q.nonpositive_volumes, 1);
     fs::remove_all(dir);

@@ -1,10 +1,5 @@
-#include <gtest/gtest.h>
-
 #include <fmt/format.h>
-
-#include <fstream>
-#include <map>
-
+#include <gtest/gtest.h>
 #include <vtkDataArray.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkMultiBlockPLOT3DReader.h>
@@ -12,14 +7,17 @@
 #include <vtkPoints.h>
 #include <vtkStructuredGrid.h>
 
+#include <fstream>
+#include <map>
+
 #include "export_test_support.h"
 #include "io/export_grid.h"
 #include "io/neutral_map.h"
 #include "io/plot3d.h"
+#include "io/vtk_mesh.h"
 #include "tests/io/scratch_files.h"
 #include "volume/o_grid.h"
 #include "volume/o_h_grid.h"
-#include "io/vtk_mesh.h"
 
 using namespace hexmesh;
 using namespace hexmesh::test_export;
@@ -27,19 +25,22 @@ using namespace hexmesh::test_export;
 namespace {
 
 const Plot3dFormat variants[] = {
-    {Plot3dEncoding::fortran, false}, {Plot3dEncoding::fortran, true},
+    {Plot3dEncoding::fortran, false},  {Plot3dEncoding::fortran, true},
     {Plot3dEncoding::c_binary, false}, {Plot3dEncoding::c_binary, true},
-    {Plot3dEncoding::ascii, false},   {Plot3dEncoding::ascii, true},
+    {Plot3dEncoding::ascii, false},    {Plot3dEncoding::ascii, true},
 };
 
 std::string label(const Plot3dFormat& f) {
-    const char* e = f.encoding == Plot3dEncoding::fortran ? "fortran"
-                    : f.encoding == Plot3dEncoding::c_binary ? "c" : "ascii";
+    const char* e = f.encoding == Plot3dEncoding::fortran    ? "fortran"
+                    : f.encoding == Plot3dEncoding::c_binary ? "c"
+                                                             : "ascii";
     return std::string(e) + (f.single_precision ? "-single" : "-double");
 }
 
 // The coordinate we expect back: the double itself, or its float rounding.
-double stored(double x, bool single) { return single ? double(float(x)) : x; }
+double stored(double x, bool single) {
+    return single ? double(float(x)) : x;
+}
 
 // ASCII does not say its precision: a single-precision value reads back as the double
 // nearest to its decimal text, which rounds to the same float.
@@ -153,7 +154,8 @@ namespace {
 // Node of point (u, v) of a map face range.
 Id range_node(const BlockGrid& grid, const NmfFaceRange& r, int u, int v) {
     const Block& b = grid.blocks[size_t(r.block - 1)];
-    const std::array<int, 3> ijk = nmf_face_node({b.nodes.ni, b.nodes.nj, b.nodes.nk}, r.face, u, v);
+    const std::array<int, 3> ijk =
+        nmf_face_node({b.nodes.ni, b.nodes.nj, b.nodes.nk}, r.face, u, v);
     return b.node(ijk[0], ijk[1], ijk[2]);
 }
 
@@ -166,17 +168,23 @@ void expect_map_describes(const BlockGrid& grid, const fs::path& xyz) {
     ASSERT_EQ(map.dims.size(), grid.blocks.size());
     std::map<std::pair<int, int>, std::string> patched, want;
     for (const NmfBoundary& b : map.boundaries) {
-        EXPECT_TRUE(patched.emplace(std::pair{b.range.block - 1, nmf_face_to_block_face(b.range.face)}, b.type).second);
+        EXPECT_TRUE(
+            patched
+                .emplace(std::pair{b.range.block - 1, nmf_face_to_block_face(b.range.face)}, b.type)
+                .second);
     }
     int open_faces = 0;
     for (size_t b = 0; b < grid.blocks.size(); ++b)
         for (int f = 0; f < 6; ++f) {
             const std::string& p = grid.blocks[b].face_patch[f];
-            if (p.empty()) ++open_faces;
-            else want[{int(b), f}] = p == "wall" ? "WALL" : p == "farfield" ? "FARFIELD" : p;
+            if (p.empty())
+                ++open_faces;
+            else
+                want[{int(b), f}] = p == "wall" ? "WALL" : p == "farfield" ? "FARFIELD" : p;
         }
     EXPECT_EQ(patched, want);
-    EXPECT_EQ(2 * map.interfaces.size(), size_t(open_faces));  // each interface joins two open faces
+    EXPECT_EQ(2 * map.interfaces.size(),
+              size_t(open_faces));  // each interface joins two open faces
     for (const NmfInterface& link : map.interfaces) {
         const NmfFaceRange &a = link.first, &b = link.second;
         const int step1 = b.e1 >= b.s1 ? 1 : -1, step2 = b.e2 >= b.s2 ? 1 : -1;
@@ -185,8 +193,10 @@ void expect_map_describes(const BlockGrid& grid, const fs::path& xyz) {
                 const int along_u = std::abs(u - a.s1), along_v = std::abs(v - a.s2);
                 const int q1 = b.s1 + step1 * (link.swap ? along_v : along_u);
                 const int q2 = b.s2 + step2 * (link.swap ? along_u : along_v);
-                ASSERT_EQ(grid.points[range_node(grid, a, u, v)], grid.points[range_node(grid, b, q1, q2)])
-                    << "interface block " << a.block << " face " << a.face << " point " << u << ", " << v;
+                ASSERT_EQ(grid.points[range_node(grid, a, u, v)],
+                          grid.points[range_node(grid, b, q1, q2)])
+                    << "interface block " << a.block << " face " << a.face << " point " << u << ", "
+                    << v;
             }
     }
 }
@@ -199,7 +209,8 @@ TEST(Plot3d, NeutralMapFileListsPatchesAndInterfacesThatMapPointOntoPoint) {
     axis.cells_per_edge = 6;
     axis.wall_cells = 2;
     axis.axis = 2;
-    for (const BlockGrid& grid : {small_o_h_grid(), small_o_grid(4, 3), make_o_h_grid(sphere, axis)}) {
+    for (const BlockGrid& grid :
+         {small_o_h_grid(), small_o_grid(4, 3), make_o_h_grid(sphere, axis)}) {
         SCOPED_TRACE(grid.blocks.size());
         const fs::path xyz = scratch("nmf") / "grid.xyz";
         write_plot3d(grid, xyz.string(), Plot3dFormat{});
@@ -208,7 +219,8 @@ TEST(Plot3d, NeutralMapFileListsPatchesAndInterfacesThatMapPointOntoPoint) {
         fs::remove(plot3d_patch_file(xyz.string()));
         const BlockGrid back = read_plot3d(xyz.string());
         ASSERT_EQ(back.blocks.size(), grid.blocks.size());
-        for (size_t b = 0; b < grid.blocks.size(); ++b) EXPECT_EQ(back.blocks[b].face_patch, grid.blocks[b].face_patch) << b;
+        for (size_t b = 0; b < grid.blocks.size(); ++b)
+            EXPECT_EQ(back.blocks[b].face_patch, grid.blocks[b].face_patch) << b;
     }
 }
 

@@ -1,10 +1,5 @@
-#include <gtest/gtest.h>
-
-#include <Eigen/Geometry>
 #include <fmt/format.h>
-
-#include <fstream>
-#include <map>
+#include <gtest/gtest.h>
 #include <vtkCell.h>
 #include <vtkCellType.h>
 #include <vtkCompositeDataSet.h>
@@ -15,7 +10,11 @@
 #include <vtkNew.h>
 #include <vtkSmartPointer.h>
 #include <vtkUnstructuredGrid.h>
+
+#include <Eigen/Geometry>
+#include <fstream>
 #include <iterator>
+#include <map>
 #include <regex>
 
 #include "export_test_support.h"
@@ -27,8 +26,8 @@
 #include "io/medit_mesh.h"
 #include "io/su2_mesh.h"
 #include "io/ugrid_mesh.h"
-#include "volume/o_grid.h"
 #include "io/vtk_mesh.h"
+#include "volume/o_grid.h"
 
 using namespace hexmesh;
 using namespace hexmesh::test_export;
@@ -41,7 +40,8 @@ void expect_same_mesh(const HexMesh& got, const HexMesh& want, double tolerance 
     EXPECT_EQ(got.num_points(), want.num_points());
     for (Id c = 0; c < want.num_cells(); ++c)
         for (int v = 0; v < 8; ++v)
-            ASSERT_LE((got.points[got.node(c, v)] - want.points[want.node(c, v)]).norm(), tolerance) << c;
+            ASSERT_LE((got.points[got.node(c, v)] - want.points[want.node(c, v)]).norm(), tolerance)
+                << c;
 }
 
 }  // namespace
@@ -55,7 +55,8 @@ TEST(GridFaces, CountsMatchEulersFaceBalance) {
     Id previous_owner = -1, previous_neighbour = -1, internal = 0;
     for_each_internal_face(grid, faces, [&](Id owner, Id neighbour, const std::array<Id, 4>&) {
         EXPECT_LT(owner, neighbour);
-        EXPECT_TRUE(owner > previous_owner || (owner == previous_owner && neighbour > previous_neighbour));
+        EXPECT_TRUE(owner > previous_owner ||
+                    (owner == previous_owner && neighbour > previous_neighbour));
         previous_owner = owner;
         previous_neighbour = neighbour;
         ++internal;
@@ -83,9 +84,13 @@ TEST(GridFaces, BlocksThatDoNotConformAtAnInterfaceAreRefusedNamingTheFace) {
     } catch (const std::invalid_argument& e) {
         const std::string what = e.what();
         // The first of the two faces met: the core's side of it.
-        EXPECT_NE(what.find("face kmax of block 'core' is an interface (no patch), but 16 of its 16 cell faces"),
-                  std::string::npos) << what;
-        EXPECT_NE(what.find("meet no other block's: the blocks do not conform there"), std::string::npos) << what;
+        EXPECT_NE(what.find("face kmax of block 'core' is an interface (no patch), but 16 of its "
+                            "16 cell faces"),
+                  std::string::npos)
+            << what;
+        EXPECT_NE(what.find("meet no other block's: the blocks do not conform there"),
+                  std::string::npos)
+            << what;
     }
 }
 
@@ -104,13 +109,15 @@ TEST(Gmsh, GmshReadsItWithTheSameElementCounts) {
     write_gmsh_mesh(grid, (dir / "grid.msh").string());
     // gmsh parses the file and saves it again in MSH 4.1; reading that back counts what gmsh
     // understood (-0: no meshing, only parse and save).
-    const ToolRun r = run_tool("cd '" + dir.string() + "' && gmsh grid.msh -0 -format msh41 -o again.msh");
+    const ToolRun r =
+        run_tool("cd '" + dir.string() + "' && gmsh grid.msh -0 -format msh41 -o again.msh");
     ASSERT_EQ(r.exit_code, 0) << r.output;
     EXPECT_EQ(r.output.find("Error"), std::string::npos) << r.output;
     // gmsh prints 16 significant digits, so its copy is exact to ~1e-16 relative.
     expect_same_mesh(read_gmsh_mesh((dir / "again.msh").string()), to_hex_mesh(grid), 1e-14);
     const GridFaces faces = make_grid_faces(grid);
-    const ToolRun info = run_tool("cd '" + dir.string() + "' && gmsh grid.msh -0 -o /dev/null -v 99");
+    const ToolRun info =
+        run_tool("cd '" + dir.string() + "' && gmsh grid.msh -0 -o /dev/null -v 99");
     std::smatch m;
     // gmsh reports "<N> elements" for what it read (hexahedra + boundary quadrangles).
     const std::string want = std::to_string(grid.num_cells() + faces.boundary_faces) + " elements";
@@ -139,8 +146,9 @@ std::string read_text(const fs::path& file) {
 // meshio's summary of a file (tests/export/meshio_summary.py), or "" when meshio is missing.
 std::string meshio_summary(const fs::path& file) {
     if (run_tool("/usr/bin/python3 -c 'import meshio'").exit_code != 0) return "";
-    const ToolRun r = run_tool("/usr/bin/python3 '" HEXMESH_SOURCE_DIR "/tests/export/meshio_summary.py' '" +
-                               file.string() + "'");
+    const ToolRun r =
+        run_tool("/usr/bin/python3 '" HEXMESH_SOURCE_DIR "/tests/export/meshio_summary.py' '" +
+                 file.string() + "'");
     EXPECT_EQ(r.exit_code, 0) << r.output;
     const size_t line = r.output.rfind("\n{");  // meshio warns about string tags first
     return line == std::string::npos ? r.output : r.output.substr(line + 1);
@@ -171,9 +179,12 @@ void expect_meshio_reads(const fs::path& file, const BlockGrid& grid, bool exter
         const bool inwards = exterior && make_grid_faces(grid).patch_names[p] == "wall";
         facing += fmt::format("{}\"{}\": {}", p ? ", " : "", p + 1, inwards ? counts[p] : 0);
     }
-    EXPECT_EQ(summary, fmt::format("{{\"cells\": {{\"hexahedron\": {}, \"quad\": {}}}, \"left_handed_hexes\": 0, "
-                                   "\"points\": {}, \"quads_facing_origin_per_tag\": {{{}}}, \"quads_per_tag\": {{{}}}}}\n",
-                                   grid.num_cells(), quads, grid.points.size(), facing, per_tag));
+    EXPECT_EQ(
+        summary,
+        fmt::format("{{\"cells\": {{\"hexahedron\": {}, \"quad\": {}}}, \"left_handed_hexes\": 0, "
+                    "\"points\": {}, \"quads_facing_origin_per_tag\": {{{}}}, \"quads_per_tag\": "
+                    "{{{}}}}}\n",
+                    grid.num_cells(), quads, grid.points.size(), facing, per_tag));
 }
 
 }  // namespace
@@ -192,7 +203,8 @@ TEST(Su2, MeshioReadsTheCellsPointsAndMarkers) {
             at = text.find("MARKER_TAG= " + name + "\n", at);
             EXPECT_NE(at, std::string::npos) << name;
         }
-        EXPECT_NE(text.find(fmt::format("NMARK= {}\n", faces.patch_names.size())), std::string::npos);
+        EXPECT_NE(text.find(fmt::format("NMARK= {}\n", faces.patch_names.size())),
+                  std::string::npos);
     }
 }
 
@@ -205,7 +217,8 @@ TEST(Ugrid, MeshioReadsTheCellsPointsAndSurfaceIdsAndTheMapbcNamesThem) {
         const GridFaces faces = make_grid_faces(grid);
         std::string mapbc = fmt::format("{}\n", faces.patch_names.size());
         for (size_t p = 0; p < faces.patch_names.size(); ++p)
-            mapbc += fmt::format("{} {} {}\n", p + 1, faces.patch_names[p] == "wall" ? 4000 : 5050, faces.patch_names[p]);
+            mapbc += fmt::format("{} {} {}\n", p + 1, faces.patch_names[p] == "wall" ? 4000 : 5050,
+                                 faces.patch_names[p]);
         EXPECT_EQ(read_text(file.parent_path() / "grid.mapbc"), mapbc);
     }
 }
@@ -219,9 +232,11 @@ TEST(Fluent, MeshioReadsThePointsAndEveryFace) {
     const std::string summary = meshio_summary(file);
     if (summary.empty()) GTEST_SKIP() << "python3-meshio not installed";
     const GridFaces faces = make_grid_faces(grid);
-    EXPECT_EQ(summary, fmt::format("{{\"cells\": {{\"quad\": {}}}, \"left_handed_hexes\": 0, \"points\": {}, "
-                                   "\"quads_facing_origin_per_tag\": {{}}, \"quads_per_tag\": {{}}}}\n",
-                                   faces.internal_faces + faces.boundary_faces, grid.points.size()));
+    EXPECT_EQ(
+        summary,
+        fmt::format("{{\"cells\": {{\"quad\": {}}}, \"left_handed_hexes\": 0, \"points\": {}, "
+                    "\"quads_facing_origin_per_tag\": {{}}, \"quads_per_tag\": {{}}}}\n",
+                    faces.internal_faces + faces.boundary_faces, grid.points.size()));
 }
 
 // The exterior O-grid as Exodus II: meshio reads its points and right-handed hexahedra; VTK's
@@ -234,9 +249,12 @@ TEST(Exodus, MeshioAndVtkReadTheBlockAndOneSideSetPerPatch) {
     write_exodus_mesh(grid, file.string());
     const std::string summary = meshio_summary(file);
     if (!summary.empty()) {
-        EXPECT_EQ(summary, fmt::format("{{\"cells\": {{\"hexahedron\": {}}}, \"left_handed_hexes\": 0, \"points\": {}, "
-                                       "\"quads_facing_origin_per_tag\": {{}}, \"quads_per_tag\": {{}}}}\n",
-                                       grid.num_cells(), grid.points.size()));
+        EXPECT_EQ(
+            summary,
+            fmt::format(
+                "{{\"cells\": {{\"hexahedron\": {}}}, \"left_handed_hexes\": 0, \"points\": {}, "
+                "\"quads_facing_origin_per_tag\": {{}}, \"quads_per_tag\": {{}}}}\n",
+                grid.num_cells(), grid.points.size()));
     }
     vtkNew<vtkExodusIIReader> reader;
     reader->SetFileName(file.string().c_str());
@@ -244,14 +262,16 @@ TEST(Exodus, MeshioAndVtkReadTheBlockAndOneSideSetPerPatch) {
     ASSERT_EQ(reader->GetNumberOfObjects(vtkExodusIIReader::ELEM_BLOCK), 1);
     EXPECT_STREQ(reader->GetObjectName(vtkExodusIIReader::ELEM_BLOCK, 0), "fluid");
     const GridFaces faces = make_grid_faces(grid);
-    ASSERT_EQ(reader->GetNumberOfObjects(vtkExodusIIReader::SIDE_SET), int(faces.patch_names.size()));
+    ASSERT_EQ(reader->GetNumberOfObjects(vtkExodusIIReader::SIDE_SET),
+              int(faces.patch_names.size()));
     for (int s = 0; s < int(faces.patch_names.size()); ++s)
         reader->SetObjectStatus(vtkExodusIIReader::SIDE_SET, s, 1);
     reader->Update();
     const std::vector<Id> counts = patch_face_counts(grid);
     std::map<std::string, std::pair<Id, Id>> read;  // name -> (cells, cells facing the origin)
-    vtkSmartPointer<vtkDataObjectTreeIterator> it = vtkSmartPointer<vtkDataObjectTreeIterator>::Take(
-        vtkDataObjectTreeIterator::SafeDownCast(reader->GetOutput()->NewIterator()));
+    vtkSmartPointer<vtkDataObjectTreeIterator> it =
+        vtkSmartPointer<vtkDataObjectTreeIterator>::Take(
+            vtkDataObjectTreeIterator::SafeDownCast(reader->GetOutput()->NewIterator()));
     for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem()) {
         auto* piece = vtkUnstructuredGrid::SafeDownCast(it->GetCurrentDataObject());
         ASSERT_NE(piece, nullptr);

@@ -23,7 +23,8 @@ namespace {
 // The file the input goes to: one per process, in the temporary folder.
 std::string file_with(const char* extension) {
     const char* tmp = std::getenv("TMPDIR");
-    return std::string(tmp ? tmp : "/tmp") + "/hexmesh_fuzz_" + std::to_string(::getpid()) + extension;
+    return std::string(tmp ? tmp : "/tmp") + "/hexmesh_fuzz_" + std::to_string(::getpid()) +
+           extension;
 }
 
 template <class Read>
@@ -46,7 +47,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
 #if FUZZ_READER == 1  // surfaces: the first byte picks the format
     if (size == 0) return 0;
     static const char* const extensions[] = {".stl", ".obj", ".off", ".ply"};
-    read_as(extensions[data[0] % 4], data + 1, size - 1, [](const std::string& p) { read_surface(p); });
+    read_as(extensions[data[0] % 4], data + 1, size - 1,
+            [](const std::string& p) { read_surface(p); });
 #elif FUZZ_READER == 2
     read_as(".json", data, size, [](const std::string& p) { read_case(p); });
 #elif FUZZ_READER == 3  // legacy VTK, through both mesh readers
@@ -60,16 +62,18 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     read_as(".xyz", data, size, [](const std::string& p) { read_plot3d(p); });
 #elif FUZZ_READER == 7  // point clouds: .xyz or .ply by the first byte
     if (size == 0) return 0;
-    read_as(data[0] % 2 ? ".xyz" : ".ply", data + 1, size - 1, [](const std::string& p) { read_point_cloud(p); });
+    read_as(data[0] % 2 ? ".xyz" : ".ply", data + 1, size - 1,
+            [](const std::string& p) { read_point_cloud(p); });
 #elif FUZZ_READER == 8
     read_as(".sections", data, size, [](const std::string& p) { read_sections(p); });
-#elif FUZZ_READER == 9  // VTK XML structured grids, through the block-grid reader
+#elif FUZZ_READER == 9   // VTK XML structured grids, through the block-grid reader
     read_as(".vts", data, size, [](const std::string& p) { read_vtk_block_grid(p); });
 #elif FUZZ_READER == 10  // VTK XML unstructured grids, through both mesh readers
     read_as(".vtu", data, size, [](const std::string& p) { read_vtk_mesh(p); });
     read_as(".vtu", data, size, [](const std::string& p) { read_volume_mesh(p); });
 #else
-#error "FUZZ_READER: 1 surface, 2 case, 3 vtk, 4 gmsh, 5 medit, 6 plot3d, 7 points, 8 sections, 9 vts, 10 vtu"
+#error \
+    "FUZZ_READER: 1 surface, 2 case, 3 vtk, 4 gmsh, 5 medit, 6 plot3d, 7 points, 8 sections, 9 vts, 10 vtu"
 #endif
     return 0;
 }

@@ -28,7 +28,8 @@ TEST(CaseFile, ParsesAFullCase) {
       "solver": {"untangle": "lbfgs", "optimize": "explicit", "theta": 0.7, "max_iterations": 50,
                  "surface_iterations": 0},
       "outputs": ["vtk"]
-    })", "case.json");
+    })",
+                              "case.json");
     EXPECT_EQ(c.geometry.kind, "sphere");
     EXPECT_EQ(c.geometry.center, Vec3(1, 2, 3));
     EXPECT_DOUBLE_EQ(c.geometry.radius, 0.5);
@@ -49,7 +50,8 @@ TEST(CaseFile, ParsesCsgWithTransforms) {
     const Case c = parse_case(R"({"geometry": {"difference": [
         {"box": {"size": [2, 2, 2]}},
         {"cylinder": {"radius": 0.5, "height": 3}, "rotate": {"axis": [1, 0, 0], "degrees": 90}}
-      ]}})", "case.json");
+      ]}})",
+                              "case.json");
     ASSERT_EQ(c.geometry.kind, "difference");
     ASSERT_EQ(c.geometry.children.size(), 2u);
     EXPECT_EQ(c.geometry.children[1].kind, "cylinder");
@@ -57,7 +59,8 @@ TEST(CaseFile, ParsesCsgWithTransforms) {
 }
 
 TEST(CaseFile, MalformedJsonNamesTheLine) {
-    const std::string e = error_of("{\n  \"geometry\": {\"sphere\": {\"radius\": 1}},\n  \"grid\": {,}\n}");
+    const std::string e =
+        error_of("{\n  \"geometry\": {\"sphere\": {\"radius\": 1}},\n  \"grid\": {,}\n}");
     EXPECT_NE(e.find("case.json: malformed JSON"), std::string::npos) << e;
     EXPECT_NE(e.find("line 3"), std::string::npos) << e;
 }
@@ -88,7 +91,8 @@ TEST(CaseFile, NegativeSizesAreRefused) {
 
 // run optimizes shape first by default (README, "solver"); a case may set it in (0, 1).
 TEST(CaseFile, ThetaDefaultsToShapeFirstAndStaysInsideZeroOne) {
-    EXPECT_EQ(parse_case(R"({"geometry": {"sphere": {"radius": 1}}})", "case.json").solver.theta, 0.2);
+    EXPECT_EQ(parse_case(R"({"geometry": {"sphere": {"radius": 1}}})", "case.json").solver.theta,
+              0.2);
     EXPECT_EQ(parse_case(R"({"geometry": {"sphere": {"radius": 1}}, "solver": {"theta": 0.8}})",
                          "case.json")
                   .solver.theta,
@@ -171,10 +175,16 @@ TEST(CaseFile, ExteriorDomainWithFarField) {
     EXPECT_EQ(c.grid.wall_cells, 30);
     // Not given: twice the patch's cells out to the far field, and 10 from a core to the wall.
     EXPECT_EQ(parse_case(R"({"geometry": {"sphere": {"radius": 1}}, "domain": "exterior",
-                            "grid": {"cells_per_edge": 12}})", "c.json").grid.wall_cells, 24);
-    EXPECT_EQ(parse_case(R"({"geometry": {"sphere": {"radius": 1}}, "domain": "exterior"})", "c.json")
-                  .grid.wall_cells, 40);
-    EXPECT_EQ(parse_case(R"({"geometry": {"sphere": {"radius": 1}}})", "c.json").grid.wall_cells, 10);
+                            "grid": {"cells_per_edge": 12}})",
+                         "c.json")
+                  .grid.wall_cells,
+              24);
+    EXPECT_EQ(
+        parse_case(R"({"geometry": {"sphere": {"radius": 1}}, "domain": "exterior"})", "c.json")
+            .grid.wall_cells,
+        40);
+    EXPECT_EQ(parse_case(R"({"geometry": {"sphere": {"radius": 1}}})", "c.json").grid.wall_cells,
+              10);
 }
 
 TEST(CaseFile, FarFieldNeedsAnExteriorDomain) {
@@ -182,9 +192,9 @@ TEST(CaseFile, FarFieldNeedsAnExteriorDomain) {
         error_of(R"({"geometry": {"sphere": {"radius": 1}}, "far_field": {"size": 10}})");
     EXPECT_NE(e.find("far_field"), std::string::npos) << e;
     EXPECT_NE(e.find("\"domain\": \"exterior\""), std::string::npos) << e;
-    EXPECT_NE(error_of(R"({"geometry": {"sphere": {"radius": 1}}, "domain": "outside"})")
-                  .find("domain"),
-              std::string::npos);
+    EXPECT_NE(
+        error_of(R"({"geometry": {"sphere": {"radius": 1}}, "domain": "outside"})").find("domain"),
+        std::string::npos);
     EXPECT_NE(error_of(R"({"geometry": {"sphere": {"radius": 1}}, "domain": "exterior",
                            "grid": {"topology": "single-block"}})")
                   .find("grid.topology"),
@@ -218,9 +228,11 @@ TEST(CaseFile, FirstHeightFromYPlus) {
 
 TEST(CaseFile, RefinementLevels) {
     const Case c = parse_case(R"({"geometry": {"sphere": {"radius": 1}},
-                                  "refinement": {"levels": 3}})", "case.json");
+                                  "refinement": {"levels": 3}})",
+                              "case.json");
     EXPECT_EQ(c.refinement.levels, 3);
-    EXPECT_EQ(parse_case(R"({"geometry": {"sphere": {"radius": 1}}})", "c.json").refinement.levels, 1);
+    EXPECT_EQ(parse_case(R"({"geometry": {"sphere": {"radius": 1}}})", "c.json").refinement.levels,
+              1);
 }
 
 TEST(CaseFile, RefinementLevelsOutOfRangeOrUnknownKeysAreRefused) {
@@ -245,7 +257,8 @@ TEST(CaseFile, CaseToJsonReadsBackTheSameGridAndGeometry) {
                          "length": 1, "layers": 3},
       "solver": {"optimize": "lbfgs", "optimize_iterations": 4},
       "refinement": {"levels": 2}
-    })", "case.json");
+    })",
+                              "case.json");
     const Case back = parse_case(case_to_json(c), "grid.case.json");
     EXPECT_EQ(back.geometry.kind, "difference");
     ASSERT_EQ(back.geometry.children.size(), 2u);

@@ -36,10 +36,12 @@ TEST(CaseSurfaceFile, UsableInsideCsgWithTransforms) {
 }
 
 TEST(CaseSurfaceFile, FeatureAngleGoesWithTheFile) {
-    const Case c = parse_case(R"({"geometry": {"file": "part.stl", "feature_angle": 45}})", "/d/c.json");
+    const Case c =
+        parse_case(R"({"geometry": {"file": "part.stl", "feature_angle": 45}})", "/d/c.json");
     EXPECT_EQ(c.geometry.feature_angle, 45);
     EXPECT_EQ(parse_case(case_to_json(c), "g.json").geometry.feature_angle, 45);
-    EXPECT_EQ(parse_case(R"({"geometry": {"file": "part.stl"}})", "c.json").geometry.feature_angle, 30);
+    EXPECT_EQ(parse_case(R"({"geometry": {"file": "part.stl"}})", "c.json").geometry.feature_angle,
+              30);
     EXPECT_NE(error_of(R"({"geometry": {"file": "part.stl", "feature_angle": 0}})")
                   .find("geometry.feature_angle: expected an angle in (0, 180] degrees"),
               std::string::npos);
@@ -49,7 +51,8 @@ TEST(CaseSurfaceFile, FeatureAngleGoesWithTheFile) {
 }
 
 TEST(CaseSurfaceFile, BadValuesNameTheKey) {
-    EXPECT_NE(error_of(R"({"geometry": {"file": 3}})").find("geometry.file: expected a surface file name"),
+    EXPECT_NE(error_of(R"({"geometry": {"file": 3}})")
+                  .find("geometry.file: expected a surface file name"),
               std::string::npos);
     EXPECT_NE(error_of(R"({"geometry": {"file": "a.stl", "voxel_size": -1}})")
                   .find("geometry.voxel_size: expected a positive number"),

@@ -75,7 +75,8 @@ TEST(QualityReport, WithoutWallTheTableAndJsonAreAsBefore) {
     EXPECT_EQ(table.find("first-layer thickness"), std::string::npos);
     EXPECT_EQ(table.find("Hausdorff"), std::string::npos);
     EXPECT_EQ(table.find("time per phase"), std::string::npos);
-    EXPECT_NE(table.find("  negative face pyramids                     0\n"), std::string::npos) << table;
+    EXPECT_NE(table.find("  negative face pyramids                     0\n"), std::string::npos)
+        << table;
     EXPECT_EQ(lines_of(table).size(), 15u);
 
     const auto j = nlohmann::json::parse(quality_json(r));
@@ -182,9 +183,10 @@ TEST(QualityReport, AWallThatMissesTheBodyIsNamed) {
 
     r.wall->surface_in_cells_max = 2.4;
     EXPECT_FALSE(follows_body(r));
-    EXPECT_EQ(body_missed(r).rfind("the grid's wall misses the body by 0.031 (2.4 wall cells, more than 0.5) at "
-                                   "the surface point (0.25, -1.5, 3)",
-                                   0),
+    EXPECT_EQ(body_missed(r).rfind(
+                  "the grid's wall misses the body by 0.031 (2.4 wall cells, more than 0.5) at "
+                  "the surface point (0.25, -1.5, 3)",
+                  0),
               0u)
         << body_missed(r);
     const auto j = nlohmann::json::parse(quality_json(r));
@@ -194,6 +196,7 @@ TEST(QualityReport, AWallThatMissesTheBodyIsNamed) {
     EXPECT_DOUBLE_EQ(s.at("max").get<double>(), 2.4);
     EXPECT_DOUBLE_EQ(s.at("distance").get<double>(), 0.031);
     EXPECT_EQ(s.at("at"), nlohmann::json::array({0.25, -1.5, 3}));
-    EXPECT_NE(line_named(format_quality_table(r), "  at").find("(0.25, -1.5, 3)"), std::string::npos)
+    EXPECT_NE(line_named(format_quality_table(r), "  at").find("(0.25, -1.5, 3)"),
+              std::string::npos)
         << format_quality_table(r);
 }

@@ -35,7 +35,7 @@ OrientedPoints sample_cloud() {
 }
 
 class SampleReaders : public test::ScratchFiles {
-protected:
+  protected:
     SampleReaders() : ScratchFiles("hexmesh_samples_") {}
 
     static std::string cloud_error(const std::string& file) {

@@ -1,16 +1,15 @@
 #include <gtest/gtest.h>
-
-#include <filesystem>
-#include <fstream>
-#include <stdexcept>
-#include <algorithm>
-#include <csignal>
-#include <string>
-#include <vector>
-
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
+
+#include <algorithm>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "io/staged_output.h"
 
@@ -72,8 +71,10 @@ TEST(StagedOutput, StagingLeftByAKilledRunOnThisHostIsRemoved) {
     waitpid(child, nullptr, 0);
     // Beside the folder: .NAME.staging-HOST-PID.
     const std::string stem = "." + dir.filename().string() + ".staging-";
-    const fs::path dead = dir.parent_path() / (stem + std::string(host) + "-" + std::to_string(child));
-    const fs::path live = dir.parent_path() / (stem + std::string(host) + "-" + std::to_string(getppid()));
+    const fs::path dead =
+        dir.parent_path() / (stem + std::string(host) + "-" + std::to_string(child));
+    const fs::path live =
+        dir.parent_path() / (stem + std::string(host) + "-" + std::to_string(getppid()));
     const fs::path other_host = dir.parent_path() / (stem + "elsewhere-" + std::to_string(child));
     for (const fs::path& p : {dead, live, other_host}) {
         fs::create_directories(p);
@@ -143,7 +144,8 @@ TEST(StagedOutput, AKillAtAnyStepOfTheCommitLeavesTheOldResultOrTheNewOneWhole) 
         EXPECT_EQ(text_of(dir / "grid.vtm"), expected);
         EXPECT_EQ(text_of(dir / "grid" / "block0.vts"), expected);
         EXPECT_EQ(text_of(dir / "notes.txt"), "user file");
-        EXPECT_EQ(entries(dir), (std::vector<std::string>{"grid", "grid.vtm", "notes.txt", "quality.json"}));
+        EXPECT_EQ(entries(dir),
+                  (std::vector<std::string>{"grid", "grid.vtm", "notes.txt", "quality.json"}));
         // The next run cleans what the killed one left beside the folder, and commits.
         {
             StagedOutput out(dir.string());
@@ -153,7 +155,8 @@ TEST(StagedOutput, AKillAtAnyStepOfTheCommitLeavesTheOldResultOrTheNewOneWhole) 
         EXPECT_EQ(text_of(dir / "quality.json"), "next");
         EXPECT_EQ(text_of(dir / "grid.vtm"), expected);
         for (const auto& e : fs::directory_iterator(dir.parent_path()))
-            EXPECT_EQ(e.path().filename().string().rfind(".hexmesh_test_staged_kill.staging-", 0), std::string::npos)
+            EXPECT_EQ(e.path().filename().string().rfind(".hexmesh_test_staged_kill.staging-", 0),
+                      std::string::npos)
                 << e.path();
     }
     fs::remove_all(dir);
@@ -169,8 +172,10 @@ TEST(StagedOutput, ASecondWriterOfTheSameFolderIsRefusedWhileTheFirstWorks) {
             StagedOutput second(dir.string());
             FAIL() << "expected a refusal";
         } catch (const std::runtime_error& e) {
-            EXPECT_NE(std::string(e.what()).find("another hexmesh process is writing into this folder"),
-                      std::string::npos) << e.what();
+            EXPECT_NE(
+                std::string(e.what()).find("another hexmesh process is writing into this folder"),
+                std::string::npos)
+                << e.what();
         }
         first.commit();
     }

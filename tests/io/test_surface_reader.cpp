@@ -12,7 +12,7 @@ namespace hexmesh {
 namespace {
 
 class SurfaceReader : public test::ScratchFiles {
-protected:
+  protected:
     SurfaceReader() : ScratchFiles("hexmesh_reader_") {}
 
     // The InputError message of reading `file`, or "" if it reads fine.
@@ -29,7 +29,8 @@ TEST_F(SurfaceReader, BinaryStlStartingWithSolidMergesCorners) {
     EXPECT_EQ(s.points.size(), sphere.points.size());  // 6 corners per point merged into 1
     for (size_t t = 0; t < s.triangles.size(); ++t)
         for (int c = 0; c < 3; ++c)
-            EXPECT_LT((s.points[s.triangles[t][c]] - sphere.points[sphere.triangles[t][c]]).norm(), 1e-6);
+            EXPECT_LT((s.points[s.triangles[t][c]] - sphere.points[sphere.triangles[t][c]]).norm(),
+                      1e-6);
 }
 
 TEST_F(SurfaceReader, AsciiStlKeepsFullPrecision) {
@@ -106,8 +107,9 @@ TEST_F(SurfaceReader, PlyBinaryLittleEndian) {
     EXPECT_EQ(s.points[1], Vec3(2, 0, 0));
     EXPECT_EQ(s.triangles[1], (std::array<int, 3>{0, 2, 3}));
     // The same file cut in the middle of the faces.
-    EXPECT_NE(error_of(write("cut.ply", data.substr(0, data.size() - 14))).find("face 2: truncated"),
-              std::string::npos);
+    EXPECT_NE(
+        error_of(write("cut.ply", data.substr(0, data.size() - 14))).find("face 2: truncated"),
+        std::string::npos);
 }
 
 TEST_F(SurfaceReader, MissingAndEmptyFiles) {
@@ -122,16 +124,18 @@ TEST_F(SurfaceReader, TruncatedBinaryStl) {
     std::ifstream in(path("full.stl"), std::ios::binary);
     std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     const std::string e = error_of(write("cut.stl", data.substr(0, data.size() - 30)));
-    EXPECT_NE(e.find("cut.stl: truncated binary STL: the header announces 12 triangles (684 bytes), "
-                     "the file has 654 bytes"),
-              std::string::npos)
+    EXPECT_NE(
+        e.find("cut.stl: truncated binary STL: the header announces 12 triangles (684 bytes), "
+               "the file has 654 bytes"),
+        std::string::npos)
         << e;
 }
 
 TEST_F(SurfaceReader, NonFiniteVertexNamesTheLine) {
-    const std::string e = error_of(write("nan.stl",
-                                         "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n"
-                                         "vertex 1 0 0\nvertex nan 1 0\nendloop\nendfacet\nendsolid\n"));
+    const std::string e =
+        error_of(write("nan.stl",
+                       "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n"
+                       "vertex 1 0 0\nvertex nan 1 0\nendloop\nendfacet\nendsolid\n"));
     EXPECT_NE(e.find("nan.stl: line 6: vertex coordinates must be finite"), std::string::npos) << e;
     const std::string obj = error_of(write("inf.obj", "v 0 0 0\nv 1 0 inf\n"));
     EXPECT_NE(obj.find("inf.obj: line 2: vertex coordinates must be finite"), std::string::npos)
@@ -141,16 +145,20 @@ TEST_F(SurfaceReader, NonFiniteVertexNamesTheLine) {
 TEST_F(SurfaceReader, AFolderAndCoordinatesBeyondRangeAreNamedForWhatTheyAre) {
     std::filesystem::create_directories(path("folder.stl"));
     const std::string folder = error_of(path("folder.stl"));
-    EXPECT_NE(folder.find("folder.stl: is a folder, not a surface file"), std::string::npos) << folder;
-    const std::string huge = error_of(write("huge.off", "OFF\n3 1 0\n0 0 0\n1e308 0 0\n0 1 0\n3 0 1 2\n"));
-    EXPECT_NE(huge.find("huge.off: line 4: vertex coordinates up to 1e+150 are supported, got (1e+308, 0, 0)"),
-              std::string::npos)
+    EXPECT_NE(folder.find("folder.stl: is a folder, not a surface file"), std::string::npos)
+        << folder;
+    const std::string huge =
+        error_of(write("huge.off", "OFF\n3 1 0\n0 0 0\n1e308 0 0\n0 1 0\n3 0 1 2\n"));
+    EXPECT_NE(
+        huge.find(
+            "huge.off: line 4: vertex coordinates up to 1e+150 are supported, got (1e+308, 0, 0)"),
+        std::string::npos)
         << huge;
 }
 
 TEST_F(SurfaceReader, ZeroAreaTriangleIsRefusedUnlessAllowed) {
-    const std::string file = write("flat.obj",
-                                   "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\n");
+    const std::string file =
+        write("flat.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\n");
     const std::string e = error_of(file);
     EXPECT_NE(e.find("flat.obj: line 6: zero-area triangle"), std::string::npos) << e;
     SurfaceReadOptions options;
@@ -167,7 +175,8 @@ TEST_F(SurfaceReader, FilesThatAreNotSurfaces) {
                                              "end_header\n0 0 0\n1 1 1\n"));
     EXPECT_NE(cloud.find("cloud.ply: not a surface"), std::string::npos) << cloud;
     const std::string points = error_of(write("points.obj", "v 0 0 0\nv 1 0 0\n"));
-    EXPECT_NE(points.find("points.obj: not a surface: the file holds no triangle"), std::string::npos)
+    EXPECT_NE(points.find("points.obj: not a surface: the file holds no triangle"),
+              std::string::npos)
         << points;
     const std::string kind = error_of(write("part.step", "ISO-10303-21;\n"));
     EXPECT_NE(kind.find("part.step: unknown surface format '.step'"), std::string::npos) << kind;
@@ -178,7 +187,8 @@ TEST_F(SurfaceReader, FilesThatAreNotSurfaces) {
 TEST_F(SurfaceReader, IndexOutOfRange) {
     const std::string obj = error_of(write("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n"));
     EXPECT_NE(obj.find("bad.obj: line 4: vertex index 7 out of range"), std::string::npos) << obj;
-    const std::string off = error_of(write("bad.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n"));
+    const std::string off =
+        error_of(write("bad.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n"));
     EXPECT_NE(off.find("bad.off: line 6: vertex index '3' out of range"), std::string::npos) << off;
 }
 

@@ -1,9 +1,5 @@
-#include <gtest/gtest.h>
-
-#include <filesystem>
-#include <fstream>
-
 #include <fmt/format.h>
+#include <gtest/gtest.h>
 #include <vtkCellData.h>
 #include <vtkCellType.h>
 #include <vtkDoubleArray.h>
@@ -20,6 +16,9 @@
 #include <vtkUnstructuredGrid.h>
 #include <vtkUnstructuredGridWriter.h>
 #include <vtkXMLStructuredGridWriter.h>
+
+#include <filesystem>
+#include <fstream>
 
 #include "io/case_file.h"
 #include "io/volume_mesh_io.h"
@@ -89,7 +88,8 @@ namespace {
 
 // A legacy VTK file of one hexahedron over the unit cube's 8 corners, its cell's row given.
 std::string one_hex_vtk(const std::string& cell_row, int row_size) {
-    std::string text = "# vtk DataFile Version 3.0\none hex\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 8 double\n";
+    std::string text =
+        "# vtk DataFile Version 3.0\none hex\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 8 double\n";
     for (int c = 0; c < 8; ++c) text += fmt::format("{} {} {}\n", c & 1, (c >> 1) & 1, c >> 2);
     return text + fmt::format("CELLS 1 {}\n{}\nCELL_TYPES 1\n12\n", row_size, cell_row);
 }
@@ -99,7 +99,8 @@ std::string one_hex_vtk(const std::string& cell_row, int row_size) {
 TEST(VtkMesh, CellsWithPointIdsOutOfRangeOrTooFewAreRefusedNamingTheCell) {
     const fs::path dir = temp_dir("bad_ids");
     const std::vector<std::pair<std::string, std::string>> cases = {
-        {one_hex_vtk("8 0 1 3 2 4 5 7 99", 9), "cell 0 refers to point 99, but the file has points 0 to 7"},
+        {one_hex_vtk("8 0 1 3 2 4 5 7 99", 9),
+         "cell 0 refers to point 99, but the file has points 0 to 7"},
         {one_hex_vtk("8 0 1 3 2 4 5 7 -1", 9), "cell 0 refers to point -1"},
         {one_hex_vtk("7 0 1 3 2 4 5 7", 8), "cell 0 has 7 point ids where its type takes 8"},
     };
@@ -124,8 +125,10 @@ TEST(VtkMesh, LegacyCellListsThatDisagreeWithTheirDeclaredSizeAreRefused) {
     // VTK's own legacy reader corrupted the heap on such lists ("free(): invalid next size").
     const fs::path dir = temp_dir("cell_lists");
     const std::vector<std::pair<std::string, std::string>> ascii = {
-        {one_hex_vtk("8 0 1 3 2 4 5 7 6", 5), "CELLS: row 0 has 8 ids, beyond the 5 values the line declares"},
-        {one_hex_vtk("8 0 1 3 2 4 5 7 6", 12), "CELLS: its 1 rows hold 9 values, but the line declares 12"},
+        {one_hex_vtk("8 0 1 3 2 4 5 7 6", 5),
+         "CELLS: row 0 has 8 ids, beyond the 5 values the line declares"},
+        {one_hex_vtk("8 0 1 3 2 4 5 7 6", 12),
+         "CELLS: its 1 rows hold 9 values, but the line declares 12"},
         {one_hex_vtk("12 0 1 3 2 4 5 7 6", 9), "CELLS: row 0 has 12 ids, beyond the 9 values"},
     };
     int n = 0;
@@ -163,17 +166,22 @@ namespace {
 // `data` written by VTK's own legacy writer (an independent producer of the format) in ASCII
 // and binary, as versions 4.2 (cell rows) and 5.1 (offsets and connectivity).
 template <class Writer>
-std::vector<std::string> write_with_vtk(vtkDataObject* data, const fs::path& dir, const std::string& stem) {
+std::vector<std::string> write_with_vtk(vtkDataObject* data, const fs::path& dir,
+                                        const std::string& stem) {
     std::vector<std::string> files;
     for (const int version : {42, 51})
         for (const bool binary : {false, true}) {
-            const std::string file = (dir / fmt::format("{}_{}_{}.vtk", stem, version, binary ? "binary" : "ascii")).string();
+            const std::string file =
+                (dir / fmt::format("{}_{}_{}.vtk", stem, version, binary ? "binary" : "ascii"))
+                    .string();
             vtkNew<Writer> writer;
             writer->SetFileName(file.c_str());
             writer->SetInputData(data);
             writer->SetFileVersion(version);
-            if (binary) writer->SetFileTypeToBinary();
-            else writer->SetFileTypeToASCII();
+            if (binary)
+                writer->SetFileTypeToBinary();
+            else
+                writer->SetFileTypeToASCII();
             EXPECT_EQ(writer->Write(), 1) << file;
             files.push_back(file);
         }
@@ -210,19 +218,22 @@ void add_arrays_to_skip(vtkDataSet* data) {
 TEST(LegacyVtk, VtkWrittenAsciiAndBinaryOldAndNewLayoutsReadToTheSameVolumeMesh) {
     // Two hexahedra, a tetrahedron on top and a boundary triangle; "fixed" on every third point.
     VolumeMesh expected;
-    for (int c = 0; c < 12; ++c) expected.points.emplace_back(0.25 * (c & 1), (c >> 1) & 1, 1.5 * (c >> 2));
+    for (int c = 0; c < 12; ++c)
+        expected.points.emplace_back(0.25 * (c & 1), (c >> 1) & 1, 1.5 * (c >> 2));
     expected.points.emplace_back(0.5, 0.25, 4.0);
     expected.hexes = {0, 1, 3, 2, 4, 5, 7, 6, 4, 5, 7, 6, 8, 9, 11, 10};
     expected.tets = {8, 9, 10, 12};
     for (size_t m = 0; m < expected.points.size(); ++m) expected.fixed.push_back(m % 3 == 0);
-    const vtkSmartPointer<vtkUnstructuredGrid> grid = test::two_hexes_a_tet_and_a_triangle(VTK_DOUBLE);
+    const vtkSmartPointer<vtkUnstructuredGrid> grid =
+        test::two_hexes_a_tet_and_a_triangle(VTK_DOUBLE);
     add_arrays_to_skip(grid);
     vtkNew<vtkUnsignedCharArray> fixed;  // written as a FIELD array among the point data
     fixed->SetName("fixed");
     for (uint8_t f : expected.fixed) fixed->InsertNextValue(f);
     grid->GetPointData()->AddArray(fixed);
 
-    const std::vector<std::string> files = write_with_vtk<vtkUnstructuredGridWriter>(grid, temp_dir("legacy_ug"), "ug");
+    const std::vector<std::string> files =
+        write_with_vtk<vtkUnstructuredGridWriter>(grid, temp_dir("legacy_ug"), "ug");
     for (const std::string& file : files) {
         const VolumeMesh mesh = read_volume_mesh(file);
         EXPECT_EQ(mesh.points, expected.points) << file;
@@ -247,7 +258,8 @@ TEST(LegacyVtk, VtkWrittenStructuredGridsReadAsTheirXmlTwin) {
     points->SetDataTypeToFloat();
     for (int k = 0; k < 2; ++k)
         for (int j = 0; j < 3; ++j)
-            for (int i = 0; i < 4; ++i) points->InsertNextPoint(i * i * 0.5, j + 0.125 * i, 2.0 * k);
+            for (int i = 0; i < 4; ++i)
+                points->InsertNextPoint(i * i * 0.5, j + 0.125 * i, 2.0 * k);
     grid->SetPoints(points);
     add_arrays_to_skip(grid);
     const fs::path dir = temp_dir("legacy_sg");
@@ -275,21 +287,30 @@ TEST(LegacyVtk, MalformedFilesAreRefusedNamingTheLineOrByteAndTheFault) {
     for (int c = 0; c < 8; ++c) cube += fmt::format("{} {} {}\n", c & 1, (c >> 1) & 1, c >> 2);
     const std::string cell = "CELLS 1 9\n8 0 1 3 2 4 5 7 6\nCELL_TYPES 1\n12\n";
     const std::vector<std::pair<std::string, std::string>> cases = {
-        {head + "POINTS 1000000000 float\n0 0 0\n", ":5: POINTS: 3000000000 values do not fit in the 7 bytes left"},
+        {head + "POINTS 1000000000 float\n0 0 0\n",
+         ":5: POINTS: 3000000000 values do not fit in the 7 bytes left"},
         {head + "POINTS 2 double\n0 0 0\n1 nan 0\n", ":7: point 1 has a non-finite coordinate"},
-        {head + cube + "CELLS 1 9\n8 0 1 3 2 4 5 7 6\nCELL_TYPES 1\n99\n", ":17: CELL_TYPES: cell 0 has type 99, which VTK does not know"},
-        {head + cube + "CELLS 1 9\n8 0 1 3 2 4 5 7 6\nCELL_TYPES 2\n12 12\n", "CELL_TYPES: 2 types for the 1 cells of CELLS"},
+        {head + cube + "CELLS 1 9\n8 0 1 3 2 4 5 7 6\nCELL_TYPES 1\n99\n",
+         ":17: CELL_TYPES: cell 0 has type 99, which VTK does not know"},
+        {head + cube + "CELLS 1 9\n8 0 1 3 2 4 5 7 6\nCELL_TYPES 2\n12 12\n",
+         "CELL_TYPES: 2 types for the 1 cells of CELLS"},
         {head + cube + cell + "POINT_DATA 7\n", ":18: POINT_DATA 7: the data set has 8 points"},
-        {head + cube + cell + "CELL_DATA 1\nSCALARS p complex\nLOOKUP_TABLE default\n1\n", ":20: array 'p' has type 'complex', which VTK does not know"},
-        {head + cube + cell + "POINT_DATA 8\nFIELD f 1\nfixed 1 7 int\n0 0 0 0 0 0 0\n", ":20: the point array \"fixed\" has 7 values for 8 points"},
-        {head + cube + cell + "POINT_DATA 8\nSCALARS s float\nLOOKUP_TABLE default\n1 2 3\n", ":20: array 's': 8 values do not fit in the 7 bytes left in the file"},
+        {head + cube + cell + "CELL_DATA 1\nSCALARS p complex\nLOOKUP_TABLE default\n1\n",
+         ":20: array 'p' has type 'complex', which VTK does not know"},
+        {head + cube + cell + "POINT_DATA 8\nFIELD f 1\nfixed 1 7 int\n0 0 0 0 0 0 0\n",
+         ":20: the point array \"fixed\" has 7 values for 8 points"},
+        {head + cube + cell + "POINT_DATA 8\nSCALARS s float\nLOOKUP_TABLE default\n1 2 3\n",
+         ":20: array 's': 8 values do not fit in the 7 bytes left in the file"},
         {head + cube + "CELLS 1 9\n8 0 1 3 2 4 5 7 6\n", "CELLS without CELL_TYPES"},
-        {head + cube + cell + "POINT_DATA 8\nVECTOR v float\n", ":19: unknown keyword 'VECTOR' in the POINT_DATA section"},
+        {head + cube + cell + "POINT_DATA 8\nVECTOR v float\n",
+         ":19: unknown keyword 'VECTOR' in the POINT_DATA section"},
         {head + cube + cell + "POINTS 8 float\n", ":18: a second POINTS section"},
         {"# vtk DataFile Version 3.0\nt\nASCII\nDATASET STRUCTURED_GRID\nDIMENSIONS 2 2 3\n" + cube,
          "DIMENSIONS 2 2 3 do not make the 8 points of POINTS"},
-        {"# vtk DataFile Version 3.0\nt\nASCII\nDATASET POLYDATA\n", ":4: a POLYDATA data set; volume meshes are read from"},
-        {"# vtk DataFile Version 6.0\nt\nASCII\n", ":1: version 6.0: this reader knows versions 1.0 to 5.1"},
+        {"# vtk DataFile Version 3.0\nt\nASCII\nDATASET POLYDATA\n",
+         ":4: a POLYDATA data set; volume meshes are read from"},
+        {"# vtk DataFile Version 6.0\nt\nASCII\n",
+         ":1: version 6.0: this reader knows versions 1.0 to 5.1"},
         {"# vtk DataFile Version 4.2\nt\nASCII\nDATASET UNSTRUCTURED_GRID\n" + cube +
              "CELLS 1 9\nOFFSETS vtktypeint64\n0 8\nCONNECTIVITY vtktypeint64\n0 1 3 2 4 5 7 6\n",
          ":14: CELLS: OFFSETS instead of rows in a file of version 4.2"},
@@ -306,14 +327,23 @@ TEST(LegacyVtk, MalformedFilesAreRefusedNamingTheLineOrByteAndTheFault) {
     }
     // Binary: a count beyond the file and a string of a field array running past its end are
     // refused naming the byte.
-    const std::string binary_head = "# vtk DataFile Version 5.1\nt\nBINARY\nDATASET UNSTRUCTURED_GRID\n";
+    const std::string binary_head =
+        "# vtk DataFile Version 5.1\nt\nBINARY\nDATASET UNSTRUCTURED_GRID\n";
     const std::string big = (dir / "big.vtk").string();
-    std::ofstream(big, std::ios::binary) << binary_head << "POINTS 100 double\n" << std::string(24, '\0');
+    std::ofstream(big, std::ios::binary) << binary_head << "POINTS 100 double\n"
+                                         << std::string(24, '\0');
     std::string what = test::input_error_of(read_volume_mesh, big);
-    EXPECT_NE(what.find(big + ": byte 80: POINTS: 300 values do not fit in the 24 bytes left in the file"),
-              std::string::npos) << what;
+    EXPECT_NE(
+        what.find(big +
+                  ": byte 80: POINTS: 300 values do not fit in the 24 bytes left in the file"),
+        std::string::npos)
+        << what;
     const std::string strings = (dir / "strings.vtk").string();
-    std::ofstream(strings, std::ios::binary) << binary_head << "FIELD FieldData 1\nname 1 1 string\n\xc5" "abc";
+    std::ofstream(strings, std::ios::binary) << binary_head
+                                             << "FIELD FieldData 1\nname 1 1 string\n\xc5"
+                                                "abc";
     what = test::input_error_of(read_volume_mesh, strings);
-    EXPECT_NE(what.find("array 'name': string 0 of 5 bytes runs past the end of the file"), std::string::npos) << what;
+    EXPECT_NE(what.find("array 'name': string 0 of 5 bytes runs past the end of the file"),
+              std::string::npos)
+        << what;
 }

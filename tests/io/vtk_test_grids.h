@@ -16,7 +16,8 @@ inline vtkSmartPointer<vtkUnstructuredGrid> two_hexes_a_tet_and_a_triangle(int p
     auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
     vtkNew<vtkPoints> points;
     points->SetDataType(point_type);
-    for (int c = 0; c < 12; ++c) points->InsertNextPoint(0.25 * (c & 1), (c >> 1) & 1, 1.5 * (c >> 2));
+    for (int c = 0; c < 12; ++c)
+        points->InsertNextPoint(0.25 * (c & 1), (c >> 1) & 1, 1.5 * (c >> 2));
     points->InsertNextPoint(0.5, 0.25, 4.0);
     grid->SetPoints(points);
     const vtkIdType hex0[8] = {0, 1, 3, 2, 4, 5, 7, 6}, hex1[8] = {4, 5, 7, 6, 8, 9, 11, 10};

@@ -20,7 +20,8 @@ inline TriangleSurface subdivided(TriangleSurface s, int times) {
         };
         std::vector<std::array<int, 3>> next;
         for (const auto& t : s.triangles) {
-            const int ab = midpoint(t[0], t[1]), bc = midpoint(t[1], t[2]), ca = midpoint(t[2], t[0]);
+            const int ab = midpoint(t[0], t[1]), bc = midpoint(t[1], t[2]),
+                      ca = midpoint(t[2], t[0]);
             next.push_back({t[0], ab, ca});
             next.push_back({ab, t[1], bc});
             next.push_back({ca, bc, t[2]});
@@ -34,14 +35,14 @@ inline TriangleSurface subdivided(TriangleSurface s, int times) {
 // A U, 1 wide and tall, 0.2 thick (z in [-0.1, 0.1]): arms 0.2 wide around a gap 0.6 wide and
 // 0.8 deep, open towards +y. Counter-clockwise from outside, subdivided `times` times.
 inline TriangleSurface u_surface(int times = 2) {
-    const double outline[8][2] = {{-0.5, -0.5}, {0.5, -0.5}, {0.5, 0.5},  {0.3, 0.5},
+    const double outline[8][2] = {{-0.5, -0.5}, {0.5, -0.5},  {0.5, 0.5},  {0.3, 0.5},
                                   {0.3, -0.3},  {-0.3, -0.3}, {-0.3, 0.5}, {-0.5, 0.5}};
     const int cap[6][3] = {{0, 1, 4}, {0, 4, 5}, {4, 1, 2}, {4, 2, 3}, {0, 5, 6}, {0, 6, 7}};
     TriangleSurface s;
     for (double z : {-0.1, 0.1})
         for (const auto& p : outline) s.points.emplace_back(p[0], p[1], z);
     for (const auto& t : cap) {
-        s.triangles.push_back({t[0], t[2], t[1]});          // bottom, seen from -z
+        s.triangles.push_back({t[0], t[2], t[1]});              // bottom, seen from -z
         s.triangles.push_back({8 + t[0], 8 + t[1], 8 + t[2]});  // top
     }
     for (int a = 0; a < 8; ++a) {

@@ -19,7 +19,7 @@ namespace {
 // follow to and fro without rising.
 enum class Flat { nowhere, everywhere, pocket, lying_pocket };
 class BallPotential : public ImplicitFunction {
-public:
+  public:
     explicit BallPotential(Flat flat = Flat::nowhere) : flat_(flat) {}
     double value(const Vec3& p) const override {
         if (flat_ == Flat::everywhere) return 0;
@@ -38,7 +38,7 @@ public:
         return (p - pocket_centre()).norm() < 0.1 + margin;
     }
 
-private:
+  private:
     bool in_pocket(const Vec3& p) const {
         return (flat_ == Flat::pocket || flat_ == Flat::lying_pocket) && near_pocket(p, 0);
     }

@@ -102,14 +102,16 @@ TEST(OrderWarning, FarBelowTheFormalOrderIsNotAsymptotic) {
     const GridConvergence g = grid_convergence(in);
     EXPECT_NEAR(g.order, 0.26, 1e-3);
     const std::string w = order_warning(g.order, 2);
-    EXPECT_NE(w.find("p = 0.26 is below 0.5 times the formal order 2 (p < 1)"), std::string::npos) << w;
+    EXPECT_NE(w.find("p = 0.26 is below 0.5 times the formal order 2 (p < 1)"), std::string::npos)
+        << w;
     EXPECT_NE(w.find("not in the asymptotic range"), std::string::npos) << w;
     EXPECT_EQ(order_warning(g.order, 0.5), "");  // in range for a scheme of order 0.5
 }
 
 TEST(OrderWarning, FarAboveTheFormalOrderIsNotAsymptotic) {
     const std::string w = order_warning(2.6, 1);
-    EXPECT_NE(w.find("p = 2.6 is above 2 times the formal order 1 (p > 2)"), std::string::npos) << w;
+    EXPECT_NE(w.find("p = 2.6 is above 2 times the formal order 1 (p > 2)"), std::string::npos)
+        << w;
     EXPECT_NE(w.find("not in the asymptotic range"), std::string::npos) << w;
     EXPECT_EQ(order_warning(2.6, 1, {0.5, 3}), "");  // a wider range, as given
 }

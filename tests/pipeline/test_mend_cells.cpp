@@ -22,7 +22,9 @@ BlockGrid jittered_block(unsigned seed, double amplitude) {
             for (int i = 0; i < 5; ++i) {
                 const bool inner = i > 0 && j > 0 && k > 0 && i < 4 && j < 4 && k < 4;
                 block.node_ids.push_back(Id(grid.points.size()));
-                grid.points.push_back(Vec3(i, j, k) + (inner ? Vec3(jitter(rng), jitter(rng), jitter(rng)) : Vec3::Zero()));
+                grid.points.push_back(
+                    Vec3(i, j, k) +
+                    (inner ? Vec3(jitter(rng), jitter(rng), jitter(rng)) : Vec3::Zero()));
                 grid.kinds.push_back(inner ? VertexKind::interior : VertexKind::fixed);
             }
     grid.blocks.push_back(block);
@@ -39,7 +41,8 @@ TEST(MendRefusedCells, RefusedCellsOfJitteredBlocksAreMended) {
     for (unsigned seed = 1; seed <= 40; ++seed) {
         BlockGrid grid = jittered_block(seed, 0.42);
         const MendResult r = mend_refused_cells(grid, body);
-        EXPECT_EQ(r.refused_before, Id(find_refused_cells(to_hex_mesh(jittered_block(seed, 0.42))).size()));
+        EXPECT_EQ(r.refused_before,
+                  Id(find_refused_cells(to_hex_mesh(jittered_block(seed, 0.42))).size()));
         EXPECT_EQ(r.refused_after, Id(find_refused_cells(to_hex_mesh(grid)).size()));
         if (r.refused_before == 0) continue;
         ++grids;

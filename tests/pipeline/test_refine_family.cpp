@@ -174,7 +174,8 @@ TEST_P(RefinedLaw, LevelsTwoAndThreeFollowTheRefinedGrowthRatio) {
                   << " % within 5 % of " << w.growth_ratio_target << "; first layer "
                   << 100 * w.first_layer_within_10_percent << " % within 10 %; min SJ "
                   << r.quality.min_scaled_jacobian << "\n";
-        EXPECT_NEAR(w.growth_ratio_target, std::pow(law.growth_ratio, std::pow(0.5, level - 1)), 1e-12);
+        EXPECT_NEAR(w.growth_ratio_target, std::pow(law.growth_ratio, std::pow(0.5, level - 1)),
+                    1e-12);
         EXPECT_GE(w.growth_ratio_min, 1.0) << "level " << level;
         EXPECT_GE(w.growth_ratio_within_5_percent, 0.95) << "level " << level;
         EXPECT_EQ(w.first_layer_within_10_percent, 1.0) << "level " << level;

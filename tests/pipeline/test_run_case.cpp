@@ -30,7 +30,8 @@ TEST(RunCase, BundledSphereCaseMeetsItsTargets) {
 
 TEST(RunCase, WritesGridAndReportThatReadBack) {
     const Case c = parse_case(R"({"geometry": {"ellipsoid": {"semi_axes": [3, 2, 1]}},
-        "grid": {"cells_per_edge": 8, "wall_cells": 4}})", "e.json");
+        "grid": {"cells_per_edge": 8, "wall_cells": 4}})",
+                              "e.json");
     const fs::path dir = fs::temp_directory_path() / "hexmesh_test_run_case";
     fs::remove_all(dir);
     std::ostringstream log;
@@ -52,7 +53,8 @@ TEST(RunCase, WritesGridAndReportThatReadBack) {
     ASSERT_TRUE(result.report.worst_cell);
     const CellPlace& w = *result.report.worst_cell;
     const BlockGrid grid = read_vtk_block_grid((dir / "grid.vtm").string());
-    const auto named = std::find_if(grid.blocks.begin(), grid.blocks.end(), [&](const Block& b) { return b.name == w.block; });
+    const auto named = std::find_if(grid.blocks.begin(), grid.blocks.end(),
+                                    [&](const Block& b) { return b.name == w.block; });
     ASSERT_NE(named, grid.blocks.end()) << w.block;
     Vec3 mean = Vec3::Zero();
     for (Id v : cell_nodes(*named, w.i, w.j, w.k)) mean += grid.points[v] / 8;
@@ -86,7 +88,8 @@ TEST(RunCase, SurfacePassThatWouldShearTheVolumeIsUndone) {
     const Case c = parse_case(R"({"geometry": {"difference": [{"sphere": {"radius": 1}},
         {"sphere": {"center": [0, 0, 0.85], "radius": 0.6}}]},
         "grid": {"cells_per_edge": 18, "wall_cells": 8, "core_size": 0.15},
-        "solver": {"optimize_iterations": 1}})", "dimple.json");
+        "solver": {"optimize_iterations": 1}})",
+                              "dimple.json");
     const fs::path dir = fs::temp_directory_path() / "hexmesh_test_run_case_dimple";
     fs::remove_all(dir);
     std::ostringstream log;
@@ -98,8 +101,8 @@ TEST(RunCase, SurfacePassThatWouldShearTheVolumeIsUndone) {
 }
 
 TEST(RunCase, FailedRunLeavesNoOutput) {
-    const Case c = parse_case(R"({"geometry": {"torus": {"major_radius": 1, "minor_radius": 0.2}}})",
-                              "t.json");
+    const Case c = parse_case(
+        R"({"geometry": {"torus": {"major_radius": 1, "minor_radius": 0.2}}})", "t.json");
     const fs::path dir = fs::temp_directory_path() / "hexmesh_test_run_case_fail";
     fs::remove_all(dir);
     std::ostringstream log;
@@ -111,7 +114,8 @@ TEST(RunCase, FailedRunLeavesNoOutput) {
 // size gives (4 for a unit sphere at 0.5), and the case written says so.
 TEST(RunCase, ExteriorWallCellsFollowTheCellSize) {
     const Case c = parse_case(R"({"geometry": {"sphere": {"radius": 1}}, "domain": "exterior",
-        "grid": {"cell_size": 0.5}, "solver": {"optimize_iterations": 0}})", "s.json");
+        "grid": {"cell_size": 0.5}, "solver": {"optimize_iterations": 0}})",
+                              "s.json");
     const fs::path dir = fs::temp_directory_path() / "hexmesh_test_run_case_cell_size";
     fs::remove_all(dir);
     std::ostringstream log;
@@ -128,14 +132,16 @@ TEST(RunCase, ExteriorWallCellsFollowTheCellSize) {
 // rings do not move.
 TEST(RunCase, PolishRaisesTheWorstCellsAndHoldsTheRest) {
     const Case c = parse_case(R"({"geometry": {"ellipsoid": {"semi_axes": [3, 2, 1]}},
-        "grid": {"cells_per_edge": 8, "wall_cells": 4}})", "e.json");
+        "grid": {"cells_per_edge": 8, "wall_cells": 4}})",
+                              "e.json");
     const Body body = make_body(c.geometry);
     BlockGrid grid = build_grid(c, *body);
     const Block& core = grid.blocks.front();
     ASSERT_EQ(core.nodes.ni, 9);
     const Id pushed = core.node(4, 4, 4);
     const double worst_as_built = measure_quality(grid).min_scaled_jacobian;
-    grid.points[pushed] += 0.3 * (grid.points[core.node(5, 5, 5)] - grid.points[pushed]);  // along a diagonal
+    grid.points[pushed] +=
+        0.3 * (grid.points[core.node(5, 5, 5)] - grid.points[pushed]);  // along a diagonal
     const QualityReport before = measure_quality(grid);
     ASSERT_EQ(before.inverted_corner_tets, 0);
     const std::vector<Vec3> start = grid.points;
@@ -159,7 +165,8 @@ TEST(RunCase, PolishRaisesTheWorstCellsAndHoldsTheRest) {
 // nothing to optimize: the grid comes back as it was.
 TEST(RunCase, PolishOfHeldCellsLeavesTheGridAsItIs) {
     const Case c = parse_case(R"({"geometry": {"ellipsoid": {"semi_axes": [3, 2, 1]}},
-        "grid": {"cells_per_edge": 6, "wall_cells": 3}})", "e.json");
+        "grid": {"cells_per_edge": 6, "wall_cells": 3}})",
+                              "e.json");
     const Body body = make_body(c.geometry);
     BlockGrid grid = build_grid(c, *body);
     const std::vector<Vec3> start = grid.points;
@@ -251,8 +258,12 @@ TEST(RunCase, LayersAreLaidAgainOnAGridTheJointOptimizationLeftInvertedAtTheWall
     GridOptimizationOptions o = short_options(c);
     o.held.assign(grid.points.size(), false);
     o.held[p] = true;
-    for (const auto& [i, j, k] : {std::array{3, 4, top - 1}, {5, 4, top - 1}, {4, 3, top - 1}, {4, 5, top - 1},
-                                  {4, 4, top - 2}, {4, 4, top}})
+    for (const auto& [i, j, k] : {std::array{3, 4, top - 1},
+                                  {5, 4, top - 1},
+                                  {4, 3, top - 1},
+                                  {4, 5, top - 1},
+                                  {4, 4, top - 2},
+                                  {4, 4, top}})
         o.held[wall->node(i, j, k)] = true;
     const BlockGrid folded = grid;
     const GridOptimizationResult r = optimize_grid(grid, *body, o);

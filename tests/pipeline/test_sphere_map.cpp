@@ -18,7 +18,8 @@ namespace {
 void expect_round_trip(const SphereMap& map, double tolerance) {
     for (size_t i = 0; i < map.sphere().size(); ++i) {
         EXPECT_NEAR(map.sphere()[i].norm(), 1, 1e-9);
-        EXPECT_LT((map.surface_point(map.sphere()[i]) - map.surface().points[i]).norm(), tolerance) << i;
+        EXPECT_LT((map.surface_point(map.sphere()[i]) - map.surface().points[i]).norm(), tolerance)
+            << i;
     }
 }
 
@@ -29,7 +30,9 @@ double right_arm_share(const SphereMap& map) {
         const Vec3 &a = map.sphere()[t[0]], &b = map.sphere()[t[1]], &c = map.sphere()[t[2]];
         const double area = 0.5 * (b - a).cross(c - a).norm();
         total += area;
-        const Vec3 centre = (map.surface().points[t[0]] + map.surface().points[t[1]] + map.surface().points[t[2]]) / 3;
+        const Vec3 centre =
+            (map.surface().points[t[0]] + map.surface().points[t[1]] + map.surface().points[t[2]]) /
+            3;
         if (centre.x() > 0.3 && centre.y() > -0.3) arm += area;
     }
     return arm / total;
@@ -65,7 +68,8 @@ TEST(SphereMap, HolesAreCappedAndOnePieceIsRequired) {
     const TriangleSurface other = test::uv_sphere(Vec3(3, 0, 0), 1, 8, 4);
     const int offset = int(two.points.size());
     two.points.insert(two.points.end(), other.points.begin(), other.points.end());
-    for (auto t : other.triangles) two.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+    for (auto t : other.triangles)
+        two.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
     EXPECT_THROW(map_to_sphere(two), std::invalid_argument);
 }
 
@@ -102,7 +106,8 @@ TEST(SphereMap, TheWallLatticeOfAUFollowsItsArmsAndStaysUnfolded) {
                 const Vec3 b = wall[lattice.number_of(lattice.patch_point(patch, i + 1, j))];
                 const Vec3 c = wall[lattice.number_of(lattice.patch_point(patch, i + 1, j + 1))];
                 const Vec3 d = wall[lattice.number_of(lattice.patch_point(patch, i, j + 1))];
-                const Vec3 normal = body.gradient(a) + body.gradient(b) + body.gradient(c) + body.gradient(d);
+                const Vec3 normal =
+                    body.gradient(a) + body.gradient(b) + body.gradient(c) + body.gradient(d);
                 folded += !((c - a).cross(d - b).dot(normal) > 0);
             }
     EXPECT_LE(folded, 6 * n * n / 50) << "of " << 6 * n * n;

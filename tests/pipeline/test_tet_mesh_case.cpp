@@ -1,6 +1,7 @@
 // Tests of the tetmesh job: CGAL's Delaunay refinement of implicit and STL bodies with their
 // creases protected, then the variational optimizer with slip, against CGAL's perturb + exude.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <Eigen/Geometry>
 #include <cmath>
@@ -8,7 +9,6 @@
 #include <fstream>
 #include <random>
 #include <sstream>
-#include <unistd.h>
 
 #include "hexmesh/core/tet_quality.h"
 #include "hexmesh/pipeline/make_body.h"
@@ -41,8 +41,8 @@ void expect_better_than_cgal(const TetCaseResult& r) {
 }
 
 TEST(TetMeshCase, SphereBeatsCgalSliverRemoval) {
-    const TetCaseResult r =
-        run(R"({"geometry": {"sphere": {"center": [0, 0, 0], "radius": 1}}, "tet_mesh": {"cell_size": 0.25}})");
+    const TetCaseResult r = run(
+        R"({"geometry": {"sphere": {"center": [0, 0, 0], "radius": 1}}, "tet_mesh": {"cell_size": 0.25}})");
     expect_better_than_cgal(r);
     EXPECT_EQ(r.crease_polylines, 0);
     EXPECT_NEAR(signed_volume(r.mesh), 4 * pi / 3, 0.03 * 4 * pi / 3);
@@ -86,7 +86,8 @@ void write_cylinder_stl(const std::string& path, int n) {
     out << "solid cylinder\n";
     auto facet = [&](const Vec3& a, const Vec3& b, const Vec3& c) {
         out << "facet normal 0 0 0\nouter loop\n";
-        for (const Vec3& p : {a, b, c}) out << "vertex " << p.x() << " " << p.y() << " " << p.z() << "\n";
+        for (const Vec3& p : {a, b, c})
+            out << "vertex " << p.x() << " " << p.y() << " " << p.z() << "\n";
         out << "endloop\nendfacet\n";
     };
     out.precision(17);
@@ -104,7 +105,8 @@ void write_cylinder_stl(const std::string& path, int n) {
 }
 
 TEST(TetMeshCase, StlBodyKeepsItsSharpRims) {
-    const auto path = std::filesystem::temp_directory_path() / ("hexmesh_tet_" + std::to_string(::getpid()) + ".stl");
+    const auto path = std::filesystem::temp_directory_path() /
+                      ("hexmesh_tet_" + std::to_string(::getpid()) + ".stl");
     write_cylinder_stl(path.string(), 64);
     const TetCaseResult r = run(R"({"geometry": {"file": ")" + path.string() +
                                 R"("}, "tet_mesh": {"cell_size": 0.12}})");
@@ -116,7 +118,8 @@ TEST(TetMeshCase, StlBodyKeepsItsSharpRims) {
 
 TEST(TetMeshCase, GradedSizesFollowTheSizingFunction) {
     const Case c = parse_case(R"({"geometry": {"sphere": {"center": [0, 0, 0], "radius": 1}},
-        "tet_mesh": {"cell_size": 0.3, "wall_cell_size": 0.1, "grading": 0.5}})", "test.json");
+        "tet_mesh": {"cell_size": 0.3, "wall_cell_size": 0.1, "grading": 0.5}})",
+                              "test.json");
     const SizingFunction size = tet_sizing(c, make_body(c.geometry));
     EXPECT_NEAR(size(Vec3(1, 0, 0)), 0.1, 1e-12);
     EXPECT_NEAR(size(Vec3(0.8, 0, 0)), 0.2, 1e-9);
@@ -125,7 +128,8 @@ TEST(TetMeshCase, GradedSizesFollowTheSizingFunction) {
 
 TEST(TetMeshCase, TangledMeshIsUntangledWithSlip) {
     const Case c = parse_case(R"({"geometry": {"sphere": {"center": [0, 0, 0], "radius": 1}},
-        "tet_mesh": {"cell_size": 0.25}})", "test.json");
+        "tet_mesh": {"cell_size": 0.25}})",
+                              "test.json");
     const Body body = make_body(c.geometry);
     TetMeshOptions options;
     options.size = tet_sizing(c, body);
@@ -134,7 +138,8 @@ TEST(TetMeshCase, TangledMeshIsUntangledWithSlip) {
     std::mt19937 rng(11);
     std::uniform_real_distribution<double> shift(-0.15, 0.15);
     for (size_t v = 0; v < placed.mesh.points.size(); ++v)
-        if (placed.dimension[v] == 3) placed.mesh.points[v] += Vec3(shift(rng), shift(rng), shift(rng));
+        if (placed.dimension[v] == 3)
+            placed.mesh.points[v] += Vec3(shift(rng), shift(rng), shift(rng));
     ASSERT_GT(measure_tet_quality(placed.mesh).inverted, 50);
 
     const BoundaryGeometry boundary = case_boundary(c, body, 0.25);
@@ -147,7 +152,8 @@ TEST(TetMeshCase, TangledMeshIsUntangledWithSlip) {
     EXPECT_LT(r.max_surface_distance, 1e-3 * 0.25);
     double off = 0;
     for (size_t v = 0; v < kinds.size(); ++v)
-        if (kinds[v] == VertexKind::slip) off = std::max(off, std::abs(body->value(placed.mesh.points[v])));
+        if (kinds[v] == VertexKind::slip)
+            off = std::max(off, std::abs(body->value(placed.mesh.points[v])));
     EXPECT_LT(off, 1e-9);
 }
 
@@ -167,19 +173,22 @@ TEST(TetMeshCase, FallbackPositionsComeBackOnlyAroundTetsTheOptimizationMadeWors
     for (Id first : {a, b, c}) {
         for (int k = 0; k < 4; ++k) fallback.tets.push_back(first + k);
         const Id t = fallback.num_cells() - 1;
-        if (signed_volume({fallback.points[fallback.node(t, 0)], fallback.points[fallback.node(t, 1)],
-                           fallback.points[fallback.node(t, 2)], fallback.points[fallback.node(t, 3)]}) < 0)
+        if (signed_volume(
+                {fallback.points[fallback.node(t, 0)], fallback.points[fallback.node(t, 1)],
+                 fallback.points[fallback.node(t, 2)], fallback.points[fallback.node(t, 3)]}) < 0)
             std::swap(fallback.tets[size_t(4 * t + 2)], fallback.tets[size_t(4 * t + 3)]);
     }
     ASSERT_EQ(measure_tet_quality(fallback).inverted, 0);
     ASSERT_GT(measure_tet_quality(fallback).min_dihedral, 50);
     TetMesh optimized = fallback;
-    optimized.points[a + 3] = Vec3(0, 0, -1);               // a: flat (a sliver), its vertex 3 on the plane of 1 and 2
-    optimized.points[b + 2] += Vec3(0.05, -0.05, 0.02);     // b: a small move, still a good tet
+    optimized.points[a + 3] =
+        Vec3(0, 0, -1);  // a: flat (a sliver), its vertex 3 on the plane of 1 and 2
+    optimized.points[b + 2] += Vec3(0.05, -0.05, 0.02);        // b: a small move, still a good tet
     optimized.points[c + 3] = Vec3(10, 0, 0) + Vec3(1, 1, 3);  // c: through its opposite face
     const Id back = keep_fallback_where_worse(fallback, optimized, 30);
     EXPECT_EQ(back, 8);  // a's four (one of them b's first) and c's four
-    for (Id v : {a, a + 1, a + 2, a + 3, c, c + 1, c + 2, c + 3}) EXPECT_EQ(optimized.points[v], fallback.points[v]) << v;
+    for (Id v : {a, a + 1, a + 2, a + 3, c, c + 1, c + 2, c + 3})
+        EXPECT_EQ(optimized.points[v], fallback.points[v]) << v;
     EXPECT_NE(optimized.points[b + 2], fallback.points[b + 2]);
     EXPECT_GE(measure_tet_quality(optimized).min_dihedral, 30);
     // A bound no tet of the optimized mesh falls under keeps every move.
@@ -190,13 +199,16 @@ TEST(TetMeshCase, FallbackPositionsComeBackOnlyAroundTetsTheOptimizationMadeWors
 
 TEST(TetMeshCase, ExteriorDomainIsRefused) {
     const Case c = parse_case(R"({"geometry": {"sphere": {"center": [0, 0, 0], "radius": 1}},
-        "domain": "exterior"})", "ext.json");
+        "domain": "exterior"})",
+                              "ext.json");
     std::ostringstream log;
     try {
         run_tet_case(c, {}, log);
         FAIL() << "no error";
     } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("ext.json: domain: tetmesh meshes the body's interior"), std::string::npos)
+        EXPECT_NE(
+            std::string(e.what()).find("ext.json: domain: tetmesh meshes the body's interior"),
+            std::string::npos)
             << e.what();
     }
 }

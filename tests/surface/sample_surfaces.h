@@ -30,7 +30,8 @@ inline TriangleSurface uv_sphere(const Vec3& center, double radius, int lon, int
     for (int j = 0; j < lon; ++j) {
         s.triangles.push_back({0, ring(1, j), ring(1, j + 1)});
         for (int k = 1; k + 1 < lat; ++k) {
-            const int a = ring(k, j), b = ring(k, j + 1), c = ring(k + 1, j + 1), d = ring(k + 1, j);
+            const int a = ring(k, j), b = ring(k, j + 1), c = ring(k + 1, j + 1),
+                      d = ring(k + 1, j);
             s.triangles.push_back({a, d, c});
             s.triangles.push_back({a, c, b});
         }

@@ -97,8 +97,8 @@ TEST(Box, ValuesInsideOnFacesAndNearCorners) {
     EXPECT_NEAR(b.value(c0 + Vec3(1.0, 0.1, -0.2)), 0.0, 1e-15);
     EXPECT_NEAR(b.value(c0 + Vec3(-1.5, 0.1, 0.0)), 0.5, 1e-15);
     EXPECT_NEAR(b.value(c0 + Vec3(0.9, 0.0, 0.0)), -0.1, 1e-15);
-    EXPECT_NEAR(b.value(c0 + h + Vec3(0.1, 0.2, 0.2)), 0.3, 1e-15);       // past a corner
-    EXPECT_NEAR(b.value(c0 + Vec3(1.3, -1.0, 0.0)), 0.5, 1e-15);          // past an edge
+    EXPECT_NEAR(b.value(c0 + h + Vec3(0.1, 0.2, 0.2)), 0.3, 1e-15);  // past a corner
+    EXPECT_NEAR(b.value(c0 + Vec3(1.3, -1.0, 0.0)), 0.5, 1e-15);     // past an edge
 }
 
 TEST(Box, GradientAndBounds) {
@@ -126,10 +126,10 @@ TEST(Cylinder, GradientAndBounds) {
 
 TEST(Torus, Values) {
     const Torus t(c0, 1.0, 0.25);
-    EXPECT_DOUBLE_EQ(t.value(c0), 0.75);                                    // hole centre
-    EXPECT_NEAR(t.value(c0 + Vec3(0, -1.0, 0)), -0.25, 1e-15);              // core circle
-    EXPECT_NEAR(t.value(c0 + Vec3(0.6, 0.8, 0) * 1.5), 0.25, 1e-15);        // outside
-    EXPECT_NEAR(t.value(c0 + Vec3(0.8, 0.6, 0.25)), 0.0, 1e-15);            // top
+    EXPECT_DOUBLE_EQ(t.value(c0), 0.75);                              // hole centre
+    EXPECT_NEAR(t.value(c0 + Vec3(0, -1.0, 0)), -0.25, 1e-15);        // core circle
+    EXPECT_NEAR(t.value(c0 + Vec3(0.6, 0.8, 0) * 1.5), 0.25, 1e-15);  // outside
+    EXPECT_NEAR(t.value(c0 + Vec3(0.8, 0.6, 0.25)), 0.0, 1e-15);      // top
     EXPECT_NEAR(t.value(c0 + Vec3(0, 0, 0.5)), std::hypot(1.0, 0.5) - 0.25, 1e-15);
 }
 
@@ -141,15 +141,15 @@ TEST(Torus, GradientAndBounds) {
 }
 
 TEST(Cone, ValuesOfAPointedCone) {
-    const Cone k(c0, 1.0, 0.0, 1.0);  // base radius 1 at z = -1, apex at z = +1
+    const Cone k(c0, 1.0, 0.0, 1.0);          // base radius 1 at z = -1, apex at z = +1
     const double slant = 1 / std::sqrt(5.0);  // distance from the axis centre to the slant
     EXPECT_NEAR(k.value(c0), -slant, 1e-15);
-    EXPECT_NEAR(k.value(c0 + Vec3(0, 0, 2)), 1.0, 1e-15);        // above the apex
-    EXPECT_NEAR(k.value(c0 + Vec3(2, 0, -1)), 1.0, 1e-15);       // past the base rim
-    EXPECT_NEAR(k.value(c0 + Vec3(0, 1.5, 0)), 2 * slant, 1e-15); // off the slant
-    EXPECT_NEAR(k.value(c0 + Vec3(0.3, 0.4, -3)), 2.0, 1e-15);   // below the base
-    EXPECT_NEAR(k.value(c0 + Vec3(0, 0.5, 0)), 0.0, 1e-15);      // on the slant
-    EXPECT_NEAR(k.value(c0 + Vec3(0, 0, -0.9)), -0.1, 1e-15);    // just above the base
+    EXPECT_NEAR(k.value(c0 + Vec3(0, 0, 2)), 1.0, 1e-15);          // above the apex
+    EXPECT_NEAR(k.value(c0 + Vec3(2, 0, -1)), 1.0, 1e-15);         // past the base rim
+    EXPECT_NEAR(k.value(c0 + Vec3(0, 1.5, 0)), 2 * slant, 1e-15);  // off the slant
+    EXPECT_NEAR(k.value(c0 + Vec3(0.3, 0.4, -3)), 2.0, 1e-15);     // below the base
+    EXPECT_NEAR(k.value(c0 + Vec3(0, 0.5, 0)), 0.0, 1e-15);        // on the slant
+    EXPECT_NEAR(k.value(c0 + Vec3(0, 0, -0.9)), -0.1, 1e-15);      // just above the base
 }
 
 // A frustum with equal radii is the cylinder: an independent check of the meridian code.
@@ -199,8 +199,8 @@ TEST(Cone, GradientAndBounds) {
 // Exact signed distances are 1-Lipschitz and the nearest surface point sits at p - u grad u.
 TEST(Analytic, ExactDistancesHaveTheirNearestPointOnTheSurface) {
     const std::vector<std::shared_ptr<ImplicitFunction>> bodies = {
-        std::make_shared<Sphere>(c0, 0.8), std::make_shared<Box>(c0, Vec3(1.0, 0.6, 0.4)),
-        std::make_shared<Cylinder>(c0, 0.5, 1.0), std::make_shared<Torus>(c0, 1.0, 0.25),
+        std::make_shared<Sphere>(c0, 0.8),         std::make_shared<Box>(c0, Vec3(1.0, 0.6, 0.4)),
+        std::make_shared<Cylinder>(c0, 0.5, 1.0),  std::make_shared<Torus>(c0, 1.0, 0.25),
         std::make_shared<Cone>(c0, 1.0, 0.0, 1.0), std::make_shared<Cone>(c0, 0.4, 0.9, 0.6)};
     std::mt19937 rng(10);
     for (const auto& u : bodies) {

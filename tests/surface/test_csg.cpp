@@ -33,7 +33,7 @@ TEST(Csg, IntersectionIsTheFartherBody) {
     EXPECT_NEAR(u.value(Vec3(0.9, 0, 0)), -0.1, 1e-15);  // box face is nearer than sphere
     EXPECT_NEAR(u.value(Vec3(1.3, 0, 0)), 0.3, 1e-15);   // outside the box
     EXPECT_EQ(u.active_child(Vec3(1.3, 0, 0)), 0);
-    EXPECT_NEAR(u.value(Vec3(0.0, 0, 0)), 0.5, 1e-15);   // outside the ball
+    EXPECT_NEAR(u.value(Vec3(0.0, 0, 0)), 0.5, 1e-15);  // outside the ball
     EXPECT_EQ(u.gradient(Vec3(0.0, 0.1, 0)), ball->gradient(Vec3(0.0, 0.1, 0)));
     EXPECT_LT((u.bounds().lo - Vec3(0.5, -0.5, -0.5)).norm(), 1e-15);
     EXPECT_LT((u.bounds().hi - Vec3(1.0, 0.5, 0.5)).norm(), 1e-15);
@@ -41,7 +41,7 @@ TEST(Csg, IntersectionIsTheFartherBody) {
 
 TEST(Csg, DifferenceCarvesTheSecondBodyOut) {
     const Csg u(CsgOp::Difference, {box, ball});
-    EXPECT_NEAR(u.value(Vec3(0.9, 0, 0)), 0.4, 1e-15);    // in the hole
+    EXPECT_NEAR(u.value(Vec3(0.9, 0, 0)), 0.4, 1e-15);  // in the hole
     EXPECT_EQ(u.active_child(Vec3(0.9, 0, 0)), 1);
     EXPECT_EQ(u.gradient(Vec3(0.9, 0.05, 0)), Vec3(-ball->gradient(Vec3(0.9, 0.05, 0))));
     EXPECT_NEAR(u.value(Vec3(-0.8, 0, 0)), -0.2, 1e-15);  // solid part, box face nearest

@@ -18,7 +18,7 @@ TEST(ExteriorPotential, VanishesOnTheBodyAndRisesToOneAtTheBox) {
     for (const Vec3& d : sphere_directions(50)) {
         // On the body, between lattice nodes: the zero level within a quarter of a node spacing.
         EXPECT_LT(std::abs(f.value(0.5 * d)) / f.gradient(0.5 * d).norm(), 0.25 * f.spacing());
-        EXPECT_LT(f.value(0.4 * d), 0);           // inside
+        EXPECT_LT(f.value(0.4 * d), 0);  // inside
         // Along the ray out of the body: strictly increasing up to the box (no maximum inside).
         double previous = f.value(0.5 * d);
         for (double r = 0.52; r < 0.5 + 0.11; r += 0.02) {

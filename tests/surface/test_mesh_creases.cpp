@@ -98,10 +98,10 @@ TEST(MeshCreases, ACreaseElsewhereDoesNotMakeAFaceSharp) {
         for (const Vec3& q : {Vec3(0, -1, 0), Vec3(0, 1, 0), Vec3(0, 0, 0.4)})
             tent.points.push_back(Vec3(x, q.y(), q.z()));
     // Points: 0..2 at x = -2 (left foot, right foot, apex), 3..5 at x = 2.
-    tent.triangles = {{0, 2, 1}, {3, 4, 5},            // end caps
-                      {0, 1, 4}, {0, 4, 3},            // bottom
-                      {1, 2, 5}, {1, 5, 4},            // roof y > 0
-                      {0, 3, 5}, {0, 5, 2}};           // roof y < 0
+    tent.triangles = {{0, 2, 1}, {3, 4, 5},   // end caps
+                      {0, 1, 4}, {0, 4, 3},   // bottom
+                      {1, 2, 5}, {1, 5, 4},   // roof y > 0
+                      {0, 3, 5}, {0, 5, 2}};  // roof y < 0
     MeshSdfOptions o;
     o.voxel_size = 0.02;
     const MeshSdf sdf(tent, o);
@@ -132,7 +132,8 @@ TEST(MeshCreases, CylinderRimsAreCreasesAllAround) {
         const double phi = 0.0314 * i, z = i % 2 ? 0.7 : -0.7;
         const Vec3 on(r * std::cos(phi), r * std::sin(phi), z);
         EXPECT_EQ(classify_surface_point(sdf, on, 0.02), FeatureKind::crease) << i;
-        const Vec3 near = on + Vec3(0.02 * std::cos(phi), 0.02 * std::sin(phi), z > 0 ? -0.03 : 0.03);
+        const Vec3 near =
+            on + Vec3(0.02 * std::cos(phi), 0.02 * std::sin(phi), z > 0 ? -0.03 : 0.03);
         const Vec3 q = project_to_crease(sdf, near, 0.05);
         EXPECT_NEAR(q.z(), z, 1e-9) << i;
         EXPECT_GE(q.head<2>().norm(), inner - 1e-9) << i;

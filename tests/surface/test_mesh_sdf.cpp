@@ -15,7 +15,7 @@ namespace {
 
 // Unit sphere: 200 x 100 facets, edges ~0.03, chord sag < 1.3e-4; voxel 0.02.
 class SphereSdf : public ::testing::Test {
-protected:
+  protected:
     static void SetUpTestSuite() {
         surface_ = new TriangleSurface(test::uv_sphere(Vec3::Zero(), 1.0, 200, 100));
         MeshSdfOptions o;

@@ -35,7 +35,7 @@ double zero_crossing(const ImplicitFunction& u, const Vec3& direction) {
 }
 
 class SphereCloud : public ::testing::Test {
-protected:
+  protected:
     static void SetUpTestSuite() { sdf_ = new PointCloudSdf(sphere_cloud(4000, 1.0)); }
     static void TearDownTestSuite() { delete sdf_; }
     static inline PointCloudSdf* sdf_ = nullptr;

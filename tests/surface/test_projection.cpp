@@ -34,7 +34,7 @@ double cylinder_indicator(const Vec3& x, const Vec3& c, double r, double half_he
 // The sphere with only value(): its gradient is the base class's central differences,
 // which vanish at the centre and so exercise the safeguard.
 class PlainSphere : public ImplicitFunction {
-public:
+  public:
     double value(const Vec3& p) const override { return p.norm() - 1.0; }
     Box3 bounds() const override { return {Vec3::Constant(-1), Vec3::Constant(1)}; }
 };
@@ -140,8 +140,8 @@ TEST(ProjectToSurface, BoxUnionCylinderLandsOnTheUnionSurface) {
         const Vec3 p = random_in_box(rng, Vec3(-1.5, -0.8, -1.3), Vec3(1.8, 0.8, 1.3));
         const Projection r = project_to_surface(body, p, h);
         ASSERT_TRUE(r.converged) << p.transpose();
-        const double on = std::min(box_indicator(r.point, bc, ba),
-                                   cylinder_indicator(r.point, cc, cr, chh));
+        const double on =
+            std::min(box_indicator(r.point, bc, ba), cylinder_indicator(r.point, cc, cr, chh));
         EXPECT_LT(std::abs(on), 1e-8 * h) << p.transpose();
     }
 }
@@ -160,8 +160,8 @@ TEST(ProjectToSurface, HardCasesFromFarAway) {
         const Vec3 p = random_in_box(rng, -3 * ba, 3 * ba);
         const Projection r = project_to_surface(carved, p, h);
         ASSERT_TRUE(r.converged) << p.transpose();
-        const double on = std::max(box_indicator(r.point, Vec3::Zero(), ba),
-                                   sr - (r.point - sc).norm());
+        const double on =
+            std::max(box_indicator(r.point, Vec3::Zero(), ba), sr - (r.point - sc).norm());
         EXPECT_LT(std::abs(on), 1e-8 * h) << p.transpose();
 
         const Vec3 q = random_in_box(rng, -3 * axes, 3 * axes);

@@ -37,7 +37,8 @@ TEST(SharpFeatures, BoxHasTwelveEdgesAndEightCorners) {
 TEST(SharpFeatures, ThresholdAboveTheBoxAngleFindsNothing) {
     FeatureOptions o;
     o.angle_degrees = 95;
-    const FeatureCurves f = detect_sharp_features(test::box_surface(Vec3::Zero(), Vec3::Ones(), 2), o);
+    const FeatureCurves f =
+        detect_sharp_features(test::box_surface(Vec3::Zero(), Vec3::Ones(), 2), o);
     EXPECT_TRUE(f.chains.empty());
     EXPECT_TRUE(f.corners.empty());
 }

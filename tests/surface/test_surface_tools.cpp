@@ -55,7 +55,8 @@ TEST(SurfaceDiagnostics, CountsHolesFinsFlipsDegenerateAndCrossings) {
     const TriangleSurface other = test::box_surface(Vec3::Constant(0.5), Vec3::Constant(1.5));
     const int offset = int(s.points.size());
     for (const Vec3& p : other.points) s.points.push_back(p);
-    for (auto t : other.triangles) s.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+    for (auto t : other.triangles)
+        s.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
 
     const SurfaceDiagnostics d = diagnose_surface(s);
     EXPECT_EQ(d.degenerate_triangles, 1);
@@ -93,7 +94,7 @@ TEST(WindingNumber, FastAgreesWithTheExactSum) {
         const Vec3 p = test::random_in_box(rng, Vec3::Constant(-1.5), Vec3::Constant(1.5));
         worst = std::max(worst, std::abs(fast(p) - exact.winding_number(p)));
     }
-    EXPECT_LT(worst, 0.05);  // first-order clusters at accuracy 2 (measured 0.027)
+    EXPECT_LT(worst, 0.05);                 // first-order clusters at accuracy 2 (measured 0.027)
     EXPECT_GT(fast(Vec3(0, 0, 0.5)), 0.9);  // inside, away from the hole
     EXPECT_LT(fast(Vec3(0, 0, 1.5)), 0.1);
 }

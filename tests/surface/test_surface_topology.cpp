@@ -35,12 +35,12 @@ TEST(SurfaceTopology, ATorusHasOneHandle) {
 }
 
 TEST(SurfaceTopology, TwoBodiesAreTwoComponentsLargestFirst) {
-    const TriangleSurface two =
-        joined(test::box_surface(Vec3::Zero(), Vec3::Ones(), 1), test::uv_sphere(Vec3(3, 0, 0), 1, 16, 8));
+    const TriangleSurface two = joined(test::box_surface(Vec3::Zero(), Vec3::Ones(), 1),
+                                       test::uv_sphere(Vec3(3, 0, 0), 1, 16, 8));
     const SurfaceTopology t = surface_topology(two);
     ASSERT_EQ(t.components.size(), 2u);
     EXPECT_EQ(t.components[0].triangles, 16 * 2 * (8 - 1));  // the sphere
-    EXPECT_EQ(t.components[1].triangles, 12);                 // the box
+    EXPECT_EQ(t.components[1].triangles, 12);                // the box
     EXPECT_NEAR(t.components[1].bounds.hi.x(), 1, 1e-12);
 }
 

@@ -1,9 +1,9 @@
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <map>
 #include <random>
-#include <tbb/global_control.h>
 
 #include "grid_problem.h"
 #include "untangle/assembly.h"
@@ -45,7 +45,7 @@ void expect_assembly_matches_serial_sums(const Problem& p, const Assembly& a) {
     // Chunks of one colour share no vertex: no update is lost, the sums are the serial ones.
     double serial_f = 0;
     std::vector<Vec3> serial_g(p.points.size(), Vec3::Zero());
-    std::map<std::pair<Id, Id>, Mat3> serial_h;  // every block (a, b), both triangles
+    std::map<std::pair<Id, Id>, Mat3> serial_h;     // every block (a, b), both triangles
     std::map<std::pair<Id, Id>, double> magnitude;  // the sum of the norms of its terms
     for (Id e = 0; e < p.num_elements(); ++e) {
         const ElementNodes t = p.element(e);
@@ -79,7 +79,8 @@ void expect_assembly_matches_serial_sums(const Problem& p, const Assembly& a) {
     EXPECT_EQ(g_only, g);
     ASSERT_TRUE(std::isfinite(serial_f));
     EXPECT_NEAR(f, serial_f, 1e-12 * std::abs(serial_f));
-    for (size_t v = 0; v < g.size(); ++v) EXPECT_LT((g[v] - serial_g[v]).norm(), 1e-10 * (1 + serial_g[v].norm()));
+    for (size_t v = 0; v < g.size(); ++v)
+        EXPECT_LT((g[v] - serial_g[v]).norm(), 1e-10 * (1 + serial_g[v].norm()));
     // Stored: exactly the blocks (a, b) with a <= b, each the serial sum (to single precision:
     // each term is rounded as it is added).
     Id stored = 0;
@@ -89,7 +90,8 @@ void expect_assembly_matches_serial_sums(const Problem& p, const Assembly& a) {
             ASSERT_LE(r, h.col[m]);
             const Mat3& want = serial_h.at({r, Id(h.col[m])});
             const double scale = 1 + magnitude.at({r, Id(h.col[m])});
-            EXPECT_LT((h.block[m].cast<double>() - want).norm(), 1e-6 * scale) << r << " " << h.col[m];
+            EXPECT_LT((h.block[m].cast<double>() - want).norm(), 1e-6 * scale)
+                << r << " " << h.col[m];
         }
     }
     EXPECT_EQ(size_t(2 * stored - h.rows()), serial_h.size());
@@ -105,7 +107,8 @@ void expect_assembly_matches_serial_sums(const Problem& p, const Assembly& a) {
     std::vector<Vec3> hv_y, want_y(p.points.size(), Vec3::Zero());
     for (const auto& [ab, block] : serial_h) want_y[ab.first][1] += block(1, 1) * v[ab.second][1];
     h.multiply(v, hv_y, 1);
-    for (size_t i = 0; i < v.size(); ++i) EXPECT_LT((hv_y[i] - want_y[i]).norm(), 1e-5 * (1 + want_y[i].norm()));
+    for (size_t i = 0; i < v.size(); ++i)
+        EXPECT_LT((hv_y[i] - want_y[i]).norm(), 1e-5 * (1 + want_y[i].norm()));
 }
 
 }  // namespace
@@ -223,7 +226,8 @@ TEST(Assembly, TrianglesAloneAssembleLikeTheSerialSums) {
         check_constraints(nan_normal);
         ADD_FAILURE() << "no exception";
     } catch (const std::runtime_error& e) {
-        EXPECT_NE(std::string(e.what()).find("no normal of u = 0 at the surface triangle with centroid ("),
+        EXPECT_NE(std::string(e.what()).find(
+                      "no normal of u = 0 at the surface triangle with centroid ("),
                   std::string::npos)
             << e.what();
     }

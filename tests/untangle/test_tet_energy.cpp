@@ -143,7 +143,8 @@ TEST(TetEnergy, ProjectionKeepsAPositiveDefiniteHessian) {
     if (eig.eigenvalues().minCoeff() >= -1e-12 * exact.norm()) {
         EXPECT_LT((exact - projected).norm(), 1e-9 * exact.norm());
     }
-    EXPECT_GE(Eigen::SelfAdjointEigenSolver<Mat12>(projected).eigenvalues().minCoeff(), -1e-12 * exact.norm());
+    EXPECT_GE(Eigen::SelfAdjointEigenSolver<Mat12>(projected).eigenvalues().minCoeff(),
+              -1e-12 * exact.norm());
 }
 
 TEST(TetEnergy, ProjectedHessianIsPositiveSemiDefiniteEvenWhenTangled) {
@@ -179,7 +180,8 @@ TEST(TetEnergy, HexEnergyIsTheSumOverItsCornerTets) {
     int finite = 0, infinite = 0;
     for (int k = 0; k < 100; ++k) {
         Mat38 y;
-        for (int a = 0; a < 8; ++a) y.col(a) = unit[a].cwiseProduct(edges) + Vec3(u(rng), u(rng), u(rng));
+        for (int a = 0; a < 8; ++a)
+            y.col(a) = unit[a].cwiseProduct(edges) + Vec3(u(rng), u(rng), u(rng));
         for (double eps : {0.0, 0.05}) {
             const EnergyParams p{0.8, eps};
             double sum = 0;
@@ -202,7 +204,8 @@ TEST(TetEnergy, HexEnergyIsTheSumOverItsCornerTets) {
             }
             ++finite;
             EXPECT_NEAR(e, sum, 1e-12 * std::abs(sum)) << "case " << k << " eps " << eps;
-            EXPECT_LT((grad - sum_grad).norm(), 1e-12 * (1 + sum_grad.norm())) << "case " << k << " eps " << eps;
+            EXPECT_LT((grad - sum_grad).norm(), 1e-12 * (1 + sum_grad.norm()))
+                << "case " << k << " eps " << eps;
         }
     }
     EXPECT_GT(finite, 50);
@@ -217,7 +220,8 @@ Mat38 displaced_box(std::mt19937& rng, const Vec3& edges, double spread) {
     const std::array<Vec3, 8> unit = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0),
                                       Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(1, 1, 1), Vec3(0, 1, 1)};
     Mat38 y;
-    for (int a = 0; a < 8; ++a) y.col(a) = unit[a].cwiseProduct(edges) + Vec3(u(rng), u(rng), u(rng));
+    for (int a = 0; a < 8; ++a)
+        y.col(a) = unit[a].cwiseProduct(edges) + Vec3(u(rng), u(rng), u(rng));
     return y;
 }
 
@@ -259,7 +263,8 @@ TEST(TetEnergy, HexHessianIsTheSumOverItsCornerTets) {
             Mat38 grad;
             HexHessian hess;
             const double e = hex_energy_hessian(y, edges, p, grad, hess);
-            EXPECT_EQ(bool(std::isfinite(e)), bool(std::isfinite(hex_energy(y, edges, p)))) << "case " << k;
+            EXPECT_EQ(bool(std::isfinite(e)), bool(std::isfinite(hex_energy(y, edges, p))))
+                << "case " << k;
             if (!std::isfinite(e)) continue;
             const CornerSums corners = sum_over_corner_tets(y, edges, p);
             const double sum_e = corners.energy;
@@ -303,7 +308,8 @@ TEST(TetEnergy, HexEnergyGivesTheBaselineBuildsBits) {
             EXPECT_EQ(hex_energy_hessian(y, edges, p, gh, h),
                       hex_energy_baseline(y, edges, p, &gh_base, &h_base));
             EXPECT_EQ(gh, gh_base) << k;
-            for (const auto& [a, b] : hex_hessian_pairs) EXPECT_EQ(h.block[a][b], h_base.block[a][b]) << k;
+            for (const auto& [a, b] : hex_hessian_pairs)
+                EXPECT_EQ(h.block[a][b], h_base.block[a][b]) << k;
         }
     }
 }
@@ -372,7 +378,8 @@ TEST(TetEnergy, HexHessianOfDegenerateAndScaledHexesIsTheSumOverItsCornerTets) {
 
 TEST(TetEnergy, HexEnergyIsNotFiniteWithANanOrInfiniteNode) {
     std::mt19937 rng(3);
-    for (double bad : {std::nan(""), std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()})
+    for (double bad : {std::nan(""), std::numeric_limits<double>::infinity(),
+                       -std::numeric_limits<double>::infinity()})
         for (int node = 0; node < 8; ++node)
             for (double eps : {0.0, 0.05}) {
                 Mat38 y = displaced_box(rng, Vec3::Ones(), 0.1);

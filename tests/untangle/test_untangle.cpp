@@ -18,7 +18,8 @@ namespace {
 UntangleOptions options_for(Method method) {
     UntangleOptions o;
     o.untangle_solver.method = method;
-    o.optimize_solver.method = method == Method::explicit_gradient ? method : Method::block_diagonal;
+    o.optimize_solver.method =
+        method == Method::explicit_gradient ? method : Method::block_diagonal;
     return o;
 }
 
@@ -48,10 +49,12 @@ TEST_P(UntangleStress, RandomlyDisplacedGridIsUntangled) {
 }
 
 INSTANTIATE_TEST_SUITE_P(GlobalSolvers, UntangleStress,
-                         ::testing::Values(Method::newton_cg, Method::coordinate_split, Method::lbfgs),
+                         ::testing::Values(Method::newton_cg, Method::coordinate_split,
+                                           Method::lbfgs),
                          [](const auto& info) {
                              std::string name = to_string(info.param);
-                             for (char& c : name) if (c == '-') c = '_';
+                             for (char& c : name)
+                                 if (c == '-') c = '_';
                              return name;
                          });
 
@@ -87,7 +90,8 @@ std::vector<StressInput> stress_inputs() {
         // to 2.5 rad about its axis, its nodes shaken by 2 of their layer's thicknesses along it
         {"twisted_layers",
          [] {
-             Problem p = test_support::tensor_grid_problem(uniform(12), uniform(12), graded(20, 0.002, 1.3));
+             Problem p = test_support::tensor_grid_problem(uniform(12), uniform(12),
+                                                           graded(20, 0.002, 1.3));
              std::mt19937 rng(7);
              std::uniform_real_distribution<double> u(-2, 2);
              const double top = p.points.back().z();
@@ -96,8 +100,8 @@ std::vector<StressInput> stress_inputs() {
                  Vec3& x = p.points[v];
                  const double a = 2.5 * std::sin(3.14159265358979 * x.z() / top);
                  const Vec3 r = x - Vec3(6, 6, x.z());
-                 x = Vec3(6 + std::cos(a) * r.x() - std::sin(a) * r.y(), 6 + std::sin(a) * r.x() + std::cos(a) * r.y(),
-                          x.z());
+                 x = Vec3(6 + std::cos(a) * r.x() - std::sin(a) * r.y(),
+                          6 + std::sin(a) * r.x() + std::cos(a) * r.y(), x.z());
                  const int k = int(v / (13 * 13));
                  x.z() += u(rng) * 0.002 * std::pow(1.3, k);
              }
@@ -108,7 +112,8 @@ std::vector<StressInput> stress_inputs() {
          [] {
              Problem p = test_support::tensor_grid_problem(uniform(24), uniform(24), uniform(24));
              for (size_t v = 0; v < p.points.size(); ++v)
-                 if (p.kinds[v] != VertexKind::fixed && p.points[v].z() == 12) p.points[v].z() += 2.6;
+                 if (p.kinds[v] != VertexKind::fixed && p.points[v].z() == 12)
+                     p.points[v].z() += 2.6;
              return p;
          }},
         // unstructured: 5 patches of 8 x 8 cells (3 cells around the middle square's corners)
@@ -145,8 +150,9 @@ TEST_P(UntangleStressInput, IsUntangled) {
             EXPECT_EQ(p.points[v], before[v]);
         }
     }
-    std::cout << "  " << GetParam().name << ": " << p.hexes.size() << " cells, " << r.inverted_before
-              << " inverted corner tets before\n" << format_untangle_summary(r);
+    std::cout << "  " << GetParam().name << ": " << p.hexes.size() << " cells, "
+              << r.inverted_before << " inverted corner tets before\n"
+              << format_untangle_summary(r);
 }
 
 INSTANTIATE_TEST_SUITE_P(Built, UntangleStressInput, ::testing::ValuesIn(stress_inputs()),
@@ -161,8 +167,8 @@ TEST(Untangle, NeverReturnsWorseThanItsInput) {
     EXPECT_LE(r.inverted_after, r.inverted_before);
 }
 
-// Inverted cells whose nodes are all fixed, one free node near them but not theirs: the local repair's
-// neighbourhoods stop growing at that node's cells, and the untangler must still end (it
+// Inverted cells whose nodes are all fixed, one free node near them but not theirs: the local
+// repair's neighbourhoods stop growing at that node's cells, and the untangler must still end (it
 // once doubled its ring count forever) and report the cells it could not repair.
 TEST(Untangle, EndsWhenNoFreeNodeCanRepairTheInvertedCells) {
     Problem p = test_support::displaced_grid_problem(8, 0.0, 1);
@@ -186,7 +192,8 @@ TEST(Untangle, EndsWhenNoFreeNodeCanRepairTheInvertedCells) {
 // must end after a few outer iterations without fewer inverted tets, saying where they are.
 TEST(Untangle, AnImpossibleTangleEndsEarlyWithWhereItIs) {
     Problem p;
-    p.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, -1}, {1, 0, -1}, {0, 1, -1}, {0.3, 0.3, 0.5}};
+    p.points = {{0, 0, 0},  {1, 0, 0},  {0, 1, 0},      {0, 0, -1},
+                {1, 0, -1}, {0, 1, -1}, {0.3, 0.3, 0.5}};
     p.kinds.assign(7, VertexKind::fixed);
     p.kinds[6] = VertexKind::interior;
     p.tets = {{0, 1, 2, 6}, {3, 5, 4, 6}};  // needs z > 0, and z < -1
@@ -198,7 +205,8 @@ TEST(Untangle, AnImpossibleTangleEndsEarlyWithWhereItIs) {
     EXPECT_EQ(r.inverted_before, 1);
     EXPECT_EQ(r.inverted_after, 1);
     EXPECT_EQ(r.blocked, 0);
-    EXPECT_LE(r.history.size(), 12u) << log.str();  // the stall budget alone would allow 40 and more
+    EXPECT_LE(r.history.size(), 12u)
+        << log.str();  // the stall budget alone would allow 40 and more
     EXPECT_NE(r.stopped.find("no fewer than 1 inverted elements"), std::string::npos) << r.stopped;
     EXPECT_NE(r.stopped.find(": 1 interior, 3 fixed"), std::string::npos) << r.stopped;
 }
@@ -209,7 +217,8 @@ TEST(Untangle, AnImpossibleTangleEndsEarlyWithWhereItIs) {
 TEST(Untangle, InvertedElementsALaterPassTakesEndTheUntanglingAtItsFirstStall) {
     const auto impossible = [] {
         Problem p;
-        p.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, -1}, {1, 0, -1}, {0, 1, -1}, {0.3, 0.3, 0.5}};
+        p.points = {{0, 0, 0},  {1, 0, 0},  {0, 1, 0},      {0, 0, -1},
+                    {1, 0, -1}, {0, 1, -1}, {0.3, 0.3, 0.5}};
         p.kinds.assign(7, VertexKind::fixed);
         p.kinds[6] = VertexKind::interior;
         p.tets = {{0, 1, 2, 6}, {3, 5, 4, 6}};
@@ -230,7 +239,8 @@ TEST(Untangle, InvertedElementsALaterPassTakesEndTheUntanglingAtItsFirstStall) {
     EXPECT_TRUE(r.left_to_next_pass);
     EXPECT_EQ(asked, 1);
     EXPECT_EQ(r.inverted_after, 1);
-    EXPECT_NE(r.stopped.find("1 inverted elements left to the next pass"), std::string::npos) << r.stopped;
+    EXPECT_NE(r.stopped.find("1 inverted elements left to the next pass"), std::string::npos)
+        << r.stopped;
     EXPECT_EQ(log.str().find("eps now shrinks by the safe rule"), std::string::npos) << log.str();
     EXPECT_EQ(log.str().find("start again from eps"), std::string::npos) << log.str();
 
@@ -239,7 +249,8 @@ TEST(Untangle, InvertedElementsALaterPassTakesEndTheUntanglingAtItsFirstStall) {
     const UntangleResult r2 = untangle_and_optimize(kept, o);
     EXPECT_FALSE(r2.left_to_next_pass);
     EXPECT_GT(r2.history.size(), r.history.size());
-    EXPECT_NE(r2.stopped.find("no fewer than 1 inverted elements"), std::string::npos) << r2.stopped;
+    EXPECT_NE(r2.stopped.find("no fewer than 1 inverted elements"), std::string::npos)
+        << r2.stopped;
 }
 
 TEST(Untangle, ValidInputIsOptimizedTowardsTheTarget) {

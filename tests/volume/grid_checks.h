@@ -30,9 +30,12 @@ inline FaceCounts count_faces(const HexMesh& mesh) {
     FaceCounts counts;
     for (const auto& [key, n] : uses) {
         (void)key;
-        if (n == 1) ++counts.boundary;
-        else if (n == 2) ++counts.internal;
-        else ++counts.over_shared;
+        if (n == 1)
+            ++counts.boundary;
+        else if (n == 2)
+            ++counts.internal;
+        else
+            ++counts.over_shared;
     }
     return counts;
 }

@@ -27,7 +27,9 @@ void expect_same_report(const BlockGrid& grid) {
     // Same cells, same face owners: equal to rounding. A cell on a block boundary computes
     // its boundary faces from its own point order there (its neighbour's order here, for the
     // faces it does not own), and the mean's sum runs slab by slab there, in chunks here.
-    const auto near = [](double x, double y) { return std::abs(x - y) <= 1e-12 * std::max(1.0, std::abs(y)); };
+    const auto near = [](double x, double y) {
+        return std::abs(x - y) <= 1e-12 * std::max(1.0, std::abs(y));
+    };
     EXPECT_EQ(a.min_scaled_jacobian, b.min_scaled_jacobian);
     EXPECT_NEAR(a.mean_scaled_jacobian, b.mean_scaled_jacobian, 1e-14);
     EXPECT_PRED2(near, a.max_skewness, b.max_skewness);
@@ -54,7 +56,8 @@ OHGridOptions o_h_options() {
 }
 
 TEST(GridQuality, OHGridOfAnEllipsoidMatchesTheUnstructuredReport) {
-    const BlockGrid grid = make_o_h_grid(Ellipsoid(Vec3(0.1, 0, 0), Vec3(1.5, 1.0, 0.5)), o_h_options());
+    const BlockGrid grid =
+        make_o_h_grid(Ellipsoid(Vec3(0.1, 0, 0), Vec3(1.5, 1.0, 0.5)), o_h_options());
     expect_same_report(grid);
 }
 
@@ -137,8 +140,7 @@ TEST(GridQuality, ThinAndEmptyBlocksMatchTheUnstructuredReport) {
 // Three one-cell blocks over the same eight nodes: every face is listed by three cells.
 TEST(GridQuality, FaceSharedByThreeBlocksIsRejected) {
     BlockGrid grid;
-    for (int v = 0; v < 8; ++v)
-        grid.points.push_back(Vec3(v & 1, (v >> 1) & 1, (v >> 2) & 1));
+    for (int v = 0; v < 8; ++v) grid.points.push_back(Vec3(v & 1, (v >> 1) & 1, (v >> 2) & 1));
     grid.kinds.assign(8, VertexKind::interior);
     for (int b = 0; b < 3; ++b) {
         Block block;

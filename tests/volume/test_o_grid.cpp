@@ -27,7 +27,7 @@ constexpr double pi = 3.14159265358979323846;
 // Groove: bump = exp(-(x^.axis)^2 / width), a channel along the great circle normal to
 // `axis`. Star-shaped around c (depth < 1), concave in the pit or channel.
 class DentedSphere : public ImplicitFunction {
-public:
+  public:
     enum Kind { dent, groove };
     DentedSphere(const Vec3& c, double radius, const Vec3& axis, double depth, double width,
                  Kind kind = dent)
@@ -56,7 +56,7 @@ public:
         return {c_ - Vec3::Constant(radius_), c_ + Vec3::Constant(radius_)};
     }
 
-private:
+  private:
     double bump(const Vec3& e) const {
         const double a = e.dot(axis_);
         return std::exp(kind_ == dent ? -(1 - a) / width_ : -a * a / width_);

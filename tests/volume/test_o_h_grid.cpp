@@ -81,7 +81,8 @@ TEST(OHGrid, LinesAreBuiltFromAGivenWallGrid) {
         make_o_h_grid(sphere, o);
         ADD_FAILURE() << "no exception";
     } catch (const std::invalid_argument& e) {
-        EXPECT_NE(std::string(e.what()).find("lies behind its core node"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("lies behind its core node"), std::string::npos)
+            << e.what();
     }
 }
 

@@ -276,7 +276,9 @@ TEST(BlockRefiner, BlocksAreTheFineGridsAndPlaceEachFaceNodeOnce) {
     EXPECT_EQ(refiner.num_points(), Id(fine.points.size()));
     EXPECT_EQ(refiner.num_cells(), fine.num_cells());
     std::atomic<int> calls{0};
-    const auto place = [&](const Vec3& x, VertexKind) { return Vec3(x + Vec3(0, 0, 1e-3 * ++calls)); };
+    const auto place = [&](const Vec3& x, VertexKind) {
+        return Vec3(x + Vec3(0, 0, 1e-3 * ++calls));
+    };
     std::map<Id, Vec3> placed;  // face nodes by fine id
     std::map<Id, int> holders;
     for (size_t b = 0; b < coarse.blocks.size(); ++b) {
@@ -297,7 +299,8 @@ TEST(BlockRefiner, BlocksAreTheFineGridsAndPlaceEachFaceNodeOnce) {
             }
             const Dims& d = block.nodes;
             const int i = int(m % d.ni), j = int(m / d.ni % d.nj), k = int(m / d.ni / d.nj);
-            const bool on_face = i == 0 || j == 0 || k == 0 || i == d.ni - 1 || j == d.nj - 1 || k == d.nk - 1;
+            const bool on_face =
+                i == 0 || j == 0 || k == 0 || i == d.ni - 1 || j == d.nj - 1 || k == d.nk - 1;
             // Inside the block: not placed (moved, if at all, along with a wall node's line).
             if (!moved || !on_face) continue;
             const auto [it, first] = placed.try_emplace(v, x);
@@ -310,7 +313,9 @@ TEST(BlockRefiner, BlocksAreTheFineGridsAndPlaceEachFaceNodeOnce) {
         }
     }
     EXPECT_EQ(calls.load(), int(placed.size()));
-    EXPECT_GT(std::count_if(holders.begin(), holders.end(), [](const auto& h) { return h.second > 1; }), 0);
+    EXPECT_GT(
+        std::count_if(holders.begin(), holders.end(), [](const auto& h) { return h.second > 1; }),
+        0);
     EXPECT_THROW(refiner.refine(0), std::logic_error);  // each block once, in order
 }
 
@@ -337,7 +342,9 @@ TEST(BlockRefiner, WallNormalLinesFollowTheirPlacedWallNode) {
     const double stretch = 1 + 0.002 / d.back();
     EXPECT_NEAR(h[0], 0.01 / 2.1 * stretch, 1e-15);
     for (size_t m = 0; m < 7; ++m) EXPECT_NEAR(h[m + 1] / h[m], 1.1, 1e-12) << m;
-    EXPECT_NEAR(h.back(), (d.back() - d[d.size() - 2]) * std::sqrt(1.7) / (1 + std::sqrt(1.7)) * stretch, 1e-15);
+    EXPECT_NEAR(h.back(),
+                (d.back() - d[d.size() - 2]) * std::sqrt(1.7) / (1 + std::sqrt(1.7)) * stretch,
+                1e-15);
 }
 
 // Two one-cell blocks side by side (x in [0, 1] and [1, 2]), numbered by hand: block 0's 19 new

@@ -22,7 +22,8 @@ std::set<std::array<Id, 3>> boundary_faces(const TetMesh& m) {
     std::map<std::array<Id, 3>, int> uses;
     for (Id t = 0; t < m.num_cells(); ++t)
         for (int f = 0; f < 4; ++f) {
-            std::array<Id, 3> key = {m.node(t, (f + 1) % 4), m.node(t, (f + 2) % 4), m.node(t, (f + 3) % 4)};
+            std::array<Id, 3> key = {m.node(t, (f + 1) % 4), m.node(t, (f + 2) % 4),
+                                     m.node(t, (f + 3) % 4)};
             std::sort(key.begin(), key.end());
             ++uses[key];
         }
@@ -61,14 +62,17 @@ TEST(TetFlips, ThreeWedgesAroundAnEdgeBecomeTwo) {
     // The edge ab pierces the triangle cde close to c: the three tets around it are thin
     // wedges (smallest angle 14 degrees); the two tets on cde have 42.
     TetMesh mesh;
-    mesh.points = {Vec3(0.6, 0, 1), Vec3(0.6, 0, -1), Vec3(1, 0, 0), Vec3(-0.5, 0.866, 0), Vec3(-0.5, -0.866, 0)};
+    mesh.points = {Vec3(0.6, 0, 1), Vec3(0.6, 0, -1), Vec3(1, 0, 0), Vec3(-0.5, 0.866, 0),
+                   Vec3(-0.5, -0.866, 0)};
     mesh.tets = {0, 1, 2, 3, 0, 1, 3, 4, 0, 1, 4, 2};
     for (Id t = 0; t < 3; ++t)  // orient positively
         if (exact_orientation(mesh.points[mesh.tets[4 * t]], mesh.points[mesh.tets[4 * t + 1]],
-                              mesh.points[mesh.tets[4 * t + 2]], mesh.points[mesh.tets[4 * t + 3]]) < 0)
+                              mesh.points[mesh.tets[4 * t + 2]],
+                              mesh.points[mesh.tets[4 * t + 3]]) < 0)
             std::swap(mesh.tets[4 * t + 2], mesh.tets[4 * t + 3]);
     const double old_angle = measure_tet_quality(mesh).min_dihedral;
-    const double new_angle = std::min(smallest(mesh.points, {2, 3, 4, 0}), smallest(mesh.points, {2, 3, 4, 1}));
+    const double new_angle =
+        std::min(smallest(mesh.points, {2, 3, 4, 0}), smallest(mesh.points, {2, 3, 4, 1}));
     ASSERT_GT(new_angle, old_angle);
     const FlipResult r = improve_by_flips(mesh, 60);
     EXPECT_EQ(r.edge_removals, 1);
@@ -80,11 +84,13 @@ TEST(TetFlips, ThreeWedgesAroundAnEdgeBecomeTwo) {
 // The five tets around the edge (0, 1) of FiveTetsAroundAnEdgeBecomeSix, positively oriented.
 TetMesh five_tets_around_an_edge() {
     TetMesh mesh;
-    mesh.points = {Vec3(-0.17, 0.19, 0.95), Vec3(0.03, 0.09, -0.95), Vec3(-0.55, 0.39, 0.01), Vec3(-1.1, 0, 0.18),
-                   Vec3(-0.3, -0.44, 0.14), Vec3(0.54, -1.02, 0.1), Vec3(0.83, -0.28, -0.06)};
+    mesh.points = {Vec3(-0.17, 0.19, 0.95), Vec3(0.03, 0.09, -0.95), Vec3(-0.55, 0.39, 0.01),
+                   Vec3(-1.1, 0, 0.18),     Vec3(-0.3, -0.44, 0.14), Vec3(0.54, -1.02, 0.1),
+                   Vec3(0.83, -0.28, -0.06)};
     for (Id i = 0; i < 5; ++i) {
         std::array<Id, 4> t = {0, 1, 2 + i, 2 + (i + 1) % 5};
-        if (exact_orientation(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]], mesh.points[t[3]]) < 0)
+        if (exact_orientation(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]],
+                              mesh.points[t[3]]) < 0)
             std::swap(t[2], t[3]);
         mesh.tets.insert(mesh.tets.end(), t.begin(), t.end());
     }
@@ -129,7 +135,8 @@ TEST(TetFlips, OpenFanAroundABoundaryEdgeIsNotRemoved) {
 TEST(TetFlips, TwoTetsWhoseApexEdgeMissesTheirFaceStay) {
     // The apexes' edge passes beside the shared face abc: three tets around it would overlap.
     TetMesh mesh;
-    mesh.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1.5, 1.5, 0.3), Vec3(1.5, 1.5, -0.3)};
+    mesh.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1.5, 1.5, 0.3),
+                   Vec3(1.5, 1.5, -0.3)};
     mesh.tets = {0, 1, 2, 3, 0, 2, 1, 4};
     ASSERT_EQ(measure_tet_quality(mesh).inverted, 0);
     const std::vector<Id> before = mesh.tets;
@@ -151,7 +158,8 @@ TEST(TetFlips, TwoFlatTetsOnAWideFaceBecomeThree) {
     // Two flat tets on the wide triangle abc, apexes d and e 0.2 above and below its centre
     // (smallest angle 21.8 degrees); the three tets around the edge de have 43.6.
     TetMesh mesh;
-    mesh.points = {Vec3(1, 0, 0), Vec3(-0.5, 0.866, 0), Vec3(-0.5, -0.866, 0), Vec3(0, 0, 0.2), Vec3(0, 0, -0.2)};
+    mesh.points = {Vec3(1, 0, 0), Vec3(-0.5, 0.866, 0), Vec3(-0.5, -0.866, 0), Vec3(0, 0, 0.2),
+                   Vec3(0, 0, -0.2)};
     mesh.tets = {0, 1, 2, 3, 0, 2, 1, 4};
     ASSERT_EQ(measure_tet_quality(mesh).inverted, 0);
     double new_angle = 180;

@@ -32,8 +32,9 @@ TEST(TetMesh, SphereIsFilledWithPositiveTetsAndItsSurfacePointsLieOnIt) {
     ASSERT_EQ(g.refined.dimension.size(), m.points.size());
     EXPECT_FALSE(g.cgal_optimized);
     for (Id t = 0; t < m.num_cells(); ++t)
-        ASSERT_GT(exact_orientation(m.points[m.node(t, 0)], m.points[m.node(t, 1)], m.points[m.node(t, 2)],
-                                    m.points[m.node(t, 3)]), 0);
+        ASSERT_GT(exact_orientation(m.points[m.node(t, 0)], m.points[m.node(t, 1)],
+                                    m.points[m.node(t, 2)], m.points[m.node(t, 3)]),
+                  0);
     int surface = 0;
     for (size_t v = 0; v < m.points.size(); ++v) {
         const double u = sphere.value(m.points[v]);
@@ -77,7 +78,8 @@ TEST(TetMesh, BoxEdgesAndCornersAreProtected) {
         }
         EXPECT_EQ(corners, 8);
         EXPECT_GT(on_edges, 12 * 3);
-        EXPECT_NEAR(signed_volume(placed->mesh), 2 * 1.4 * 1.0, 1e-6);  // flat faces, sharp edges: exact
+        EXPECT_NEAR(signed_volume(placed->mesh), 2 * 1.4 * 1.0,
+                    1e-6);  // flat faces, sharp edges: exact
     }
     // CGAL's sliver removal keeps the mesh valid and raises its smallest dihedral angle.
     EXPECT_EQ(measure_tet_quality(g.cgal_optimized->mesh).inverted, 0);
@@ -96,7 +98,8 @@ TEST(TetMesh, IsolatedCornerIsProtected) {
     const PlacedTetMesh placed = generate_tet_mesh(cone, o).refined;
     int apex = 0;
     for (size_t v = 0; v < placed.mesh.points.size(); ++v)
-        if ((placed.mesh.points[v] - Vec3(0, 0, 0.5)).norm() < 1e-9) apex += placed.dimension[v] == 0;
+        if ((placed.mesh.points[v] - Vec3(0, 0, 0.5)).norm() < 1e-9)
+            apex += placed.dimension[v] == 0;
     EXPECT_EQ(apex, 1);
 }
 
@@ -113,7 +116,8 @@ TEST(TetMesh, SizingFunctionGradesTheMesh) {
         double edges = 0;
         for (int a = 0; a < 4; ++a) {
             c += 0.25 * m.points[m.node(t, a)];
-            for (int b = a + 1; b < 4; ++b) edges += (m.points[m.node(t, a)] - m.points[m.node(t, b)]).norm() / 6;
+            for (int b = a + 1; b < 4; ++b)
+                edges += (m.points[m.node(t, a)] - m.points[m.node(t, b)]).norm() / 6;
         }
         if (c.norm() > 0.9) wall += edges, ++n_wall;
         if (c.norm() < 0.3) core += edges, ++n_core;
@@ -135,8 +139,8 @@ TEST(TetMesh, BoundaryCapsAreRemovedAndOthersKept) {
     // on the boundary. Tet 1: the same shape with one point inside the body. Tet 2: a fine
     // tet on the boundary.
     PlacedTetMesh placed;
-    placed.mesh.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0.05),
-                          Vec3(5, 0, 0), Vec3(6, 0, 0), Vec3(5, 1, 0), Vec3(6, 1, 0.05),
+    placed.mesh.points = {Vec3(0, 0, 0),  Vec3(1, 0, 0),  Vec3(0, 1, 0),  Vec3(1, 1, 0.05),
+                          Vec3(5, 0, 0),  Vec3(6, 0, 0),  Vec3(5, 1, 0),  Vec3(6, 1, 0.05),
                           Vec3(10, 0, 0), Vec3(11, 0, 0), Vec3(10, 1, 0), Vec3(10, 0, 1)};
     placed.dimension = {2, 2, 2, 2, 2, 2, 2, 3, 2, 1, 1, 0};
     placed.mesh.tets = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11};
@@ -157,8 +161,8 @@ TEST(TetMesh, TetsAlongASharpCreaseAreNoCaps) {
     placed.mesh.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.5, 1, 0), Vec3(0.5, 1, 0.1)};
     placed.dimension = {1, 1, 2, 2};
     placed.mesh.tets = {0, 1, 2, 3};
-    const auto angles = dihedral_angles({placed.mesh.points[0], placed.mesh.points[1], placed.mesh.points[2],
-                                         placed.mesh.points[3]});
+    const auto angles = dihedral_angles({placed.mesh.points[0], placed.mesh.points[1],
+                                         placed.mesh.points[2], placed.mesh.points[3]});
     ASSERT_LT(angles[0], 10);  // edge 01
     EXPECT_EQ(remove_boundary_caps(placed, 20), 0);
     placed.dimension = {2, 1, 2, 2};  // the same tet off the crease is a cap

@@ -33,7 +33,8 @@ TEST(WallExtrusion, LayersLieOnTheOffsetsOfEveryFaceAtEdgesAndCorners) {
                 for (int m = 0; m <= 3; ++m) {
                     const Id v = f.node(p, q, m);
                     EXPECT_TRUE(placed[v]);
-                    EXPECT_NEAR(body.value(grid.points[v]), -d[m], 1e-12) << p << " " << q << " " << m;
+                    EXPECT_NEAR(body.value(grid.points[v]), -d[m], 1e-12)
+                        << p << " " << q << " " << m;
                 }
             }
     EXPECT_GT(crease_lines, 0);
@@ -72,7 +73,8 @@ TEST(WallExtrusion, BlendLimitsTheShiftedNodesBeyondTheLayers) {
             for (int p = 0; p < f.np; ++p) {
                 double previous = (grid.points[f.node(p, q, 3)] - built[f.node(p, q, 3)]).norm();
                 for (int m = 4; m < f.depth; ++m) {
-                    const double move = (grid.points[f.node(p, q, m)] - built[f.node(p, q, m)]).norm();
+                    const double move =
+                        (grid.points[f.node(p, q, m)] - built[f.node(p, q, m)]).norm();
                     if (m > 3 + blend) {
                         EXPECT_EQ(move, 0.0) << p << " " << q << " " << m;
                     } else {

@@ -67,7 +67,7 @@ double sag(const Vec3& a, const Vec3& b, const Vec3& c, double radius) {
 
 // u = |x_axis| - 1: the slab between the planes x_axis = -1 and x_axis = 1.
 class Slab : public ImplicitFunction {
-public:
+  public:
     explicit Slab(int axis) : axis_(axis) {}
     double value(const Vec3& p) const override { return std::abs(p[axis_]) - 1; }
     Vec3 gradient(const Vec3& p) const override {
@@ -75,7 +75,7 @@ public:
     }
     Box3 bounds() const override { return {Vec3::Constant(-1), Vec3::Constant(1)}; }
 
-private:
+  private:
     int axis_;
 };
 
@@ -305,7 +305,7 @@ TEST(WallMetrics, HausdorffNeedsAWall) {
 struct TwoSpikes {
     TriangleSurface wall, surface;
     explicit TwoSpikes(double small) {
-        wall.points = {Vec3(0, 0, 0),    Vec3(1, 0, 0),    Vec3(1, 1, 0),    Vec3(0, 1, 0),
+        wall.points = {Vec3(0, 0, 0),    Vec3(1, 0, 0),    Vec3(1, 1, 0),   Vec3(0, 1, 0),
                        Vec3(1, -0.5, 0), Vec3(3, -0.5, 0), Vec3(3, 1.5, 0), Vec3(1, 1.5, 0)};
         wall.triangles = {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}, {4, 6, 7}};
         surface.points = {Vec3(0.5, 0.5, small), Vec3(0.2, 0.2, 0), Vec3(0.8, 0.2, 0),
