@@ -13,8 +13,9 @@ build_packages=(
   libcgal-dev libvtk9-dev libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libfmt-dev libcgns-dev libnetcdf-dev liblzma-dev
 )
-# Independent readers and checkers the end-to-end tests compare against.
-test_packages=(python3-vtk9 python3-meshio python3-netcdf4 openfoam gmsh cgns-convert chromium)
+# Independent readers and checkers the end-to-end tests compare against, and the formatter
+# whose rules the sources follow (a test checks them).
+test_packages=(python3-vtk9 python3-meshio python3-netcdf4 openfoam gmsh cgns-convert chromium clang-format)
 
 install_packages() {
   local missing=()
