@@ -1,9 +1,7 @@
 // Speed of the untangler's kernels (energy, gradient, Hessian) and of whole untangling runs.
 #include <benchmark/benchmark.h>
 
-#include <random>
-
-#include "hexmesh/core/reference_hex.h"
+#include "tests/untangle/grid_problem.h"
 #include "untangle/assembly.h"
 #include "untangle/untangle.h"
 
@@ -12,35 +10,10 @@ using namespace hexmesh::untangle;
 
 namespace {
 
-// n^3 unit cubes split into corner tets, interior nodes displaced by up to `amplitude` cells.
+// n^3 unit cubes split into corner tets, interior nodes displaced by up to `amplitude` cells
+// (the untangler tests' grid, seed 1).
 Problem displaced_grid(int n, double amplitude) {
-    Problem p;
-    const int m = n + 1;
-    auto id = [m](int i, int j, int k) { return Id(i) + Id(m) * (j + Id(m) * k); };
-    std::mt19937 rng(1);
-    std::uniform_real_distribution<double> u(-amplitude, amplitude);
-    for (int k = 0; k < m; ++k)
-        for (int j = 0; j < m; ++j)
-            for (int i = 0; i < m; ++i) {
-                const bool boundary = i == 0 || j == 0 || k == 0 || i == n || j == n || k == n;
-                p.points.push_back(Vec3(i, j, k) +
-                                   (boundary ? Vec3::Zero() : Vec3(u(rng), u(rng), u(rng))));
-                p.kinds.push_back(boundary ? VertexKind::fixed : VertexKind::interior);
-            }
-    for (int k = 0; k < n; ++k)
-        for (int j = 0; j < n; ++j)
-            for (int i = 0; i < n; ++i) {
-                const std::array<Id, 8> h = {id(i, j, k),
-                                             id(i + 1, j, k),
-                                             id(i + 1, j + 1, k),
-                                             id(i, j + 1, k),
-                                             id(i, j, k + 1),
-                                             id(i + 1, j, k + 1),
-                                             id(i + 1, j + 1, k + 1),
-                                             id(i, j + 1, k + 1)};
-                p.add_hex(h, Vec3::Ones());
-            }
-    return p;
+    return test_support::displaced_grid_problem(n, amplitude, 1);
 }
 
 void BM_Energy(benchmark::State& state) {
