@@ -14,7 +14,7 @@
 #include "hexmesh/pipeline/grid_report.h"
 #include "hexmesh/pipeline/make_body.h"
 #include "hexmesh/pipeline/phase_timer.h"
-#include "hexmesh/pipeline/refine_family.h"
+#include "hexmesh/pipeline/refine.h"
 #include "hexmesh/pipeline/run_case.h"
 #include "io/case_file.h"
 #include "io/quality_report.h"

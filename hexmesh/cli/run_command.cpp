@@ -6,7 +6,7 @@
 #include <memory>
 
 #include "hexmesh/cli/commands.h"
-#include "hexmesh/pipeline/refine_family.h"
+#include "hexmesh/pipeline/refine.h"
 #include "hexmesh/pipeline/run_case.h"
 #include "io/case_file.h"
 #include "io/quality_report.h"

@@ -7,9 +7,10 @@
 #include <sstream>
 
 #include "hexmesh/core/quality.h"
+#include "hexmesh/pipeline/grid_report.h"
 #include "hexmesh/pipeline/make_body.h"
-#include "hexmesh/pipeline/optimize_grid.h"
 #include "hexmesh/pipeline/run_case.h"
+#include "hexmesh/pipeline/untangle_and_optimize.h"
 #include "io/vtk_mesh.h"
 
 using namespace hexmesh;

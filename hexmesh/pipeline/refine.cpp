@@ -1,4 +1,4 @@
-#include "hexmesh/pipeline/refine_family.h"
+#include "hexmesh/pipeline/refine.h"
 
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
@@ -12,7 +12,8 @@
 #include <stdexcept>
 
 #include "hexmesh/core/quality.h"
-#include "hexmesh/pipeline/optimize_grid.h"
+#include "hexmesh/pipeline/measure.h"
+#include "hexmesh/pipeline/untangle_and_optimize.h"
 #include "surface/implicit_features.h"
 #include "surface/projection.h"
 #include "volume/refine.h"
@@ -225,6 +226,22 @@ WallLayers refined_wall_layers(const WallLayers& law, int level) {
         fine.layers *= 2;
     }
     return fine;
+}
+
+void refine_levels(Job& job) {
+    const int levels = job.settings.refinement.levels;
+    if (levels == 1) return;
+    refuse_invalid(job, job.reports[0], "level_1/");  // before refining it
+    const RefinementOptions refinement;
+    for (int level = 2; level <= levels; ++level) {
+        RefinementResult r = refine_on_body(job.levels.back(), *job.body, refinement);
+        job.timer.done(
+            fmt::format("refinement level {}", level),
+            fmt::format("({} cells, {} wall nodes projected)", r.grid.num_cells(), r.projected));
+        job.levels.push_back(std::move(r.grid));
+        job.reports.push_back(measure_level(job, level));
+        job.timer.done(fmt::format("quality level {}", level));
+    }
 }
 
 FamilyLevel family_level(int level, const GridReport& report) {

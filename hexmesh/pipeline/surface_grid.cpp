@@ -1,9 +1,16 @@
-#include "hexmesh/pipeline/optimize_surface.h"
+#include "hexmesh/pipeline/surface_grid.h"
+
+#include <fmt/format.h>
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <stdexcept>
 
-#include "hexmesh/pipeline/optimize_grid.h"
+#include "hexmesh/core/quality.h"
+#include "hexmesh/pipeline/build_blocks.h"
+#include "hexmesh/pipeline/corner_tets.h"
+#include "volume/feature_snapping.h"
+#include "volume/tfi.h"
 #include "volume/wall_lines.h"
 
 namespace hexmesh {
@@ -75,6 +82,49 @@ SurfaceProblem make_surface_problem(const BlockGrid& grid, const std::vector<Wal
     return s;
 }
 
+// Cells whose scaled Jacobian (corners and centre) is <= 0.
+Id nonpositive_cells(const BlockGrid& grid) {
+    const std::vector<double> sj = scaled_jacobians(grid);
+    return Id(std::count_if(sj.begin(), sj.end(), [](double q) { return !(q > 0); }));
+}
+
+// The surface pass, then the volume from the optimized wall (see make_surface_grid).
+void surface_pass(Job& job) {
+    const Case& c = job.settings;
+    BlockGrid& grid = job.grid();
+    untangle::UntangleOptions surface = job.solver_options();
+    surface.max_optimize_iterations = c.solver.surface_iterations;
+    job.log << "  surface grid on u = 0 (2D functional, wall nodes only):\n";
+    const std::vector<Vec3> built = grid.points;
+    const Id bad_before = nonpositive_cells(grid);
+    const SurfaceOptimizationResult s = optimize_wall_surface(grid, *job.body, surface);
+    job.log << untangle::format_untangle_summary(s.solve)
+            << fmt::format("  {} wall nodes, {} corner triangles; largest move {:.3g} wall edges\n",
+                           s.nodes, s.triangles, s.max_move);
+    if (c.domain == "exterior" || c.grid.topology != "single-block") {
+        try {
+            BlockGrid rebuilt =
+                build_grid(c, *job.body, &grid.points, &job.route);  // same blocks and node ids
+            grid.points = std::move(rebuilt.points);
+        } catch (const std::invalid_argument& e) {  // a wall node behind its core node
+            job.log << "  no volume can be built from that wall (" << e.what()
+                    << "): the grid as constructed is kept\n";
+            grid.points = built;
+            return;
+        }
+    } else {
+        for (const Block& block : grid.blocks) carry_interior_tfi(block, built, grid.points);
+    }
+    const Id bad_after = nonpositive_cells(grid);
+    if (bad_after > bad_before) {
+        job.log << fmt::format(
+            "  the volume built from that wall has {} cells with a scaled Jacobian <= 0, "
+            "against {} as constructed: the grid as constructed is kept\n",
+            bad_after, bad_before);
+        grid.points = built;
+    }
+}
+
 }  // namespace
 
 SurfaceOptimizationResult optimize_wall_surface(BlockGrid& grid, const ImplicitFunction& body,
@@ -92,6 +142,19 @@ SurfaceOptimizationResult optimize_wall_surface(BlockGrid& grid, const ImplicitF
         x = p.points[i];
     }
     return result;
+}
+
+void make_surface_grid(Job& job) {
+    if (job.route.radial()) {
+        const FeatureSnapping snapped = snap_to_features(job.grid(), *job.body);
+        if (snapped.crease_nodes + snapped.corner_nodes > 0)
+            job.log << fmt::format("  sharp features: {} wall nodes on creases, {} on corners\n",
+                                   snapped.crease_nodes, snapped.corner_nodes);
+    }
+    if (job.settings.solver.surface_iterations > 0) {
+        surface_pass(job);
+        job.timer.done("surface");
+    }
 }
 
 }  // namespace hexmesh

@@ -1,8 +1,11 @@
-// The surface pass of `run`: the wall grid alone on u = 0 with the 2D functional.
+// Stage 2 of `run`, surface_grid: the wall grid on u = 0 before the volume — wall nodes snapped
+// to the body's creases and corners, then optimized alone with the 2D functional, and the volume
+// built again from them.
 #pragma once
 
 #include "hexmesh/core/block_grid.h"
 #include "hexmesh/core/implicit_function.h"
+#include "hexmesh/pipeline/job.h"
 #include "untangle/untangle.h"
 
 namespace hexmesh {
@@ -25,5 +28,15 @@ struct SurfaceOptimizationResult {
 // triangles, then lower energy).
 SurfaceOptimizationResult optimize_wall_surface(BlockGrid& grid, const ImplicitFunction& body,
                                                 const untangle::UntangleOptions& options);
+
+// The stage on job.grid(): with a radial route, wall nodes snapped onto the body's creases and
+// corners (volume/feature_snapping.h; a wall placed through the sphere map follows no crease,
+// and nodes pulled across its lines would fold its quads). Then, unless the case's
+// solver.surface_iterations is 0, optimize_wall_surface, and the volume from the optimized
+// wall: the O-H and O-grid lines built again (build_grid's wall_from), a single block's
+// interior carried along by TFI. When the volume built so has more cells with a scaled
+// Jacobian <= 0 than the grid had, or cannot be built (wall nodes that slid far from their
+// lines' core or far-field ends, in deep concavities), the grid as constructed is kept.
+void make_surface_grid(Job& job);
 
 }  // namespace hexmesh

@@ -1,5 +1,5 @@
-// Nested refinement on the body: blocks split (BlockRefiner), new wall nodes onto u = 0, a local
-// polish; whole, or block by block.
+// Stage 6 of `run`, refine: nested refinement on the body — blocks split (BlockRefiner), new wall
+// nodes onto u = 0, a local polish; whole, or block by block — and the grid-convergence family.
 #pragma once
 
 #include <functional>
@@ -8,6 +8,7 @@
 
 #include "hexmesh/core/block_grid.h"
 #include "hexmesh/core/implicit_function.h"
+#include "hexmesh/pipeline/job.h"
 #include "io/quality_report.h"
 #include "volume/refine.h"
 #include "volume/stretching.h"
@@ -72,6 +73,13 @@ std::vector<BlockGrid> refine_family(const BlockGrid& coarse, const ImplicitFunc
 // ratio r becomes sqrt(r), the first height h becomes h / (1 + sqrt(r)) (about h / 2: the
 // first coarse cell holds two fine cells of ratio sqrt(r)) and the layers double.
 WallLayers refined_wall_layers(const WallLayers& law, int level);
+
+// The stage: with c.refinement.levels = N > 1, job.grid() is level 1 of a nested family (refused
+// first if a solver cannot take it, see refuse_invalid), and levels 2 .. N are appended to
+// job.levels, each refine_on_body of the one before (the polish of refined levels keeps its
+// own theta, RefinementOptions: volume-weighted, it holds the interpolated wall spacing), with
+// their reports (measure_level) appended to job.reports.
+void refine_levels(Job& job);
 
 // One row of a grid-convergence study table.
 struct FamilyLevel {

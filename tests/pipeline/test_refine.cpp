@@ -6,10 +6,11 @@
 #include <map>
 #include <sstream>
 
+#include "hexmesh/pipeline/grid_report.h"
 #include "hexmesh/pipeline/make_body.h"
-#include "hexmesh/pipeline/optimize_grid.h"
-#include "hexmesh/pipeline/refine_family.h"
+#include "hexmesh/pipeline/refine.h"
 #include "hexmesh/pipeline/run_case.h"
+#include "hexmesh/pipeline/untangle_and_optimize.h"
 #include "tests/scratch_registry.h"
 
 using namespace hexmesh;

@@ -1,8 +1,12 @@
-// Joint untangling and optimization of a block grid on its body: the variational step of `run`.
+// Stage 4 of `run`, untangle_and_optimize: the joint untangling and optimization of a block grid
+// on its body (the variational step), the boundary layer laid again (lay_boundary_layer.h), and
+// the worst cells polished in their neighbourhood.
 #pragma once
 
 #include "hexmesh/core/block_grid.h"
 #include "hexmesh/core/implicit_function.h"
+#include "hexmesh/pipeline/corner_tets.h"
+#include "hexmesh/pipeline/job.h"
 #include "untangle/untangle.h"
 #include "volume/stretching.h"
 
@@ -61,11 +65,6 @@ struct GridOptimizationResult {
     bool layers_skipped = false;
 };
 
-// Gives `p` the geometry of `body` for its constrained vertices: slip on u = 0 (grad u, the
-// projection V), feature edges along the body's creases (surface/implicit_features.h);
-// tolerances relative to p.length_scale, which must be set. `body` must outlive `p`.
-void slide_on(const ImplicitFunction& body, untangle::Problem& p);
-
 // Splits every hex of `grid` into its 8 corner tets and minimizes the functional of DESIGN §4
 // over the grid's points (updated in place). Each cell's target is the box of its own initial
 // edge lengths along i, j and k (mean of the 4 parallel edges), so the boundary-layer cells the
@@ -99,9 +98,6 @@ struct PolishResult {
     double seconds = 0;
 };
 
-// The nodes 0 .. layers of every wall line: the wall and its boundary layer.
-std::vector<bool> wall_layer_nodes(const BlockGrid& grid, int layers);
-
 // The worst cells of an optimized grid optimized again in their neighbourhood, the rest held:
 // a global optimization stops when the mean energy no longer falls, while a few cells (thin
 // parts of the body, wall quads bent round a fold) are still poor, and in a small problem
@@ -110,5 +106,12 @@ std::vector<bool> wall_layer_nodes(const BlockGrid& grid, int layers);
 // higher worst scaled Jacobian, then fewer cells under `below`), never worse than the input.
 PolishResult polish_worst_cells(BlockGrid& grid, const ImplicitFunction& body,
                                 const PolishOptions& options);
+
+// The stage on job.grid(): optimize_grid with the case's solver and boundary-layer law (the
+// exterior's crease cells keep their shapes), then, unless some cell is still inverted,
+// polish_worst_cells with the wall and its layers held, and what a solver still refuses
+// mended node by node (mend_cells.h) and polished again with the layers free. Logs one
+// summary per pass.
+void untangle_and_optimize(Job& job);
 
 }  // namespace hexmesh

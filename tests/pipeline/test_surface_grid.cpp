@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "hexmesh/core/quality.h"
-#include "hexmesh/pipeline/optimize_surface.h"
+#include "hexmesh/pipeline/surface_grid.h"
 #include "surface/analytic.h"
 #include "volume/o_h_grid.h"
 #include "volume/wall_lines.h"

@@ -1,0 +1,191 @@
+#include "hexmesh/pipeline/build_blocks.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "hexmesh/pipeline/exterior_paths.h"
+#include "hexmesh/pipeline/make_body.h"
+#include "surface/surface_topology.h"
+#include "volume/o_grid.h"
+#include "volume/single_block_grid.h"
+
+namespace hexmesh {
+namespace {
+
+// Cells per patch edge: given, or from the target cell size and the body's size.
+int cells_per_edge(const Case& c, const ImplicitFunction& body) {
+    if (!(c.grid.cell_size > 0)) return c.grid.cells_per_edge;
+    const double n = std::ceil(body.bounds().diagonal() / (std::sqrt(3.0) * c.grid.cell_size));
+    if (!(n <= 4096)) {
+        throw InputError(
+            fmt::format("{}: grid.cell_size: {} gives {:.0f} cells per edge for a body "
+                        "of diagonal {:.4g}; expected at most 4096",
+                        c.path, c.grid.cell_size, n, body.bounds().diagonal()));
+    }
+    return std::max(2, int(n));
+}
+
+// Throws InputError for a surface the block structure cannot grid: several pieces, or one with
+// handles (its genus from V - E + F, holes capped); logs an open surface (inside and outside
+// then come from the winding number).
+void refuse_topology(const Case& c, const TriangleSurface& surface, std::ostream& log) {
+    const SurfaceTopology t = surface_topology(surface);
+    const std::string& file = c.geometry.file;
+    if (t.components.size() > 1)
+        throw InputError(fmt::format(
+            "{}: {} separate bodies (the largest has {} triangles, the next {}): hexmesh grids one "
+            "closed body; give each body its own file",
+            file, t.components.size(), t.components[0].triangles, t.components[1].triangles));
+    const SurfaceComponent& s = t.components.at(0);
+    if (s.genus > 0)
+        throw InputError(fmt::format(
+            "{}: genus {}: the surface has {} handle{} (V - E + F = {}{}); hexmesh grids bodies "
+            "without holes through them",
+            file, s.genus, s.genus, s.genus > 1 ? "s" : "", s.euler,
+            s.boundary_loops > 0 ? fmt::format(", {} holes in the surface", s.boundary_loops)
+                                 : ""));
+    if (s.boundary_edges > 0)
+        log << fmt::format(
+            "  the surface is open: {} boundary edges around {} holes; inside and "
+            "outside come from the winding number\n",
+            s.boundary_edges, s.boundary_loops);
+}
+
+// The exterior O-grid of the case (see build_grid).
+BlockGrid build_o_grid(const Case& c, const ImplicitFunction& body,
+                       const std::vector<Vec3>* wall_from, const WallRoute* route) {
+    OGridOptions o;
+    o.cells_per_edge = cells_per_edge(c, body);
+    o.layers = c.grid.wall_cells;
+    o.wall_layers = wall_layers(c);
+    o.far_field = c.far_field.shape == "box" ? FarFieldShape::box : FarFieldShape::sphere;
+    const Vec3 centre = c.grid.center.value_or(body.bounds().center());
+    o.far_field_size = c.far_field.size > 0
+                           ? c.far_field.size
+                           : 10 * (body.bounds().hi - centre)
+                                      .cwiseAbs()
+                                      .cwiseMax((body.bounds().lo - centre).cwiseAbs())
+                                      .norm();
+    o.centre = c.grid.center;
+    if (route && !route->radial()) {
+        // The lines from the wall nodes as they are now: up the potential's gradient.
+        const std::vector<Vec3> wall =
+            wall_from ? std::vector<Vec3>(wall_from->begin(),
+                                          wall_from->begin() + Id(route->wall->size()))
+                      : *route->wall;
+        const WallPaths paths = exterior_paths(*route, wall, o.cells_per_edge);
+        o.paths = &paths;
+        return make_o_grid(body, o);
+    }
+    o.wall_from = wall_from;
+    return make_o_grid(body, o);
+}
+
+// The body of the case, its reference surface refused if the block structure cannot grid it.
+void read_body(Job& job) {
+    job.surface = reference_surface(job.settings.geometry);
+    if (job.surface) refuse_topology(job.settings, *job.surface, job.log);
+    job.body = make_body(job.settings.geometry);
+    job.timer.done("geometry");
+}
+
+// The wall's route and the case's open choices, resolved once (see build_blocks).
+void resolve_case(Job& job) {
+    Case& c = job.settings;
+    const ImplicitFunction& body = *job.body;
+    if (c.domain == "exterior" && c.grid.cell_size > 0 && !c.grid.wall_cells_given)
+        c.grid.wall_cells = 2 * cells_per_edge(c, body);
+    if (c.domain == "exterior" || c.grid.topology == "o-h") {
+        job.route = choose_wall_route(c, body, job.surface, cells_per_edge(c, body),
+                                      job.solver_options(), job.log);
+        c.grid.center = job.route.centre;
+        if (!job.route.radial()) job.timer.done("wall (sphere map)");
+    }
+    if (!job.route.radial() && c.domain != "exterior") c.grid.axis = "none";  // one core block
+    if (c.domain != "exterior" && c.grid.topology == "o-h" && c.grid.axis == "auto") {
+        const int axis = choose_o_h_axis(body, o_h_grid_options(c, body));
+        c.grid.axis = axis < 0 ? "none" : std::string(1, char('x' + axis));
+        if (axis >= 0)
+            job.log << "  grid axis " << c.grid.axis << ": the body's creases run around it\n";
+    }
+    if (c.domain != "exterior" && c.grid.topology == "o-h" && job.route.radial() &&
+        job.route.not_star_shaped.empty() && !c.grid.core_size_given) {
+        const double fitted = core_size_within_wall(body, o_h_grid_options(c, body));
+        if (fitted < c.grid.core_size)
+            job.log << fmt::format(
+                "  core_size {:.3g}: the default {} would reach the wall near the "
+                "centre\n",
+                fitted, c.grid.core_size);
+        c.grid.core_size = fitted;
+    }
+}
+
+}  // namespace
+
+WallLayers wall_layers(const Case& c) {
+    if (!c.boundary_layer) return {};
+    return {c.boundary_layer->first_height, c.boundary_layer->growth_ratio,
+            c.boundary_layer->layers};
+}
+
+OHGridOptions o_h_grid_options(const Case& c, const ImplicitFunction& body) {
+    OHGridOptions o;
+    o.cells_per_edge = cells_per_edge(c, body);
+    o.wall_cells = c.grid.wall_cells;
+    o.core_size = c.grid.core_size;
+    o.wall_layers = wall_layers(c);
+    o.centre = c.grid.center;
+    o.axis = c.grid.axis == "none" || c.grid.axis == "auto" ? -1 : c.grid.axis[0] - 'x';
+    o.ring_cells = c.grid.ring_cells;
+    o.frame_cells = c.grid.frame_cells;
+    return o;
+}
+
+BlockGrid build_grid(const Case& c, const ImplicitFunction& body,
+                     const std::vector<Vec3>* wall_from, const WallRoute* route) {
+    if (c.domain == "exterior") return build_o_grid(c, body, wall_from, route);
+    if (c.grid.topology == "single-block") {
+        if (wall_from)
+            throw std::invalid_argument("a single block is not built from a given wall grid");
+        SingleBlockOptions o;
+        o.cells = c.grid.cells;
+        o.wall_layers = wall_layers(c);
+        o.centre = c.grid.center;
+        return make_single_block_grid(body, o);
+    }
+    OHGridOptions o = o_h_grid_options(c, body);
+    o.wall_from = wall_from;
+    if (route && !route->radial()) {
+        o.axis = -1;
+        o.centre = route->centre;
+        o.core_half = route->core_half;
+        if (!wall_from) o.wall_nodes = route->wall.get();
+        return make_o_h_grid(body, o);
+    }
+    if (c.grid.axis == "auto") o.axis = choose_o_h_axis(body, o);
+    return make_o_h_grid(body, o);
+}
+
+void build_blocks(Job& job) {
+    read_body(job);
+    resolve_case(job);
+    const Case& c = job.settings;
+    const WallRoute& route = job.route;
+    try {
+        job.levels = {build_grid(c, *job.body, nullptr, &route)};
+    } catch (const std::invalid_argument& e) {
+        if (!route.not_star_shaped.empty())
+            throw InputError(fmt::format("{}: {}, and the rays from there do not place a wall: {}",
+                                         c.path, route.not_star_shaped, e.what()));
+        if (!route.radial()) throw InputError(fmt::format("{}: {}", c.path, e.what()));
+        throw;
+    }
+    job.timer.done("grid", fmt::format("({}, {} blocks, {} cells)",
+                                       c.domain == "exterior" ? "o-grid" : c.grid.topology,
+                                       job.grid().blocks.size(), job.grid().num_cells()));
+}
+
+}  // namespace hexmesh

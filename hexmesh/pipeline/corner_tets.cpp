@@ -1,0 +1,166 @@
+#include "hexmesh/pipeline/corner_tets.h"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <memory>
+
+#include "hexmesh/core/reference_hex.h"
+#include "hexmesh/pipeline/boundary_geometry.h"
+#include "volume/wall_lines.h"
+
+namespace hexmesh {
+namespace {
+
+// Mean length of the 4 edges of the cell along each of i, j, k.
+Vec3 edge_lengths(const std::vector<Vec3>& points, const std::array<Id, 8>& nodes) {
+    Vec3 sum = Vec3::Zero();
+    for (const auto& e : hex_edges)
+        sum[hex_edge_axis(e[0], e[1])] += (points[nodes[e[0]]] - points[nodes[e[1]]]).norm();
+    return sum / 4;
+}
+
+// A cell shaped so is a target where each of its corners has a scaled Jacobian of at least
+// this: a mitred crease cell is (0.4 and more), a cell a crease cuts across is not.
+constexpr double shaped_target_min_sj = 0.2;
+
+// The targets of a cell's 8 corner tets: its own corners in `target_points`; false (nothing
+// added) when one of them has a scaled Jacobian under shaped_target_min_sj there.
+bool add_shaped_hex(untangle::Problem& p, const std::vector<Vec3>& target_points,
+                    const std::array<Id, 8>& nodes, const std::array<Id, 8>& ids) {
+    std::array<untangle::TetTarget, 8> targets;
+    for (int c = 0; c < 8; ++c) {
+        const auto& t = hex_corner_tets[c];
+        Mat3 h;
+        for (int a = 0; a < 3; ++a)
+            h.col(a) = target_points[nodes[t[a + 1]]] - target_points[nodes[t[0]]];
+        const double det = h.determinant();
+        if (!(det >= shaped_target_min_sj * h.col(0).norm() * h.col(1).norm() * h.col(2).norm()))
+            return false;
+        targets[c] = {h.inverse(), det / 6, 1};
+    }
+    for (int c = 0; c < 8; ++c) {
+        const auto& t = hex_corner_tets[c];
+        p.tets.push_back({ids[t[0]], ids[t[1]], ids[t[2]], ids[t[3]]});
+        p.targets.push_back(targets[c]);
+    }
+    return true;
+}
+
+}  // namespace
+
+GridProblem corner_tet_problem(const BlockGrid& grid, const std::vector<Vec3>& target_points,
+                               const ImplicitFunction& body, const std::vector<bool>& held,
+                               const std::vector<bool>& shaped) {
+    GridProblem g;
+    untangle::Problem& p = g.problem;
+    // The cells in the functional: all, or those with a node not held (listed once, so the
+    // scans below do not visit the held part of a large grid).
+    const std::vector<std::array<Id, 8>> listed =
+        held.empty() ? std::vector<std::array<Id, 8>>{} : cells_not_held(grid, held);
+    const auto each_cell = [&](auto&& f) {
+        if (held.empty())
+            for (const Block& block : grid.blocks)
+                for_each_cell(block,
+                              [&](int, int, int, const std::array<Id, 8>& nodes) { f(nodes); });
+        else
+            for (const std::array<Id, 8>& nodes : listed) f(nodes);
+    };
+    std::vector<Id> local;  // grid id -> problem id (-1: not in the problem); only with `held`
+    if (held.empty()) {
+        p.points = grid.points;
+        p.kinds = grid.kinds;
+    } else {
+        local.assign(grid.points.size(), -1);
+        for (const std::array<Id, 8>& nodes : listed)
+            for (Id v : nodes)
+                if (local[v] < 0) {
+                    local[v] = Id(g.nodes.size());
+                    g.nodes.push_back(v);
+                }
+        p.points.reserve(g.nodes.size());
+        p.kinds.reserve(g.nodes.size());
+        for (Id v : g.nodes) {
+            p.points.push_back(grid.points[v]);
+            p.kinds.push_back(held[v] ? VertexKind::fixed : grid.kinds[v]);
+        }
+    }
+    const Id cells = held.empty() ? grid.num_cells() : Id(listed.size());
+    p.hexes.reserve(cells);
+    p.hex_edges.reserve(cells);
+    double total = 0;
+    each_cell([&](const std::array<Id, 8>& nodes) {
+        const Vec3 lengths = edge_lengths(target_points, nodes);
+        total += lengths.sum();
+        std::array<Id, 8> ids = nodes;
+        if (!local.empty())
+            for (Id& v : ids) v = local[v];
+        if (!shaped.empty() &&
+            std::any_of(nodes.begin(), nodes.end(), [&](Id v) { return shaped[v]; }) &&
+            add_shaped_hex(p, target_points, nodes, ids))
+            return;
+        p.add_hex(ids, lengths);
+    });
+    const double count = double(p.hexes.size() + p.tets.size() / 8);
+    p.length_scale = count > 0 ? total / (3.0 * count) : 1.0;
+    slide_on(body, p);
+    return g;
+}
+
+void slide_on(const ImplicitFunction& body, untangle::Problem& p) {
+    // Not owned: the caller keeps `body` alive as long as `p`.
+    const std::shared_ptr<const ImplicitFunction> unowned(std::shared_ptr<const ImplicitFunction>{},
+                                                          &body);
+    BoundaryGeometry::implicit(unowned, p.length_scale).constrain(p);
+}
+
+std::vector<bool> crease_line_nodes(const BlockGrid& grid, const ImplicitFunction& body, int last) {
+    std::vector<bool> marked(grid.points.size(), false);
+    for (const WallFace& f : wall_faces(grid)) {
+        const double side = grid_side(f, grid.points, body);
+        for (int q = 0; q < f.nq; ++q)
+            for (int p = 0; p < f.np; ++p) {
+                const Vec3 x0 = grid.points[f.node(p, q, 0)];
+                const int pn = p + 1 < f.np ? p + 1 : p - 1;
+                const double spacing = (grid.points[f.node(pn, q, 0)] - x0).norm();
+                std::vector<Vec3> normals;
+                append_wall_normals(body, x0, side, 1e-6 * spacing, normals);
+                if (normals.size() < 2) continue;
+                for (int t = 0; t <= std::min(last, f.depth - 1); ++t)
+                    marked[f.node(p, q, t)] = true;
+            }
+    }
+    return marked;
+}
+
+std::vector<bool> wall_layer_nodes(const BlockGrid& grid, int layers) {
+    std::vector<bool> marked(grid.points.size(), false);
+    for (const WallFace& f : wall_faces(grid))
+        for (int q = 0; q < f.nq; ++q)
+            for (int p = 0; p < f.np; ++p)
+                for (int t = 0; t <= std::min(layers, f.depth - 1); ++t)
+                    marked[f.node(p, q, t)] = true;
+    return marked;
+}
+
+std::vector<bool> grow_by_cells(const BlockGrid& grid, std::vector<bool> marked, int rings) {
+    for (int r = 0; r < rings; ++r) {
+        std::vector<bool> next = marked, unmarked = marked;
+        unmarked.flip();
+        for (const std::array<Id, 8>& nodes : cells_not_held(grid, unmarked))
+            for (Id v : nodes) next[v] = true;
+        marked = std::move(next);
+    }
+    return marked;
+}
+
+void mark_cells_below(const BlockGrid& grid, const std::vector<double>& sj, double threshold,
+                      std::vector<bool>& marked) {
+    size_t c = 0;
+    for (const Block& block : grid.blocks)
+        for_each_cell(block, [&](int, int, int, const std::array<Id, 8>& nodes) {
+            if (!(sj[c++] >= threshold))
+                for (Id v : nodes) marked[v] = true;
+        });
+}
+
+}  // namespace hexmesh

@@ -1,0 +1,66 @@
+// Job: what the stages of `run` hand on to each other — the case, its body, the grids, their
+// reports, the log and the phase timer. The stages, in the order of the method:
+// build_blocks.h, surface_grid.h, corner_tets.h (the untangling problem of a grid),
+// untangle_and_optimize.h (with lay_boundary_layer.h), refine.h, measure.h, write.h;
+// run_case.h composes them.
+#pragma once
+
+#include <optional>
+#include <ostream>
+#include <vector>
+
+#include "hexmesh/core/block_grid.h"
+#include "hexmesh/core/triangle_surface.h"
+#include "hexmesh/pipeline/phase_timer.h"
+#include "hexmesh/pipeline/wall_route.h"
+#include "io/case_file.h"
+#include "io/quality_report.h"
+#include "surface/body.h"
+#include "untangle/untangle.h"
+
+namespace hexmesh {
+
+struct RunOptions {
+    // A grid with inverted cells is refused (std::runtime_error, nothing written) unless
+    // keep_invalid is set: then it is written as grid_invalid.* so no one takes it for valid.
+    bool keep_invalid = false;
+    // Writes report.html beside each grid's quality.json (report_page_html: pictures,
+    // histograms, worst cells, settings, time and memory).
+    bool report = true;
+};
+
+struct Job {
+    Job(const Case& c, const RunOptions& o, std::ostream& l)
+        : settings(c), options(o), log(l), timer(l) {}
+
+    // The case as given, its open choices (grid centre, axis, core size, exterior wall
+    // cells) resolved by build_blocks, once, and written so in grid.case.json.
+    Case settings;
+    RunOptions options;
+    std::ostream& log;  // one line per phase (timer) and the solvers' progress
+    PhaseTimer timer;
+    std::optional<TriangleSurface> surface;  // the surface file's triangles, if any
+    Body body;                               // the implicit body u
+    WallRoute route;                         // how the wall grid is placed on it
+    // The nested family: levels[0] is the grid the stages build and optimize, each next one
+    // refine_on_body of the one before (c.refinement.levels in all); reports[l] measures
+    // levels[l].
+    std::vector<BlockGrid> levels;
+    std::vector<GridReport> reports;
+
+    BlockGrid& grid() { return levels.front(); }  // level 1, the grid the stages optimize
+
+    // The untangler's options of the case's solver block, logging to `log`.
+    untangle::UntangleOptions solver_options() const {
+        untangle::UntangleOptions o;
+        o.untangle_solver.method = untangle::method_from_name(settings.solver.untangle);
+        o.optimize_solver.method = untangle::method_from_name(settings.solver.optimize);
+        o.theta = settings.solver.theta;
+        o.max_untangle_iterations = settings.solver.max_iterations;
+        o.max_optimize_iterations = settings.solver.optimize_iterations;
+        o.log = &log;
+        return o;
+    }
+};
+
+}  // namespace hexmesh

@@ -1,0 +1,24 @@
+// Stage 7 of `run`, measure: the quality report of each grid of the job against its body (cells,
+// faces, wall layers, surface fidelity), and the refusal of a grid a solver cannot take.
+#pragma once
+
+#include <string>
+
+#include "hexmesh/pipeline/job.h"
+#include "io/quality_report.h"
+
+namespace hexmesh {
+
+// job.reports = {the report of job.grid()} against the body, the case's boundary-layer law and
+// the surface file (the Hausdorff distance), if any.
+void measure(Job& job);
+
+// The report of job.levels[level - 1] (a refined level: the wall law refined_wall_layers).
+GridReport measure_level(const Job& job, int level);
+
+// Throws std::runtime_error (nothing written) when `report`'s grid is not valid for a solver
+// (QualityReport::solver_valid: inverted cells, cells turned inside out at their centre or faces
+// warped past it), unless job.options.keep_invalid; `dir` ("" or "level_2/") names the level.
+void refuse_invalid(const Job& job, const GridReport& report, const std::string& dir);
+
+}  // namespace hexmesh
