@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 #include "hexmesh/core/hex_mesh.h"
@@ -59,6 +60,55 @@ double mean_edge_at(const HexMesh& mesh, const NodeCells& around, Id v) {
     return count ? sum / count : 0;
 }
 
+// The lowest margin (Score::lowest) over `nodes`.
+double lowest(const HexMesh& mesh, const NodeCells& around, const std::vector<Id>& nodes) {
+    double m = std::numeric_limits<double>::infinity();
+    for (Id v : nodes) m = std::min(m, score_at(mesh, around, v).lowest);
+    return m;
+}
+
+struct RoundResult {
+    Id moves = 0;         // nodes moved
+    bool trying = false;  // some node still had a step worth trying
+};
+
+// One round over `nodes`: each movable node whose margin is not yet `o.enough` tries a step of
+// step[i] along the six axis directions (a slip node's trial projected onto u = 0) and takes
+// the best if it is better; a node that finds none halves its step, down to o.last_step edges.
+RoundResult mend_round(HexMesh& mesh, const NodeCells& around, const std::vector<VertexKind>& kinds,
+                       const ImplicitFunction& body, const std::vector<Id>& nodes,
+                       const std::function<bool(Id)>& movable, const MendOptions& o,
+                       std::vector<double>& step) {
+    static const std::array<Vec3, 6> directions = {Vec3::UnitX(),  -Vec3::UnitX(), Vec3::UnitY(),
+                                                   -Vec3::UnitY(), Vec3::UnitZ(),  -Vec3::UnitZ()};
+    RoundResult r;
+    for (size_t i = 0; i < nodes.size(); ++i) {
+        const Id v = nodes[i];
+        if (!movable(v) || step[i] <= 0) continue;
+        const Score before = score_at(mesh, around, v);
+        if (before.lowest > o.enough) continue;
+        const double edge = mean_edge_at(mesh, around, v);
+        if (step[i] < o.last_step * edge) continue;
+        r.trying = true;
+        const Vec3 start = mesh.points[v];
+        Vec3 best = start;
+        Score best_score = before;
+        for (const Vec3& d : directions) {
+            Vec3 x = start + step[i] * d;
+            if (kinds[v] == VertexKind::slip) x = project_to_surface(body, x, edge).point;
+            mesh.points[v] = x;
+            const Score m = score_at(mesh, around, v);
+            if (m.better_than(best_score)) best = x, best_score = m;
+        }
+        mesh.points[v] = best;
+        if (best != start)
+            ++r.moves;
+        else
+            step[i] *= 0.5;
+    }
+    return r;
+}
+
 }  // namespace
 
 MendResult mend_refused_cells(BlockGrid& grid, const ImplicitFunction& body, const MendOptions& o) {
@@ -82,15 +132,8 @@ MendResult mend_refused_cells(BlockGrid& grid, const ImplicitFunction& body, con
         std::sort(nodes.begin(), nodes.end());
         nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
     };
-    const auto lowest = [&] {
-        double m = std::numeric_limits<double>::infinity();
-        for (Id v : nodes) m = std::min(m, score_at(mesh, around, v).lowest);
-        return m;
-    };
     nodes_of_cells();
-    result.min_margin_before = lowest();
-    static const std::array<Vec3, 6> directions = {Vec3::UnitX(),  -Vec3::UnitX(), Vec3::UnitY(),
-                                                   -Vec3::UnitY(), Vec3::UnitZ(),  -Vec3::UnitZ()};
+    result.min_margin_before = lowest(mesh, around, nodes);
     for (int ring = 0; ring < o.rings && !refused.empty(); ++ring) {
         if (ring > 0) {
             std::vector<Id> wider;
@@ -105,40 +148,15 @@ MendResult mend_refused_cells(BlockGrid& grid, const ImplicitFunction& body, con
         for (size_t i = 0; i < nodes.size(); ++i)
             step[i] = o.first_step * mean_edge_at(mesh, around, nodes[i]);
         for (int round = 0; round < o.rounds; ++round) {
-            bool moved = false, trying = false;
-            for (size_t i = 0; i < nodes.size(); ++i) {
-                const Id v = nodes[i];
-                if (!movable(v) || step[i] <= 0) continue;
-                const Score before = score_at(mesh, around, v);
-                if (before.lowest > o.enough) continue;
-                const double edge = mean_edge_at(mesh, around, v);
-                if (step[i] < o.last_step * edge) continue;
-                trying = true;
-                const Vec3 start = mesh.points[v];
-                Vec3 best = start;
-                Score best_score = before;
-                for (const Vec3& d : directions) {
-                    Vec3 x = start + step[i] * d;
-                    if (grid.kinds[v] == VertexKind::slip)
-                        x = project_to_surface(body, x, edge).point;
-                    mesh.points[v] = x;
-                    const Score m = score_at(mesh, around, v);
-                    if (m.better_than(best_score)) best = x, best_score = m;
-                }
-                mesh.points[v] = best;
-                if (best != start) {
-                    moved = true;
-                    ++result.moves;
-                } else {
-                    step[i] *= 0.5;
-                }
-            }
-            if (!trying) break;
-            if (!moved && round > 0 && lowest() > 0) break;
+            const RoundResult r =
+                mend_round(mesh, around, grid.kinds, body, nodes, movable, o, step);
+            result.moves += r.moves;
+            if (!r.trying) break;
+            if (r.moves == 0 && round > 0 && lowest(mesh, around, nodes) > 0) break;
         }
         refused = find_refused_cells(mesh);
     }
-    result.min_margin_after = lowest();
+    result.min_margin_after = lowest(mesh, around, nodes);
     result.refused_after = Id(refused.size());
     grid.points = std::move(mesh.points);
     return result;

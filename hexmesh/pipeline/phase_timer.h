@@ -1,4 +1,5 @@
-// PhaseTimer: one log line per finished phase of a command, with its wall time.
+// PhaseTimer: one log line per finished phase of a command, with its wall time; Lap: the
+// seconds between two calls.
 #pragma once
 
 #include <fmt/format.h>
@@ -30,6 +31,20 @@ class PhaseTimer {
     std::ostream& log_;
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
     std::vector<std::pair<std::string, double>> phases_;
+};
+
+// Seconds since the last call (the first: since construction).
+class Lap {
+  public:
+    double operator()() {
+        const auto now = std::chrono::steady_clock::now();
+        const double s = std::chrono::duration<double>(now - clock_).count();
+        clock_ = now;
+        return s;
+    }
+
+  private:
+    std::chrono::steady_clock::time_point clock_ = std::chrono::steady_clock::now();
 };
 
 }  // namespace hexmesh

@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <chrono>
 #include <optional>
 
 #include "hexmesh/core/memory_limit.h"
@@ -17,20 +16,6 @@
 
 namespace hexmesh {
 namespace {
-
-// Seconds since the last call (the first: since construction).
-class Lap {
-  public:
-    double operator()() {
-        const auto now = std::chrono::steady_clock::now();
-        const double s = std::chrono::duration<double>(now - clock_).count();
-        clock_ = now;
-        return s;
-    }
-
-  private:
-    std::chrono::steady_clock::time_point clock_ = std::chrono::steady_clock::now();
-};
 
 // The last level made block by block: each fine block measured by `meter`, drawn into
 // `pictures` (if any) and written by `writer` as it comes, one log line per block. Adds the

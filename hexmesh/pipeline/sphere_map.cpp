@@ -138,9 +138,9 @@ int chord_free_pole(const TriangleSurface& s) {
     return order.front();
 }
 
-// Tutte's embedding onto the sphere (see map_to_sphere), the pole at point `pole`.
-std::vector<Vec3> tutte_on_sphere(const TriangleSurface& s, int pole) {
-    const int np = int(s.points.size());
+// The neighbours of point `pole` in the order they turn around it (triangle (pole, a, b)
+// gives a -> b).
+std::vector<int> pole_ring(const TriangleSurface& s, int pole) {
     // The pole's neighbours in order: triangle (pole, a, b) gives a -> b.
     std::unordered_map<int, int> after;
     for (const auto& t : s.triangles)
@@ -156,6 +156,14 @@ std::vector<Vec3> tutte_on_sphere(const TriangleSurface& s, int pole) {
     if (ring.size() != after.size())
         throw std::invalid_argument("the surface is not a manifold at its highest point");
 
+    return ring;
+}
+
+// Tutte's embedding of the surface without the pole into the unit disk: the pole's ring on
+// the circle, every other point the mean of its neighbours (a sparse Laplace solve).
+std::vector<Eigen::Vector2d> tutte_disk(const TriangleSurface& s, int pole,
+                                        const std::vector<int>& ring) {
+    const int np = int(s.points.size());
     std::vector<std::vector<int>> neighbours(np);
     for (const auto& t : s.triangles)
         for (int c = 0; c < 3; ++c) {
@@ -199,6 +207,14 @@ std::vector<Vec3> tutte_on_sphere(const TriangleSurface& s, int pole) {
     for (int p = 0; p < np; ++p)
         if (unknown[p] >= 0) plane[p] = solution.row(unknown[p]).transpose();
 
+    return plane;
+}
+
+// Tutte's embedding onto the sphere (see map_to_sphere), the pole at point `pole`.
+std::vector<Vec3> tutte_on_sphere(const TriangleSurface& s, int pole) {
+    const int np = int(s.points.size());
+    const std::vector<int> ring = pole_ring(s, pole);
+    std::vector<Eigen::Vector2d> plane = tutte_disk(s, pole, ring);
     // The inverse stereographic projection from the north pole, the ring at latitude where
     // the disk's radius rho lands: the pole's triangles form a small cap.
     constexpr double rho = 3;

@@ -98,27 +98,16 @@ std::vector<BlockedElement> find_blocked(const VolumeMesh& mesh, const untangle:
     return blocked;
 }
 
-}  // namespace
-
-UntangleMeshResult untangle_volume_mesh(VolumeMesh& mesh, const UntangleMeshOptions& options) {
-    untangle::Problem p;
-    p.points = mesh.points;
-    double total_edge = 0;
-    Id edges = 0;
-    add_elements(mesh, options.uniform_target, p, total_edge, edges);
-    if (options.tet_size && mesh.num_tets() > 0) {
-        const auto sized = sized_tet_targets(mesh.points, mesh.tets, options.tet_size);
-        std::copy(sized.begin(), sized.end(), p.targets.end() - sized.size());
-    }
-    p.length_scale = edges ? total_edge / edges : 1;
-
-    const auto faces = boundary_faces(mesh);
-    std::vector<bool> on_boundary(mesh.points.size(), false);
-    for (const auto& f : faces)
-        for (Id v : f) on_boundary[v] = true;
-
+// The kinds of the mesh's vertices in `p` (p.length_scale set): with slip, boundary vertices
+// slide on the geometry (given, the surface file's, else the mesh's own boundary triangulated),
+// along its creases, or stay at its corners, and the returned geometry constrains `p`; with a
+// fixed boundary they stay. The mesh's own fixed vertices stay in both modes.
+std::optional<BoundaryGeometry> constrain_boundary(const VolumeMesh& mesh,
+                                                   const std::vector<bool>& on_boundary,
+                                                   const std::vector<std::vector<Id>>& faces,
+                                                   const UntangleMeshOptions& options,
+                                                   untangle::Problem& p) {
     p.kinds.assign(mesh.points.size(), VertexKind::interior);
-    UntangleMeshResult result;
     std::optional<BoundaryGeometry> geometry;
     if (options.boundary == BoundaryMode::slip) {
         geometry = options.geometry
@@ -146,6 +135,52 @@ UntangleMeshResult untangle_volume_mesh(VolumeMesh& mesh, const UntangleMeshOpti
             p.kinds[v] = mesh.fixed[v]                             ? VertexKind::fixed
                          : options.boundary == BoundaryMode::fixed ? VertexKind::interior
                                                                    : p.kinds[v];
+    return geometry;
+}
+
+// Untangles with the boundary held first (it already lies on the surface, and a fixed boundary
+// is the easier problem), then lets it slip to repair what the fixed boundary could not and to
+// optimize; one result for both, the tangled input as "before".
+untangle::UntangleResult held_then_slip(const VolumeMesh& mesh, untangle::Problem& p,
+                                        const untangle::UntangleOptions& options) {
+    untangle::Problem held = p;
+    for (VertexKind& k : held.kinds)
+        if (k != VertexKind::interior) k = VertexKind::fixed;
+    untangle::UntangleOptions first = options;
+    first.max_optimize_iterations = 0;
+    first.unrepairable = Id(find_blocked(mesh, held).size());
+    first.stall_iterations = std::min(first.stall_iterations, 3);  // a start: slip does the rest
+    const untangle::UntangleResult r = untangle::untangle_and_optimize(held, first);
+    p.points = held.points;
+    untangle::UntangleResult solve = untangle::untangle_and_optimize(p, options);
+    solve.inverted_before = r.inverted_before;
+    solve.min_det_before = r.min_det_before;
+    solve.seconds += r.seconds;
+    solve.history.insert(solve.history.begin(), r.history.begin(), r.history.end());
+    return solve;
+}
+
+}  // namespace
+
+UntangleMeshResult untangle_volume_mesh(VolumeMesh& mesh, const UntangleMeshOptions& options) {
+    untangle::Problem p;
+    p.points = mesh.points;
+    double total_edge = 0;
+    Id edges = 0;
+    add_elements(mesh, options.uniform_target, p, total_edge, edges);
+    if (options.tet_size && mesh.num_tets() > 0) {
+        const auto sized = sized_tet_targets(mesh.points, mesh.tets, options.tet_size);
+        std::copy(sized.begin(), sized.end(), p.targets.end() - sized.size());
+    }
+    p.length_scale = edges ? total_edge / edges : 1;
+
+    const auto faces = boundary_faces(mesh);
+    std::vector<bool> on_boundary(mesh.points.size(), false);
+    for (const auto& f : faces)
+        for (Id v : f) on_boundary[v] = true;
+    UntangleMeshResult result;
+    const std::optional<BoundaryGeometry> geometry =
+        constrain_boundary(mesh, on_boundary, faces, options, p);
     for (VertexKind k : p.kinds) {
         result.slip_vertices += k == VertexKind::slip;
         result.feature_vertices += k == VertexKind::feature_edge;
@@ -155,25 +190,7 @@ UntangleMeshResult untangle_volume_mesh(VolumeMesh& mesh, const UntangleMeshOpti
     if (mesh.num_hexes() > 0) result.hex_before = measure_quality(HexMesh{mesh.points, mesh.hexes});
     result.blocked = find_blocked(mesh, p);
     if (options.boundary == BoundaryMode::slip) {
-        // Untangle with the boundary held first (it already lies on the surface, and a fixed
-        // boundary is the easier problem), then let it slip to repair what the fixed boundary
-        // could not and to optimize.
-        untangle::Problem held = p;
-        for (VertexKind& k : held.kinds)
-            if (k != VertexKind::interior) k = VertexKind::fixed;
-        untangle::UntangleOptions first = options.untangle;
-        first.max_optimize_iterations = 0;
-        first.unrepairable = Id(find_blocked(mesh, held).size());
-        first.stall_iterations =
-            std::min(first.stall_iterations, 3);  // a start: slip does the rest
-        const untangle::UntangleResult r = untangle::untangle_and_optimize(held, first);
-        p.points = held.points;
-        result.solve = untangle::untangle_and_optimize(p, options.untangle);
-        result.solve.inverted_before = r.inverted_before;
-        result.solve.min_det_before = r.min_det_before;
-        result.solve.seconds += r.seconds;
-        result.solve.history.insert(result.solve.history.begin(), r.history.begin(),
-                                    r.history.end());
+        result.solve = held_then_slip(mesh, p, options.untangle);
     } else {
         untangle::UntangleOptions o = options.untangle;
         o.unrepairable = Id(result.blocked.size());

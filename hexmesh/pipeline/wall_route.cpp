@@ -2,11 +2,11 @@
 
 #include <fmt/format.h>
 
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
 #include "hexmesh/pipeline/exterior_paths.h"
+#include "hexmesh/pipeline/phase_timer.h"
 #include "hexmesh/pipeline/sphere_map.h"
 #include "surface/exact_distance.h"
 #include "surface/exterior_potential.h"
@@ -30,92 +30,83 @@ bool star_shaped(const ImplicitFunction& f, double c, const Vec3& centre, double
     return star_shaped_level(f, c, centre, directions, step, reach, max_angle_deg);
 }
 
-}  // namespace
+// The centre the wall is placed from, what the log calls it, and whether rays from there
+// place it (the body is star-shaped around it).
+struct Centre {
+    Vec3 x;
+    std::string what;
+    bool radial = false;
+};
 
-WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
-                            const std::optional<TriangleSurface>& surface, int cells_per_edge,
-                            const untangle::UntangleOptions& solver, std::ostream& log) {
-    WallRoute route;
+// grid.center, else the centre of the bounds; for an interior without grid.center, the deepest
+// point when the body is not star-shaped around that (depth: the exact distance to the surface
+// file, made into `exact` once the body is known not to be star-shaped, else -u).
+Centre choose_centre(const Case& c, const ImplicitFunction& body,
+                     const std::optional<TriangleSurface>& surface,
+                     std::optional<ExactDistance>& exact, double step, std::ostream& log) {
     const Box3 box = body.bounds();
-    const double step = box.size().maxCoeff() / 512;  // finer than a surface file's voxel
-    route.centre = c.grid.center.value_or(box.center());
-    std::string what = c.grid.center ? "grid.center" : "the centre of its bounds";
+    Centre centre{c.grid.center.value_or(box.center()),
+                  c.grid.center ? "grid.center" : "the centre of its bounds"};
     // Outside a surface file's body the centre only needs to see the potential's far level.
-    if (c.grid.center && (c.domain != "exterior" || !surface) && !(body.value(route.centre) < 0))
+    if (c.grid.center && (c.domain != "exterior" || !surface) && !(body.value(centre.x) < 0))
         throw InputError(
-            fmt::format("{}: grid.center {} is not inside the body", c.path, point(route.centre)));
-    if (body.value(route.centre) < 0 && star_shaped(body, 0, route.centre, step, 90)) {
-        log << fmt::format("  the body is star-shaped around {} {}: wall placed radially\n", what,
-                           point(route.centre));
-        return route;
+            fmt::format("{}: grid.center {} is not inside the body", c.path, point(centre.x)));
+    if (body.value(centre.x) < 0 && star_shaped(body, 0, centre.x, step, 90)) {
+        log << fmt::format("  the body is star-shaped around {} {}: wall placed radially\n",
+                           centre.what, point(centre.x));
+        centre.radial = true;
+        return centre;
     }
     // A surface file's SDF is a distance only within a few voxels of the surface.
-    std::optional<ExactDistance> exact;
     if (surface && c.domain != "exterior") exact.emplace(*surface);
-    if (c.domain != "exterior" && !c.grid.center) {
-        const auto depth = [&](const Vec3& x) {
-            return exact ? exact->distance(x) : -body.value(x);
-        };
-        const std::optional<Vec3> deepest = deepest_point(body, box.diagonal() / 60, depth);
-        if (!deepest)
-            throw InputError(
-                fmt::format("{}: no point of the body is inside it (u < 0 nowhere "
-                            "on a lattice of a sixtieth of its diagonal)",
-                            c.path));
-        route.centre = *deepest;
-        what = "its deepest point";
-        if (star_shaped(body, 0, route.centre, step, 90)) {
-            log << fmt::format(
-                "  the body is star-shaped around its deepest point {}: wall "
-                "placed radially\n",
-                point(route.centre));
-            return route;
-        }
-    }
-    if (!surface) {
-        // The map onto the sphere takes a surface file: formulas and CSG are placed radially
-        // all the same (the first point each ray meets), as a body whose rays cross u = 0 once
-        // but a few between the lattice's may be.
-        route.not_star_shaped =
-            fmt::format("the body is not star-shaped around {} {}", what, point(route.centre));
-        log << "  " << route.not_star_shaped
-            << " (a surface file's would be mapped onto the sphere): wall placed radially all the "
-               "same\n";
-        return route;
-    }
-    auto start = std::chrono::steady_clock::now();
-    const auto since = [&start] {
-        const double s =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        start = std::chrono::steady_clock::now();
-        return s;
-    };
-    if (c.domain != "exterior") {
-        const double depth = exact ? exact->distance(route.centre) : -body.value(route.centre);
-        route.core_half = Vec3::Constant(0.45 * depth);
-        log << fmt::format("  the body is not star-shaped around {} {} (depth {:.4g}):\n", what,
-                           point(route.centre), depth);
-    } else {
-        auto potential = std::make_shared<ExteriorPotential>(body);
+    if (c.domain == "exterior" || c.grid.center) return centre;
+    const auto depth = [&](const Vec3& x) { return exact ? exact->distance(x) : -body.value(x); };
+    const std::optional<Vec3> deepest = deepest_point(body, box.diagonal() / 60, depth);
+    if (!deepest)
+        throw InputError(
+            fmt::format("{}: no point of the body is inside it (u < 0 nowhere "
+                        "on a lattice of a sixtieth of its diagonal)",
+                        c.path));
+    centre.x = *deepest;
+    centre.what = "its deepest point";
+    if (star_shaped(body, 0, centre.x, step, 90)) {
         log << fmt::format(
-            "  the body is not star-shaped around {} {}: exterior potential ({} "
-            "unknowns, {} iterations, {:.2f} s)\n",
-            what, point(route.centre), potential->unknowns(), potential->iterations(), since());
-        for (int tenth = 1; tenth <= 9 && route.far_level == 0; ++tenth)
-            if (star_shaped(*potential, 0.1 * tenth, route.centre, potential->spacing() / 2, 80))
-                route.far_level = 0.1 * tenth;
-        if (route.far_level == 0)
-            throw InputError(
-                fmt::format("{}: no level of the exterior potential is star-shaped "
-                            "around {}: give grid.center near the middle of the body",
-                            c.path, point(route.centre)));
-        route.potential = std::move(potential);
+            "  the body is star-shaped around its deepest point {}: wall "
+            "placed radially\n",
+            point(centre.x));
+        centre.radial = true;
     }
+    return centre;
+}
+
+// The exterior potential of `body` and its first level (in tenths) star-shaped around
+// route.centre, into `route`.
+void exterior_level(const Case& c, const ImplicitFunction& body, const std::string& what,
+                    WallRoute& route, Lap& lap, std::ostream& log) {
+    auto potential = std::make_shared<ExteriorPotential>(body);
+    log << fmt::format(
+        "  the body is not star-shaped around {} {}: exterior potential ({} "
+        "unknowns, {} iterations, {:.2f} s)\n",
+        what, point(route.centre), potential->unknowns(), potential->iterations(), lap());
+    for (int tenth = 1; tenth <= 9 && route.far_level == 0; ++tenth)
+        if (star_shaped(*potential, 0.1 * tenth, route.centre, potential->spacing() / 2, 80))
+            route.far_level = 0.1 * tenth;
+    if (route.far_level == 0)
+        throw InputError(
+            fmt::format("{}: no level of the exterior potential is star-shaped "
+                        "around {}: give grid.center near the middle of the body",
+                        c.path, point(route.centre)));
+    route.potential = std::move(potential);
+}
+
+// The surface mapped onto the sphere, and route.wall: the wall lattice placed through it.
+void map_wall(const Case& c, const TriangleSurface& surface, const ImplicitFunction& body,
+              int cells_per_edge, WallRoute& route, Lap& lap, std::ostream& log) {
     SphereMapOptions m;
     m.log = &log;
     const SphereMap map = [&] {
         try {
-            return map_to_sphere(*surface, m);
+            return map_to_sphere(surface, m);
         } catch (const std::invalid_argument& e) {
             throw InputError(fmt::format("{}: the surface cannot be mapped onto the sphere: {}",
                                          c.path, e.what()));
@@ -123,12 +114,46 @@ WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
     }();
     log << fmt::format(
                "  its surface mapped onto the sphere ({} triangles, {} turned over, {:.2f} s)",
-               map.surface().triangles.size(), map.inverted(), since())
+               map.surface().triangles.size(), map.inverted(), lap())
         << (route.potential
                 ? fmt::format("; lines out to the potential's level {:.1f}\n", route.far_level)
                 : fmt::format("; core cube of half-size {:.4g}\n", route.core_half->x()));
     route.wall = std::make_shared<std::vector<Vec3>>(
         wall_from_sphere_map(aligned_with_body(map, route.centre), cells_per_edge, body));
+}
+
+}  // namespace
+
+WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
+                            const std::optional<TriangleSurface>& surface, int cells_per_edge,
+                            const untangle::UntangleOptions& solver, std::ostream& log) {
+    WallRoute route;
+    const double step = body.bounds().size().maxCoeff() / 512;  // finer than a file's voxel
+    std::optional<ExactDistance> exact;
+    const Centre centre = choose_centre(c, body, surface, exact, step, log);
+    route.centre = centre.x;
+    if (centre.radial) return route;
+    if (!surface) {
+        // The map onto the sphere takes a surface file: formulas and CSG are placed radially
+        // all the same (the first point each ray meets), as a body whose rays cross u = 0 once
+        // but a few between the lattice's may be.
+        route.not_star_shaped = fmt::format("the body is not star-shaped around {} {}", centre.what,
+                                            point(route.centre));
+        log << "  " << route.not_star_shaped
+            << " (a surface file's would be mapped onto the sphere): wall placed radially all the "
+               "same\n";
+        return route;
+    }
+    Lap lap;
+    if (c.domain != "exterior") {
+        const double depth = exact ? exact->distance(route.centre) : -body.value(route.centre);
+        route.core_half = Vec3::Constant(0.45 * depth);
+        log << fmt::format("  the body is not star-shaped around {} {} (depth {:.4g}):\n",
+                           centre.what, point(route.centre), depth);
+    } else {
+        exterior_level(c, body, centre.what, route, lap, log);
+    }
+    map_wall(c, *surface, body, cells_per_edge, route, lap, log);
     route.solver = solver;
     route.solver.log = nullptr;
     return route;
