@@ -3,9 +3,11 @@
 #include <Eigen/LU>
 #include <algorithm>
 
-#include "hexmesh/core/quality.h"
 #include "hexmesh/core/reference_hex.h"
 #include "hexmesh/pipeline/boundary_geometry.h"
+#include "hexmesh/quality/block_quality.h"
+#include "hexmesh/quality/cell_quality.h"
+#include "hexmesh/quality/mesh_quality.h"
 #include "volume/wall_extrusion.h"
 #include "volume/wall_lines.h"
 

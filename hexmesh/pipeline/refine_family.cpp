@@ -11,8 +11,9 @@
 #include <limits>
 #include <stdexcept>
 
-#include "hexmesh/core/quality.h"
 #include "hexmesh/pipeline/optimize_grid.h"
+#include "hexmesh/quality/cell_quality.h"
+#include "hexmesh/quality/grid_report.h"
 #include "surface/implicit_features.h"
 #include "surface/projection.h"
 #include "volume/refine.h"

@@ -7,10 +7,9 @@
 
 #include "hexmesh/core/block_grid.h"
 #include "hexmesh/core/triangle_surface.h"
-#include "hexmesh/pipeline/grid_report.h"
 #include "hexmesh/pipeline/wall_route.h"
+#include "hexmesh/quality/grid_report.h"
 #include "io/case_file.h"
-#include "io/quality_report.h"
 #include "surface/body.h"
 #include "volume/o_h_grid.h"
 #include "volume/stretching.h"

@@ -10,9 +10,9 @@
 #include <unordered_map>
 
 #include "hexmesh/core/array_hash.h"
-#include "hexmesh/core/tet_quality.h"
 #include "hexmesh/pipeline/make_body.h"
-#include "io/quality_report.h"
+#include "hexmesh/quality/tet_quality.h"
+#include "hexmesh/quality/tet_report.h"
 #include "surface/crease_curves.h"
 #include "surface/sharp_features.h"
 #include "untangle/tet_energy.h"

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "hexmesh/core/tet_quality.h"
 #include "hexmesh/core/vertex_kind.h"
 #include "hexmesh/pipeline/boundary_geometry.h"
+#include "hexmesh/quality/tet_quality.h"
 #include "io/case_file.h"
 #include "untangle/untangle.h"
 #include "volume/tet_mesh.h"

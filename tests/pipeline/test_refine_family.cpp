@@ -11,6 +11,7 @@
 #include "hexmesh/pipeline/refine_family.h"
 #include "hexmesh/pipeline/run_case.h"
 #include "tests/scratch_registry.h"
+#include "volume/grid_meter.h"
 
 using namespace hexmesh;
 

@@ -5,7 +5,7 @@
 #include <memory>
 
 #include "grid_checks.h"
-#include "hexmesh/core/quality.h"
+#include "hexmesh/quality/mesh_quality.h"
 #include "surface/analytic.h"
 #include "surface/csg.h"
 #include "volume/core_layout.h"
