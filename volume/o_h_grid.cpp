@@ -12,6 +12,8 @@
 #include <string>
 
 #include "surface/implicit_features.h"
+#include "volume/axial_creases.h"
+#include "volume/axial_rings.h"
 #include "volume/core_layout.h"
 #include "volume/cube_sphere.h"
 #include "volume/feature_snapping.h"

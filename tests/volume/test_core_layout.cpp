@@ -8,6 +8,8 @@
 #include "hexmesh/quality/mesh_quality.h"
 #include "surface/analytic.h"
 #include "surface/csg.h"
+#include "volume/axial_creases.h"
+#include "volume/axial_rings.h"
 #include "volume/core_layout.h"
 #include "volume/cube_sphere.h"
 
