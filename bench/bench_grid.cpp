@@ -1,7 +1,8 @@
 // Speed of the initial O-H grid of a sphere and of the quality report, by grid size.
 #include <benchmark/benchmark.h>
 
-#include "hexmesh/core/quality.h"
+#include "hexmesh/quality/block_quality.h"
+#include "hexmesh/quality/mesh_quality.h"
 #include "surface/analytic.h"
 #include "volume/o_h_grid.h"
 

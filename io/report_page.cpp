@@ -11,9 +11,11 @@
 #include <unordered_map>
 
 #include "hexmesh/core/array_hash.h"
-#include "hexmesh/core/quality.h"
 #include "hexmesh/core/reference_hex.h"
-#include "hexmesh/core/tet_quality.h"
+#include "hexmesh/quality/cell_quality.h"
+#include "hexmesh/quality/grid_report.h"
+#include "hexmesh/quality/mesh_quality.h"
+#include "hexmesh/quality/tet_quality.h"
 #include "io/markup.h"
 #include "io/staged_output.h"
 

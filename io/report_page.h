@@ -9,8 +9,9 @@
 #include <vector>
 
 #include "hexmesh/core/histogram.h"
+#include "hexmesh/quality/grid_report.h"
+#include "hexmesh/quality/tet_quality.h"
 #include "io/grid_pictures.h"
-#include "io/quality_report.h"
 
 namespace hexmesh {
 

@@ -25,7 +25,7 @@
 #include <unordered_map>
 
 #include "hexmesh/core/array_hash.h"
-#include "hexmesh/core/quality.h"
+#include "hexmesh/quality/cell_quality.h"
 #include "io/export_grid.h"
 #include "io/gmsh_mesh.h"
 #include "io/input_error.h"

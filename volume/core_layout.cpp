@@ -1,3 +1,5 @@
+// The core blocks of an O-H grid: one box, or the axial core (column, ring pieces, frame) laid
+// out over the rings around its axis.
 #include "volume/core_layout.h"
 
 #include <Eigen/Geometry>
@@ -7,10 +9,10 @@
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
-#include "surface/implicit_features.h"
 #include "volume/cube_sphere.h"
-#include "volume/surface_placement.h"
 
 namespace hexmesh {
 namespace {
@@ -20,87 +22,6 @@ constexpr double pi = 3.14159265358979323846;
 // tan(pi/4 (2 m/n - 1)): the equiangular coordinate of lattice index m.
 double equiangular_index(int m, int n) {
     return std::tan(pi / 4 * (2.0 * m / n - 1));
-}
-
-Vec3 unit(int axis) {
-    return Vec3::Unit(axis);
-}
-
-// Arc length along a polyline of wall points, at each point.
-std::vector<double> arc_lengths(const std::vector<Vec3>& p) {
-    std::vector<double> s(p.size(), 0.0);
-    for (size_t i = 1; i < p.size(); ++i) s[i] = s[i - 1] + (p[i] - p[i - 1]).norm();
-    return s;
-}
-
-// Linear interpolation of ys at x in the increasing table xs (clamped at its ends).
-double interpolate(const std::vector<double>& xs, const std::vector<double>& ys, double x) {
-    if (x <= xs.front()) return ys.front();
-    if (x >= xs.back()) return ys.back();
-    const size_t i = std::upper_bound(xs.begin(), xs.end(), x) - xs.begin();
-    const double f = (x - xs[i - 1]) / (xs[i] - xs[i - 1]);
-    return ys[i - 1] + f * (ys[i] - ys[i - 1]);
-}
-
-// Cells per segment of the given lengths: at least one each, `cells` in all, the rest
-// shared in proportion to length (largest remainder).
-std::vector<int> share_cells(const std::vector<double>& lengths, int cells) {
-    const int m = int(lengths.size());
-    double total = 0;
-    for (double x : lengths) total += std::max(x, 0.0);
-    std::vector<int> count(m, 1);
-    std::vector<double> want(m);
-    for (int i = 0; i < m; ++i)  // no length at all: shared evenly
-        want[i] = (cells - m) * (total > 0 ? std::max(lengths[i], 0.0) / total : 1.0 / m);
-    for (int i = 0; i < m; ++i) count[i] += int(std::floor(want[i]));
-    int left = cells - std::accumulate(count.begin(), count.end(), 0);
-    std::vector<int> order(m);
-    std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(), order.end(), [&](int a, int b) {
-        return want[a] - std::floor(want[a]) > want[b] - std::floor(want[b]);
-    });
-    for (int i = 0; left > 0; i = (i + 1) % m, --left) ++count[order[i]];
-    return count;
-}
-
-// Where the half-line t = w d + end (0 < w < 1) meets the crease near the wall point `near`
-// (sampled at w = `sampled`): the crease point nearest `near` (the corner, when `corner`), and
-// the w whose ray passes through it, by Gauss-Newton on the ray's direction (cube_ray is
-// trilinear in t: affine in w along the faces' axes, one step; quadratic along their
-// diagonals); `sampled` when that w is not within 0.01 of it.
-double crease_on_half_line(const ImplicitFunction& body, const Vec3& centre,
-                           const std::function<Vec3(const Vec3&)>& ray, const Vec3& d,
-                           const Vec3& end, const Vec3& near, double sampled, bool corner,
-                           double length_scale) {
-    const Vec3 q = (corner ? snap_to_corner(body, near, length_scale)
-                           : project_to_crease(body, near, length_scale)) -
-                   centre;
-    double w = sampled;
-    for (int step = 0; step < 4; ++step) {
-        constexpr double dw = 1e-4;
-        const Vec3 at = ray(w * d + end);
-        const Vec3 slope = (ray((w + dw) * d + end) - ray((w - dw) * d + end)) / (2 * dw);
-        const Vec3 qs = q.cross(slope);  // q x (at + x slope) = 0 in the least-squares sense
-        if (!(qs.squaredNorm() > 0)) return sampled;
-        w -= q.cross(at).dot(qs) / qs.squaredNorm();
-    }
-    return std::abs(w - sampled) < 0.01 ? w : sampled;
-}
-
-// Lowers each ring's roundness as far as needed for the rings to stay nested: a round ring
-// reaches less far along the diagonals than a square one, so each ring's diagonal reach must
-// exceed the previous ring's by at least a quarter of its step along the axes.
-void keep_rings_nested(AxialRings& rings) {
-    const double root2 = std::sqrt(2.0);
-    double previous =
-        root2 * rings.radius[0] * (1 - rings.roundness[0]) + rings.radius[0] * rings.roundness[0];
-    for (int s = 1; s <= rings.cells(); ++s) {
-        const double w = rings.radius[s];
-        const double least = previous + 0.25 * (w - rings.radius[s - 1]);
-        const double most_round = (root2 - least / w) / (root2 - 1);
-        rings.roundness[s] = std::clamp(std::min(rings.roundness[s], most_round), 0.0, 1.0);
-        previous = w * (root2 - rings.roundness[s] * (root2 - 1));
-    }
 }
 
 }  // namespace
@@ -123,162 +44,6 @@ CoreLayout one_block_core(int n) {
     std::sort(core.wall_faces.begin(), core.wall_faces.end(),
               [](const auto& a, const auto& b) { return a.face < b.face; });
     return core;
-}
-
-AxialRings even_axial_rings(int axis, int cells, double outer) {
-    AxialRings rings;
-    rings.axis = axis;
-    const double column = outer / 2;
-    for (int s = 0; s <= cells; ++s) {
-        rings.radius.push_back(s == cells ? outer : column + (outer - column) * s / cells);
-        rings.roundness.push_back(s == 0 || s == cells ? 0.0 : std::sin(pi * s / cells));
-    }
-    keep_rings_nested(rings);
-    return rings;
-}
-
-AxialCreases find_axial_creases(const ImplicitFunction& body, const Vec3& centre,
-                                const std::function<Vec3(const Vec3&)>& ray, int axis, double outer,
-                                double length_scale) {
-    const int b = (axis + 1) % 3, c = (axis + 2) % 3;
-    constexpr int samples = 512;
-    AxialCreases found;
-    for (int i = 0; i < samples; ++i) found.w.push_back((i + 0.5) / samples);
-    // The creases met along one half-line t = w dir + end, as the middles of runs of samples
-    // classified sharp, each then located exactly; those next to the face's centre or its
-    // frame (a tip, the patch edges) are not rings.
-    auto creases_along = [&](const Vec3& dir, const Vec3& end, std::vector<Vec3>& p) {
-        std::vector<double> creases;
-        p.resize(samples);
-        for (int i = 0; i < samples; ++i)
-            p[i] = place_on_surface(body, centre, ray(found.w[i] * dir + end), length_scale);
-        int run_start = -1;
-        for (int i = 0; i <= samples; ++i) {
-            bool sharp = false;
-            if (i < samples) {
-                const double spacing =
-                    (p[std::min(i + 1, samples - 1)] - p[std::max(i - 1, 0)]).norm() / 2;
-                sharp = classify_surface_point(body, p[i], spacing) != FeatureKind::smooth;
-            }
-            if (sharp && run_start < 0) run_start = i;
-            if (!sharp && run_start >= 0) {
-                // A short run crosses a crease; a long one runs along it (the half-line lies in
-                // a plane of the crease, as a box's diagonal plane holds its vertical edge), and
-                // its two ends are where the wall leaves it: corners.
-                std::vector<std::pair<int, bool>> at = {{(run_start + i - 1) / 2, false}};
-                if (i - run_start > 4) at = {{run_start, true}, {i - 1, true}};
-                for (const auto& [sample, corner] : at) {
-                    const double x = crease_on_half_line(body, centre, ray, dir, end, p[sample],
-                                                         found.w[sample], corner, length_scale);
-                    if (x > 0.05 && x < outer - 0.05) creases.push_back(x);
-                }
-                run_start = -1;
-            }
-        }
-        return creases;
-    };
-    // Creases met within 0.03 of each other are one: from (w, half-line) pairs, the mean w of
-    // each cluster and how many distinct half-lines met it.
-    using Met = std::pair<double, int>;
-    auto cluster = [](std::vector<Met> x, std::vector<double>& mean, std::vector<int>& count) {
-        std::sort(x.begin(), x.end());
-        for (size_t i = 0; i < x.size();) {
-            size_t j = i + 1;
-            while (j < x.size() && x[j].first - x[j - 1].first <= 0.03) ++j;
-            double sum = 0;
-            std::vector<int> lines;
-            for (size_t k = i; k < j; ++k) sum += x[k].first, lines.push_back(x[k].second);
-            std::sort(lines.begin(), lines.end());
-            mean.push_back(sum / double(j - i));
-            count.push_back(int(std::unique(lines.begin(), lines.end()) - lines.begin()));
-            i = j;
-        }
-    };
-    std::vector<Met> along_axes, along_diagonals;
-    std::vector<Vec3> p;
-    const Vec3 out[4] = {unit(b), unit(c), -unit(b), -unit(c)};
-    int line = 0;
-    for (const double end : {1.0, -1.0})
-        for (int q = 0; q < 4; ++q, ++line) {
-            for (double x : creases_along(out[q], end * unit(axis), p))
-                along_axes.push_back({x, line});
-            if (found.meridian.empty()) found.meridian = p;
-            for (double x : creases_along(out[q] + out[(q + 1) % 4], end * unit(axis), p))
-                along_diagonals.push_back({x, line});
-        }
-    cluster(along_axes, found.radius, found.seen);
-    std::vector<double> diagonal;
-    std::vector<int> diagonal_seen;
-    cluster(along_diagonals, diagonal, diagonal_seen);
-    // The k-th crease out along the diagonals is the k-th along the axes when they are as
-    // many; otherwise each crease is taken for a circle.
-    for (size_t k = 0; k < found.radius.size(); ++k)
-        found.reach.push_back(diagonal.size() == found.radius.size() ? std::sqrt(2.0) * diagonal[k]
-                                                                     : found.radius[k]);
-    return found;
-}
-
-AxialRings fit_axial_rings(const AxialCreases& creases, int axis, int cells, double outer) {
-    // Creases strictly inside (0, outer) and increasing, as find_axial_creases gives them.
-    std::vector<double> rings_at, reach_at;
-    for (size_t k = 0; k < creases.radius.size(); ++k) {
-        const double x = creases.radius[k];
-        if (x > 1e-3 * outer && x < outer * (1 - 1e-3) && (rings_at.empty() || x > rings_at.back()))
-            rings_at.push_back(x), reach_at.push_back(creases.reach[k]);
-    }
-    if (creases.meridian.size() < 2 || creases.meridian.size() != creases.w.size())
-        rings_at.clear();
-    if (int(rings_at.size()) > cells - 1) {
-        rings_at.resize(std::max(cells - 1, 0));
-        reach_at.resize(rings_at.size());
-    }
-    if (rings_at.empty()) return even_axial_rings(axis, cells, outer);
-
-    AxialRings rings;
-    rings.axis = axis;
-    const double column = std::min(outer / 2, rings_at.front() / 2);
-    const std::vector<double>& w = creases.w;
-    const std::vector<double> length = arc_lengths(creases.meridian);
-    std::vector<double> stops = {column};
-    stops.insert(stops.end(), rings_at.begin(), rings_at.end());
-    stops.push_back(outer);
-    std::vector<double> segment;
-    for (size_t i = 0; i + 1 < stops.size(); ++i)
-        segment.push_back(interpolate(w, length, stops[i + 1]) - interpolate(w, length, stops[i]));
-    const std::vector<int> count = share_cells(segment, cells);
-    rings.radius.push_back(column);
-    for (size_t i = 0; i < count.size(); ++i) {
-        const double from = interpolate(w, length, stops[i]);
-        for (int s = 1; s <= count[i]; ++s) {
-            const double at = from + segment[i] * s / count[i];
-            rings.radius.push_back(s == count[i] ? stops[i + 1] : interpolate(length, w, at));
-        }
-    }
-    // Each ring's reach along the diagonals: the creases' own, and in between it grows evenly
-    // with the radius, from the column's square to the frame's.
-    const double root2 = std::sqrt(2.0);
-    std::vector<double> reach = {root2 * column};
-    reach.insert(reach.end(), reach_at.begin(), reach_at.end());
-    reach.push_back(root2 * outer);
-    for (int s = 0; s <= cells; ++s) {
-        const double x = rings.radius[s];
-        const double d = interpolate(stops, reach, x);
-        rings.roundness.push_back(std::clamp((root2 - d / x) / (root2 - 1), 0.0, 1.0));
-    }
-    keep_rings_nested(rings);
-    return rings;
-}
-
-int choose_axis(const std::array<AxialCreases, 3>& creases) {
-    int best = -1, best_count = 0;
-    for (int axis = 0; axis < 3; ++axis) {
-        const AxialCreases& c = creases[axis];
-        int count = 0;
-        for (size_t k = 0; k < c.radius.size(); ++k)
-            count += c.seen[k] >= 4 && c.reach[k] < 1.2 * c.radius[k];
-        if (count > best_count) best = axis, best_count = count;
-    }
-    return best;
 }
 
 double axial_frame_edge(int n, int frame) {

@@ -1,3 +1,5 @@
+// make_o_h_grid: the O-H grid laid out step by step (core, wall, rays, fitted rings, wall
+// layers, blocks), and the core size that fits inside its wall.
 #include "volume/o_h_grid.h"
 
 #include <fmt/format.h>
@@ -12,6 +14,8 @@
 #include <string>
 
 #include "surface/implicit_features.h"
+#include "volume/axial_creases.h"
+#include "volume/axial_rings.h"
 #include "volume/core_layout.h"
 #include "volume/cube_sphere.h"
 #include "volume/feature_snapping.h"
@@ -127,105 +131,120 @@ double grid_length_scale(const ImplicitFunction& body, int cells_per_edge) {
 
 namespace {
 
-// make_o_h_grid; with `fitted_core_size`, only its wall and rays are laid out and the core
-// size that fits them (core_size_within_wall) is written there, the grid left empty.
-BlockGrid o_h_grid(const ImplicitFunction& body, const OHGridOptions& options,
-                   double* fitted_core_size) {
-    check_options(options);
-    const int n = options.cells_per_edge, nk = options.wall_cells;
-    const Box3 box = body.bounds();
-    const Vec3 centre = options.centre.value_or(box.center());
-    const Vec3 half = 0.5 * box.size();
-    const double h = grid_length_scale(body, n);
-    require_inside(body, centre);
-
-    // The core's nodes in cube coordinates; those on the cube's surface double as the wall
-    // patches' nodes, numbered in core order for the wall layers 1..nk.
-    const int ring_cells = options.ring_cells > 0 ? options.ring_cells : (n + 1) / 2;
-    const double ring_edge = axial_frame_edge(n, options.frame_cells);
-    CoreLayout core = options.axis < 0
-                          ? one_block_core(n)
-                          : axial_core(n, options.frame_cells,
-                                       even_axial_rings(options.axis, ring_cells, ring_edge));
-    std::vector<Vec3> inner_t = core.t;  // where the core's nodes go: see below
-    const Id core_nodes = Id(core.t.size());
-    std::vector<Id> number, on_wall;  // surface number of each core node
-    number_wall_nodes(core, number, on_wall);
-    const Id ns = Id(on_wall.size());
-    auto node_id = [&](Id core_id, int layer) {
-        return layer == 0 ? core_id : core_nodes + (layer - 1) * ns + number[core_id];
-    };
-    if (options.wall_from && Id(options.wall_from->size()) != core_nodes + nk * ns)
-        throw std::invalid_argument("wall_from: the points of a grid made with other options");
-
-    // The wall nodes: given, or the radial projections of the rays through the bounds' box,
-    // then (box-like bodies) through the body's corners.
+// An O-H grid as it is laid out: its core in cube coordinates, where the core's nodes go
+// (inner_t), the core's nodes on the cube's surface, numbered in core order, which double as
+// the wall patches' nodes of the wall layers 1..nk, the wall points, and the rays' frame.
+struct OHLayout {
+    CoreLayout core;
+    std::vector<Vec3> inner_t;
+    Id core_nodes = 0;
+    std::vector<Id> number, on_wall;  // surface number of each core node; its core node
+    Id ns = 0;                        // nodes on the wall
+    int nk = 0;                       // wall layers
+    std::vector<Vec3> wall;
+    Vec3 half;  // of the bounds' box
     std::optional<CubeCorners> corners;
-    auto ray = [&](const Vec3& t) { return corners ? cube_ray(t, *corners) : cube_ray(t, half); };
-    const bool placed = options.wall_nodes || options.core_half;  // the wall is not radial
-    if (placed && options.axis >= 0)
-        throw std::invalid_argument("a wall placed without rays takes one core block (axis -1)");
-    if (options.wall_nodes && Id(options.wall_nodes->size()) != ns)
-        throw std::invalid_argument("wall_nodes: a lattice of another size");
-    std::vector<Vec3> wall(ns);
-    const auto place_wall = [&] {
-        tbb::parallel_for(Id(0), ns, [&](Id s) {
-            wall[s] = options.wall_from ? (*options.wall_from)[node_id(on_wall[s], nk)]
+
+    // The ray through cube coordinates t: through the bounds' box, or the body's corners.
+    Vec3 ray(const Vec3& t) const { return corners ? cube_ray(t, *corners) : cube_ray(t, half); }
+    // The grid's id of a core node's copy in wall layer `layer` (0: the core node).
+    Id node_id(Id core_id, int layer) const {
+        return layer == 0 ? core_id : core_nodes + (layer - 1) * ns + number[core_id];
+    }
+};
+
+// The core (one block, or the axial core over even rings) and its wall nodes' numbering.
+OHLayout lay_out_core(const OHGridOptions& options, const Vec3& half, int ring_cells,
+                      double ring_edge) {
+    const int n = options.cells_per_edge;
+    OHLayout lay;
+    lay.core = options.axis < 0 ? one_block_core(n)
+                                : axial_core(n, options.frame_cells,
+                                             even_axial_rings(options.axis, ring_cells, ring_edge));
+    lay.inner_t = lay.core.t;  // where the core's nodes go: see o_h_grid
+    lay.core_nodes = Id(lay.core.t.size());
+    number_wall_nodes(lay.core, lay.number, lay.on_wall);
+    lay.ns = Id(lay.on_wall.size());
+    lay.nk = options.wall_cells;
+    lay.half = half;
+    if (options.wall_from && Id(options.wall_from->size()) != lay.core_nodes + lay.nk * lay.ns)
+        throw std::invalid_argument("wall_from: the points of a grid made with other options");
+    return lay;
+}
+
+// The wall nodes: given (wall_from, wall_nodes), or the rays placed on the body.
+void place_wall(OHLayout& lay, const ImplicitFunction& body, const OHGridOptions& options,
+                const Vec3& centre, double h) {
+    lay.wall.resize(size_t(lay.ns));
+    tbb::parallel_for(Id(0), lay.ns, [&](Id s) {
+        lay.wall[s] = options.wall_from ? (*options.wall_from)[lay.node_id(lay.on_wall[s], lay.nk)]
                       : options.wall_nodes
                           ? (*options.wall_nodes)[s]
-                          : place_on_surface(body, centre, ray(core.t[on_wall[s]]), h);
-        });
-    };
-    place_wall();
+                          : place_on_surface(body, centre, lay.ray(lay.core.t[lay.on_wall[s]]), h);
+    });
+}
+
+// The rays' frame of a box-like body: through its corners near the wall's, or, for a given
+// wall, those its patch-corner nodes sit on; none for a wall placed without rays.
+void choose_ray_frame(OHLayout& lay, const ImplicitFunction& body, const OHGridOptions& options,
+                      const Vec3& centre, double h, bool placed) {
     if (placed) {
         // No ray frame: the core is a box of the given half extents.
     } else if (options.patch_corners_on_body_corners && !options.wall_from) {
-        corners = corners_near_wall(body, centre, wall, h);
+        lay.corners = corners_near_wall(body, centre, lay.wall, h);
     } else if (options.patch_corners_on_body_corners) {
         // A given wall keeps the choice of the grid it came from: its 8 patch-corner nodes sit
         // on body corners exactly when that grid's rays spanned them, and they are those.
         std::array<Vec3, 8> at;
-        for (int c = 0; c < 8; ++c) at[c] = wall[number[cube_corner_node(core, on_wall, c)]];
-        corners = corners_at_patch_corners(body, centre, at, h);
+        for (int c = 0; c < 8; ++c)
+            at[c] = lay.wall[lay.number[cube_corner_node(lay.core, lay.on_wall, c)]];
+        lay.corners = corners_at_patch_corners(body, centre, at, h);
     }
-    if (options.axis >= 0)
-        core = axial_core(
-            n, options.frame_cells,
-            fit_axial_rings(find_axial_creases(body, centre, ray, options.axis, ring_edge, h),
-                            options.axis, ring_cells, ring_edge));
-    if (Id(core.t.size()) != core_nodes)
+}
+
+// The axial core over rings fitted to the body's creases around the axis.
+void fit_core_rings(OHLayout& lay, const ImplicitFunction& body, const OHGridOptions& options,
+                    const Vec3& centre, double h, int ring_cells, double ring_edge) {
+    const auto ray = [&](const Vec3& t) { return lay.ray(t); };
+    lay.core = axial_core(
+        options.cells_per_edge, options.frame_cells,
+        fit_axial_rings(find_axial_creases(body, centre, ray, options.axis, ring_edge, h),
+                        options.axis, ring_cells, ring_edge));
+    if (Id(lay.core.t.size()) != lay.core_nodes)
         throw std::logic_error("axial core: the fitted rings changed the core's node count");
-    if ((corners || options.axis >= 0) && !options.wall_from) place_wall();
-    // The wall follows the fitted rings; the core lies halfway between them and even rings.
-    // On the fitted rings alone the core's column is as thin as half the first crease, and
-    // its needle cells can buckle under the optimizer (box with cylinder, 48 cells per edge:
-    // min scaled Jacobian 0.04, against 0.36 halfway); halfway keeps the lines near radial.
-    if (options.axis >= 0)
-        for (Id id = 0; id < core_nodes; ++id) inner_t[id] = 0.5 * (inner_t[id] + core.t[id]);
+}
 
-    if (fitted_core_size) {
-        // Node s of the core lies at centre + core_size dir, inside while core_size is below
-        // (wall - centre) . dir / |dir|^2.
-        double nearest = std::numeric_limits<double>::infinity();
-        for (Id s = 0; s < ns && !placed; ++s) {
-            const Vec3 dir = ray(inner_t[on_wall[s]]);
-            nearest = std::min(nearest, (wall[s] - centre).dot(dir) / dir.squaredNorm());
-        }
-        *fitted_core_size = options.core_size > 0.9 * nearest ? 0.5 * nearest : options.core_size;
-        return {};
+// The core size that keeps the core inside the wall (see core_size_within_wall): node s of the
+// core lies at centre + core_size dir, inside while core_size is below
+// (wall - centre) . dir / |dir|^2.
+double fit_core_size(const OHLayout& lay, const OHGridOptions& options, const Vec3& centre,
+                     bool placed) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (Id s = 0; s < lay.ns && !placed; ++s) {
+        const Vec3 dir = lay.ray(lay.inner_t[lay.on_wall[s]]);
+        nearest = std::min(nearest, (lay.wall[s] - centre).dot(dir) / dir.squaredNorm());
     }
-    BlockGrid grid;
-    grid.points.assign(core_nodes + nk * ns, Vec3::Zero());
-    grid.kinds.assign(grid.points.size(), VertexKind::interior);
-    for (Id id = 0; id < core_nodes; ++id)
-        grid.points[id] = options.core_half
-                              ? Vec3(centre + options.core_half->cwiseProduct(inner_t[id]))
-                              : Vec3(centre + options.core_size * ray(inner_t[id]));
+    return options.core_size > 0.9 * nearest ? 0.5 * nearest : options.core_size;
+}
 
-    tbb::parallel_for(Id(0), ns, [&](Id s) {
-        const Id core_id = on_wall[s];
-        const Vec3 dir = ray(inner_t[core_id]);
-        const Vec3 wall_node = wall[s];
+// The grid's points: the core's nodes, then along each wall node's line to its core node the
+// wall layers graded by the law (the last on the wall, a slip node). Throws
+// std::invalid_argument when a line would turn back.
+BlockGrid place_points(const OHLayout& lay, const OHGridOptions& options, const Vec3& centre,
+                       bool placed) {
+    const int nk = lay.nk;
+    BlockGrid grid;
+    grid.points.assign(lay.core_nodes + nk * lay.ns, Vec3::Zero());
+    grid.kinds.assign(grid.points.size(), VertexKind::interior);
+    for (Id id = 0; id < lay.core_nodes; ++id)
+        grid.points[id] = options.core_half
+                              ? Vec3(centre + options.core_half->cwiseProduct(lay.inner_t[id]))
+                              : Vec3(centre + options.core_size * lay.ray(lay.inner_t[id]));
+
+    tbb::parallel_for(Id(0), lay.ns, [&](Id s) {
+        const Id core_id = lay.on_wall[s];
+        const Vec3 dir = lay.ray(lay.inner_t[core_id]);
+        const Vec3 wall_node = lay.wall[s];
         const Vec3 inner = grid.points[core_id];
         const double length = (wall_node - inner).norm();
         if ((wall_node - inner).dot(dir) <= 0 && options.wall_from && !placed) {
@@ -242,21 +261,69 @@ BlockGrid o_h_grid(const ImplicitFunction& body, const OHGridOptions& options,
         }
         const std::vector<double> d = wall_distances(length, nk, options.wall_layers);
         for (int layer = 1; layer <= nk; ++layer)
-            grid.points[node_id(core_id, layer)] =
+            grid.points[lay.node_id(core_id, layer)] =
                 wall_node + (inner - wall_node) * (d[nk - layer] / length);
-        grid.kinds[node_id(core_id, nk)] = VertexKind::slip;
+        grid.kinds[lay.node_id(core_id, nk)] = VertexKind::slip;
     });
+    return grid;
+}
 
-    for (Block& block : core.blocks) {
+// The core's blocks, interiors filled by TFI, then the wall blocks, cube side by cube side.
+void add_blocks(BlockGrid& grid, OHLayout& lay) {
+    for (Block& block : lay.core.blocks) {
         fill_interior_tfi(block, grid.points);
         grid.blocks.push_back(std::move(block));
     }
+    const auto node_id = [&](Id core_id, int layer) { return lay.node_id(core_id, layer); };
     for (int side = 0; side < 6; ++side)
-        for (const CoreLayout::WallFace& f : core.wall_faces) {
+        for (const CoreLayout::WallFace& f : lay.core.wall_faces) {
             if (f.side != side) continue;
             const Block& base = grid.blocks[f.block];
-            grid.blocks.push_back(wall_block(base, f, core.t, nk, node_id));
+            grid.blocks.push_back(wall_block(base, f, lay.core.t, lay.nk, node_id));
         }
+}
+
+// make_o_h_grid; with `fitted_core_size`, only its wall and rays are laid out and the core
+// size that fits them (core_size_within_wall) is written there, the grid left empty.
+BlockGrid o_h_grid(const ImplicitFunction& body, const OHGridOptions& options,
+                   double* fitted_core_size) {
+    check_options(options);
+    const int n = options.cells_per_edge;
+    const Box3 box = body.bounds();
+    const Vec3 centre = options.centre.value_or(box.center());
+    const double h = grid_length_scale(body, n);
+    require_inside(body, centre);
+
+    const int ring_cells = options.ring_cells > 0 ? options.ring_cells : (n + 1) / 2;
+    const double ring_edge = axial_frame_edge(n, options.frame_cells);
+    OHLayout lay = lay_out_core(options, 0.5 * box.size(), ring_cells, ring_edge);
+
+    // The wall nodes: given, or the radial projections of the rays through the bounds' box,
+    // then (box-like bodies) through the body's corners.
+    const bool placed = options.wall_nodes || options.core_half;  // the wall is not radial
+    if (placed && options.axis >= 0)
+        throw std::invalid_argument("a wall placed without rays takes one core block (axis -1)");
+    if (options.wall_nodes && Id(options.wall_nodes->size()) != lay.ns)
+        throw std::invalid_argument("wall_nodes: a lattice of another size");
+    place_wall(lay, body, options, centre, h);
+    choose_ray_frame(lay, body, options, centre, h, placed);
+    if (options.axis >= 0) fit_core_rings(lay, body, options, centre, h, ring_cells, ring_edge);
+    if ((lay.corners || options.axis >= 0) && !options.wall_from)
+        place_wall(lay, body, options, centre, h);
+    // The wall follows the fitted rings; the core lies halfway between them and even rings.
+    // On the fitted rings alone the core's column is as thin as half the first crease, and
+    // its needle cells can buckle under the optimizer (box with cylinder, 48 cells per edge:
+    // min scaled Jacobian 0.04, against 0.36 halfway); halfway keeps the lines near radial.
+    if (options.axis >= 0)
+        for (Id id = 0; id < lay.core_nodes; ++id)
+            lay.inner_t[id] = 0.5 * (lay.inner_t[id] + lay.core.t[id]);
+
+    if (fitted_core_size) {
+        *fitted_core_size = fit_core_size(lay, options, centre, placed);
+        return {};
+    }
+    BlockGrid grid = place_points(lay, options, centre, placed);
+    add_blocks(grid, lay);
     return grid;
 }
 

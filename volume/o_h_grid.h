@@ -61,7 +61,7 @@ BlockGrid make_o_h_grid(const ImplicitFunction& body, const OHGridOptions& optio
 
 // The axis to O-grid the core around (OHGridOptions::axis) for these options: the one whose
 // creases, seen through the cube faces across it by the grid's rays, run around it
-// (volume/core_layout.h: find_axial_creases, choose_axis), as a cylinder's circles on a box do;
+// (volume/axial_creases.h: find_axial_creases, choose_axis), as a cylinder's circles on a box do;
 // -1 (one core block) for a body without such creases, a smooth one among them.
 int choose_o_h_axis(const ImplicitFunction& body, const OHGridOptions& options);
 

@@ -3,7 +3,7 @@
 #include <unordered_map>
 
 #include "hexmesh/core/array_hash.h"
-#include "hexmesh/core/tet_quality.h"
+#include "hexmesh/quality/tet_quality.h"
 #include "volume/tet_mesh.h"
 
 namespace hexmesh {

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "hexmesh/core/array_hash.h"
-#include "hexmesh/core/quality.h"
-#include "hexmesh/core/tet_quality.h"
+#include "hexmesh/quality/tet_quality.h"
+#include "hexmesh/quality/validity.h"
 
 namespace hexmesh {
 namespace {

@@ -14,7 +14,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
-#include "hexmesh/core/quality.h"
+#include "hexmesh/quality/validity.h"
 
 namespace hexmesh {
 namespace {

@@ -5,7 +5,7 @@
 #include "hexmesh/core/block_grid.h"
 #include "hexmesh/core/implicit_function.h"
 #include "hexmesh/core/triangle_surface.h"
-#include "hexmesh/core/wall_quality.h"
+#include "hexmesh/quality/wall_quality.h"
 #include "volume/stretching.h"
 
 namespace hexmesh {

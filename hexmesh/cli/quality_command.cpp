@@ -11,15 +11,19 @@
 
 #include "hexmesh/cli/commands.h"
 #include "hexmesh/core/memory_limit.h"
-#include "hexmesh/pipeline/grid_report.h"
 #include "hexmesh/pipeline/make_body.h"
 #include "hexmesh/pipeline/run_case.h"
 #include "hexmesh/pipeline/tet_mesh_case.h"
+#include "hexmesh/quality/block_quality.h"
+#include "hexmesh/quality/grid_report.h"
+#include "hexmesh/quality/mesh_quality.h"
+#include "hexmesh/quality/tet_quality.h"
+#include "hexmesh/quality/tet_report.h"
 #include "io/case_file.h"
-#include "io/quality_report.h"
 #include "io/report_page.h"
 #include "io/volume_mesh_io.h"
 #include "io/vtk_mesh.h"
+#include "volume/grid_meter.h"
 
 namespace hexmesh::cli {
 namespace {

@@ -8,8 +8,8 @@
 
 #include "hexmesh/cli/commands.h"
 #include "hexmesh/pipeline/refine_grid_file.h"
+#include "hexmesh/quality/grid_report.h"
 #include "io/case_file.h"
-#include "io/quality_report.h"
 
 namespace hexmesh::cli {
 namespace {

@@ -8,8 +8,9 @@
 #include "hexmesh/cli/commands.h"
 #include "hexmesh/pipeline/refine.h"
 #include "hexmesh/pipeline/run_case.h"
+#include "hexmesh/quality/grid_report.h"
+#include "hexmesh/quality/mesh_quality.h"
 #include "io/case_file.h"
-#include "io/quality_report.h"
 
 namespace hexmesh::cli {
 

@@ -13,8 +13,8 @@
 #include "hexmesh/core/triangle_surface.h"
 #include "hexmesh/pipeline/phase_timer.h"
 #include "hexmesh/pipeline/wall_route.h"
+#include "hexmesh/quality/grid_report.h"
 #include "io/case_file.h"
-#include "io/quality_report.h"
 #include "surface/body.h"
 #include "untangle/untangle.h"
 

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 
-#include "hexmesh/core/quality.h"
 #include "hexmesh/core/reference_hex.h"
 #include "hexmesh/pipeline/corner_tets.h"
+#include "hexmesh/quality/cell_quality.h"
 #include "volume/wall_extrusion.h"
 #include "volume/wall_lines.h"
 

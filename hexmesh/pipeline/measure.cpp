@@ -7,8 +7,10 @@
 #include <vector>
 
 #include "hexmesh/pipeline/build_blocks.h"
-#include "hexmesh/pipeline/grid_report.h"
 #include "hexmesh/pipeline/refine.h"
+#include "hexmesh/quality/grid_report.h"
+#include "hexmesh/quality/mesh_quality.h"
+#include "volume/grid_meter.h"
 
 namespace hexmesh {
 namespace {

@@ -5,7 +5,8 @@
 #include <string>
 
 #include "hexmesh/pipeline/job.h"
-#include "io/quality_report.h"
+#include "hexmesh/quality/grid_report.h"
+#include "hexmesh/quality/mesh_quality.h"
 
 namespace hexmesh {
 

@@ -7,8 +7,8 @@
 #include <limits>
 
 #include "hexmesh/core/hex_mesh.h"
-#include "hexmesh/core/quality.h"
 #include "hexmesh/core/reference_hex.h"
+#include "hexmesh/quality/mesh_quality.h"
 #include "surface/projection.h"
 
 namespace hexmesh {

@@ -5,8 +5,8 @@
 #include <unordered_map>
 
 #include "hexmesh/core/array_hash.h"
-#include "hexmesh/core/tet_quality.h"
 #include "hexmesh/pipeline/make_body.h"
+#include "hexmesh/quality/tet_quality.h"
 #include "untangle/tet_energy.h"
 
 namespace hexmesh {

@@ -11,9 +11,10 @@
 #include <limits>
 #include <stdexcept>
 
-#include "hexmesh/core/quality.h"
 #include "hexmesh/pipeline/measure.h"
 #include "hexmesh/pipeline/untangle_and_optimize.h"
+#include "hexmesh/quality/cell_quality.h"
+#include "hexmesh/quality/grid_report.h"
 #include "surface/implicit_features.h"
 #include "surface/projection.h"
 #include "volume/refine.h"

@@ -9,7 +9,7 @@
 #include "hexmesh/core/block_grid.h"
 #include "hexmesh/core/implicit_function.h"
 #include "hexmesh/pipeline/job.h"
-#include "io/quality_report.h"
+#include "hexmesh/quality/grid_report.h"
 #include "volume/refine.h"
 #include "volume/stretching.h"
 

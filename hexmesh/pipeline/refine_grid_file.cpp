@@ -5,14 +5,15 @@
 #include <optional>
 
 #include "hexmesh/core/memory_limit.h"
-#include "hexmesh/core/quality.h"
-#include "hexmesh/pipeline/grid_report.h"
 #include "hexmesh/pipeline/make_body.h"
 #include "hexmesh/pipeline/phase_timer.h"
 #include "hexmesh/pipeline/refine.h"
+#include "hexmesh/quality/cell_quality.h"
+#include "hexmesh/quality/grid_report.h"
 #include "io/report_page.h"
 #include "io/staged_output.h"
 #include "io/vtk_mesh.h"
+#include "volume/grid_meter.h"
 
 namespace hexmesh {
 namespace {

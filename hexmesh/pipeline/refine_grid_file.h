@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "hexmesh/quality/grid_report.h"
 #include "io/case_file.h"
-#include "io/quality_report.h"
 
 namespace hexmesh {
 

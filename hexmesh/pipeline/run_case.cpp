@@ -1,11 +1,11 @@
 #include "hexmesh/pipeline/run_case.h"
 
-#include "hexmesh/core/quality.h"
 #include "hexmesh/pipeline/measure.h"
 #include "hexmesh/pipeline/refine.h"
 #include "hexmesh/pipeline/surface_grid.h"
 #include "hexmesh/pipeline/untangle_and_optimize.h"
 #include "hexmesh/pipeline/write.h"
+#include "hexmesh/quality/block_quality.h"
 #include "io/staged_output.h"
 
 namespace hexmesh {

@@ -8,8 +8,8 @@
 #include "hexmesh/core/block_grid.h"
 #include "hexmesh/pipeline/build_blocks.h"
 #include "hexmesh/pipeline/job.h"
+#include "hexmesh/quality/grid_report.h"
 #include "io/case_file.h"
-#include "io/quality_report.h"
 
 namespace hexmesh {
 

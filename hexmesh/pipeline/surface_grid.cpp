@@ -6,9 +6,9 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "hexmesh/core/quality.h"
 #include "hexmesh/pipeline/build_blocks.h"
 #include "hexmesh/pipeline/corner_tets.h"
+#include "hexmesh/quality/cell_quality.h"
 #include "volume/feature_snapping.h"
 #include "volume/tfi.h"
 #include "volume/wall_lines.h"

@@ -12,9 +12,9 @@
 
 #include "hexmesh/core/array_hash.h"
 #include "hexmesh/core/memory_limit.h"
-#include "hexmesh/core/tet_quality.h"
 #include "hexmesh/pipeline/make_body.h"
-#include "io/quality_report.h"
+#include "hexmesh/quality/tet_quality.h"
+#include "hexmesh/quality/tet_report.h"
 #include "io/report_page.h"
 #include "io/volume_mesh_io.h"
 #include "surface/crease_curves.h"

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "hexmesh/core/tet_quality.h"
 #include "hexmesh/pipeline/optimize_tet_mesh.h"
+#include "hexmesh/quality/tet_quality.h"
 #include "io/case_file.h"
 #include "untangle/untangle.h"
 #include "volume/tet_mesh.h"

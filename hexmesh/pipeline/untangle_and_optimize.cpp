@@ -4,11 +4,13 @@
 
 #include <algorithm>
 
-#include "hexmesh/core/quality.h"
 #include "hexmesh/pipeline/build_blocks.h"
 #include "hexmesh/pipeline/corner_tets.h"
 #include "hexmesh/pipeline/lay_boundary_layer.h"
 #include "hexmesh/pipeline/mend_cells.h"
+#include "hexmesh/quality/block_quality.h"
+#include "hexmesh/quality/cell_quality.h"
+#include "hexmesh/quality/mesh_quality.h"
 
 namespace hexmesh {
 namespace {

@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "hexmesh/core/hex_mesh.h"
-#include "hexmesh/core/quality.h"
 #include "hexmesh/core/triangle_surface.h"
 #include "hexmesh/pipeline/boundary_geometry.h"
+#include "hexmesh/quality/mesh_quality.h"
 #include "untangle/untangle.h"
 
 namespace hexmesh {

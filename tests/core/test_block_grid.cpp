@@ -2,7 +2,9 @@
 #include <gtest/gtest.h>
 
 #include "hexmesh/core/block_grid.h"
-#include "hexmesh/core/quality.h"
+#include "hexmesh/quality/block_quality.h"
+#include "hexmesh/quality/cell_quality.h"
+#include "hexmesh/quality/mesh_quality.h"
 
 namespace hexmesh {
 namespace {

@@ -6,8 +6,8 @@
 #include <map>
 #include <set>
 
-#include "hexmesh/core/quality.h"
 #include "hexmesh/core/reference_hex.h"
+#include "hexmesh/quality/cell_quality.h"
 
 namespace hexmesh {
 namespace {

@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "cli.h"
-#include "hexmesh/core/tet_quality.h"
+#include "hexmesh/quality/tet_quality.h"
 #include "io/surface_reader.h"
 #include "io/volume_mesh_io.h"
 

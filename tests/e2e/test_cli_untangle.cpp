@@ -5,7 +5,7 @@
 #include <random>
 
 #include "cli.h"
-#include "hexmesh/core/quality.h"
+#include "hexmesh/quality/mesh_quality.h"
 #include "io/volume_mesh_io.h"
 
 using namespace hexmesh;

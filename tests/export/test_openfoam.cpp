@@ -11,8 +11,9 @@
 #include <vector>
 
 #include "export_test_support.h"
-#include "hexmesh/core/quality.h"
 #include "hexmesh/pipeline/run_case.h"
+#include "hexmesh/quality/block_quality.h"
+#include "hexmesh/quality/mesh_quality.h"
 #include "io/case_file.h"
 #include "io/fluent_mesh.h"
 #include "io/openfoam_mesh.h"

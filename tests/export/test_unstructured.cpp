@@ -18,7 +18,7 @@
 #include <regex>
 
 #include "export_test_support.h"
-#include "hexmesh/core/quality.h"
+#include "hexmesh/quality/mesh_quality.h"
 #include "io/exodus_mesh.h"
 #include "io/fluent_mesh.h"
 #include "io/gmsh_mesh.h"

@@ -3,8 +3,8 @@
 #include <random>
 
 #include "hexmesh/core/block_grid.h"
-#include "hexmesh/core/quality.h"
 #include "hexmesh/pipeline/mend_cells.h"
+#include "hexmesh/quality/mesh_quality.h"
 #include "surface/analytic.h"
 
 namespace hexmesh {

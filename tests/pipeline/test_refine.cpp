@@ -6,12 +6,14 @@
 #include <map>
 #include <sstream>
 
-#include "hexmesh/pipeline/grid_report.h"
 #include "hexmesh/pipeline/make_body.h"
 #include "hexmesh/pipeline/refine.h"
 #include "hexmesh/pipeline/run_case.h"
 #include "hexmesh/pipeline/untangle_and_optimize.h"
+#include "hexmesh/quality/grid_report.h"
+#include "hexmesh/quality/wall_quality.h"
 #include "tests/scratch_registry.h"
+#include "volume/grid_meter.h"
 
 using namespace hexmesh;
 

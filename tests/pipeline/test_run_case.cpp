@@ -6,12 +6,15 @@
 #include <filesystem>
 #include <sstream>
 
-#include "hexmesh/core/quality.h"
-#include "hexmesh/pipeline/grid_report.h"
 #include "hexmesh/pipeline/make_body.h"
 #include "hexmesh/pipeline/run_case.h"
 #include "hexmesh/pipeline/untangle_and_optimize.h"
+#include "hexmesh/quality/block_quality.h"
+#include "hexmesh/quality/cell_quality.h"
+#include "hexmesh/quality/grid_report.h"
+#include "hexmesh/quality/mesh_quality.h"
 #include "io/vtk_mesh.h"
+#include "volume/grid_meter.h"
 
 using namespace hexmesh;
 namespace fs = std::filesystem;

@@ -4,8 +4,8 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
-#include "hexmesh/core/quality.h"
 #include "hexmesh/pipeline/surface_grid.h"
+#include "hexmesh/quality/mesh_quality.h"
 #include "surface/analytic.h"
 #include "volume/o_h_grid.h"
 #include "volume/wall_lines.h"

@@ -10,9 +10,9 @@
 #include <random>
 #include <sstream>
 
-#include "hexmesh/core/tet_quality.h"
 #include "hexmesh/pipeline/make_body.h"
 #include "hexmesh/pipeline/tet_mesh_case.h"
+#include "hexmesh/quality/tet_quality.h"
 #include "surface/implicit_features.h"
 
 namespace hexmesh {

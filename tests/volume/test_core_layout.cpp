@@ -5,9 +5,11 @@
 #include <memory>
 
 #include "grid_checks.h"
-#include "hexmesh/core/quality.h"
+#include "hexmesh/quality/mesh_quality.h"
 #include "surface/analytic.h"
 #include "surface/csg.h"
+#include "volume/axial_creases.h"
+#include "volume/axial_rings.h"
 #include "volume/core_layout.h"
 #include "volume/cube_sphere.h"
 

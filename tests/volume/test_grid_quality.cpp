@@ -8,7 +8,8 @@
 #include <random>
 #include <stdexcept>
 
-#include "hexmesh/core/quality.h"
+#include "hexmesh/quality/block_quality.h"
+#include "hexmesh/quality/mesh_quality.h"
 #include "surface/analytic.h"
 #include "volume/o_grid.h"
 #include "volume/o_h_grid.h"

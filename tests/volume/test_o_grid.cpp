@@ -7,7 +7,8 @@
 #include <string>
 
 #include "grid_checks.h"
-#include "hexmesh/core/quality.h"
+#include "hexmesh/quality/mesh_quality.h"
+#include "hexmesh/quality/validity.h"
 #include "surface/analytic.h"
 #include "surface/transform.h"
 #include "volume/o_grid.h"

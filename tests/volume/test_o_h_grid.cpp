@@ -9,7 +9,7 @@
 #include <string>
 
 #include "grid_checks.h"
-#include "hexmesh/core/quality.h"
+#include "hexmesh/quality/mesh_quality.h"
 #include "surface/analytic.h"
 #include "surface/csg.h"
 #include "surface/transform.h"

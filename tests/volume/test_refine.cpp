@@ -12,8 +12,8 @@
 #include <string>
 
 #include "grid_checks.h"
-#include "hexmesh/core/quality.h"
 #include "hexmesh/core/reference_hex.h"
+#include "hexmesh/quality/mesh_quality.h"
 #include "surface/analytic.h"
 #include "volume/o_h_grid.h"
 #include "volume/refine.h"

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "grid_checks.h"
-#include "hexmesh/core/quality.h"
+#include "hexmesh/quality/mesh_quality.h"
 #include "surface/analytic.h"
 #include "volume/single_block_grid.h"
 

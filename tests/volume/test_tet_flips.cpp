@@ -8,8 +8,8 @@
 #include <map>
 #include <set>
 
-#include "hexmesh/core/quality.h"
-#include "hexmesh/core/tet_quality.h"
+#include "hexmesh/quality/tet_quality.h"
+#include "hexmesh/quality/validity.h"
 #include "surface/analytic.h"
 #include "volume/tet_flips.h"
 #include "volume/tet_mesh.h"

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "hexmesh/core/quality.h"
-#include "hexmesh/core/tet_quality.h"
+#include "hexmesh/quality/tet_quality.h"
+#include "hexmesh/quality/validity.h"
 #include "surface/analytic.h"
 #include "surface/crease_curves.h"
 #include "volume/tet_mesh.h"

@@ -1,51 +1,15 @@
-// Quality metrics of hexahedral meshes: validity, scaled Jacobian, OpenFOAM-style face metrics.
+// Quality of a hex mesh as a finite-volume solver sees it: validity, scaled Jacobian,
+// OpenFOAM's checkMesh face and cell metrics, gathered in a QualityReport.
 #pragma once
 
 #include <array>
-#include <memory>
+#include <cstddef>
 #include <vector>
 
-#include "hexmesh/core/block_grid.h"
 #include "hexmesh/core/hex_mesh.h"
 #include "hexmesh/core/histogram.h"
 
 namespace hexmesh {
-
-// Verdict's hex scaled Jacobian, exactly as VTK 9.1 ships it (v_hex_scaled_jacobian): the
-// minimum over the centre frame (principal axes) and the 8 corner frames (hex_corner_tets
-// order) of det[e1,e2,e3] / (|e1||e2||e3|), in [-1, 1]; 1 for a box. Verdict's quirk is kept:
-// if any of the 27 frame vectors has squared length <= 1e-30, the result is +1e30.
-double hex_scaled_jacobian(const std::array<Vec3, 8>& p);
-
-// det[a-c, b-c, d-c] of each corner tet (c, a, b, d) of hex_corner_tets, floating point.
-std::array<double, 8> corner_determinants(const std::array<Vec3, 8>& p);
-
-// Per-cell scaled Jacobian, #cells (parallel, deterministic).
-std::vector<double> scaled_jacobians(const HexMesh& mesh);
-
-// The same for the cells of a block grid, in to_hex_mesh order (block by block, i fastest),
-// without building the unstructured mesh.
-std::vector<double> scaled_jacobians(const BlockGrid& grid);
-
-// The cells of one block of `grid` into out[0 .. block.cells().count()), i fastest.
-void scaled_jacobians(const BlockGrid& grid, const Block& block, double* out);
-
-// Exact sign (+1, 0, -1) of det[a-c, b-c, d-c], by CGAL's exact orientation predicate.
-int exact_orientation(const Vec3& c, const Vec3& a, const Vec3& b, const Vec3& d);
-
-// Number of corner tets of one hex whose exact determinant is <= 0 (0..8).
-int count_inverted_corner_tets(const std::array<Vec3, 8>& p);
-
-struct InversionCount {
-    Id corner_tets = 0;  // corner tets with exact det <= 0
-    Id cells = 0;        // cells with at least one such corner tet
-};
-
-// Exact inversion counts over the whole mesh (parallel).
-InversionCount count_inversions(const HexMesh& mesh);
-
-// Ids of the cells with at least one corner tet of exact det <= 0, ascending.
-std::vector<Id> find_inverted_cells(const HexMesh& mesh);
 
 // A cell and its scaled Jacobian, for the list of a grid's worst cells.
 struct RankedCell {
@@ -124,39 +88,5 @@ std::vector<Id> find_refused_cells(const HexMesh& mesh);
 // owner of an internal face is the lower cell id. A face shared by more than two cells
 // throws std::invalid_argument naming the cells.
 QualityReport measure_quality(const HexMesh& mesh);
-
-// The same numbers as measure_quality(to_hex_mesh(grid)) to rounding (a cell on a block
-// boundary computes its boundary faces from its own point order, and the mean's sum runs in
-// another order), read from the blocks in one pass: faces inside a block meet the structured
-// neighbour and are computed once, only faces on block boundaries are matched by node ids,
-// and neither an unstructured copy nor per-cell arrays are made. A BlockQuality over the
-// blocks in order.
-QualityReport measure_quality(const BlockGrid& grid);
-
-// measure_quality of a block grid taken block by block, so that a grid too large to hold can
-// be measured as its blocks are made: add() each block in order, then report(). Cells are
-// numbered in to_hex_mesh order (the lower cell owns a face). The faces on a block's boundary
-// wait, by their node ids, for the cell across; those never paired are boundary faces. Holds
-// the open faces (their points, and the centre and volume of their cell) and the node ids of
-// the paired ones: memory of the order of the block faces, not of the cells.
-class BlockQuality {
-  public:
-    BlockQuality();
-    ~BlockQuality();
-    BlockQuality(const BlockQuality&) = delete;
-    BlockQuality& operator=(const BlockQuality&) = delete;
-
-    // Adds `block`, whose node ids index grid.points. When the block's grid numbers its
-    // points on its own (one block made at a time), ids[v] is point v's id in the whole grid,
-    // which is what pairs faces across blocks. Throws std::invalid_argument, naming the
-    // cells, when a face is shared by more than two cells.
-    void add(const BlockGrid& grid, const Block& block, const std::vector<Id>* ids = nullptr);
-
-    QualityReport report() const;
-
-  private:
-    struct State;
-    std::unique_ptr<State> state_;
-};
 
 }  // namespace hexmesh

@@ -6,7 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "io/quality_report.h"
+#include "hexmesh/quality/grid_report.h"
+#include "hexmesh/quality/mesh_quality.h"
 
 using namespace hexmesh;
 

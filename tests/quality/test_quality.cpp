@@ -8,8 +8,11 @@
 #include <stdexcept>
 
 #include "hexmesh/core/block_grid.h"
-#include "hexmesh/core/quality.h"
 #include "hexmesh/core/reference_hex.h"
+#include "hexmesh/quality/block_quality.h"
+#include "hexmesh/quality/cell_quality.h"
+#include "hexmesh/quality/mesh_quality.h"
+#include "hexmesh/quality/validity.h"
 
 namespace hexmesh {
 namespace {

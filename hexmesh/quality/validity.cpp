@@ -3,12 +3,13 @@
 // CGAL stays in this file. Epick's orientation is filtered: interval arithmetic first, exact
 // arithmetic only when the sign is uncertain, so the answer is the sign of the determinant of
 // the double coordinates as given, with no rounding error. It is thread safe.
+#include "hexmesh/quality/validity.h"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
-#include "hexmesh/core/quality.h"
 #include "hexmesh/core/reference_hex.h"
 
 namespace hexmesh {

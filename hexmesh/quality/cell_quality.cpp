@@ -3,7 +3,7 @@
 // hex_scaled_jacobian reproduces v_hex_scaled_jacobian of the Verdict copy shipped in VTK 9.1
 // operation by operation (same sums, same cross/dot component order), so that it agrees with
 // vtkMeshQuality::HexScaledJacobian to the last bits, degenerate cases included.
-#include "hexmesh/core/quality.h"
+#include "hexmesh/quality/cell_quality.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

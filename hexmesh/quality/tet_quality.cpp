@@ -1,4 +1,5 @@
-#include "hexmesh/core/tet_quality.h"
+// Dihedral angles, radius ratio, signed volume and validity of tets, over a whole tet mesh.
+#include "hexmesh/quality/tet_quality.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
@@ -7,7 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "hexmesh/core/quality.h"
+#include "hexmesh/quality/validity.h"
 
 namespace hexmesh {
 namespace {

@@ -1,4 +1,5 @@
-#include "hexmesh/pipeline/grid_report.h"
+// GridMeter: a block grid measured into a GridReport, block by block.
+#include "volume/grid_meter.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>

@@ -1,4 +1,5 @@
-// The quality report of a grid (or a tet mesh): the table printed to the terminal and quality.json.
+// The quality report of a block grid (cells, wall layers, surface fidelity, phases): the table
+// printed to the terminal and quality.json.
 #pragma once
 
 #include <optional>
@@ -6,9 +7,8 @@
 #include <utility>
 #include <vector>
 
-#include "hexmesh/core/quality.h"
-#include "hexmesh/core/tet_quality.h"
-#include "hexmesh/core/wall_quality.h"
+#include "hexmesh/quality/mesh_quality.h"
+#include "hexmesh/quality/wall_quality.h"
 
 namespace hexmesh {
 
@@ -65,23 +65,5 @@ std::string format_quality_table(const GridReport& report);
 // present, "wall" (nested objects; null for a target the law did not give) and "phases"
 // (name: seconds).
 std::string quality_json(const GridReport& report);
-
-// One column of a tet mesh's quality table: a mesh's report, and optionally the largest
-// distance of its boundary points to the body over the cell size h, and the time it took.
-struct TetQualityColumn {
-    std::string name;
-    const TetQualityReport* quality = nullptr;
-    std::optional<double> boundary_distance;
-    std::optional<double> seconds;
-    std::optional<double> crease_distance;  // largest distance of a crease point to its crease, / h
-};
-
-// The metrics of TetQualityReport as rows, one column per mesh (side by side to compare).
-std::string format_tet_quality_table(const std::vector<TetQualityColumn>& columns);
-
-// One mesh's report as JSON: keys as in TetQualityReport, plus "valid" and, when given,
-// "max_boundary_distance_over_h".
-std::string tet_quality_json(const TetQualityReport& quality,
-                             std::optional<double> boundary_distance);
 
 }  // namespace hexmesh

@@ -13,7 +13,7 @@
 #include <random>
 #include <vector>
 
-#include "hexmesh/core/tet_quality.h"
+#include "hexmesh/quality/tet_quality.h"
 
 namespace hexmesh {
 namespace {

@@ -1,4 +1,4 @@
-// Private to hexmesh/core: OpenFOAM's face and cell geometry and its face quality measures.
+// Private to hexmesh/quality: OpenFOAM's face and cell geometry and its face quality measures.
 //
 // Each function follows the OpenFOAM routine named in its comment (primitiveMeshTools,
 // OpenFOAM-dev and ESI agree on these), with the same guards (ROOTVSMALL, VSMALL), so that
@@ -114,6 +114,11 @@ inline double boundary_face_skewness(const std::array<Vec3, 4>& p, const FaceGeo
     const Vec3 normal = f.area / (f.area.norm() + foam_rootvsmall);
     const Vec3 d = normal * normal.dot(cpf);
     return skewness_from(p, f, cpf, d, 0.4 * d.norm() + foam_rootvsmall);
+}
+
+// The 4 of a cell's 8 corner points p listed by `local`.
+inline std::array<Vec3, 4> face_of(const std::array<Vec3, 8>& p, const std::array<int, 4>& local) {
+    return {p[local[0]], p[local[1]], p[local[2]], p[local[3]]};
 }
 
 }  // namespace hexmesh::detail

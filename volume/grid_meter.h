@@ -8,9 +8,9 @@
 
 #include "hexmesh/core/block_grid.h"
 #include "hexmesh/core/implicit_function.h"
-#include "hexmesh/core/quality.h"
 #include "hexmesh/core/triangle_surface.h"
-#include "io/quality_report.h"
+#include "hexmesh/quality/block_quality.h"
+#include "hexmesh/quality/grid_report.h"
 #include "volume/stretching.h"
 #include "volume/wall_metrics.h"
 

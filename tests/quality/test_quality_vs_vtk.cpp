@@ -8,7 +8,8 @@
 #include <cmath>
 #include <random>
 
-#include "hexmesh/core/quality.h"
+#include "hexmesh/quality/cell_quality.h"
+#include "hexmesh/quality/validity.h"
 
 namespace hexmesh {
 namespace {
