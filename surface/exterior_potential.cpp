@@ -1,3 +1,4 @@
+// ExteriorPotential: the lattice, the finite-difference solve and the trilinear interpolation.
 #include "surface/exterior_potential.h"
 
 #include <fmt/format.h>
@@ -35,43 +36,33 @@ void parallel_each(size_t count, F&& f) {
 // neighbour inside the body (u changes sign linearly); the coupling becomes 1 / theta.
 constexpr double min_theta = 0.05;
 
-}  // namespace
-
-ExteriorPotential::ExteriorPotential(const ImplicitFunction& body,
-                                     const ExteriorPotentialOptions& o) {
-    if (!(o.margin > 0) || o.resolution < 8 || !(o.tolerance > 0) || o.max_iterations < 1)
-        throw std::invalid_argument(
-            "ExteriorPotential: margin, resolution (>= 8), tolerance and "
-            "iterations must be positive");
-    const Box3 b = body.bounds();
-    const double longest = b.size().maxCoeff();
-    if (!(longest > 0 && std::isfinite(longest) && b.lo.allFinite()))
-        throw std::invalid_argument("ExteriorPotential: the body's bounds are empty or not finite");
-    h_ = longest / o.resolution;
-    const Vec3 lo = b.lo - Vec3::Constant(o.margin * longest);
-    for (int a = 0; a < 3; ++a)
-        n_[a] = int(std::ceil((b.size()[a] + 2 * o.margin * longest) / h_)) + 1;
-    box_ = {lo, lo + h_ * Vec3(n_[0] - 1, n_[1] - 1, n_[2] - 1)};
-    const size_t count = size_t(n_[0]) * n_[1] * n_[2];
-    const auto at = [&](size_t id) {
-        const int i = int(id % n_[0]), j = int((id / n_[0]) % n_[1]),
-                  k = int(id / (size_t(n_[0]) * n_[1]));
-        return std::array<int, 3>{i, j, k};
-    };
-
-    std::vector<double> u(count);
-    std::vector<NodeKind> kind(count);
+// The body's value u at each node of the lattice (n[a] nodes along axis a from lo, spacing
+// h, node id i + n[0] (j + n[1] k)) and the node's kind: box on the lattice's faces, else
+// body where u <= 0, else free.
+void sample_nodes(const ImplicitFunction& body, const Vec3& lo, double h,
+                  const std::array<int, 3>& n, std::vector<double>& u,
+                  std::vector<NodeKind>& kind) {
+    const size_t count = size_t(n[0]) * n[1] * n[2];
+    u.resize(count);
+    kind.resize(count);
     parallel_each(count, [&](size_t id) {
-        const auto [i, j, k] = at(id);
-        u[id] = body.value(lo + h_ * Vec3(i, j, k));
+        const int i = int(id % n[0]), j = int((id / n[0]) % n[1]),
+                  k = int(id / (size_t(n[0]) * n[1]));
+        u[id] = body.value(lo + h * Vec3(i, j, k));
         const bool face =
-            i == 0 || j == 0 || k == 0 || i == n_[0] - 1 || j == n_[1] - 1 || k == n_[2] - 1;
+            i == 0 || j == 0 || k == 0 || i == n[0] - 1 || j == n[1] - 1 || k == n[2] - 1;
         kind[id] = face ? NodeKind::box : u[id] <= 0 ? NodeKind::body : NodeKind::free;
     });
-    const std::array<long long, 6> step = neighbour_offsets(n_);
+}
 
-    // The operator (A x)_i = diag_i x_i - sum of x over free neighbours, and its right side.
-    std::vector<double> diag(count, 0), rhs(count, 0);
+// The operator (A x)_i = diag_i x_i - sum of x over free neighbours, on the free nodes, and
+// its right side: diag and rhs (zero on the other nodes).
+void assemble_operator(const std::vector<NodeKind>& kind, const std::vector<double>& u,
+                       const std::array<long long, 6>& step, std::vector<double>& diag,
+                       std::vector<double>& rhs) {
+    const size_t count = kind.size();
+    diag.assign(count, 0);
+    rhs.assign(count, 0);
     parallel_each(count, [&](size_t id) {
         if (kind[id] != NodeKind::free) return;
         for (long long s : step) {
@@ -84,6 +75,16 @@ ExteriorPotential::ExteriorPotential(const ImplicitFunction& body,
             }
         }
     });
+}
+
+// A x = rhs on the free nodes by preconditioned conjugate gradients (Jacobi), from
+// F = min(1, u / margin), to the relative residual o.tolerance; x is 0 on the other nodes.
+// Throws std::runtime_error when o.max_iterations do not reach it.
+std::vector<double> solve_potential(const std::vector<NodeKind>& kind, const std::vector<double>& u,
+                                    const std::vector<double>& diag, const std::vector<double>& rhs,
+                                    const std::array<long long, 6>& step, double margin,
+                                    const ExteriorPotentialOptions& o, int& iterations) {
+    const size_t count = kind.size();
     const auto apply = [&](const std::vector<double>& x, std::vector<double>& y) {
         parallel_each(count, [&](size_t id) {
             if (kind[id] != NodeKind::free) return void(y[id] = 0);
@@ -92,9 +93,6 @@ ExteriorPotential::ExteriorPotential(const ImplicitFunction& body,
             y[id] = sum;
         });
     };
-
-    // Preconditioned conjugate gradients (Jacobi), from F = min(1, u / margin).
-    const double margin = o.margin * longest;
     std::vector<double> x(count, 0), r(count), z(count), p(count), q(count);
     parallel_each(count, [&](size_t id) {
         if (kind[id] == NodeKind::free) x[id] = std::min(1.0, u[id] / margin);
@@ -108,7 +106,6 @@ ExteriorPotential::ExteriorPotential(const ImplicitFunction& body,
                   [&](size_t id) { z[id] = kind[id] == NodeKind::free ? r[id] / diag[id] : 0; });
     p = z;
     double rz = deterministic_sum(count, sum_grain, [&](size_t id) { return r[id] * z[id]; });
-    unknowns_ = (long long)std::count(kind.begin(), kind.end(), NodeKind::free);
     double residual =
         std::sqrt(deterministic_sum(count, sum_grain, [&](size_t id) { return r[id] * r[id]; }));
     int it = 0;
@@ -129,18 +126,25 @@ ExteriorPotential::ExteriorPotential(const ImplicitFunction& body,
         residual = std::sqrt(
             deterministic_sum(count, sum_grain, [&](size_t id) { return r[id] * r[id]; }));
     }
-    iterations_ = it;
+    iterations = it;
     if (residual > o.tolerance * norm_b)
         throw std::runtime_error(fmt::format(
             "the exterior potential did not converge in {} iterations (relative residual {:.3g})",
             it, residual / norm_b));
+    return x;
+}
 
-    // Inside the body: u times the slope F / u of the free neighbours (their mean), or of all
-    // nodes next to the body where a node has no free neighbour.
-    values_.assign(count, 1.0);
+// The node values: x on the free nodes, 1 on the box, and inside the body u times the slope
+// F / u of the free neighbours (their mean), or of all nodes next to the body where a node
+// has no free neighbour.
+std::vector<double> extend_into_body(const std::vector<NodeKind>& kind,
+                                     const std::vector<double>& u, const std::vector<double>& x,
+                                     const std::array<long long, 6>& step, double margin) {
+    const size_t count = kind.size();
+    std::vector<double> values(count, 1.0);
     std::vector<double> slope(count, 0);
     parallel_each(count, [&](size_t id) {
-        if (kind[id] == NodeKind::free) values_[id] = x[id];
+        if (kind[id] == NodeKind::free) values[id] = x[id];
         if (kind[id] != NodeKind::body) return;
         double sum = 0;
         int found = 0;
@@ -159,8 +163,38 @@ ExteriorPotential::ExteriorPotential(const ImplicitFunction& body,
     const double mean_slope = counted ? total / double(counted) : 1 / margin;
     parallel_each(count, [&](size_t id) {
         if (kind[id] == NodeKind::body)
-            values_[id] = u[id] * (slope[id] > 0 ? slope[id] : mean_slope);
+            values[id] = u[id] * (slope[id] > 0 ? slope[id] : mean_slope);
     });
+    return values;
+}
+
+}  // namespace
+
+ExteriorPotential::ExteriorPotential(const ImplicitFunction& body,
+                                     const ExteriorPotentialOptions& o) {
+    if (!(o.margin > 0) || o.resolution < 8 || !(o.tolerance > 0) || o.max_iterations < 1)
+        throw std::invalid_argument(
+            "ExteriorPotential: margin, resolution (>= 8), tolerance and "
+            "iterations must be positive");
+    const Box3 b = body.bounds();
+    const double longest = b.size().maxCoeff();
+    if (!(longest > 0 && std::isfinite(longest) && b.lo.allFinite()))
+        throw std::invalid_argument("ExteriorPotential: the body's bounds are empty or not finite");
+    h_ = longest / o.resolution;
+    const Vec3 lo = b.lo - Vec3::Constant(o.margin * longest);
+    for (int a = 0; a < 3; ++a)
+        n_[a] = int(std::ceil((b.size()[a] + 2 * o.margin * longest) / h_)) + 1;
+    box_ = {lo, lo + h_ * Vec3(n_[0] - 1, n_[1] - 1, n_[2] - 1)};
+
+    std::vector<double> u, diag, rhs;
+    std::vector<NodeKind> kind;
+    sample_nodes(body, lo, h_, n_, u, kind);
+    const std::array<long long, 6> step = neighbour_offsets(n_);
+    assemble_operator(kind, u, step, diag, rhs);
+    unknowns_ = (long long)std::count(kind.begin(), kind.end(), NodeKind::free);
+    const double margin = o.margin * longest;
+    const std::vector<double> x = solve_potential(kind, u, diag, rhs, step, margin, o, iterations_);
+    values_ = extend_into_body(kind, u, x, step, margin);
 }
 
 ExteriorPotential::Cell ExteriorPotential::cell_at(const Vec3& p) const {

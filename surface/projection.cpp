@@ -1,3 +1,4 @@
+// project_to_surface (steps of V, watchdog, bracketing and backtracking) and tangent frames.
 #include "surface/projection.h"
 
 #include <Eigen/Geometry>
@@ -126,6 +127,38 @@ Sample sample(const ImplicitFunction& u, const Vec3& x) {
     return {x, u.value(x)};
 }
 
+// The watchdog after a step v from cur to `next` (finite) that removed too little of |u|:
+// the step may have entered another piece of a CSG body (inside a union u only bounds the
+// distance). Aims at the crease of the two pieces, or takes one more plain step from next;
+// the sample reached if its |u| is at most `wanted`, else nullopt.
+std::optional<Sample> watchdog_step(const ImplicitFunction& u, const Sample& cur, const Step& v,
+                                    const Sample& next, double tau, double wanted) {
+    const Step w = v_step(u, next, tau, v.d);
+    std::optional<Sample> after;
+    if (v.g.norm() > 0 && w.g.norm() > 0) {
+        if (auto x = crease_point(cur, v.g, next, w.g);
+            x && (*x - cur.x).norm() <= max_step_factor * (std::abs(cur.f) + v.alpha))
+            after = sample(u, *x);
+    }
+    if (!after || !(std::abs(after->f) <= wanted)) after = sample(u, next.x + w.alpha * w.d);
+    if (std::abs(after->f) <= wanted) return after;
+    return std::nullopt;
+}
+
+// Backtracking: the first of the steps v halved (up to max_halvings times) that reduces |u|
+// replaces cur; false when none does.
+bool backtrack(const ImplicitFunction& u, const Step& v, Sample& cur) {
+    double alpha = 0.5 * v.alpha;
+    for (int h = 0; h < max_halvings; ++h, alpha *= 0.5) {
+        const Sample shorter = sample(u, cur.x + alpha * v.d);
+        if (std::abs(shorter.f) < std::abs(cur.f)) {
+            cur = shorter;
+            return true;
+        }
+    }
+    return false;
+}
+
 }  // namespace
 
 Projection project_to_surface(const ImplicitFunction& u, const Vec3& p, double length_scale,
@@ -164,26 +197,14 @@ Projection project_to_surface(const ImplicitFunction& u, const Vec3& p, double l
             cur = refine_bracket(u, cur, next, tol, &result.iterations);
             continue;
         }
-        // Watchdog: the step may have entered another piece of a CSG body (inside a union
-        // u only bounds the distance). Aim at the crease of the two pieces, or take one more
-        // plain step from there.
-        if (std::isfinite(next.f)) {
-            const Step w = v_step(u, next, tau, v.d);
-            std::optional<Sample> after;
-            if (v.g.norm() > 0 && w.g.norm() > 0) {
-                if (auto x = crease_point(cur, v.g, next, w.g);
-                    x && (*x - cur.x).norm() <= max_step_factor * (std::abs(cur.f) + v.alpha))
-                    after = sample(u, *x);
-            }
-            if (!after || !(std::abs(after->f) <= wanted))
-                after = sample(u, next.x + w.alpha * w.d);
-            if (std::abs(after->f) <= wanted) {
+        // Watchdog: the step may have entered another piece of a CSG body.
+        if (std::isfinite(next.f))
+            if (const auto after = watchdog_step(u, cur, v, next, tau, wanted)) {
                 ++result.iterations;
                 cur = *after;
                 stalled = 0;
                 continue;
             }
-        }
         // Look for the surface along the line of the step, forwards; after repeated
         // stalls (a spurious critical point of u) along the line to the bounds' centre.
         const double reach = box.diagonal() + (cur.x - box.center()).norm() + std::abs(cur.f);
@@ -196,16 +217,7 @@ Projection project_to_surface(const ImplicitFunction& u, const Vec3& p, double l
         }
         // Backtracking: any shorter step that reduces |u|.
         ++stalled;
-        bool moved = false;
-        double alpha = 0.5 * v.alpha;
-        for (int h = 0; h < max_halvings && !moved; ++h, alpha *= 0.5) {
-            const Sample shorter = sample(u, cur.x + alpha * v.d);
-            if (std::abs(shorter.f) < std::abs(cur.f)) {
-                cur = shorter;
-                moved = true;
-            }
-        }
-        if (moved) continue;
+        if (backtrack(u, v, cur)) continue;
         bracket = march_to_crossing(u, cur, -v.d, reach, min_step);
         if (!bracket) break;
         cur = refine_bracket(u, bracket->first, bracket->second, tol, &result.iterations);

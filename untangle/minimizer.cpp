@@ -1,3 +1,5 @@
+// Minimizer: Newton (assembled or matrix-free) and L-BFGS directions inside the allowed
+// bases, and the descent steps at a fixed eps.
 #include "untangle/minimizer.h"
 
 #include <tbb/parallel_for.h>
@@ -81,6 +83,48 @@ LinearOperator incomplete_cholesky(const BlockMatrix& r) {
     };
 }
 
+// The Hessian h into the bases of the allowed directions: block (a, b) becomes
+// basis_a^T h_ab basis_b (nothing to do between two interior vertices).
+void to_bases(const std::vector<VertexKind>& kinds, const std::vector<Mat3>& basis,
+              BlockMatrix& h) {
+    tbb::parallel_for(Id(0), h.rows(), [&](Id a) {
+        for (Id m = h.row_start[a]; m < h.row_start[a + 1]; ++m) {
+            const Id b = h.col[m];
+            if (kinds[a] == VertexKind::interior && kinds[b] == VertexKind::interior) continue;
+            h.block[m] =
+                (basis[a].transpose() * h.block[m].cast<double>() * basis[b]).cast<float>();
+        }
+    });
+}
+
+// Solves h reduced = rhs one coordinate at a time (only the couplings between coordinate c
+// of the vertices), each by conjugate gradients with Jacobi preconditioning unless `options`
+// say none. Returns the CG iterations of the three solves.
+int solve_by_coordinate(const BlockMatrix& h, const std::vector<Mat3>& diagonal,
+                        const std::vector<Vec3>& rhs, const SolverOptions& options,
+                        std::vector<Vec3>& reduced) {
+    const size_t n = rhs.size();
+    int iterations = 0;
+    std::fill(reduced.begin(), reduced.end(), Vec3::Zero());
+    for (int c = 0; c < 3; ++c) {
+        std::vector<Vec3> b(n, Vec3::Zero()), xc;
+        for (size_t a = 0; a < n; ++a) b[a][c] = rhs[a][c];
+        const LinearOperator apply = [&, c](const VertexVector& v, VertexVector& out) {
+            h.multiply(v, out, c);
+        };
+        const LinearOperator jacobi = [&, c](const VertexVector& r, VertexVector& z) {
+            z.assign(r.size(), Vec3::Zero());
+            for (size_t a = 0; a < r.size(); ++a) z[a][c] = r[a][c] / diagonal[a](c, c);
+        };
+        const PcgResult res = solve_pcg(
+            apply, options.preconditioner == Preconditioner::none ? LinearOperator{} : jacobi, b,
+            xc, options.cg_tolerance, options.cg_max_iterations);
+        iterations += res.iterations;
+        for (size_t a = 0; a < n; ++a) reduced[a][c] = xc[a][c];
+    }
+    return iterations;
+}
+
 }  // namespace
 
 Minimizer::Minimizer(const Problem& problem, const Assembly& assembly, const SolverOptions& options)
@@ -99,17 +143,7 @@ double Minimizer::newton_direction(const std::vector<Vec3>& x, const EnergyParam
     } else {
         if (hessian_.col.empty()) hessian_ = assembly_.empty_hessian();
         f = assembly_.hessian(x, p, g, hessian_);
-        // Into the bases of the allowed directions (nothing to do between two free vertices).
-        const auto& kinds = problem_.kinds;
-        tbb::parallel_for(Id(0), hessian_.rows(), [&](Id a) {
-            for (Id m = hessian_.row_start[a]; m < hessian_.row_start[a + 1]; ++m) {
-                const Id b = hessian_.col[m];
-                if (kinds[a] == VertexKind::interior && kinds[b] == VertexKind::interior) continue;
-                hessian_.block[m] =
-                    (basis[a].transpose() * hessian_.block[m].cast<double>() * basis[b])
-                        .cast<float>();
-            }
-        });
+        to_bases(problem_.kinds, basis, hessian_);
         diagonal.resize(n);
         for (size_t a = 0; a < n; ++a)
             diagonal[a] = hessian_.block[hessian_.row_start[a]].cast<double>();
@@ -127,23 +161,7 @@ double Minimizer::newton_direction(const std::vector<Vec3>& x, const EnergyParam
     for (size_t a = 0; a < n; ++a) rhs[a] = -(basis[a].transpose() * g[a]);
 
     if (options_.method == Method::coordinate_split) {
-        std::fill(reduced.begin(), reduced.end(), Vec3::Zero());
-        for (int c = 0; c < 3; ++c) {
-            std::vector<Vec3> b(n, Vec3::Zero()), xc;
-            for (size_t a = 0; a < n; ++a) b[a][c] = rhs[a][c];
-            const LinearOperator apply = [&, c](const VertexVector& v, VertexVector& out) {
-                hessian_.multiply(v, out, c);
-            };
-            const LinearOperator jacobi = [&, c](const VertexVector& r, VertexVector& z) {
-                z.assign(r.size(), Vec3::Zero());
-                for (size_t a = 0; a < r.size(); ++a) z[a][c] = r[a][c] / diagonal[a](c, c);
-            };
-            const PcgResult res = solve_pcg(
-                apply, options_.preconditioner == Preconditioner::none ? LinearOperator{} : jacobi,
-                b, xc, options_.cg_tolerance, options_.cg_max_iterations);
-            iterations += res.iterations;
-            for (size_t a = 0; a < n; ++a) reduced[a][c] = xc[a][c];
-        }
+        iterations += solve_by_coordinate(hessian_, diagonal, rhs, options_, reduced);
     } else {
         LinearOperator apply;
         if (matrix_free) {

@@ -1,3 +1,5 @@
+// untangle_and_optimize: the eps continuation (local repairs, then global), the last resorts
+// for the elements it leaves, and the barrier optimization.
 #include "untangle/untangle.h"
 
 #include <fmt/format.h>
@@ -10,6 +12,7 @@
 
 #include "untangle/assembly.h"
 #include "untangle/constraints.h"
+#include "untangle/local_part.h"
 #include "untangle/minimizer.h"
 #include "untangle/regularization.h"
 
@@ -65,6 +68,64 @@ void log_line(std::ostream* log, const IterationRecord& r) {
     log->flush();
 }
 
+// The record of outer iteration `it` that ended in m with `stats` (of the whole problem).
+IterationRecord make_record(int it, bool barrier, const MinimizeOutcome& m, double eps,
+                            const ElementStats& stats, double seconds) {
+    return {it,
+            barrier,
+            m.energy,
+            eps,
+            stats.min_det,
+            seconds,
+            stats.inverted,
+            m.steps,
+            m.linear_iterations};
+}
+
+// Appends r to the history and logs it.
+void record(UntangleResult& result, std::ostream* log, const IterationRecord& r) {
+    result.history.push_back(r);
+    log_line(log, r);
+}
+
+// The note logged when eps stops shrinking fast and the continuation goes back to its best
+// state (found at restart_iteration, 0 for the start of the pass; fewest inverted at eps).
+std::string restart_note(const UntangleOptions& options, int restart_iteration, Id fewest,
+                         double eps) {
+    return fmt::format(
+        "no fewer inverted elements in {} iterations: back to {} "
+        "({} inverted, eps {:.3e}), eps now shrinks by the safe rule",
+        options.fast_stall,
+        restart_iteration ? fmt::format("iteration {}", restart_iteration)
+                          : std::string("the start of this pass"),
+        fewest, eps);
+}
+
+// Why a continuation stalled: eps became negligible (stuck), or the inverted count has not
+// fallen for too long (`stalled` outer iterations, up to `seconds`).
+std::string stall_message(bool stuck, double eps, const Progress& progress, double seconds,
+                          int stalled) {
+    return stuck ? fmt::format("eps fell to {:.1e} with {} inverted elements left", eps,
+                               progress.fewest)
+                 : fmt::format(
+                       "no fewer than {} inverted elements for {:.1f} s ({:.0f} % "
+                       "of the untangling "
+                       "work, {} outer iterations of this pass)",
+                       progress.fewest, seconds - progress.last_fewer_seconds,
+                       100 * (progress.work - progress.last_fewer) / std::max(progress.work, 1e-9),
+                       stalled);
+}
+
+// The eps of the next outer iteration (DESIGN §4): sigma from the energy's decrease (at
+// least the fast or the safe rule's), mu = (1 - sigma) chi(min det, eps).
+double next_eps(double energy, double e_prev, bool fast, const UntangleOptions& options,
+                double min_det, double eps) {
+    const double sigma =
+        std::max(1 - energy / e_prev, fast ? options.fast_sigma : options.safe_sigma);
+    const double mu = (1 - sigma) * chi(min_det, eps);
+    return min_det < mu ? 2 * std::sqrt(mu * (mu - min_det)) : tiny_eps;
+}
+
 // The eps continuation on `problem` (DESIGN §4), from x = problem.points, until at most
 // options.unrepairable elements are inverted, the iteration budget is spent or progress
 // stalls (then result.stopped says how). Every outer iteration is logged and offered to
@@ -100,17 +161,8 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
             minimizer.minimize(x, p, options.inner_steps, options.inner_tolerance, untangled);
         stats = judge.stats(x);
         const ElementStats local = assembly.stats(x);
-        IterationRecord r{it,
-                          false,
-                          m.energy,
-                          eps,
-                          stats.min_det,
-                          seconds(),
-                          stats.inverted,
-                          m.steps,
-                          m.linear_iterations};
-        result.history.push_back(r);
-        log_line(options.log, r);
+        const IterationRecord r = make_record(it, false, m, eps, stats, seconds());
+        record(result, options.log, r);
         best.offer(x, stats.inverted,
                    stats.inverted ? infinity : judge.energy(x, {options.theta, 0}));
         progress.offer(stats.inverted, 1.0 + double(m.linear_iterations), r.seconds);
@@ -138,88 +190,19 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
             fast = false, stalled = 0;
             x = restart, eps = restart_eps;
             stats = judge.stats(x);
-            log_note(options.log,
-                     fmt::format("no fewer inverted elements in {} iterations: back to {} "
-                                 "({} inverted, eps {:.3e}), eps now shrinks by the safe rule",
-                                 options.fast_stall,
-                                 restart_iteration ? fmt::format("iteration {}", restart_iteration)
-                                                   : std::string("the start of this pass"),
-                                 fewest, eps));
+            log_note(options.log, restart_note(options, restart_iteration, fewest, eps));
             continue;
         }
         if (stalled >= options.stall_iterations || stuck || crawling) {
-            result.stopped = stuck
-                                 ? fmt::format("eps fell to {:.1e} with {} inverted elements left",
-                                               eps, progress.fewest)
-                                 : fmt::format(
-                                       "no fewer than {} inverted elements for {:.1f} s ({:.0f} % "
-                                       "of the untangling "
-                                       "work, {} outer iterations of this pass)",
-                                       progress.fewest, r.seconds - progress.last_fewer_seconds,
-                                       100 * (progress.work - progress.last_fewer) /
-                                           std::max(progress.work, 1e-9),
-                                       stalled);
+            result.stopped = stall_message(stuck, eps, progress, r.seconds, stalled);
             return;
         }
-        const double sigma =
-            std::max(1 - m.energy / e_prev, fast ? options.fast_sigma : options.safe_sigma);
-        const double mu = (1 - sigma) * chi(local.min_det, eps);
-        eps = local.min_det < mu ? 2 * std::sqrt(mu * (mu - local.min_det)) : tiny_eps;
+        eps = next_eps(m.energy, e_prev, fast, options, local.min_det, eps);
     }
     if (!done(stats))
         result.stopped =
             fmt::format("the budget of {} outer iterations is spent with {} inverted elements left",
                         options.max_untangle_iterations, progress.fewest);
-}
-
-// The part of `problem` around its inverted elements: vertices within `rings` element rings
-// of them stay free (if they were), all others are fixed, and only the elements with a free
-// vertex are kept. Returns false when that part is already the whole problem.
-bool local_part(const Problem& problem, const std::vector<std::vector<Id>>& elements_of, int rings,
-                Problem& part) {
-    const size_t nv = problem.points.size();
-    const Id ne = problem.num_elements();
-    std::vector<char> in(nv, 0);
-    for (Id e = 0; e < ne; ++e)
-        if (!(problem.det(problem.points, e) > 0))
-            for (Id v : problem.element(e)) in[v] = 1;
-    for (int r = 0; r < rings; ++r) {
-        std::vector<char> grown = in;
-        for (size_t v = 0; v < nv; ++v)
-            if (in[v])
-                for (Id e : elements_of[v])
-                    for (Id w : problem.element(e)) grown[w] = 1;
-        in.swap(grown);
-    }
-    part.points = problem.points;
-    part.kinds = problem.kinds;
-    part.surface_normal = problem.surface_normal;
-    part.project_to_surface = problem.project_to_surface;
-    part.edge_tangent = problem.edge_tangent;
-    part.project_to_edge = problem.project_to_edge;
-    part.length_scale = problem.length_scale;
-    size_t free = 0;
-    for (size_t v = 0; v < nv; ++v) {
-        if (!in[v]) part.kinds[v] = VertexKind::fixed;
-        free += in[v] && degrees_of_freedom(part.kinds[v]) > 0;
-    }
-    const auto touches = [&](const auto& nodes) {
-        return std::any_of(nodes.begin(), nodes.end(),
-                           [&](Id v) { return in[v] && degrees_of_freedom(part.kinds[v]) > 0; });
-    };
-    for (size_t h = 0; h < problem.hexes.size(); ++h)
-        if (touches(problem.hexes[h])) part.add_hex(problem.hexes[h], problem.hex_edges[h]);
-    for (size_t t = 0; t < problem.tets.size(); ++t)
-        if (touches(problem.tets[t])) {
-            part.tets.push_back(problem.tets[t]);
-            part.targets.push_back(problem.targets[t]);
-        }
-    for (size_t t = 0; t < problem.triangles.size(); ++t)
-        if (touches(problem.triangles[t])) {
-            part.triangles.push_back(problem.triangles[t]);
-            part.triangle_targets.push_back(problem.triangle_targets[t]);
-        }
-    return free > 0 && part.num_elements() < ne / 2;
 }
 
 // Where the first `most` inverted elements of `problem` are and how their vertices may move
@@ -278,6 +261,132 @@ bool repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
     return stalled;
 }
 
+// What the passes of one untangle_and_optimize call share: the problem (x = its points), its
+// assembly, per vertex the elements it belongs to (for the local repair), and the best state,
+// progress and result every pass updates.
+struct Passes {
+    Problem& problem;
+    const Assembly& assembly;
+    const std::vector<std::vector<Id>>& elements_of;
+    const UntangleOptions& options;
+    const std::function<double()>& seconds;
+    Best& best;
+    Progress& progress;
+    UntangleResult& result;
+
+    // repair_in_neighbourhoods from start_eps; whether its last round repaired nothing.
+    bool repair_locally(double start_eps) const {
+        return repair_in_neighbourhoods(problem, assembly, elements_of, options, seconds, best,
+                                        progress, result, start_eps);
+    }
+};
+
+// Untangling. Few inverted elements are first repaired locally, in growing neighbourhoods;
+// what is left (or a widespread tangle) is untangled globally. x = the best state after.
+void untangle_locally_then_globally(const Passes& s) {
+    const bool local_stalled = s.repair_locally(0);
+    if (s.best.inverted > s.options.unrepairable && !s.result.left_to_next_pass) {
+        // When the largest neighbourhood the local repair tried repaired nothing, the global
+        // pass gets the local stall budget too: what is left is then almost always blocked
+        // (an element held by fixed vertices, or by such a neighbour).
+        UntangleOptions global = s.options;
+        if (local_stalled) global.stall_iterations = std::min(s.options.stall_iterations, 10);
+        continuation(s.problem, s.assembly, global, s.seconds, s.best, s.progress, s.result);
+    }
+    s.problem.points = s.best.points;
+}
+
+// The few elements the continuation leaves often have det ~ -eps all the way down (each
+// step of eps is matched by their det): their neighbourhoods start again from room_eps,
+// where the functional lets them move.
+void restart_from_room_eps(const Passes& s) {
+    const UntangleOptions& options = s.options;
+    if (s.best.inverted > options.unrepairable && options.room_eps > 0 && options.local_rings > 0 &&
+        !s.result.left_to_next_pass) {
+        s.progress.start_again(s.seconds());  // a new start: the stall clock starts again
+        log_note(
+            options.log,
+            fmt::format("{} inverted elements left: their neighbourhoods start again from eps {}",
+                        s.best.inverted, options.room_eps));
+        s.repair_locally(options.room_eps);
+        s.problem.points = s.best.points;
+    }
+}
+
+// Last resort: the crease and corner vertices of the elements still inverted slide on the
+// surface instead (a wall quad folded across a crease cannot unfold while its vertex is
+// held on the crease line), and the local repair runs again. Their kinds come back after.
+void release_creases(const Passes& s) {
+    Problem& problem = s.problem;
+    const UntangleOptions& options = s.options;
+    if (s.best.inverted > options.unrepairable && options.release_creases &&
+        options.local_rings > 0 && problem.project_to_surface && problem.surface_normal &&
+        !s.result.left_to_next_pass) {
+        const std::vector<VertexKind> kinds = problem.kinds;
+        for (Id e = 0; e < problem.num_elements(); ++e)
+            if (!(problem.det(problem.points, e) > 0))
+                for (Id v : problem.element(e))
+                    if (problem.kinds[v] == VertexKind::feature_edge ||
+                        problem.kinds[v] == VertexKind::corner)
+                        problem.kinds[v] = VertexKind::slip, ++s.result.released;
+        if (s.result.released > 0) {
+            s.progress.start_again(s.seconds());  // new freedom: the stall clock starts again
+            log_note(
+                options.log,
+                fmt::format("{} crease and corner vertices of the inverted elements now slide on "
+                            "the surface",
+                            s.result.released));
+            s.repair_locally(options.room_eps);
+            problem.points = s.best.points;
+        }
+        problem.kinds = kinds;
+    }
+}
+
+// Optimization with the pure barrier, from the best untangled state (if there is one).
+void optimize_with_barrier(const Passes& s) {
+    if (s.best.inverted != 0) return;
+    const UntangleOptions& options = s.options;
+    std::vector<Vec3>& x = s.problem.points;
+    x = s.best.points;
+    Minimizer minimizer(s.problem, s.assembly, options.optimize_solver);
+    const EnergyParams p{options.theta, 0};
+    double e_prev = s.assembly.energy(x, p);
+    for (int it = 1; it <= options.max_optimize_iterations; ++it) {
+        const MinimizeOutcome m =
+            minimizer.minimize(x, p, options.inner_steps, options.optimize_tolerance);
+        const ElementStats stats = s.assembly.stats(x);
+        record(s.result, options.log, make_record(it, true, m, 0.0, stats, s.seconds()));
+        s.best.offer(x, stats.inverted, m.energy);
+        // eps stays 0 here: an inner solve that converged before its step budget would
+        // only be confirmed by another outer iteration.
+        if (m.steps < options.inner_steps ||
+            e_prev - m.energy <= options.optimize_tolerance * std::abs(e_prev))
+            break;
+        e_prev = m.energy;
+    }
+}
+
+// x = the best state; the result's final statistics, and why untangling stopped if it left
+// more inverted elements than options.unrepairable.
+void finish(const Passes& s) {
+    UntangleResult& result = s.result;
+    std::vector<Vec3>& x = s.problem.points;
+    x = s.best.points;
+    const ElementStats stats = s.assembly.stats(x);
+    if (stats.inverted <= s.options.unrepairable)
+        result.stopped.clear();
+    else if (result.blocked > s.options.unrepairable)
+        result.stopped = fmt::format(
+            "{} inverted elements have every vertex held (fixed): no solve can repair them",
+            result.blocked);
+    if (!result.stopped.empty()) result.stopped += "; inverted: " + describe_inverted(s.problem, 3);
+    result.inverted_after = stats.inverted;
+    result.min_det_after = stats.min_det;
+    result.energy_after = s.best.energy;
+    result.seconds = s.seconds();
+}
+
 }  // namespace
 
 UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& options) {
@@ -291,7 +400,7 @@ UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& op
     std::vector<Vec3>& x = problem.points;
 
     UntangleResult result;
-    ElementStats stats = assembly.stats(x);
+    const ElementStats stats = assembly.stats(x);
     result.inverted_before = stats.inverted;
     result.min_det_before = stats.min_det;
     Best best;
@@ -300,117 +409,24 @@ UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& op
     progress.offer(stats.inverted, 0, 0);
     result.blocked = Id(problem.blocked_elements().size());
 
-    // Untangling. Few inverted elements are first repaired locally, in growing
-    // neighbourhoods; what is left (or a widespread tangle) is untangled globally.
     std::vector<std::vector<Id>> elements_of;
     if (options.local_rings > 0) {
         elements_of.resize(x.size());
         for (Id e = 0; e < problem.num_elements(); ++e)
             for (Id v : problem.element(e)) elements_of[v].push_back(e);
     }
-    const auto repair_locally = [&](double start_eps) {
-        return repair_in_neighbourhoods(problem, assembly, elements_of, options, seconds, best,
-                                        progress, result, start_eps);
-    };
-    const bool local_stalled = repair_locally(0);
-    if (best.inverted > options.unrepairable && !result.left_to_next_pass) {
-        // When the largest neighbourhood the local repair tried repaired nothing, the global
-        // pass gets the local stall budget too: what is left is then almost always blocked
-        // (an element held by fixed vertices, or by such a neighbour).
-        UntangleOptions global = options;
-        if (local_stalled) global.stall_iterations = std::min(options.stall_iterations, 10);
-        continuation(problem, assembly, global, seconds, best, progress, result);
-    }
-    x = best.points;
-    // The few elements the continuation leaves often have det ~ -eps all the way down (each
-    // step of eps is matched by their det): their neighbourhoods start again from room_eps,
-    // where the functional lets them move.
-    if (best.inverted > options.unrepairable && options.room_eps > 0 && options.local_rings > 0 &&
-        !result.left_to_next_pass) {
-        progress.start_again(seconds());  // a new start: the stall clock starts again
-        log_note(
-            options.log,
-            fmt::format("{} inverted elements left: their neighbourhoods start again from eps {}",
-                        best.inverted, options.room_eps));
-        repair_locally(options.room_eps);
-        x = best.points;
-    }
-    // Last resort: the crease and corner vertices of the elements still inverted slide on the
-    // surface instead (a wall quad folded across a crease cannot unfold while its vertex is
-    // held on the crease line), and the local repair runs again. Their kinds come back after.
-    if (best.inverted > options.unrepairable && options.release_creases &&
-        options.local_rings > 0 && problem.project_to_surface && problem.surface_normal &&
-        !result.left_to_next_pass) {
-        const std::vector<VertexKind> kinds = problem.kinds;
-        for (Id e = 0; e < problem.num_elements(); ++e)
-            if (!(problem.det(x, e) > 0))
-                for (Id v : problem.element(e))
-                    if (problem.kinds[v] == VertexKind::feature_edge ||
-                        problem.kinds[v] == VertexKind::corner)
-                        problem.kinds[v] = VertexKind::slip, ++result.released;
-        if (result.released > 0) {
-            progress.start_again(seconds());  // new freedom: the stall clock starts again
-            log_note(
-                options.log,
-                fmt::format("{} crease and corner vertices of the inverted elements now slide on "
-                            "the surface",
-                            result.released));
-            repair_locally(options.room_eps);
-            x = best.points;
-        }
-        problem.kinds = kinds;
-    }
+    const Passes passes{problem, assembly, elements_of, options, seconds, best, progress, result};
+    untangle_locally_then_globally(passes);
+    restart_from_room_eps(passes);
+    release_creases(passes);
     if (best.inverted == 0 && options.regularize_below > 0 &&
         assembly.stats(x).min_det < options.regularize_below) {
         continuation(problem, assembly, options, seconds, best, progress, result,
                      options.regularize_below);
         x = best.points;  // the valid state of lowest barrier energy
     }
-
-    // Optimization with the pure barrier, from the best untangled state.
-    if (best.inverted == 0) {
-        x = best.points;
-        Minimizer minimizer(problem, assembly, options.optimize_solver);
-        const EnergyParams p{options.theta, 0};
-        double e_prev = assembly.energy(x, p);
-        for (int it = 1; it <= options.max_optimize_iterations; ++it) {
-            const MinimizeOutcome m =
-                minimizer.minimize(x, p, options.inner_steps, options.optimize_tolerance);
-            stats = assembly.stats(x);
-            IterationRecord r{it,
-                              true,
-                              m.energy,
-                              0.0,
-                              stats.min_det,
-                              seconds(),
-                              stats.inverted,
-                              m.steps,
-                              m.linear_iterations};
-            result.history.push_back(r);
-            log_line(options.log, r);
-            best.offer(x, stats.inverted, m.energy);
-            // eps stays 0 here: an inner solve that converged before its step budget would
-            // only be confirmed by another outer iteration.
-            if (m.steps < options.inner_steps ||
-                e_prev - m.energy <= options.optimize_tolerance * std::abs(e_prev))
-                break;
-            e_prev = m.energy;
-        }
-    }
-
-    x = best.points;
-    stats = assembly.stats(x);
-    if (stats.inverted <= options.unrepairable)
-        result.stopped.clear();
-    else if (result.blocked > options.unrepairable)
-        result.stopped = fmt::format(
-            "{} inverted elements have every vertex held (fixed): no solve can repair them",
-            result.blocked);
-    if (!result.stopped.empty()) result.stopped += "; inverted: " + describe_inverted(problem, 3);
-    result.inverted_after = stats.inverted;
-    result.min_det_after = stats.min_det;
-    result.energy_after = best.energy;
-    result.seconds = seconds();
+    optimize_with_barrier(passes);
+    finish(passes);
     return result;
 }
 
