@@ -15,6 +15,7 @@
 namespace hexmesh {
 namespace {
 
+// A histogram's bins and counts as the page's data gives them.
 nlohmann::ordered_json histogram_json(const ReportHistogram& h) {
     nlohmann::ordered_json j;
     j["name"] = h.name;
@@ -27,6 +28,7 @@ nlohmann::ordered_json histogram_json(const ReportHistogram& h) {
     return j;
 }
 
+// The page's style sheet.
 const char* style = R"(body{font-family:sans-serif;margin:20px;color:#222;max-width:1400px}
 h1{font-size:22px}h2{font-size:17px;margin-top:28px;border-bottom:1px solid #ccc}
 figure{display:inline-block;margin:6px;vertical-align:top}figcaption{font-size:12px;text-align:center}

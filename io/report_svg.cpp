@@ -13,6 +13,7 @@
 namespace hexmesh {
 namespace {
 
+// `bytes` in base64 (a PNG inlined in an <image>).
 std::string base64(const std::string& bytes) {
     std::string out(4 * ((bytes.size() + 2) / 3) + 4, '\0');
     const unsigned long n =
