@@ -4,8 +4,11 @@
 #include <netcdf.h>
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "io/grid_faces.h"
 
@@ -66,19 +69,26 @@ std::vector<char> name_block(const std::vector<std::string>& names) {
     return block;
 }
 
-}  // namespace
-
-void write_exodus_mesh(const BlockGrid& grid, const std::string& path) {
-    const GridFaces faces = make_grid_faces(grid);
-    const int npatches = int(faces.patch_names.size());
+// The grid's cells, block by block, as their 8 nodes (VTK order).
+std::vector<std::array<Id, 8>> cells_of(const BlockGrid& grid, const std::string& path) {
     std::vector<std::array<Id, 8>> cells;
     cells.reserve(size_t(grid.num_cells()));
     for (const Block& b : grid.blocks)
         for_each_cell(b, [&](int, int, int, const std::array<Id, 8>& n) { cells.push_back(n); });
     if (grid.points.size() >= (size_t(1) << 31) || cells.size() >= (size_t(1) << 31))
         throw std::runtime_error(path + ": too large for Exodus's 32-bit ids");
-    // Per patch: each face's element (1-based) and side.
-    std::vector<std::vector<int>> element(npatches), side(npatches);
+    return cells;
+}
+
+// Per patch: each face's element (1-based) and side (1-based).
+struct SideSets {
+    std::vector<std::vector<int>> element, side;
+};
+
+SideSets side_sets(const BlockGrid& grid, const GridFaces& faces,
+                   const std::vector<std::array<Id, 8>>& cells) {
+    const int npatches = int(faces.patch_names.size());
+    SideSets sets{std::vector<std::vector<int>>(npatches), std::vector<std::vector<int>>(npatches)};
     for (int p = 0; p < npatches; ++p)
         for_each_patch_face(grid, faces, p, [&](Id owner, const std::array<Id, 4>& n) {
             std::array<Id, 4> want = n;
@@ -89,19 +99,21 @@ void write_exodus_mesh(const BlockGrid& grid, const std::string& path) {
                 for (int m = 0; m < 4; ++m) got[m] = c[exodus_sides[s][m]];
                 std::sort(got.begin(), got.end());
                 if (got == want) {
-                    element[p].push_back(int(owner + 1));
-                    side[p].push_back(s + 1);
+                    sets.element[p].push_back(int(owner + 1));
+                    sets.side[p].push_back(s + 1);
                     return;
                 }
             }
             throw std::logic_error("write_exodus_mesh: a patch face is no side of its cell");
         });
+    return sets;
+}
 
-    NetcdfFile f(path);
+// The file's title and Exodus's global attributes (version, word size, file size).
+void put_global_attributes(NetcdfFile& f, size_t cells, int npatches) {
     const int id = f.id();
-    f.text_attribute(
-        NC_GLOBAL, "title",
-        fmt::format("hexmesh: {} hexahedra, {} boundary patches", cells.size(), npatches));
+    f.text_attribute(NC_GLOBAL, "title",
+                     fmt::format("hexmesh: {} hexahedra, {} boundary patches", cells, npatches));
     const float version = 8.03f;
     const int word_size = 8, file_size = 1;
     f.check(nc_put_att_float(id, NC_GLOBAL, "api_version", NC_FLOAT, 1, &version), "attribute");
@@ -109,73 +121,109 @@ void write_exodus_mesh(const BlockGrid& grid, const std::string& path) {
     f.check(nc_put_att_int(id, NC_GLOBAL, "floating_point_word_size", NC_INT, 1, &word_size),
             "attribute");
     f.check(nc_put_att_int(id, NC_GLOBAL, "file_size", NC_INT, 1, &file_size), "attribute");
+}
+
+// The ids of the variables the header defines (the side sets' -1 or empty without patches).
+struct Variables {
+    int coord_names = -1;
+    int coord[3] = {-1, -1, -1};
+    int eb_status = -1, eb_prop = -1, eb_names = -1, connect = -1;
+    int ss_status = -1, ss_prop = -1, ss_names = -1;
+    std::vector<int> elem_ss, side_ss;
+};
+
+// Defines the dimensions and variables of one element block of `cells` hexahedra and a side
+// set per patch, and ends the header.
+Variables define_variables(NetcdfFile& f, size_t points, size_t cells, const SideSets& sets) {
+    const int npatches = int(sets.element.size());
     const int len_name = f.dim("len_name", name_length);
     f.dim("len_string", name_length);
     f.dim("len_line", 81);
     f.dim("four", 4);
     const int time_step = f.dim("time_step", NC_UNLIMITED);
     const int num_dim = f.dim("num_dim", 3);
-    const int num_nodes = f.dim("num_nodes", grid.points.size());
-    f.dim("num_elem", cells.size());
+    const int num_nodes = f.dim("num_nodes", points);
+    f.dim("num_elem", cells);
     const int num_el_blk = f.dim("num_el_blk", 1);
-    const int in_block = f.dim("num_el_in_blk1", cells.size());
+    const int in_block = f.dim("num_el_in_blk1", cells);
     const int per_element = f.dim("num_nod_per_el1", 8);
     int num_side_sets = -1;
     if (npatches > 0) num_side_sets = f.dim("num_side_sets", size_t(npatches));
     std::vector<int> side_dims(npatches);
     for (int p = 0; p < npatches; ++p)
-        side_dims[p] = f.dim(fmt::format("num_side_ss{}", p + 1), element[p].size());
+        side_dims[p] = f.dim(fmt::format("num_side_ss{}", p + 1), sets.element[p].size());
 
+    Variables v;
     f.var("time_whole", NC_DOUBLE, {time_step});
-    const int coord_names = f.var("coor_names", NC_CHAR, {num_dim, len_name});
-    const int coord[3] = {f.var("coordx", NC_DOUBLE, {num_nodes}),
-                          f.var("coordy", NC_DOUBLE, {num_nodes}),
-                          f.var("coordz", NC_DOUBLE, {num_nodes})};
-    const int eb_status = f.var("eb_status", NC_INT, {num_el_blk});
-    const int eb_prop = f.var("eb_prop1", NC_INT, {num_el_blk});
-    f.text_attribute(eb_prop, "name", "ID");
-    const int eb_names = f.var("eb_names", NC_CHAR, {num_el_blk, len_name});
-    const int connect = f.var("connect1", NC_INT, {in_block, per_element});
-    f.text_attribute(connect, "elem_type", "HEX8");
-    int ss_status = -1, ss_prop = -1, ss_names = -1;
-    std::vector<int> elem_ss(npatches), side_ss(npatches);
+    v.coord_names = f.var("coor_names", NC_CHAR, {num_dim, len_name});
+    v.coord[0] = f.var("coordx", NC_DOUBLE, {num_nodes});
+    v.coord[1] = f.var("coordy", NC_DOUBLE, {num_nodes});
+    v.coord[2] = f.var("coordz", NC_DOUBLE, {num_nodes});
+    v.eb_status = f.var("eb_status", NC_INT, {num_el_blk});
+    v.eb_prop = f.var("eb_prop1", NC_INT, {num_el_blk});
+    f.text_attribute(v.eb_prop, "name", "ID");
+    v.eb_names = f.var("eb_names", NC_CHAR, {num_el_blk, len_name});
+    v.connect = f.var("connect1", NC_INT, {in_block, per_element});
+    f.text_attribute(v.connect, "elem_type", "HEX8");
+    v.elem_ss.resize(npatches);
+    v.side_ss.resize(npatches);
     if (npatches > 0) {
-        ss_status = f.var("ss_status", NC_INT, {num_side_sets});
-        ss_prop = f.var("ss_prop1", NC_INT, {num_side_sets});
-        f.text_attribute(ss_prop, "name", "ID");
-        ss_names = f.var("ss_names", NC_CHAR, {num_side_sets, len_name});
+        v.ss_status = f.var("ss_status", NC_INT, {num_side_sets});
+        v.ss_prop = f.var("ss_prop1", NC_INT, {num_side_sets});
+        f.text_attribute(v.ss_prop, "name", "ID");
+        v.ss_names = f.var("ss_names", NC_CHAR, {num_side_sets, len_name});
         for (int p = 0; p < npatches; ++p) {
-            elem_ss[p] = f.var(fmt::format("elem_ss{}", p + 1), NC_INT, {side_dims[p]});
-            side_ss[p] = f.var(fmt::format("side_ss{}", p + 1), NC_INT, {side_dims[p]});
+            v.elem_ss[p] = f.var(fmt::format("elem_ss{}", p + 1), NC_INT, {side_dims[p]});
+            v.side_ss[p] = f.var(fmt::format("side_ss{}", p + 1), NC_INT, {side_dims[p]});
         }
     }
-    f.check(nc_enddef(id), "header");
+    f.check(nc_enddef(f.id()), "header");
+    return v;
+}
 
-    f.check(nc_put_var_text(id, coord_names, name_block({"x", "y", "z"}).data()), "coor_names");
+// Writes the variables' values: coordinates, the element block, the side sets.
+void put_variables(NetcdfFile& f, const Variables& v, const BlockGrid& grid,
+                   const std::vector<std::array<Id, 8>>& cells,
+                   const std::vector<std::string>& patch_names, const SideSets& sets) {
+    const int id = f.id();
+    const int npatches = int(patch_names.size());
+    f.check(nc_put_var_text(id, v.coord_names, name_block({"x", "y", "z"}).data()), "coor_names");
     std::vector<double> xyz(grid.points.size());
     for (int a = 0; a < 3; ++a) {
-        for (size_t v = 0; v < grid.points.size(); ++v) xyz[v] = grid.points[v][a];
-        f.check(nc_put_var_double(id, coord[a], xyz.data()), "coordinates");
+        for (size_t p = 0; p < grid.points.size(); ++p) xyz[p] = grid.points[p][a];
+        f.check(nc_put_var_double(id, v.coord[a], xyz.data()), "coordinates");
     }
     const int one = 1;
-    f.check(nc_put_var_int(id, eb_status, &one), "eb_status");
-    f.check(nc_put_var_int(id, eb_prop, &one), "eb_prop1");
-    f.check(nc_put_var_text(id, eb_names, name_block({"fluid"}).data()), "eb_names");
+    f.check(nc_put_var_int(id, v.eb_status, &one), "eb_status");
+    f.check(nc_put_var_int(id, v.eb_prop, &one), "eb_prop1");
+    f.check(nc_put_var_text(id, v.eb_names, name_block({"fluid"}).data()), "eb_names");
     std::vector<int> table(cells.size() * 8);
     for (size_t c = 0; c < cells.size(); ++c)
         for (int m = 0; m < 8; ++m) table[c * 8 + m] = int(cells[c][m] + 1);
-    f.check(nc_put_var_int(id, connect, table.data()), "connect1");
+    f.check(nc_put_var_int(id, v.connect, table.data()), "connect1");
     if (npatches > 0) {
         std::vector<int> status(npatches, 1), ids(npatches);
         for (int p = 0; p < npatches; ++p) ids[p] = p + 1;
-        f.check(nc_put_var_int(id, ss_status, status.data()), "ss_status");
-        f.check(nc_put_var_int(id, ss_prop, ids.data()), "ss_prop1");
-        f.check(nc_put_var_text(id, ss_names, name_block(faces.patch_names).data()), "ss_names");
+        f.check(nc_put_var_int(id, v.ss_status, status.data()), "ss_status");
+        f.check(nc_put_var_int(id, v.ss_prop, ids.data()), "ss_prop1");
+        f.check(nc_put_var_text(id, v.ss_names, name_block(patch_names).data()), "ss_names");
         for (int p = 0; p < npatches; ++p) {
-            f.check(nc_put_var_int(id, elem_ss[p], element[p].data()), "elem_ss");
-            f.check(nc_put_var_int(id, side_ss[p], side[p].data()), "side_ss");
+            f.check(nc_put_var_int(id, v.elem_ss[p], sets.element[p].data()), "elem_ss");
+            f.check(nc_put_var_int(id, v.side_ss[p], sets.side[p].data()), "side_ss");
         }
     }
+}
+
+}  // namespace
+
+void write_exodus_mesh(const BlockGrid& grid, const std::string& path) {
+    const GridFaces faces = make_grid_faces(grid);
+    const std::vector<std::array<Id, 8>> cells = cells_of(grid, path);
+    const SideSets sets = side_sets(grid, faces, cells);
+    NetcdfFile f(path);
+    put_global_attributes(f, cells.size(), int(faces.patch_names.size()));
+    const Variables v = define_variables(f, grid.points.size(), cells.size(), sets);
+    put_variables(f, v, grid, cells, faces.patch_names, sets);
     f.close();
 }
 

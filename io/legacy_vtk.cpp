@@ -283,11 +283,9 @@ void read_attributes(Parser& f, DataSet& d, long long cells, const std::string& 
     }
 }
 
-}  // namespace
-
-vtkSmartPointer<vtkDataSet> read_legacy_vtk(const std::string& path,
-                                            const std::string& point_array) {
-    Parser f(path);
+// The file's version from its first line, "# vtk DataFile Version x.y": major and minor,
+// 1.0 to 5.1.
+std::array<int, 2> read_version(Parser& f) {
     const std::string first = f.line();
     const std::string prefix = "# vtk DataFile Version";
     if (first.rfind(prefix, 0) != 0)
@@ -312,6 +310,12 @@ vtkSmartPointer<vtkDataSet> read_legacy_vtk(const std::string& path,
     const std::string version = fmt::format("{}.{}", major, minor);
     if (major < 1 || major > 5 || (major == 5 && minor > 1))
         f.fail_at(0, fmt::format("version {}: this reader knows versions 1.0 to 5.1", version));
+    return {major, minor};
+}
+
+// The title, ASCII or BINARY (set on `f`) and the DATASET line: the data set's type, upper
+// case, UNSTRUCTURED_GRID or STRUCTURED_GRID.
+std::string read_dataset_kind(Parser& f) {
     f.line();  // the title
     const std::string encoding = f.word("ASCII or BINARY");
     if (upper(encoding) != "ASCII" && upper(encoding) != "BINARY")
@@ -331,9 +335,13 @@ vtkSmartPointer<vtkDataSet> read_legacy_vtk(const std::string& path,
         f.fail(fmt::format("unknown dataset '{}'", kind_word));
     }
     f.set_binary(upper(encoding) == "BINARY");
-    const bool unstructured = kind == "UNSTRUCTURED_GRID";
+    return kind;
+}
 
-    DataSet d;
+// The data set's sections up to its attributes (POINT_DATA or CELL_DATA, left unread).
+void read_geometry(Parser& f, DataSet& d, const std::string& kind, int major,
+                   const std::string& version) {
+    const bool unstructured = kind == "UNSTRUCTURED_GRID";
     while (!f.at_end()) {
         const size_t at = f.position();
         const std::string word = f.word("a keyword");
@@ -368,52 +376,74 @@ vtkSmartPointer<vtkDataSet> read_legacy_vtk(const std::string& path,
             f.fail_at(at, fmt::format("unknown keyword '{}' in the {} section", word, kind));
         }
     }
+}
+
+// The unstructured grid of the sections read, once CELLS and CELL_TYPES agree and every id
+// lies among the points; `cells` its cell count.
+vtkSmartPointer<vtkDataSet> unstructured_grid(Parser& f, DataSet& d, vtkPoints* points,
+                                              long long& cells) {
+    if (d.has_cells != d.has_types)
+        f.fail(d.has_cells ? "CELLS without CELL_TYPES" : "CELL_TYPES without CELLS");
+    if (!d.has_cells) d.offsets->InsertNextValue(0);  // no cells
+    cells = d.types->GetNumberOfValues();
+    if (d.offsets->GetNumberOfValues() != cells + 1)
+        f.fail(fmt::format("CELL_TYPES: {} types for the {} cells of CELLS", cells,
+                           d.offsets->GetNumberOfValues() - 1));
+    const vtkTypeInt64* offset = d.offsets->GetPointer(0);
+    const vtkTypeInt64* ids = d.connectivity->GetPointer(0);
+    for (long long c = 0; c < cells; ++c)
+        for (vtkTypeInt64 k = offset[c]; k < offset[c + 1]; ++k) {
+            const vtkTypeInt64 id = ids[k];
+            if (id < 0 || id >= d.points)
+                f.fail_at(
+                    d.cells_at,
+                    fmt::format(
+                        "CELLS: cell {} refers to point {}, but the file has {}", c, id,
+                        d.points == 0 ? "no points" : fmt::format("points 0 to {}", d.points - 1)));
+        }
+    vtkNew<vtkCellArray> list;
+    list->SetData(d.offsets, d.connectivity);
+    auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+    grid->SetPoints(points);
+    grid->SetCells(d.types, list);
+    return grid;
+}
+
+// The structured grid of the sections read, once its DIMENSIONS make its points; `cells` its
+// cell count.
+vtkSmartPointer<vtkDataSet> structured_grid(Parser& f, const DataSet& d, vtkPoints* points,
+                                            long long& cells) {
+    if (d.dims[0] < 0) f.fail("the STRUCTURED_GRID has no DIMENSIONS");
+    long long product = 1;  // saturating at one more than the points
+    for (long long n : d.dims) product = n > d.points / product ? d.points + 1 : product * n;
+    if (product != d.points)
+        f.fail(fmt::format("DIMENSIONS {} {} {} do not make the {} points of POINTS", d.dims[0],
+                           d.dims[1], d.dims[2], d.points));
+    cells = 1;
+    for (long long n : d.dims) cells *= std::max(n - 1, 1LL);
+    auto grid = vtkSmartPointer<vtkStructuredGrid>::New();
+    grid->SetDimensions(int(d.dims[0]), int(d.dims[1]), int(d.dims[2]));
+    grid->SetPoints(points);
+    return grid;
+}
+
+}  // namespace
+
+vtkSmartPointer<vtkDataSet> read_legacy_vtk(const std::string& path,
+                                            const std::string& point_array) {
+    Parser f(path);
+    const std::array<int, 2> version = read_version(f);
+    const std::string kind = read_dataset_kind(f);
+    DataSet d;
+    read_geometry(f, d, kind, version[0], fmt::format("{}.{}", version[0], version[1]));
     // The data set's checks that need all of its sections.
     if (d.points < 0) f.fail(fmt::format("the {} has no POINTS", kind));
     vtkNew<vtkPoints> points;
     points->SetData(d.xyz);
-    vtkSmartPointer<vtkDataSet> out;
     long long cells = 0;
-    if (unstructured) {
-        if (d.has_cells != d.has_types)
-            f.fail(d.has_cells ? "CELLS without CELL_TYPES" : "CELL_TYPES without CELLS");
-        if (!d.has_cells) d.offsets->InsertNextValue(0);  // no cells
-        cells = d.types->GetNumberOfValues();
-        if (d.offsets->GetNumberOfValues() != cells + 1)
-            f.fail(fmt::format("CELL_TYPES: {} types for the {} cells of CELLS", cells,
-                               d.offsets->GetNumberOfValues() - 1));
-        const vtkTypeInt64* offset = d.offsets->GetPointer(0);
-        const vtkTypeInt64* ids = d.connectivity->GetPointer(0);
-        for (long long c = 0; c < cells; ++c)
-            for (vtkTypeInt64 k = offset[c]; k < offset[c + 1]; ++k) {
-                const vtkTypeInt64 id = ids[k];
-                if (id < 0 || id >= d.points)
-                    f.fail_at(
-                        d.cells_at,
-                        fmt::format("CELLS: cell {} refers to point {}, but the file has {}", c, id,
-                                    d.points == 0 ? "no points"
-                                                  : fmt::format("points 0 to {}", d.points - 1)));
-            }
-        vtkNew<vtkCellArray> list;
-        list->SetData(d.offsets, d.connectivity);
-        auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
-        grid->SetPoints(points);
-        grid->SetCells(d.types, list);
-        out = grid;
-    } else {
-        if (d.dims[0] < 0) f.fail("the STRUCTURED_GRID has no DIMENSIONS");
-        long long product = 1;  // saturating at one more than the points
-        for (long long n : d.dims) product = n > d.points / product ? d.points + 1 : product * n;
-        if (product != d.points)
-            f.fail(fmt::format("DIMENSIONS {} {} {} do not make the {} points of POINTS", d.dims[0],
-                               d.dims[1], d.dims[2], d.points));
-        cells = 1;
-        for (long long n : d.dims) cells *= std::max(n - 1, 1LL);
-        auto grid = vtkSmartPointer<vtkStructuredGrid>::New();
-        grid->SetDimensions(int(d.dims[0]), int(d.dims[1]), int(d.dims[2]));
-        grid->SetPoints(points);
-        out = grid;
-    }
+    const vtkSmartPointer<vtkDataSet> out = kind == "UNSTRUCTURED_GRID"
+                                                ? unstructured_grid(f, d, points, cells)
+                                                : structured_grid(f, d, points, cells);
     read_attributes(f, d, cells, point_array);
     if (d.kept) out->GetPointData()->AddArray(d.kept);
     return out;

@@ -141,85 +141,107 @@ void write_neutral_map(const NeutralMap& map, const std::string& path) {
     out.close();
 }
 
+namespace {
+
+// One line of a map file, split into words at blanks (its comment cut off), and what its
+// errors name.
+struct MapLine {
+    const std::string& path;
+    int number = 0;
+    std::vector<std::string> w;
+
+    [[noreturn]] void fail(const std::string& what) const {
+        throw InputError(fmt::format("{}: line {}: {}", path, number, what));
+    }
+
+    // Word k as an integer in [low, high]; `what` names it.
+    int integer(size_t k, long low, long high, const char* what) const {
+        char* end = nullptr;
+        const long v = std::strtol(w[k].c_str(), &end, 10);
+        if (*end || end == w[k].c_str() || v < low || v > high)
+            fail(fmt::format("{} is '{}'; expected an integer in [{}, {}]", what, w[k], low, high));
+        return int(v);
+    }
+};
+
+// The face range of words k to k + 5: block, face, S1 E1 S2 E2 within the block's face.
+NmfFaceRange face_range(const MapLine& l, size_t k, const NeutralMap& map, size_t blocks) {
+    NmfFaceRange r;
+    r.block = l.integer(k, 1, long(blocks), "the block");
+    r.face = l.integer(k + 1, 1, 6, "the face");
+    const FaceAxes a = face_axes(r.face);
+    const std::array<int, 3>& d = map.dims[size_t(r.block - 1)];
+    r.s1 = l.integer(k + 2, 1, d[a.first], "S1");
+    r.e1 = l.integer(k + 3, 1, d[a.first], "E1");
+    r.s2 = l.integer(k + 4, 1, d[a.second], "S2");
+    r.e2 = l.integer(k + 5, 1, d[a.second], "E2");
+    return r;
+}
+
+// A ONE_TO_ONE line: two face ranges of the same size (once swapped, if Swap) and Swap.
+NmfInterface read_interface(const MapLine& l, const NeutralMap& map, size_t blocks) {
+    const std::vector<std::string>& w = l.w;
+    if (w.size() != 14) l.fail("a ONE_TO_ONE line has 14 fields: type, two face ranges and Swap");
+    NmfInterface link{face_range(l, 1, map, blocks), face_range(l, 7, map, blocks), false};
+    std::string swap = w[13];
+    for (char& c : swap) c = char(std::toupper(static_cast<unsigned char>(c)));
+    if (swap != "TRUE" && swap != "FALSE")
+        l.fail(fmt::format("Swap is '{}'; expected TRUE or FALSE", w[13]));
+    link.swap = swap == "TRUE";
+    const int n1 = std::abs(link.first.e1 - link.first.s1),
+              n2 = std::abs(link.first.e2 - link.first.s2);
+    const int m1 = std::abs(link.second.e1 - link.second.s1),
+              m2 = std::abs(link.second.e2 - link.second.s2);
+    if ((link.swap ? std::array<int, 2>{m2, m1} : std::array<int, 2>{m1, m2}) !=
+        std::array<int, 2>{n1, n2})
+        l.fail("the two faces of a ONE_TO_ONE interface have different sizes");
+    return link;
+}
+
+}  // namespace
+
 NeutralMap read_neutral_map(const std::string& path) {
     std::ifstream in(path);
     if (!in) throw InputError(fmt::format("{}: cannot open the neutral map file", path));
     NeutralMap map;
     std::string text;
-    int line_number = 0;
+    MapLine l{path, 0, {}};
     size_t blocks = 0;
     bool have_count = false;
-    const auto fail = [&](const std::string& what) {
-        throw InputError(fmt::format("{}: line {}: {}", path, line_number, what));
-    };
     while (std::getline(in, text)) {
-        ++line_number;
+        ++l.number;
         text = text.substr(0, text.find('#'));
         std::istringstream words(text);
-        std::vector<std::string> w;
+        std::vector<std::string>& w = l.w;
+        w.clear();
         for (std::string s; words >> s;) w.push_back(s);
         if (w.empty()) continue;
-        const auto integer = [&](size_t k, long low, long high, const char* what) {
-            char* end = nullptr;
-            const long v = std::strtol(w[k].c_str(), &end, 10);
-            if (*end || end == w[k].c_str() || v < low || v > high)
-                fail(fmt::format("{} is '{}'; expected an integer in [{}, {}]", what, w[k], low,
-                                 high));
-            return int(v);
-        };
         if (!have_count) {
-            if (w.size() != 1) fail("expected the number of blocks alone on its line");
-            blocks = size_t(integer(0, 1, 1000000, "the number of blocks"));
+            if (w.size() != 1) l.fail("expected the number of blocks alone on its line");
+            blocks = size_t(l.integer(0, 1, 1000000, "the number of blocks"));
             have_count = true;
             continue;
         }
         if (map.dims.size() < blocks) {
-            if (w.size() != 4) fail("expected a block line: number IDIM JDIM KDIM");
-            if (integer(0, 1, long(blocks), "the block number") != int(map.dims.size()) + 1)
-                fail(fmt::format("expected block {} next", map.dims.size() + 1));
-            map.dims.push_back({integer(1, 2, 1 << 30, "IDIM"), integer(2, 2, 1 << 30, "JDIM"),
-                                integer(3, 2, 1 << 30, "KDIM")});
+            if (w.size() != 4) l.fail("expected a block line: number IDIM JDIM KDIM");
+            if (l.integer(0, 1, long(blocks), "the block number") != int(map.dims.size()) + 1)
+                l.fail(fmt::format("expected block {} next", map.dims.size() + 1));
+            map.dims.push_back({l.integer(1, 2, 1 << 30, "IDIM"), l.integer(2, 2, 1 << 30, "JDIM"),
+                                l.integer(3, 2, 1 << 30, "KDIM")});
             continue;
         }
         std::string type = w[0];
         if (type.size() >= 2 && type.front() == '\'' && type.back() == '\'')
             type = type.substr(1, type.size() - 2);
-        const auto face_range = [&](size_t k) {
-            NmfFaceRange r;
-            r.block = integer(k, 1, long(blocks), "the block");
-            r.face = integer(k + 1, 1, 6, "the face");
-            const FaceAxes a = face_axes(r.face);
-            const std::array<int, 3>& d = map.dims[size_t(r.block - 1)];
-            r.s1 = integer(k + 2, 1, d[a.first], "S1");
-            r.e1 = integer(k + 3, 1, d[a.first], "E1");
-            r.s2 = integer(k + 4, 1, d[a.second], "S2");
-            r.e2 = integer(k + 5, 1, d[a.second], "E2");
-            return r;
-        };
         std::string upper = type;
         for (char& c : upper) c = char(std::toupper(static_cast<unsigned char>(c)));
         if (upper == "ONE_TO_ONE") {
-            if (w.size() != 14)
-                fail("a ONE_TO_ONE line has 14 fields: type, two face ranges and Swap");
-            NmfInterface link{face_range(1), face_range(7), false};
-            std::string swap = w[13];
-            for (char& c : swap) c = char(std::toupper(static_cast<unsigned char>(c)));
-            if (swap != "TRUE" && swap != "FALSE")
-                fail(fmt::format("Swap is '{}'; expected TRUE or FALSE", w[13]));
-            link.swap = swap == "TRUE";
-            const int n1 = std::abs(link.first.e1 - link.first.s1),
-                      n2 = std::abs(link.first.e2 - link.first.s2);
-            const int m1 = std::abs(link.second.e1 - link.second.s1),
-                      m2 = std::abs(link.second.e2 - link.second.s2);
-            if ((link.swap ? std::array<int, 2>{m2, m1} : std::array<int, 2>{m1, m2}) !=
-                std::array<int, 2>{n1, n2})
-                fail("the two faces of a ONE_TO_ONE interface have different sizes");
-            map.interfaces.push_back(link);
+            map.interfaces.push_back(read_interface(l, map, blocks));
         } else {
             if (w.size() != 7)
-                fail(fmt::format("a boundary line ('{}') has 7 fields: type and one face range",
-                                 type));
-            map.boundaries.push_back({type, face_range(1)});
+                l.fail(fmt::format("a boundary line ('{}') has 7 fields: type and one face range",
+                                   type));
+            map.boundaries.push_back({type, face_range(l, 1, map, blocks)});
         }
     }
     if (!have_count || map.dims.size() < blocks)

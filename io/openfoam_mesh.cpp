@@ -179,27 +179,26 @@ std::string dictionary(const char* location, const char* object, const std::stri
         location, object, body);
 }
 
-}  // namespace
-
-void write_openfoam_mesh(const BlockGrid& grid, const std::string& case_dir, const FlowSpec& flow) {
-    write_openfoam_polymesh(grid, (fs::path(case_dir) / "constant" / "polyMesh").string());
-    const GridFaces faces = make_grid_faces(grid);
-    const bool sst = flow.turbulence == "k-omega-sst";
+// Writes `text` as `relative` in the case folder, only where that file is absent: a user's own
+// dictionaries are kept.
+void write_if_absent(const std::string& case_dir, const std::string& relative,
+                     const std::string& text) {
     std::error_code ec;
-    // Each file is written only where absent: a user's own dictionaries are kept.
-    auto write_if_absent = [&](const std::string& relative, const std::string& text) {
-        const fs::path file = fs::path(case_dir) / relative;
-        if (fs::exists(file, ec)) return;
-        fs::create_directories(file.parent_path(), ec);
-        if (ec)
-            throw std::runtime_error(fmt::format("{}: cannot create directory ({})",
-                                                 file.parent_path().string(), ec.message()));
-        FileSink out(file.string(), false);
-        out.print("{}", text);
-        out.close();
-    };
+    const fs::path file = fs::path(case_dir) / relative;
+    if (fs::exists(file, ec)) return;
+    fs::create_directories(file.parent_path(), ec);
+    if (ec)
+        throw std::runtime_error(fmt::format("{}: cannot create directory ({})",
+                                             file.parent_path().string(), ec.message()));
+    FileSink out(file.string(), false);
+    out.print("{}", text);
+    out.close();
+}
+
+// system/: controlDict, fvSchemes and fvSolution of a steady simpleFoam run.
+void write_system_dictionaries(const std::string& case_dir) {
     write_if_absent(
-        "system/controlDict",
+        case_dir, "system/controlDict",
         dictionary("system", "controlDict",
                    "application     simpleFoam;\nstartFrom       latestTime;\nstartTime       0;\n"
                    "stopAt          endTime;\nendTime         2000;\ndeltaT          1;\n"
@@ -207,7 +206,7 @@ void write_openfoam_mesh(const BlockGrid& grid, const std::string& case_dir, con
                    "writeFormat     ascii;\nwritePrecision  8;\ntimeFormat      general;\n"
                    "runTimeModifiable true;\n"));
     write_if_absent(
-        "system/fvSchemes",
+        case_dir, "system/fvSchemes",
         dictionary(
             "system", "fvSchemes",
             "ddtSchemes { default steadyState; }\n"
@@ -220,7 +219,7 @@ void write_openfoam_mesh(const BlockGrid& grid, const std::string& case_dir, con
             "snGradSchemes { default limited corrected 0.5; }\n"
             "wallDist { method meshWave; }\n"));
     write_if_absent(
-        "system/fvSolution",
+        case_dir, "system/fvSolution",
         dictionary("system", "fvSolution",
                    "solvers\n{\n    p { solver GAMG; smoother GaussSeidel; tolerance 1e-7; relTol "
                    "0.05; }\n"
@@ -230,51 +229,76 @@ void write_openfoam_mesh(const BlockGrid& grid, const std::string& case_dir, con
                    "    pRefCell        0;\n    pRefValue       0;\n"
                    "    residualControl { p 1e-5; U 1e-6; \"(k|omega)\" 1e-6; }\n}\n"
                    "relaxationFactors { equations { U 0.9; \".*\" 0.7; } }\n"));
-    write_if_absent("constant/transportProperties",
+}
+
+// constant/: transportProperties (the kinematic viscosity) and turbulenceProperties (k-omega
+// SST or laminar).
+void write_constant_dictionaries(const std::string& case_dir, const FlowSpec& flow, bool sst) {
+    write_if_absent(case_dir, "constant/transportProperties",
                     dictionary("constant", "transportProperties",
                                fmt::format("transportModel  Newtonian;\nnu              {};\n",
                                            flow.viscosity / flow.density)));
     write_if_absent(
-        "constant/turbulenceProperties",
+        case_dir, "constant/turbulenceProperties",
         dictionary("constant", "turbulenceProperties",
                    sst ? "simulationType  RAS;\nRAS\n{\n    RASModel        kOmegaSST;\n"
                          "    turbulence      on;\n    printCoeffs     on;\n}\n"
                        : "simulationType  laminar;\n"));
+}
+
+// 0/: the initial and boundary values of U and p, and with k-omega SST of k, omega and nut.
+void write_initial_fields(const std::string& case_dir, const BlockGrid& grid,
+                          const GridFaces& faces, const FlowSpec& flow, bool sst) {
     const Vec3& u = flow.velocity;
     const std::string velocity = fmt::format("({} {} {})", u.x(), u.y(), u.z());
     const std::vector<std::string>& patches = faces.patch_names;
-    write_if_absent("0/U", field_file("volVectorField", "U", "[0 1 -1 0 0 0 0]", velocity, patches,
-                                      "        type            noSlip;\n",
-                                      "        type            freestreamVelocity;\n"
-                                      "        freestreamValue uniform {value};\n        value     "
-                                      "      uniform {value};\n"));
-    write_if_absent("0/p", field_file("volScalarField", "p", "[0 2 -2 0 0 0 0]", "0", patches,
-                                      "        type            zeroGradient;\n",
-                                      "        type            freestreamPressure;\n"
-                                      "        freestreamValue uniform {value};\n        value     "
-                                      "      uniform {value};\n"));
+    write_if_absent(case_dir, "0/U",
+                    field_file("volVectorField", "U", "[0 1 -1 0 0 0 0]", velocity, patches,
+                               "        type            noSlip;\n",
+                               "        type            freestreamVelocity;\n"
+                               "        freestreamValue uniform {value};\n        value     "
+                               "      uniform {value};\n"));
+    write_if_absent(case_dir, "0/p",
+                    field_file("volScalarField", "p", "[0 2 -2 0 0 0 0]", "0", patches,
+                               "        type            zeroGradient;\n",
+                               "        type            freestreamPressure;\n"
+                               "        freestreamValue uniform {value};\n        value     "
+                               "      uniform {value};\n"));
     if (sst) {
         const TurbulenceInflow t = turbulence_inflow(grid, faces, flow);
         const std::string inlet_outlet =
             "        type            inletOutlet;\n        inletValue      uniform {value};\n"
             "        value           uniform {value};\n";
-        write_if_absent("0/k", field_file("volScalarField", "k", "[0 2 -2 0 0 0 0]",
-                                          fmt::format("{}", t.k), patches,
-                                          "        type            kqRWallFunction;\n        value "
-                                          "          uniform {value};\n",
-                                          inlet_outlet));
-        write_if_absent("0/omega", field_file("volScalarField", "omega", "[0 0 -1 0 0 0 0]",
-                                              fmt::format("{}", t.omega), patches,
-                                              "        type            omegaWallFunction;\n        "
-                                              "value           uniform {value};\n",
-                                              inlet_outlet));
         write_if_absent(
-            "0/nut",
+            case_dir, "0/k",
+            field_file("volScalarField", "k", "[0 2 -2 0 0 0 0]", fmt::format("{}", t.k), patches,
+                       "        type            kqRWallFunction;\n        value "
+                       "          uniform {value};\n",
+                       inlet_outlet));
+        write_if_absent(case_dir, "0/omega",
+                        field_file("volScalarField", "omega", "[0 0 -1 0 0 0 0]",
+                                   fmt::format("{}", t.omega), patches,
+                                   "        type            omegaWallFunction;\n        "
+                                   "value           uniform {value};\n",
+                                   inlet_outlet));
+        write_if_absent(
+            case_dir, "0/nut",
             field_file(
                 "volScalarField", "nut", "[0 2 -1 0 0 0 0]", "0", patches,
                 "        type            nutkWallFunction;\n        value           uniform 0;\n",
                 "        type            calculated;\n        value           uniform 0;\n"));
     }
+}
+
+}  // namespace
+
+void write_openfoam_mesh(const BlockGrid& grid, const std::string& case_dir, const FlowSpec& flow) {
+    write_openfoam_polymesh(grid, (fs::path(case_dir) / "constant" / "polyMesh").string());
+    const GridFaces faces = make_grid_faces(grid);
+    const bool sst = flow.turbulence == "k-omega-sst";
+    write_system_dictionaries(case_dir);
+    write_constant_dictionaries(case_dir, flow, sst);
+    write_initial_fields(case_dir, grid, faces, flow, sst);
 }
 
 }  // namespace hexmesh

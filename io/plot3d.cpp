@@ -230,86 +230,91 @@ Plot3dFormat detect_plot3d_format(const std::string& path) {
     return detect_format(read_all(path), path);
 }
 
-BlockGrid read_plot3d(const std::string& path) {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec))
-        throw InputError(fmt::format("{}: no such Plot3D file", path));
-    const std::string bytes = read_all(path);
-    const Plot3dFormat format = detect_format(bytes, path);
-    std::vector<Dims> dims;
-    std::vector<double> coords;  // per block: x..., y..., z...
-    if (format.encoding == Plot3dEncoding::ascii) {
-        const char* p = bytes.c_str();
-        char* end = nullptr;
-        auto next = [&](const char* what) {
-            const double v = std::strtod(p, &end);
-            if (end == p)
-                throw InputError(
-                    fmt::format("{}: expected {} at byte {}", path, what, p - bytes.c_str()));
-            p = end;
-            return v;
-        };
-        // Counts are checked against what the file can hold before anything is sized by them:
-        // a number takes at least 2 characters.
-        const auto count = [&](const char* what, double lo, double hi) {
-            const double v = next(what);
-            if (!(v >= lo && v <= hi) || v != std::floor(v))
-                throw InputError(fmt::format("{}: {} is {}; expected a whole number in [{}, {}]",
-                                             path, what, v, lo, hi));
-            return Id(v);
-        };
-        const double room = double(bytes.size()) / 2;
-        const Id nb = count("the block count", 1, room / 3);
-        Id total = 0;
-        for (Id b = 0; b < nb; ++b) {
-            Dims d{int(count("ni", 2, room)), int(count("nj", 2, room)), int(count("nk", 2, room))};
-            if (double(d.ni) * d.nj * d.nk * 3 > room)
-                throw InputError(fmt::format(
-                    "{}: block {} has dims {} {} {}: more coordinates than the file's {} "
-                    "bytes can hold",
-                    path, b + 1, d.ni, d.nj, d.nk, bytes.size()));
-            total += d.count();
-            dims.push_back(d);
-        }
-        if (double(total) * 3 > room)
-            throw InputError(
-                fmt::format("{}: {} points: more coordinates than the file's {} bytes can hold",
-                            path, total, bytes.size()));
-        coords.resize(3 * total);
-        for (double& v : coords) {
-            v = next("a coordinate");
-            if (!std::isfinite(v))
-                throw InputError(
-                    fmt::format("{}: a coordinate is {} at byte {}", path, v, p - bytes.c_str()));
-        }
-        while (*p && std::isspace(static_cast<unsigned char>(*p))) ++p;
-        if (*p)
-            throw InputError(
-                fmt::format("{}: more data after the {} coordinates the header announces (byte {})",
-                            path, coords.size(), p - bytes.c_str()));
-    } else {
-        const bool fortran = format.encoding == Plot3dEncoding::fortran;
-        const BinaryLayout l = binary_layout(bytes, fortran, path);
-        dims = l.dims;
-        coords.resize(3 * l.points);
-        size_t at = l.data, m = 0;
-        const size_t real = format.single_precision ? 4 : 8;
-        for (const Dims& d : dims) {
-            const size_t n = 3 * size_t(d.count());
-            if (at + n * real > bytes.size()) throw InputError(fmt::format("{}: truncated", path));
-            for (size_t v = 0; v < n; ++v, at += real) {
-                if (real == 8)
-                    std::memcpy(&coords[m++], bytes.data() + at, 8);
-                else {
-                    float x;
-                    std::memcpy(&x, bytes.data() + at, 4);
-                    coords[m++] = x;
-                }
-            }
-            at += fortran ? 8 : 0;
-        }
-    }
+namespace {
 
+// The coordinates of an ASCII file: `dims` of each block and per block x..., y..., z...
+void read_ascii_coordinates(const std::string& bytes, const std::string& path,
+                            std::vector<Dims>& dims, std::vector<double>& coords) {
+    const char* p = bytes.c_str();
+    char* end = nullptr;
+    auto next = [&](const char* what) {
+        const double v = std::strtod(p, &end);
+        if (end == p)
+            throw InputError(
+                fmt::format("{}: expected {} at byte {}", path, what, p - bytes.c_str()));
+        p = end;
+        return v;
+    };
+    // Counts are checked against what the file can hold before anything is sized by them:
+    // a number takes at least 2 characters.
+    const auto count = [&](const char* what, double lo, double hi) {
+        const double v = next(what);
+        if (!(v >= lo && v <= hi) || v != std::floor(v))
+            throw InputError(fmt::format("{}: {} is {}; expected a whole number in [{}, {}]", path,
+                                         what, v, lo, hi));
+        return Id(v);
+    };
+    const double room = double(bytes.size()) / 2;
+    const Id nb = count("the block count", 1, room / 3);
+    Id total = 0;
+    for (Id b = 0; b < nb; ++b) {
+        Dims d{int(count("ni", 2, room)), int(count("nj", 2, room)), int(count("nk", 2, room))};
+        if (double(d.ni) * d.nj * d.nk * 3 > room)
+            throw InputError(
+                fmt::format("{}: block {} has dims {} {} {}: more coordinates than the file's {} "
+                            "bytes can hold",
+                            path, b + 1, d.ni, d.nj, d.nk, bytes.size()));
+        total += d.count();
+        dims.push_back(d);
+    }
+    if (double(total) * 3 > room)
+        throw InputError(
+            fmt::format("{}: {} points: more coordinates than the file's {} bytes can hold", path,
+                        total, bytes.size()));
+    coords.resize(3 * total);
+    for (double& v : coords) {
+        v = next("a coordinate");
+        if (!std::isfinite(v))
+            throw InputError(
+                fmt::format("{}: a coordinate is {} at byte {}", path, v, p - bytes.c_str()));
+    }
+    while (*p && std::isspace(static_cast<unsigned char>(*p))) ++p;
+    if (*p)
+        throw InputError(
+            fmt::format("{}: more data after the {} coordinates the header announces (byte {})",
+                        path, coords.size(), p - bytes.c_str()));
+}
+
+// The coordinates of a binary file (C or Fortran records, single or double precision), as
+// read_ascii_coordinates gives them.
+void read_binary_coordinates(const std::string& bytes, const std::string& path,
+                             const Plot3dFormat& format, std::vector<Dims>& dims,
+                             std::vector<double>& coords) {
+    const bool fortran = format.encoding == Plot3dEncoding::fortran;
+    const BinaryLayout l = binary_layout(bytes, fortran, path);
+    dims = l.dims;
+    coords.resize(3 * l.points);
+    size_t at = l.data, m = 0;
+    const size_t real = format.single_precision ? 4 : 8;
+    for (const Dims& d : dims) {
+        const size_t n = 3 * size_t(d.count());
+        if (at + n * real > bytes.size()) throw InputError(fmt::format("{}: truncated", path));
+        for (size_t v = 0; v < n; ++v, at += real) {
+            if (real == 8)
+                std::memcpy(&coords[m++], bytes.data() + at, 8);
+            else {
+                float x;
+                std::memcpy(&x, bytes.data() + at, 4);
+                coords[m++] = x;
+            }
+        }
+        at += fortran ? 8 : 0;
+    }
+}
+
+// The patch file beside the grid (null when there is none), listing `blocks` blocks.
+json read_patch_side(const std::string& path, size_t blocks) {
+    std::error_code ec;
     json side;
     if (std::filesystem::exists(plot3d_patch_file(path), ec)) {
         std::ifstream in(plot3d_patch_file(path));
@@ -319,11 +324,17 @@ BlockGrid read_plot3d(const std::string& path) {
             throw InputError(
                 fmt::format("{}: malformed patch file: {}", plot3d_patch_file(path), e.what()));
         }
-        if (!side.contains("blocks") || side["blocks"].size() != dims.size())
+        if (!side.contains("blocks") || side["blocks"].size() != blocks)
             throw InputError(fmt::format("{}: lists a different number of blocks than {}",
                                          plot3d_patch_file(path), path));
     }
+    return side;
+}
 
+// The blocks of those coordinates, nodes of exactly equal coordinates merged, named and
+// patched by `side` when it is not null.
+BlockGrid blocks_of(const std::vector<Dims>& dims, const std::vector<double>& coords,
+                    const json& side, const std::string& path) {
     BlockGrid grid;
     std::unordered_map<std::string, Id> ids;  // exact coordinates (24 bytes) -> node
     size_t m = 0;
@@ -354,6 +365,25 @@ BlockGrid read_plot3d(const std::string& path) {
         grid.blocks.push_back(std::move(block));
     }
     grid.kinds.assign(grid.points.size(), VertexKind::interior);
+    return grid;
+}
+
+}  // namespace
+
+BlockGrid read_plot3d(const std::string& path) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec))
+        throw InputError(fmt::format("{}: no such Plot3D file", path));
+    const std::string bytes = read_all(path);
+    const Plot3dFormat format = detect_format(bytes, path);
+    std::vector<Dims> dims;
+    std::vector<double> coords;  // per block: x..., y..., z...
+    if (format.encoding == Plot3dEncoding::ascii)
+        read_ascii_coordinates(bytes, path, dims, coords);
+    else
+        read_binary_coordinates(bytes, path, format, dims, coords);
+    const json side = read_patch_side(path, dims.size());
+    BlockGrid grid = blocks_of(dims, coords, side, path);
     if (side.is_null() && std::filesystem::exists(plot3d_map_file(path), ec))
         patches_from_map(grid, plot3d_map_file(path));
     return grid;

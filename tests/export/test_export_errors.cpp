@@ -179,15 +179,18 @@ HexMesh read_volume_mesh_hexes(const std::string& path) {
     return HexMesh{m.points, m.hexes};
 }
 
+// The inputs the fuzz targets (tests/fuzz) found.
+fs::path fuzz_regressions() {
+    return fs::path(HEXMESH_SOURCE_DIR) / "tests" / "fuzz" / "regressions";
+}
+
 }  // namespace
 
-// Inputs the fuzz targets (tests/fuzz) found: each is refused with one clear error.
-TEST(ReadErrors, FuzzFindingsAreRefused) {
-    const fs::path dir = fs::path(HEXMESH_SOURCE_DIR) / "tests" / "fuzz" / "regressions";
-    // A Fortran-record header whose block count times 12 overflowed an int (UBSan).
-    std::string what = test::input_error_of(
-        read_plot3d, (dir / "plot3d_fortran_block_count_overflow.xyz").string());
-    EXPECT_NE(what.find("plot3d_fortran_block_count_overflow.xyz: "), std::string::npos) << what;
+// Inputs the fuzz targets (tests/fuzz) found: each is refused with one clear error. Legacy
+// VTK files:
+TEST(ReadErrors, FuzzFindingsInLegacyVtkAreRefused) {
+    const fs::path dir = fuzz_regressions();
+    std::string what;
     // A legacy VTK file with a misspelt keyword: VTK's reader leaked its cells on it.
     what = test::input_error_of(read_vtk_mesh, (dir / "vtk_unknown_keyword.vtk").string());
     EXPECT_NE(what.find("unknown keyword 'CELL$_TYPES' in the UNSTRUCTURED_GRID section"),
@@ -218,6 +221,15 @@ TEST(ReadErrors, FuzzFindingsAreRefused) {
                 "CELLS: cell 0 refers to point 9007199254740999, but the file has points 0 to 7"),
             std::string::npos)
             << message;
+}
+
+// Plot3D, Gmsh, PLY and Medit files.
+TEST(ReadErrors, FuzzFindingsInPlot3dGmshPlyAndMeditAreRefused) {
+    const fs::path dir = fuzz_regressions();
+    // A Fortran-record header whose block count times 12 overflowed an int (UBSan).
+    std::string what = test::input_error_of(
+        read_plot3d, (dir / "plot3d_fortran_block_count_overflow.xyz").string());
+    EXPECT_NE(what.find("plot3d_fortran_block_count_overflow.xyz: "), std::string::npos) << what;
     // Gmsh: a second $Nodes section wrote past the first one's tag table.
     what = test::input_error_of(read_gmsh_mesh, (dir / "gmsh_second_nodes_section.msh").string());
     EXPECT_NE(what.find("gmsh_second_nodes_section.msh:92: a second $Nodes section"),
@@ -234,6 +246,12 @@ TEST(ReadErrors, FuzzFindingsAreRefused) {
     what =
         test::input_error_of(read_medit_mesh, (dir / "medit_element_count_overflow.mesh").string());
     EXPECT_NE(what.find("elements do not fit in the file"), std::string::npos) << what;
+}
+
+// VTK XML files.
+TEST(ReadErrors, FuzzFindingsInXmlVtkAreRefused) {
+    const fs::path dir = fuzz_regressions();
+    std::string what;
     // XML .vts: each crashed VTK 9.1's XML reader (a string array's byte count of 7e18, a
     // misspelt header_type, an unknown array type, string arrays holding fewer or more strings
     // than they declare or ending inside one, a piece extent running backwards, an element that

@@ -272,19 +272,34 @@ std::string one_hex_vtu(const std::string& connectivity, const std::string& offs
         connectivity, offsets, types);
 }
 
+// A StructuredGrid piece of one point, for files whose fault lies elsewhere.
+const std::string one_point_piece =
+    "<Piece Extent=\"0 0 0 0 0 0\"><Points><DataArray type=\"Float32\" "
+    "NumberOfComponents=\"3\" format=\"ascii\">0 0 0</DataArray></Points></Piece>";
+
+// Each file is refused by read_vtk_mesh with a message naming it and holding its fault.
+void expect_refused(const std::vector<std::pair<std::string, std::string>>& cases) {
+    for (const auto& [file, message] : cases) {
+        const std::string what = test::input_error_of(read_vtk_mesh, file);
+        EXPECT_NE(what.find(file), std::string::npos) << what;
+        EXPECT_NE(what.find(message), std::string::npos) << file << ": " << what;
+    }
+}
+
 }  // namespace
 
-TEST_F(XmlVtk, BrokenFilesAreRefusedNamingTheFault) {
-    // The good ones first: they read.
+TEST_F(XmlVtk, SmallGoodFilesRead) {
     EXPECT_EQ(read_vtk_mesh(write("good.vts", one_cell_vts())).num_cells(), 1);
     EXPECT_EQ(
         read_vtk_mesh(write("good.vtu", one_hex_vtu("0 1 2 3 4 5 6 7", "8", "12"))).num_cells(), 1);
+}
+
+// XML that is not well formed, nested too deep or with too many attributes, and files of
+// another type: refused naming the fault.
+TEST_F(XmlVtk, MalformedXmlIsRefused) {
     std::string deep;
     for (int k = 0; k < 100000; ++k) deep += "<a>";
-    const std::string one_point_piece =
-        "<Piece Extent=\"0 0 0 0 0 0\"><Points><DataArray type=\"Float32\" "
-        "NumberOfComponents=\"3\" format=\"ascii\">0 0 0</DataArray></Points></Piece>";
-    const std::vector<std::pair<std::string, std::string>> cases = {
+    expect_refused({
         {write("deep.vts", "<VTKFile type=\"StructuredGrid\">" + deep),
          "elements nested more than 64 deep"},
         {write("unclosed.vts", "<VTKFile type=\"StructuredGrid\"><StructuredGrid>"),
@@ -292,8 +307,29 @@ TEST_F(XmlVtk, BrokenFilesAreRefusedNamingTheFault) {
         {write("mismatch.vts", "<VTKFile><A></B></VTKFile>"), ":1: </B> closes <A>"},
         {write("not_xml.vts", "solid cube\n"), "text outside the <VTKFile> element"},
         {write("entity.vts", "<VTKFile type=\"&bogus;\"/>"), "unknown entity &bogus;"},
+        {write(
+             "attributes.vts", "<VTKFile" +
+                                   [] {
+                                       std::string a;
+                                       for (int k = 0; k < 65; ++k)
+                                           a += fmt::format(" a{}=\"\"", k);
+                                       return a;
+                                   }() +
+                                   "/>"),
+         "<VTKFile: more than 64 attributes"},
         {write("polydata.vtp.vts", "<VTKFile type=\"PolyData\"/>"),
          "a VTK XML file of type \"PolyData\""},
+    });
+}
+
+// Settings of <VTKFile> it does not know, and arrays whose type, components, count or
+// values are wrong: refused naming the fault.
+TEST_F(XmlVtk, BadSettingsAndValuesAreRefused) {
+    expect_refused({
+        {write("header.vts", one_cell_vts("", " header_type=\"UInt16\"")),
+         "header_type is \"UInt16\"; expected UInt32 or UInt64"},
+        {write("compressor.vts", one_cell_vts("", " compressor=\"vtkZStd\"")),
+         "compressor \"vtkZStd\""},
         {write("nan.vts",
                one_cell_vts("", "", "0 0 0 1 0 0 0 1 0 1 1 0 0 0 1 1 0 1 0 1 1 1 nan 1")),
          "point 7 has a non-finite coordinate"},
@@ -301,10 +337,32 @@ TEST_F(XmlVtk, BrokenFilesAreRefusedNamingTheFault) {
          "array '' of the points holds 6 values; expected 8 tuples of 3 components"},
         {write("word.vts", one_cell_vts("", "", "0 0 0 1 0 0 0 1 0 1 1 0 0 0 1 1 0 1 0 1 1 1 x 1")),
          "value 22 is \"x\", not a number"},
-        {write("header.vts", one_cell_vts("", " header_type=\"UInt16\"")),
-         "header_type is \"UInt16\"; expected UInt32 or UInt64"},
-        {write("compressor.vts", one_cell_vts("", " compressor=\"vtkZStd\"")),
-         "compressor \"vtkZStd\""},
+        {write("bit.vts", one_cell_vts("<CellData><DataArray type=\"Bit\" Name=\"b\" "
+                                       "format=\"ascii\">1</DataArray></CellData>")),
+         "array 'b' of the cell data has type \"Bit\""},
+        {write("components.vts",
+               one_cell_vts("<CellData><DataArray type=\"Int32\" Name=\"c\" "
+                            "NumberOfComponents=\"0\" format=\"ascii\">1</DataArray></CellData>")),
+         "array 'c' of the cell data has NumberOfComponents \"0\""},
+        {write("range.vts", one_cell_vts("<CellData><DataArray type=\"UInt8\" Name=\"c\" "
+                                         "format=\"ascii\">300</DataArray></CellData>")),
+         "array 'c' of the cell data: value 0 is \"300\", not a integer in the array's range"},
+        {write("control.vts", one_cell_vts("<CellData><DataArray type=\"Int32\x01\" Name=\"c\" "
+                                           "format=\"ascii\">1</DataArray></CellData>")),
+         "array 'c' of the cell data has type \"Int32\\x01\""},
+        {write("strings.vts",
+               "<VTKFile type=\"StructuredGrid\"><StructuredGrid WholeExtent=\"0 0 0 0 0 "
+               "0\"><FieldData>"
+               "<Array type=\"String\" Name=\"s\" format=\"ascii\">97 0</Array></FieldData>" +
+                   one_point_piece + "</StructuredGrid></VTKFile>"),
+         "string array 's' of the field data does not declare its NumberOfTuples"},
+    });
+}
+
+// Binary data that do not decode, claim more bytes than are left or than their compressed
+// blocks can give, or share their appended bytes: refused naming the fault.
+TEST_F(XmlVtk, BrokenBinaryDataIsRefused) {
+    expect_refused({
         {write("base64.vts",
                one_cell_vts("<PointData><DataArray type=\"UInt8\" Name=\"k\" "
                             "format=\"binary\">CAAA*AABAgMEBQYH</DataArray></PointData>")),
@@ -316,44 +374,6 @@ TEST_F(XmlVtk, BrokenFilesAreRefusedNamingTheFault) {
         {write("no_appended.vts", one_cell_vts("<PointData><DataArray type=\"UInt8\" Name=\"k\" "
                                                "format=\"appended\" offset=\"0\"/></PointData>")),
          "array 'k' of the point data is appended, but the file has no <AppendedData>"},
-        {write("bit.vts", one_cell_vts("<CellData><DataArray type=\"Bit\" Name=\"b\" "
-                                       "format=\"ascii\">1</DataArray></CellData>")),
-         "array 'b' of the cell data has type \"Bit\""},
-        {write("components.vts",
-               one_cell_vts("<CellData><DataArray type=\"Int32\" Name=\"c\" "
-                            "NumberOfComponents=\"0\" format=\"ascii\">1</DataArray></CellData>")),
-         "array 'c' of the cell data has NumberOfComponents \"0\""},
-        {write("range.vts", one_cell_vts("<CellData><DataArray type=\"UInt8\" Name=\"c\" "
-                                         "format=\"ascii\">300</DataArray></CellData>")),
-         "array 'c' of the cell data: value 0 is \"300\", not a integer in the array's range"},
-        {write("two_pieces.vts",
-               "<VTKFile type=\"StructuredGrid\"><StructuredGrid WholeExtent=\"0 1 0 1 0 "
-               "1\"><Piece Extent=\"0 1 0 1 0 1\"/>"
-               "<Piece Extent=\"0 1 0 1 0 1\"/></StructuredGrid></VTKFile>"),
-         "its <StructuredGrid> holds 2 pieces; this reader reads files of one piece"},
-        {write("huge.vts",
-               "<VTKFile type=\"StructuredGrid\"><StructuredGrid WholeExtent=\"0 2000000000 0 "
-               "2000000000 0 2000000000\">"
-               "<Piece Extent=\"0 2000000000 0 2000000000 0 "
-               "2000000000\"/></StructuredGrid></VTKFile>"),
-         "its Piece Extent makes more points than a grid holds"},
-        {write("id.vtu", one_hex_vtu("0 1 2 3 4 5 6 8", "8", "12")),
-         "cell 0 refers to point 8, but the file has points 0 to 7"},
-        {write("offsets.vtu", one_hex_vtu("0 1 2 3 4 5 6 7", "9", "12")),
-         "the cells' offsets: cell 0 ends at 9"},
-        {write("offsets_short.vtu", one_hex_vtu("0 1 2 3 4 5 6 7", "7", "12")),
-         "the cells' offsets end at 7; the connectivity holds 8 ids"},
-        {write("type.vtu", one_hex_vtu("0 1 2 3 4 5 6 7", "8", "99")),
-         "cell 0 has type 99, which VTK does not know"},
-        {write("polyhedron.vtu", one_hex_vtu("0 1 2 3 4 5 6 7", "8", "42")),
-         "cell 0 is a polyhedron (42), which is not read"},
-        {write(
-             "extent.vts",
-             "<VTKFile type=\"StructuredGrid\"><StructuredGrid WholeExtent=\"-5000000000000000000 "
-             "5000000000000000000 0 0 0 0\"><Piece Extent=\"0 0 0 0 0 "
-             "0\"/></StructuredGrid></VTKFile>"),
-         "WholeExtent \"-5000000000000000000 5000000000000000000...\": a range beyond what a grid "
-         "holds"},
         // A block table claiming 3 GiB from a 10-byte block: refused before anything is sized.
         {write("inflated.vts",
                one_cell_vts("<PointData><DataArray type=\"UInt8\" Name=\"k\" format=\"binary\">"
@@ -372,25 +392,41 @@ TEST_F(XmlVtk, BrokenFilesAreRefusedNamingTheFault) {
                    one_point_piece + "</StructuredGrid><AppendedData encoding=\"raw\">_" +
                    std::string("\x02\0\0\0xy", 6) + "</AppendedData></VTKFile>"),
          "array 'b' of the field data shares its appended bytes with another array"},
-        {write("strings.vts",
-               "<VTKFile type=\"StructuredGrid\"><StructuredGrid WholeExtent=\"0 0 0 0 0 "
-               "0\"><FieldData>"
-               "<Array type=\"String\" Name=\"s\" format=\"ascii\">97 0</Array></FieldData>" +
-                   one_point_piece + "</StructuredGrid></VTKFile>"),
-         "string array 's' of the field data does not declare its NumberOfTuples"},
-        {write("control.vts", one_cell_vts("<CellData><DataArray type=\"Int32\x01\" Name=\"c\" "
-                                           "format=\"ascii\">1</DataArray></CellData>")),
-         "array 'c' of the cell data has type \"Int32\\x01\""},
+    });
+}
+
+// Pieces, extents, cell lists and multiblock pieces that do not add up: refused naming the
+// fault.
+TEST_F(XmlVtk, BrokenDataSetsAreRefused) {
+    expect_refused({
+        {write("two_pieces.vts",
+               "<VTKFile type=\"StructuredGrid\"><StructuredGrid WholeExtent=\"0 1 0 1 0 "
+               "1\"><Piece Extent=\"0 1 0 1 0 1\"/>"
+               "<Piece Extent=\"0 1 0 1 0 1\"/></StructuredGrid></VTKFile>"),
+         "its <StructuredGrid> holds 2 pieces; this reader reads files of one piece"},
+        {write("huge.vts",
+               "<VTKFile type=\"StructuredGrid\"><StructuredGrid WholeExtent=\"0 2000000000 0 "
+               "2000000000 0 2000000000\">"
+               "<Piece Extent=\"0 2000000000 0 2000000000 0 "
+               "2000000000\"/></StructuredGrid></VTKFile>"),
+         "its Piece Extent makes more points than a grid holds"},
         {write(
-             "attributes.vts", "<VTKFile" +
-                                   [] {
-                                       std::string a;
-                                       for (int k = 0; k < 65; ++k)
-                                           a += fmt::format(" a{}=\"\"", k);
-                                       return a;
-                                   }() +
-                                   "/>"),
-         "<VTKFile: more than 64 attributes"},
+             "extent.vts",
+             "<VTKFile type=\"StructuredGrid\"><StructuredGrid WholeExtent=\"-5000000000000000000 "
+             "5000000000000000000 0 0 0 0\"><Piece Extent=\"0 0 0 0 0 "
+             "0\"/></StructuredGrid></VTKFile>"),
+         "WholeExtent \"-5000000000000000000 5000000000000000000...\": a range beyond what a grid "
+         "holds"},
+        {write("id.vtu", one_hex_vtu("0 1 2 3 4 5 6 8", "8", "12")),
+         "cell 0 refers to point 8, but the file has points 0 to 7"},
+        {write("offsets.vtu", one_hex_vtu("0 1 2 3 4 5 6 7", "9", "12")),
+         "the cells' offsets: cell 0 ends at 9"},
+        {write("offsets_short.vtu", one_hex_vtu("0 1 2 3 4 5 6 7", "7", "12")),
+         "the cells' offsets end at 7; the connectivity holds 8 ids"},
+        {write("type.vtu", one_hex_vtu("0 1 2 3 4 5 6 7", "8", "99")),
+         "cell 0 has type 99, which VTK does not know"},
+        {write("polyhedron.vtu", one_hex_vtu("0 1 2 3 4 5 6 7", "8", "42")),
+         "cell 0 is a polyhedron (42), which is not read"},
         {write("self.vtm",
                "<VTKFile type=\"vtkMultiBlockDataSet\"><vtkMultiBlockDataSet><DataSet "
                "file=\"self.vts\"/></vtkMultiBlockDataSet></VTKFile>"),
@@ -399,14 +435,13 @@ TEST_F(XmlVtk, BrokenFilesAreRefusedNamingTheFault) {
                "<VTKFile type=\"vtkMultiBlockDataSet\"><vtkMultiBlockDataSet><DataSet "
                "file=\"loop.vtm\"/></vtkMultiBlockDataSet></VTKFile>"),
          "its piece 'loop.vtm' is a '.vtm' file; expected .vts or .vtu"},
-    };
-    for (const auto& [file, message] : cases) {
-        const std::string what = test::input_error_of(read_vtk_mesh, file);
-        EXPECT_NE(what.find(file), std::string::npos) << what;
-        EXPECT_NE(what.find(message), std::string::npos) << file << ": " << what;
-    }
-    // Unnamed arrays are kept apart (as VTK's reader does), and a piece of no points may have
-    // an empty <Points> (as VTK writes an empty grid).
+
+    });
+}
+
+// Unnamed arrays are kept apart (as VTK's reader does), and a piece of no points may have an
+// empty <Points> (as VTK writes an empty grid).
+TEST_F(XmlVtk, UnnamedArraysAndEmptyPointsRead) {
     const std::string unnamed =
         write("unnamed.vts",
               one_cell_vts("<CellData><DataArray type=\"Int32\" format=\"ascii\">1</DataArray>"
@@ -419,7 +454,10 @@ TEST_F(XmlVtk, BrokenFilesAreRefusedNamingTheFault) {
               "NumberOfCells=\"0\"><Points></Points><Cells></Cells></Piece></UnstructuredGrid></"
               "VTKFile>");
     EXPECT_EQ(vtkDataSet::SafeDownCast(read_xml_vtk(empty))->GetNumberOfPoints(), 0);
-    // A .vts that names itself a multiblock file, read as a piece: refused, not read forever.
+}
+
+// A .vts that names itself a multiblock file, read as a piece: refused, not read forever.
+TEST_F(XmlVtk, MultiblockFileAsItsOwnPieceIsRefused) {
     write("disguised.vts",
           "<VTKFile type=\"vtkMultiBlockDataSet\"><vtkMultiBlockDataSet><DataSet "
           "file=\"disguised.vts\"/>"
