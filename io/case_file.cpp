@@ -34,22 +34,22 @@ std::vector<GeometrySpec> parse_operands(const JsonFields& g, const char* op,
 
 void parse_primitive(const JsonFields& p, GeometrySpec& s) {
     const Vec3 zero = Vec3::Zero();
-    if (s.kind == "sphere") {
+    if (s.kind == BodyKind::sphere) {
         p.allow_only({"center", "radius"});
         s.radius = p.required_positive_number("radius");
-    } else if (s.kind == "ellipsoid") {
+    } else if (s.kind == BodyKind::ellipsoid) {
         p.allow_only({"center", "semi_axes"});
         if (!p.has("semi_axes")) p.fail("semi_axes", "an array of 3 positive numbers");
         s.semi_axes = p.positive_vec3("semi_axes", zero);
-    } else if (s.kind == "box") {
+    } else if (s.kind == BodyKind::box) {
         p.allow_only({"center", "size"});
         if (!p.has("size")) p.fail("size", "an array of 3 positive numbers");
         s.size = p.positive_vec3("size", zero);
-    } else if (s.kind == "cylinder") {
+    } else if (s.kind == BodyKind::cylinder) {
         p.allow_only({"center", "radius", "height"});
         s.radius = p.required_positive_number("radius");
         s.height = p.required_positive_number("height");
-    } else if (s.kind == "torus") {
+    } else if (s.kind == BodyKind::torus) {
         p.allow_only({"center", "major_radius", "minor_radius"});
         s.major_radius = p.required_positive_number("major_radius");
         s.minor_radius = p.required_positive_number("minor_radius");
@@ -68,11 +68,12 @@ void parse_primitive(const JsonFields& p, GeometrySpec& s) {
 // {"file": "part.stl", "voxel_size": 0.01, "feature_angle": 30}, {"points": "cloud.ply"},
 // {"sections": "stack.txt"}: a path relative to the case file's folder, under the key s.kind.
 void parse_surface_file(const JsonFields& g, const std::string& file, GeometrySpec& s) {
-    const json& name = g.at(s.kind.c_str());
+    const json& name = g.at(name_of(s.kind));
     if (!name.is_string() || name.get<std::string>().empty())
-        g.fail(s.kind.c_str(), s.kind == "file" ? "a surface file name (.stl, .obj, .off or .ply)"
-                               : s.kind == "points" ? "a point cloud file name (.ply or .xyz)"
-                                                    : "a cross-section file name");
+        g.fail(name_of(s.kind),
+               s.kind == BodyKind::file     ? "a surface file name (.stl, .obj, .off or .ply)"
+               : s.kind == BodyKind::points ? "a point cloud file name (.ply or .xyz)"
+                                            : "a cross-section file name");
     const std::filesystem::path relative(name.get<std::string>());
     s.file =
         relative.is_absolute()
@@ -86,34 +87,29 @@ void parse_surface_file(const JsonFields& g, const std::string& file, GeometrySp
 
 GeometrySpec parse_geometry(const json& value, const std::string& file, const std::string& path) {
     const JsonFields g(value, file, path);
-    static const char* primitives[] = {"sphere", "ellipsoid", "box",    "cylinder", "torus",
-                                       "cone",   "file",      "points", "sections"};
-    static const char* operations[] = {"union", "intersection", "difference"};
     g.allow_only({"sphere", "ellipsoid", "box", "cylinder", "torus", "cone", "file", "points",
                   "sections", "voxel_size", "feature_angle", "union", "intersection", "difference",
                   "translate", "rotate", "scale"});
     GeometrySpec s;
     int shapes = 0;
-    for (const char* k : primitives)
-        if (g.has(k)) s.kind = k, ++shapes;
-    for (const char* k : operations)
-        if (g.has(k)) s.kind = k, ++shapes;
+    for (std::size_t k = 0; k < body_kind_names.size(); ++k)
+        if (g.has(body_kind_names[k])) s.kind = BodyKind(k), ++shapes;
     if (shapes != 1) {
         throw InputError(fmt::format(
             "{}: {}: expected exactly one shape (sphere, ellipsoid, box, cylinder, torus, cone, "
             "file, points, sections, union, intersection, difference), got {}",
             file, path, shapes));
     }
-    if (g.has("voxel_size") && s.kind != "file")
+    if (g.has("voxel_size") && s.kind != BodyKind::file)
         g.fail("voxel_size", "no voxel size: it goes with \"file\"");
-    if (g.has("feature_angle") && s.kind != "file")
+    if (g.has("feature_angle") && s.kind != BodyKind::file)
         g.fail("feature_angle", "no feature angle: it goes with \"file\"");
-    if (s.kind == "union" || s.kind == "intersection" || s.kind == "difference")
-        s.children = parse_operands(g, s.kind.c_str(), file);
-    else if (s.kind == "file" || s.kind == "points" || s.kind == "sections")
+    if (is_csg(s.kind))
+        s.children = parse_operands(g, name_of(s.kind), file);
+    else if (is_file_body(s.kind))
         parse_surface_file(g, file, s);
     else
-        parse_primitive(g.object(s.kind.c_str()), s);
+        parse_primitive(g.object(name_of(s.kind)), s);
 
     s.translate = g.vec3("translate", Vec3::Zero());
     s.scale = g.positive_number("scale", 1.0);
@@ -136,7 +132,7 @@ GridSpec parse_grid(const JsonFields& g, bool exterior) {
     g.allow_only({"topology", "cells_per_edge", "cell_size", "wall_cells", "core_size", "cells",
                   "center", "axis", "ring_cells", "frame_cells"});
     GridSpec grid;
-    grid.topology = g.choice("topology", grid.topology, {"o-h", "single-block"});
+    grid.topology = g.choice("topology", grid.topology, topology_names);
     grid.cells_per_edge = g.integer("cells_per_edge", grid.cells_per_edge, 2, 4096);
     if (g.has("cell_size") && g.has("cells_per_edge"))
         g.fail("cell_size", "either cells_per_edge or cell_size, not both");
@@ -158,17 +154,17 @@ GridSpec parse_grid(const JsonFields& g, bool exterior) {
         }
     }
     if (g.has("center")) grid.center = g.vec3("center", Vec3::Zero());
-    grid.axis = g.choice("axis", grid.axis, {"none", "auto", "x", "y", "z"});
+    grid.axis = g.choice("axis", grid.axis, axis_names);
     grid.ring_cells = g.integer("ring_cells", grid.ring_cells, 0, 4096);
     grid.frame_cells = g.integer("frame_cells", grid.frame_cells, 0, 4096);
-    const bool axial = grid.axis != "none";
-    const bool explicit_axis = axial && grid.axis != "auto";
+    const bool axial = grid.axis != GridAxis::none;
+    const bool explicit_axis = axial && grid.axis != GridAxis::automatic;
     if (!axial && g.has("ring_cells")) g.fail("ring_cells", "given with an \"axis\" only");
     if (!axial && g.has("frame_cells")) g.fail("frame_cells", "given with an \"axis\" only");
     if ((explicit_axis || g.has("frame_cells")) && !(grid.cell_size > 0) &&
         2 * grid.frame_cells >= grid.cells_per_edge)
         g.fail("frame_cells", "under half of cells_per_edge");
-    if (grid.topology != "o-h" && explicit_axis)
+    if (grid.topology != Topology::o_h && explicit_axis)
         g.fail("axis", "\"none\" or \"auto\" (an axis goes with topology o-h)");
     // The cells of the grid asked for: with an explicit axis the axial core (column m x m,
     // m = n - 2 frame, rings r x m, frame) and its end patches; "auto" is counted as one core
@@ -176,11 +172,11 @@ GridSpec parse_grid(const JsonFields& g, bool exterior) {
     const long long n = grid.cells_per_edge, m = std::max(1LL, n - 2LL * grid.frame_cells),
                     r = grid.ring_cells > 0 ? grid.ring_cells : (n + 1) / 2;
     const long long total =
-        grid.topology != "o-h" ? (long long)grid.cells[0] * grid.cells[1] * grid.cells[2]
-        : !explicit_axis       ? n * n * n + 6 * n * n * grid.wall_cells
+        grid.topology != Topology::o_h ? (long long)grid.cells[0] * grid.cells[1] * grid.cells[2]
+        : !explicit_axis               ? n * n * n + 6 * n * n * grid.wall_cells
                          : n * (n * n + 4 * r * m) + (6 * n * n + 8 * r * m) * grid.wall_cells;
     if (total > max_cells) {
-        g.fail(grid.topology == "o-h" ? "cells_per_edge" : "cells",
+        g.fail(grid.topology == Topology::o_h ? "cells_per_edge" : "cells",
                fmt::format("a grid of at most {} cells (this one has {})", max_cells, total));
     }
     return grid;
@@ -214,7 +210,7 @@ BoundaryLayerSpec parse_boundary_layer(const JsonFields& b, const GridSpec& grid
     bl.growth_ratio = b.number("growth_ratio", 1.2);
     if (!(bl.growth_ratio >= 1 && bl.growth_ratio <= 3))
         b.fail("growth_ratio", "a number in [1, 3]");
-    const int available = grid.topology == "o-h"
+    const int available = grid.topology == Topology::o_h
                               ? grid.wall_cells - 1
                               : std::min({grid.cells[0], grid.cells[1], grid.cells[2]}) / 2 - 1;
     if (!b.has("layers")) b.fail("layers", "an integer number of layers");
@@ -243,7 +239,7 @@ SolverSpec parse_solver(const JsonFields& s) {
 FarFieldSpec parse_far_field(const JsonFields& f) {
     f.allow_only({"shape", "size"});
     FarFieldSpec far;
-    far.shape = f.choice("shape", far.shape, {"sphere", "box"});
+    far.shape = f.choice("shape", far.shape, far_field_shape_names);
     far.size = f.positive_number("size", 0);
     return far;
 }
@@ -302,28 +298,28 @@ json vec3_json(const Vec3& v) {
 
 json geometry_json(const GeometrySpec& s) {
     json g;
-    if (s.kind == "union" || s.kind == "intersection" || s.kind == "difference") {
+    if (is_csg(s.kind)) {
         json children = json::array();
         for (const GeometrySpec& child : s.children) children.push_back(geometry_json(child));
-        g[s.kind] = children;
-    } else if (s.kind == "file" || s.kind == "points" || s.kind == "sections") {
-        g[s.kind] = std::filesystem::absolute(s.file).lexically_normal().string();
+        g[name_of(s.kind)] = children;
+    } else if (is_file_body(s.kind)) {
+        g[name_of(s.kind)] = std::filesystem::absolute(s.file).lexically_normal().string();
         if (s.voxel_size > 0) g["voxel_size"] = s.voxel_size;
-        if (s.kind == "file") g["feature_angle"] = s.feature_angle;
+        if (s.kind == BodyKind::file) g["feature_angle"] = s.feature_angle;
     } else {
         json p = {{"center", vec3_json(s.center)}};
-        if (s.kind == "sphere") p["radius"] = s.radius;
-        if (s.kind == "ellipsoid") p["semi_axes"] = vec3_json(s.semi_axes);
-        if (s.kind == "box") p["size"] = vec3_json(s.size);
-        if (s.kind == "cylinder") p["radius"] = s.radius, p["height"] = s.height;
-        if (s.kind == "torus")
+        if (s.kind == BodyKind::sphere) p["radius"] = s.radius;
+        if (s.kind == BodyKind::ellipsoid) p["semi_axes"] = vec3_json(s.semi_axes);
+        if (s.kind == BodyKind::box) p["size"] = vec3_json(s.size);
+        if (s.kind == BodyKind::cylinder) p["radius"] = s.radius, p["height"] = s.height;
+        if (s.kind == BodyKind::torus)
             p["major_radius"] = s.major_radius, p["minor_radius"] = s.minor_radius;
-        if (s.kind == "cone") {
+        if (s.kind == BodyKind::cone) {
             p["bottom_radius"] = s.bottom_radius;
             p["top_radius"] = s.top_radius;
             p["height"] = s.height;
         }
-        g[s.kind] = p;
+        g[name_of(s.kind)] = p;
     }
     if (s.translate != Vec3::Zero()) g["translate"] = vec3_json(s.translate);
     if (s.scale != 1) g["scale"] = s.scale;
@@ -337,8 +333,8 @@ json geometry_json(const GeometrySpec& s) {
 std::string case_to_json(const Case& c) {
     json root;
     root["geometry"] = geometry_json(c.geometry);
-    root["domain"] = c.domain;
-    json grid = {{"topology", c.grid.topology},
+    root["domain"] = name_of(c.domain);
+    json grid = {{"topology", name_of(c.grid.topology)},
                  {"wall_cells", c.grid.wall_cells},
                  {"core_size", c.grid.core_size},
                  {"cells", c.grid.cells}};
@@ -347,12 +343,13 @@ std::string case_to_json(const Case& c) {
     else
         grid["cells_per_edge"] = c.grid.cells_per_edge;
     if (c.grid.center) grid["center"] = vec3_json(*c.grid.center);
-    grid["axis"] = c.grid.axis;
-    if (c.grid.axis != "none" && c.grid.ring_cells > 0) grid["ring_cells"] = c.grid.ring_cells;
-    if (c.grid.axis != "none") grid["frame_cells"] = c.grid.frame_cells;
+    grid["axis"] = name_of(c.grid.axis);
+    if (c.grid.axis != GridAxis::none && c.grid.ring_cells > 0)
+        grid["ring_cells"] = c.grid.ring_cells;
+    if (c.grid.axis != GridAxis::none) grid["frame_cells"] = c.grid.frame_cells;
     root["grid"] = grid;
-    if (c.domain == "exterior") {
-        root["far_field"] = {{"shape", c.far_field.shape}};
+    if (c.domain == Domain::exterior) {
+        root["far_field"] = {{"shape", name_of(c.far_field.shape)}};
         if (c.far_field.size > 0) root["far_field"]["size"] = c.far_field.size;
     }
     if (c.boundary_layer)
@@ -401,19 +398,20 @@ Case parse_case(const std::string& text, const std::string& path) {
     c.path = path;
     if (!top.has("geometry")) top.fail("geometry", "an object describing the body");
     c.geometry = parse_geometry(top.at("geometry"), path, "geometry");
-    c.domain = top.choice("domain", c.domain, {"interior", "exterior"});
+    c.domain = top.choice("domain", c.domain, domain_names);
     static const json no_grid = json::object();
     c.grid = parse_grid(top.has("grid") ? top.object("grid") : JsonFields(no_grid, path, "grid"),
-                        c.domain == "exterior");
-    if (c.domain == "exterior" && c.grid.axis != "none" && c.grid.axis != "auto")
+                        c.domain == Domain::exterior);
+    if (c.domain == Domain::exterior && c.grid.axis != GridAxis::none &&
+        c.grid.axis != GridAxis::automatic)
         top.object("grid").fail(
             "axis", "\"none\" or \"auto\" (an exterior domain is gridded by the O-grid)");
-    if (c.domain == "exterior" && c.grid.topology != "o-h")
+    if (c.domain == Domain::exterior && c.grid.topology != Topology::o_h)
         top.fail("grid.topology",
                  "\"o-h\" (an exterior domain is gridded by the O-grid of its "
                  "six wall patches)");
     if (top.has("far_field")) {
-        if (c.domain != "exterior")
+        if (c.domain != Domain::exterior)
             top.fail("far_field", "no far_field: it goes with \"domain\": \"exterior\"");
         c.far_field = parse_far_field(top.object("far_field"));
     }

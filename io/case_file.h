@@ -7,17 +7,76 @@
 #include <string>
 #include <vector>
 
+#include "hexmesh/core/far_field_shape.h"
 #include "hexmesh/core/types.h"
 #include "io/flow_spec.h"
 #include "io/input_error.h"
 
 namespace hexmesh {
 
+// The choices a case file names by words; each enum's values are in the order of its names
+// (E(i) is names[i]), and name_of gives the word back.
+enum class Domain { interior, exterior };  // the grid inside the body, or around it
+inline constexpr std::array<const char*, 2> domain_names = {"interior", "exterior"};
+enum class Topology { o_h, single_block };
+inline constexpr std::array<const char*, 2> topology_names = {"o-h", "single-block"};
+// An O-H grid's axis: automatic (around the axis the body's creases run around, if any),
+// none (one core block), or x, y, z (the core and the patches across it O-gridded around it).
+enum class GridAxis { none, automatic, x, y, z };
+inline constexpr std::array<const char*, 5> axis_names = {"none", "auto", "x", "y", "z"};
+inline constexpr std::array<const char*, 2> far_field_shape_names = {"sphere", "box"};
+// What a geometry node is: a primitive, a file (a surface, a point cloud, a stack of cross
+// sections) or a CSG operation over children.
+enum class BodyKind {
+    sphere,
+    ellipsoid,
+    box,
+    cylinder,
+    torus,
+    cone,
+    file,
+    points,
+    sections,
+    csg_union,
+    csg_intersection,
+    csg_difference
+};
+inline constexpr std::array<const char*, 12> body_kind_names = {
+    "sphere", "ellipsoid", "box",      "cylinder", "torus",        "cone",
+    "file",   "points",    "sections", "union",    "intersection", "difference"};
+
+inline const char* name_of(Domain d) {
+    return domain_names[std::size_t(d)];
+}
+inline const char* name_of(Topology t) {
+    return topology_names[std::size_t(t)];
+}
+inline const char* name_of(GridAxis a) {
+    return axis_names[std::size_t(a)];
+}
+inline const char* name_of(FarFieldShape s) {
+    return far_field_shape_names[std::size_t(s)];
+}
+inline const char* name_of(BodyKind k) {
+    return body_kind_names[std::size_t(k)];
+}
+
+// The axis index 0, 1, 2 of x, y, z; -1 for none and automatic.
+inline int axis_index(GridAxis a) {
+    return a == GridAxis::x ? 0 : a == GridAxis::y ? 1 : a == GridAxis::z ? 2 : -1;
+}
+// A body read from a file (surface, points, sections), or a CSG operation.
+inline bool is_file_body(BodyKind k) {
+    return k == BodyKind::file || k == BodyKind::points || k == BodyKind::sections;
+}
+inline bool is_csg(BodyKind k) {
+    return k >= BodyKind::csg_union;
+}
+
 // A body as written in the case: a primitive, or a CSG node over children, with an
 // optional transform (applied as scale, then rotate, then translate).
 struct GeometrySpec {
-    std::string kind;  // sphere ellipsoid box cylinder torus cone file points sections
-                       // | union intersection difference
+    BodyKind kind = BodyKind::sphere;
     Vec3 center = Vec3::Zero();
     double radius = 0;                          // sphere, cylinder
     Vec3 semi_axes = Vec3::Zero();              // ellipsoid
@@ -38,7 +97,7 @@ struct GeometrySpec {
 };
 
 struct GridSpec {
-    std::string topology = "o-h";  // "o-h" | "single-block" (interior domain only)
+    Topology topology = Topology::o_h;  // single_block: interior domain only
     int cells_per_edge = 20;       // o-h, o-grid: cells along each core/patch edge
     double cell_size = 0;          // > 0: cells_per_edge from the body's size instead
     // o-h: cells from the core to the wall; o-grid: to the far field (default twice
@@ -49,9 +108,7 @@ struct GridSpec {
     bool core_size_given = false;  // else smaller when 0.45 would reach the wall (run_case)
     std::array<int, 3> cells = {20, 20, 20};  // single-block
     std::optional<Vec3> center;
-    // o-h: "x" | "y" | "z": the core and the patches across that axis O-gridded around it;
-    // "auto": around the axis the body's creases run around, if any; "none": one core block.
-    std::string axis = "auto";
+    GridAxis axis = GridAxis::automatic;  // o-h only
     int ring_cells = 0;   // o-h with an axis: cells across the rings (0: (n+1)/2)
     int frame_cells = 1;  // o-h with an axis: cells across the frame along the edges
 };
@@ -69,7 +126,7 @@ struct BoundaryLayerSpec {
 // The far-field boundary of an exterior grid: a sphere of radius `size` or a cube of
 // half-size `size`, centred on the grid centre (size 0: 10 body radii).
 struct FarFieldSpec {
-    std::string shape = "sphere";  // "sphere" | "box"
+    FarFieldShape shape = FarFieldShape::sphere;
     double size = 0;
 };
 
@@ -107,7 +164,7 @@ struct TetMeshSpec {
 struct Case {
     std::string path;  // the file it came from, for messages
     GeometrySpec geometry;
-    std::string domain = "interior";  // "interior": grid inside the body; "exterior": around it
+    Domain domain = Domain::interior;
     GridSpec grid;
     FarFieldSpec far_field;  // exterior only
     std::optional<BoundaryLayerSpec> boundary_layer;

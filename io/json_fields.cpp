@@ -115,7 +115,7 @@ Vec3 JsonFields::positive_vec3(const char* key, const Vec3& fallback) const {
 }
 
 std::string JsonFields::choice(const char* key, const std::string& fallback,
-                               std::initializer_list<const char*> allowed) const {
+                               const std::vector<const char*>& allowed) const {
     std::string list;
     for (const char* a : allowed) list += (list.empty() ? "" : " | ") + std::string(a);
     if (!has(key)) return fallback;

@@ -1,6 +1,8 @@
 // Typed, validated access to the fields of a JSON object, with key paths in every message.
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -28,7 +30,16 @@ class JsonFields {
     Vec3 vec3(const char* key, const Vec3& fallback) const;
     Vec3 positive_vec3(const char* key, const Vec3& fallback) const;
     std::string choice(const char* key, const std::string& fallback,
-                       std::initializer_list<const char*> allowed) const;
+                       const std::vector<const char*>& allowed) const;
+    // The setting at `key` as the enum whose values name in order (E(i) is names[i]).
+    template <class E, std::size_t N>
+    E choice(const char* key, E fallback, const std::array<const char*, N>& names) const {
+        const std::string s = choice(key, names[std::size_t(fallback)],
+                                     std::vector<const char*>(names.begin(), names.end()));
+        std::size_t i = 0;
+        while (s != names[i]) ++i;
+        return E(i);
+    }
     JsonFields object(const char* key) const;
 
     const nlohmann::json& at(const char* key) const { return object_.at(key); }

@@ -4,13 +4,12 @@
 #include <optional>
 
 #include "hexmesh/core/block_grid.h"
+#include "hexmesh/core/far_field_shape.h"
 #include "hexmesh/core/implicit_function.h"
 #include "volume/stretching.h"
 #include "volume/wall_paths.h"
 
 namespace hexmesh {
-
-enum class FarFieldShape { sphere, box };
 
 struct OGridOptions {
     int cells_per_edge = 20;  // n: cells along each edge of each of the six patches (>= 2)

@@ -61,7 +61,8 @@ BlockGrid build_o_grid(const Case& c, const ImplicitFunction& body,
     o.cells_per_edge = cells_per_edge(c, body);
     o.layers = c.grid.wall_cells;
     o.wall_layers = wall_layers(c);
-    o.far_field = c.far_field.shape == "box" ? FarFieldShape::box : FarFieldShape::sphere;
+    o.far_field =
+        c.far_field.shape == FarFieldShape::box ? FarFieldShape::box : FarFieldShape::sphere;
     const Vec3 centre = c.grid.center.value_or(body.bounds().center());
     o.far_field_size = c.far_field.size > 0
                            ? c.far_field.size
@@ -96,22 +97,25 @@ void read_body(Job& job) {
 void resolve_case(Job& job) {
     Case& c = job.settings;
     const ImplicitFunction& body = *job.body;
-    if (c.domain == "exterior" && c.grid.cell_size > 0 && !c.grid.wall_cells_given)
+    if (c.domain == Domain::exterior && c.grid.cell_size > 0 && !c.grid.wall_cells_given)
         c.grid.wall_cells = 2 * cells_per_edge(c, body);
-    if (c.domain == "exterior" || c.grid.topology == "o-h") {
+    if (c.domain == Domain::exterior || c.grid.topology == Topology::o_h) {
         job.route = choose_wall_route(c, body, job.surface, cells_per_edge(c, body),
                                       job.solver_options(), job.log);
         c.grid.center = job.route.centre;
         if (!job.route.radial()) job.timer.done("wall (sphere map)");
     }
-    if (!job.route.radial() && c.domain != "exterior") c.grid.axis = "none";  // one core block
-    if (c.domain != "exterior" && c.grid.topology == "o-h" && c.grid.axis == "auto") {
+    if (!job.route.radial() && c.domain != Domain::exterior)
+        c.grid.axis = GridAxis::none;  // one core block
+    if (c.domain != Domain::exterior && c.grid.topology == Topology::o_h &&
+        c.grid.axis == GridAxis::automatic) {
         const int axis = choose_o_h_axis(body, o_h_grid_options(c, body));
-        c.grid.axis = axis < 0 ? "none" : std::string(1, char('x' + axis));
+        c.grid.axis = axis < 0 ? GridAxis::none : GridAxis(int(GridAxis::x) + axis);
         if (axis >= 0)
-            job.log << "  grid axis " << c.grid.axis << ": the body's creases run around it\n";
+            job.log << "  grid axis " << name_of(c.grid.axis)
+                    << ": the body's creases run around it\n";
     }
-    if (c.domain != "exterior" && c.grid.topology == "o-h" && job.route.radial() &&
+    if (c.domain != Domain::exterior && c.grid.topology == Topology::o_h && job.route.radial() &&
         job.route.not_star_shaped.empty() && !c.grid.core_size_given) {
         const double fitted = core_size_within_wall(body, o_h_grid_options(c, body));
         if (fitted < c.grid.core_size)
@@ -138,7 +142,7 @@ OHGridOptions o_h_grid_options(const Case& c, const ImplicitFunction& body) {
     o.core_size = c.grid.core_size;
     o.wall_layers = wall_layers(c);
     o.centre = c.grid.center;
-    o.axis = c.grid.axis == "none" || c.grid.axis == "auto" ? -1 : c.grid.axis[0] - 'x';
+    o.axis = axis_index(c.grid.axis);
     o.ring_cells = c.grid.ring_cells;
     o.frame_cells = c.grid.frame_cells;
     return o;
@@ -146,8 +150,8 @@ OHGridOptions o_h_grid_options(const Case& c, const ImplicitFunction& body) {
 
 BlockGrid build_grid(const Case& c, const ImplicitFunction& body,
                      const std::vector<Vec3>* wall_from, const WallRoute* route) {
-    if (c.domain == "exterior") return build_o_grid(c, body, wall_from, route);
-    if (c.grid.topology == "single-block") {
+    if (c.domain == Domain::exterior) return build_o_grid(c, body, wall_from, route);
+    if (c.grid.topology == Topology::single_block) {
         if (wall_from)
             throw std::invalid_argument("a single block is not built from a given wall grid");
         SingleBlockOptions o;
@@ -165,7 +169,7 @@ BlockGrid build_grid(const Case& c, const ImplicitFunction& body,
         if (!wall_from) o.wall_nodes = route->wall.get();
         return make_o_h_grid(body, o);
     }
-    if (c.grid.axis == "auto") o.axis = choose_o_h_axis(body, o);
+    if (c.grid.axis == GridAxis::automatic) o.axis = choose_o_h_axis(body, o);
     return make_o_h_grid(body, o);
 }
 
@@ -183,9 +187,10 @@ void build_blocks(Job& job) {
         if (!route.radial()) throw InputError(fmt::format("{}: {}", c.path, e.what()));
         throw;
     }
-    job.timer.done("grid", fmt::format("({}, {} blocks, {} cells)",
-                                       c.domain == "exterior" ? "o-grid" : c.grid.topology,
-                                       job.grid().blocks.size(), job.grid().num_cells()));
+    job.timer.done("grid",
+                   fmt::format("({}, {} blocks, {} cells)",
+                               c.domain == Domain::exterior ? "o-grid" : name_of(c.grid.topology),
+                               job.grid().blocks.size(), job.grid().num_cells()));
 }
 
 }  // namespace hexmesh

@@ -15,34 +15,38 @@ namespace hexmesh {
 namespace {
 
 Body make_shape(const GeometrySpec& s) {
-    if (s.kind == "sphere") return std::make_shared<Sphere>(s.center, s.radius);
-    if (s.kind == "ellipsoid") return std::make_shared<Ellipsoid>(s.center, s.semi_axes);
-    if (s.kind == "box") return std::make_shared<Box>(s.center, 0.5 * s.size);
-    if (s.kind == "cylinder") return std::make_shared<Cylinder>(s.center, s.radius, 0.5 * s.height);
-    if (s.kind == "torus") return std::make_shared<Torus>(s.center, s.major_radius, s.minor_radius);
-    if (s.kind == "cone")
+    if (s.kind == BodyKind::sphere) return std::make_shared<Sphere>(s.center, s.radius);
+    if (s.kind == BodyKind::ellipsoid) return std::make_shared<Ellipsoid>(s.center, s.semi_axes);
+    if (s.kind == BodyKind::box) return std::make_shared<Box>(s.center, 0.5 * s.size);
+    if (s.kind == BodyKind::cylinder)
+        return std::make_shared<Cylinder>(s.center, s.radius, 0.5 * s.height);
+    if (s.kind == BodyKind::torus)
+        return std::make_shared<Torus>(s.center, s.major_radius, s.minor_radius);
+    if (s.kind == BodyKind::cone)
         return std::make_shared<Cone>(s.center, s.bottom_radius, s.top_radius, 0.5 * s.height);
-    if (s.kind == "file") {
+    if (s.kind == BodyKind::file) {
         MeshSdfOptions options;
         options.voxel_size = s.voxel_size;
         options.feature_angle = s.feature_angle;
         const TriangleSurface surface = read_surface(s.file);
         return naming_file(s.file, [&] { return std::make_shared<MeshSdf>(surface, options); });
     }
-    if (s.kind == "points") return std::make_shared<PointCloudSdf>(read_point_cloud(s.file));
-    if (s.kind == "sections") return std::make_shared<CrossSectionSdf>(read_sections(s.file));
+    if (s.kind == BodyKind::points)
+        return std::make_shared<PointCloudSdf>(read_point_cloud(s.file));
+    if (s.kind == BodyKind::sections)
+        return std::make_shared<CrossSectionSdf>(read_sections(s.file));
     std::vector<Body> children;
     for (const GeometrySpec& c : s.children) children.push_back(make_body(c));
-    const CsgOp op = s.kind == "union"          ? CsgOp::Union
-                     : s.kind == "intersection" ? CsgOp::Intersection
-                                                : CsgOp::Difference;
+    const CsgOp op = s.kind == BodyKind::csg_union          ? CsgOp::Union
+                     : s.kind == BodyKind::csg_intersection ? CsgOp::Intersection
+                                                            : CsgOp::Difference;
     return std::make_shared<Csg>(op, std::move(children));
 }
 
 }  // namespace
 
 std::optional<TriangleSurface> reference_surface(const GeometrySpec& spec) {
-    if (spec.kind != "file") return std::nullopt;
+    if (spec.kind != BodyKind::file) return std::nullopt;
     TriangleSurface surface = read_surface(spec.file);
     const Mat3 rotation = rotation_from_axis_angle(spec.rotate_axis, spec.rotate_degrees);
     for (Vec3& p : surface.points) p = spec.translate + spec.scale * (rotation * p);

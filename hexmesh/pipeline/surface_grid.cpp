@@ -101,7 +101,7 @@ void surface_pass(Job& job) {
     job.log << untangle::format_untangle_summary(s.solve)
             << fmt::format("  {} wall nodes, {} corner triangles; largest move {:.3g} wall edges\n",
                            s.nodes, s.triangles, s.max_move);
-    if (c.domain == "exterior" || c.grid.topology != "single-block") {
+    if (c.domain == Domain::exterior || c.grid.topology != Topology::single_block) {
         try {
             BlockGrid rebuilt =
                 build_grid(c, *job.body, &grid.points, &job.route);  // same blocks and node ids

@@ -280,7 +280,7 @@ void last_resort(const ImplicitFunction& body, TetMeshOptions& mesh_options,
 }  // namespace
 
 TetCaseResult run_tet_case(const Case& c, const TetCaseOptions& options, std::ostream& log) {
-    if (c.domain != "interior")
+    if (c.domain != Domain::interior)
         throw InputError(c.path +
                          ": domain: tetmesh meshes the body's interior (\"domain\": \"interior\")");
     TetCaseResult r;

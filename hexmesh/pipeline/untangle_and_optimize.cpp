@@ -244,7 +244,7 @@ void untangle_and_optimize(Job& job) {
     GridOptimizationOptions o;
     o.untangle = job.solver_options();
     o.wall_layers = wall_layers(c);
-    o.keep_crease_shapes = c.domain == "exterior";  // its lines leave creases mitred
+    o.keep_crease_shapes = c.domain == Domain::exterior;  // its lines leave creases mitred
     const GridOptimizationResult r = optimize_grid(job.grid(), *job.body, o);
     job.log << untangle::format_untangle_summary(r.solve);
     log_layer_pass(r, o.wall_layers.layers, job.log);

@@ -48,7 +48,7 @@ Centre choose_centre(const Case& c, const ImplicitFunction& body,
     Centre centre{c.grid.center.value_or(box.center()),
                   c.grid.center ? "grid.center" : "the centre of its bounds"};
     // Outside a surface file's body the centre only needs to see the potential's far level.
-    if (c.grid.center && (c.domain != "exterior" || !surface) && !(body.value(centre.x) < 0))
+    if (c.grid.center && (c.domain != Domain::exterior || !surface) && !(body.value(centre.x) < 0))
         throw InputError(
             fmt::format("{}: grid.center {} is not inside the body", c.path, point(centre.x)));
     if (body.value(centre.x) < 0 && star_shaped(body, 0, centre.x, step, 90)) {
@@ -58,8 +58,8 @@ Centre choose_centre(const Case& c, const ImplicitFunction& body,
         return centre;
     }
     // A surface file's SDF is a distance only within a few voxels of the surface.
-    if (surface && c.domain != "exterior") exact.emplace(*surface);
-    if (c.domain == "exterior" || c.grid.center) return centre;
+    if (surface && c.domain != Domain::exterior) exact.emplace(*surface);
+    if (c.domain == Domain::exterior || c.grid.center) return centre;
     const auto depth = [&](const Vec3& x) { return exact ? exact->distance(x) : -body.value(x); };
     const std::optional<Vec3> deepest = deepest_point(body, box.diagonal() / 60, depth);
     if (!deepest)
@@ -145,7 +145,7 @@ WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
         return route;
     }
     Lap lap;
-    if (c.domain != "exterior") {
+    if (c.domain != Domain::exterior) {
         const double depth = exact ? exact->distance(route.centre) : -body.value(route.centre);
         route.core_half = Vec3::Constant(0.45 * depth);
         log << fmt::format("  the body is not star-shaped around {} {} (depth {:.4g}):\n",

@@ -30,7 +30,7 @@ TEST(CaseFile, ParsesAFullCase) {
       "outputs": ["vtk"]
     })",
                               "case.json");
-    EXPECT_EQ(c.geometry.kind, "sphere");
+    EXPECT_EQ(c.geometry.kind, BodyKind::sphere);
     EXPECT_EQ(c.geometry.center, Vec3(1, 2, 3));
     EXPECT_DOUBLE_EQ(c.geometry.radius, 0.5);
     EXPECT_DOUBLE_EQ(c.geometry.scale, 2);
@@ -42,7 +42,7 @@ TEST(CaseFile, ParsesAFullCase) {
     EXPECT_EQ(c.solver.untangle, "lbfgs");
     EXPECT_EQ(c.solver.optimize, "explicit");
     EXPECT_EQ(c.solver.surface_iterations, 0);
-    EXPECT_EQ(c.domain, "interior");
+    EXPECT_EQ(c.domain, Domain::interior);
     EXPECT_EQ(c.outputs, std::vector<std::string>{"vtk"});
 }
 
@@ -52,9 +52,9 @@ TEST(CaseFile, ParsesCsgWithTransforms) {
         {"cylinder": {"radius": 0.5, "height": 3}, "rotate": {"axis": [1, 0, 0], "degrees": 90}}
       ]}})",
                               "case.json");
-    ASSERT_EQ(c.geometry.kind, "difference");
+    ASSERT_EQ(c.geometry.kind, BodyKind::csg_difference);
     ASSERT_EQ(c.geometry.children.size(), 2u);
-    EXPECT_EQ(c.geometry.children[1].kind, "cylinder");
+    EXPECT_EQ(c.geometry.children[1].kind, BodyKind::cylinder);
     EXPECT_DOUBLE_EQ(c.geometry.children[1].rotate_degrees, 90);
 }
 
@@ -168,8 +168,8 @@ TEST(CaseFile, ExteriorDomainWithFarField) {
     const Case c = parse_case(R"({"geometry": {"sphere": {"radius": 1}}, "domain": "exterior",
       "far_field": {"shape": "box", "size": 12}, "grid": {"cell_size": 0.1, "wall_cells": 30}})",
                               "case.json");
-    EXPECT_EQ(c.domain, "exterior");
-    EXPECT_EQ(c.far_field.shape, "box");
+    EXPECT_EQ(c.domain, Domain::exterior);
+    EXPECT_EQ(c.far_field.shape, FarFieldShape::box);
     EXPECT_DOUBLE_EQ(c.far_field.size, 12);
     EXPECT_DOUBLE_EQ(c.grid.cell_size, 0.1);
     EXPECT_EQ(c.grid.wall_cells, 30);
@@ -260,7 +260,7 @@ TEST(CaseFile, CaseToJsonReadsBackTheSameGridAndGeometry) {
     })",
                               "case.json");
     const Case back = parse_case(case_to_json(c), "grid.case.json");
-    EXPECT_EQ(back.geometry.kind, "difference");
+    EXPECT_EQ(back.geometry.kind, BodyKind::csg_difference);
     ASSERT_EQ(back.geometry.children.size(), 2u);
     EXPECT_EQ(back.geometry.children[1].radius, 0.5);
     EXPECT_EQ(back.geometry.rotate_degrees, 30);
@@ -275,15 +275,15 @@ TEST(CaseFile, CaseToJsonReadsBackTheSameGridAndGeometry) {
 
 TEST(CaseFile, GridAxisIsAutoByDefaultAndReadsBack) {
     const char* sphere = R"({"geometry": {"sphere": {"radius": 1}}})";
-    EXPECT_EQ(parse_case(sphere, "case.json").grid.axis, "auto");
+    EXPECT_EQ(parse_case(sphere, "case.json").grid.axis, GridAxis::automatic);
     const Case c = parse_case(R"({"geometry": {"sphere": {"radius": 1}},
       "grid": {"cells_per_edge": 12, "axis": "y", "ring_cells": 5, "frame_cells": 2}})",
                               "case.json");
-    EXPECT_EQ(c.grid.axis, "y");
+    EXPECT_EQ(c.grid.axis, GridAxis::y);
     EXPECT_EQ(c.grid.ring_cells, 5);
     EXPECT_EQ(c.grid.frame_cells, 2);
     const Case back = parse_case(case_to_json(c), "grid.case.json");
-    EXPECT_EQ(back.grid.axis, "y");
+    EXPECT_EQ(back.grid.axis, GridAxis::y);
     EXPECT_EQ(back.grid.ring_cells, 5);
     EXPECT_EQ(back.grid.frame_cells, 2);
 }
@@ -316,9 +316,9 @@ TEST(CaseFile, AnAxisResolvedToNoneReadsBackWithoutItsRingSizes) {
     Case c = parse_case(R"({"geometry": {"sphere": {"radius": 1}},
       "grid": {"cells_per_edge": 12, "ring_cells": 5, "frame_cells": 2}})",
                         "case.json");
-    c.grid.axis = "none";
+    c.grid.axis = GridAxis::none;
     const Case back = parse_case(case_to_json(c), "grid.case.json");
-    EXPECT_EQ(back.grid.axis, "none");
+    EXPECT_EQ(back.grid.axis, GridAxis::none);
 }
 
 TEST(CaseFile, TheCoarsestGridNeedsNoFrame) {

@@ -18,7 +18,7 @@ std::string error_of(const std::string& text) {
 TEST(CaseSurfaceFile, PathIsRelativeToTheCaseFolder) {
     const Case c = parse_case(R"({"geometry": {"file": "../parts/wing.stl", "voxel_size": 0.5}})",
                               "cases/x/case.json");
-    EXPECT_EQ(c.geometry.kind, "file");
+    EXPECT_EQ(c.geometry.kind, BodyKind::file);
     EXPECT_EQ(c.geometry.file, "cases/parts/wing.stl");
     EXPECT_EQ(c.geometry.voxel_size, 0.5);
     const Case absolute = parse_case(R"({"geometry": {"file": "/data/a.obj"}})", "case.json");

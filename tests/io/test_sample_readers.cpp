@@ -199,15 +199,15 @@ TEST(CaseSampleFiles, PointsAndSectionsAreShapesWithPathsRelativeToTheCase) {
                                    {"sections": "../stacks/s.txt", "translate": [0, 0, 1]}]}})",
         "cases/x/case.json");
     ASSERT_EQ(c.geometry.children.size(), 2u);
-    EXPECT_EQ(c.geometry.children[0].kind, "points");
+    EXPECT_EQ(c.geometry.children[0].kind, BodyKind::points);
     EXPECT_EQ(c.geometry.children[0].file, "cases/x/cloud.ply");
     EXPECT_EQ(c.geometry.children[0].scale, 2);
-    EXPECT_EQ(c.geometry.children[1].kind, "sections");
+    EXPECT_EQ(c.geometry.children[1].kind, BodyKind::sections);
     EXPECT_EQ(c.geometry.children[1].file, "cases/stacks/s.txt");
     const Case again = parse_case(case_to_json(c), "elsewhere/case.json");
-    EXPECT_EQ(again.geometry.children[0].kind, "points");
+    EXPECT_EQ(again.geometry.children[0].kind, BodyKind::points);
     EXPECT_EQ(again.geometry.children[0].file, fs::absolute("cases/x/cloud.ply").string());
-    EXPECT_EQ(again.geometry.children[1].kind, "sections");
+    EXPECT_EQ(again.geometry.children[1].kind, BodyKind::sections);
     EXPECT_EQ(again.geometry.children[1].translate, Vec3(0, 0, 1));
 }
 

@@ -58,7 +58,7 @@ TEST(MakeBody, ASurfaceFacingInwardsIsTurnedOver) {
         out << "endsolid t\n";
     }
     GeometrySpec spec;
-    spec.kind = "file";
+    spec.kind = BodyKind::file;
     spec.file = path;
     const std::optional<TriangleSurface> s = reference_surface(spec);
     ASSERT_TRUE(s);
