@@ -98,8 +98,8 @@ struct GeometrySpec {
 
 struct GridSpec {
     Topology topology = Topology::o_h;  // single_block: interior domain only
-    int cells_per_edge = 20;       // o-h, o-grid: cells along each core/patch edge
-    double cell_size = 0;          // > 0: cells_per_edge from the body's size instead
+    int cells_per_edge = 20;            // o-h, o-grid: cells along each core/patch edge
+    double cell_size = 0;               // > 0: cells_per_edge from the body's size instead
     // o-h: cells from the core to the wall; o-grid: to the far field (default twice
     // cells_per_edge for an exterior domain)
     int wall_cells = 10;
@@ -109,7 +109,7 @@ struct GridSpec {
     std::array<int, 3> cells = {20, 20, 20};  // single-block
     std::optional<Vec3> center;
     GridAxis axis = GridAxis::automatic;  // o-h only
-    int ring_cells = 0;   // o-h with an axis: cells across the rings (0: (n+1)/2)
+    int ring_cells = 0;                   // o-h with an axis: cells across the rings (0: (n+1)/2)
     int frame_cells = 1;  // o-h with an axis: cells across the frame along the edges
 };
 
