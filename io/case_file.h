@@ -90,7 +90,7 @@ struct SolverSpec {
 };
 
 // A nested grid-convergence family: `run` writes levels 1..levels, each level the one before
-// with every cell split into 8 (hexmesh/pipeline/refine_family.h). 1: the grid alone.
+// with every cell split into 8 (hexmesh/pipeline/refine.h). 1: the grid alone.
 struct RefinementSpec {
     int levels = 1;  // 1..5
 };
