@@ -130,13 +130,14 @@ struct FarFieldSpec {
     double size = 0;
 };
 
-// The variational optimizer of DESIGN §4-6, per phase: `untangle` while some cell is
-// inverted, `optimize` (pure barrier) afterwards.
+// The variational optimizer (docs/architecture.md#the-functional, #boundary-conditions, #solvers),
+// per phase: `untangle` while some cell is inverted, `optimize` (pure barrier) afterwards.
 struct SolverSpec {
     std::string untangle = "newton-cg";
     std::string optimize = "newton-cg";
-    // Volume weight of the functional while optimizing. Below DESIGN §4's 0.8: weighing shape
-    // more gives better wall-layer grids (README, "solver"; bench/RESULTS.md).
+    // Volume weight of the functional while optimizing. Below the paper's 0.8
+    // (docs/architecture.md#the-functional): weighing shape more gives better wall-layer grids
+    // (README, "solver"; bench/RESULTS.md).
     double theta = 0.2;
     int max_iterations = 200;      // untangling outer iterations
     int optimize_iterations = 10;  // barrier outer iterations; 0 keeps the constructed grid
@@ -146,7 +147,7 @@ struct SolverSpec {
 };
 
 // A nested grid-convergence family: `run` writes levels 1..levels, each level the one before
-// with every cell split into 8 (hexmesh/pipeline/refine_family.h). 1: the grid alone.
+// with every cell split into 8 (hexmesh/pipeline/refine.h). 1: the grid alone.
 struct RefinementSpec {
     int levels = 1;  // 1..5
 };

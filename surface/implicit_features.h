@@ -1,6 +1,7 @@
 // Sharp features of implicit bodies (analytic, CSG, transformed) from their active smooth
 // pieces: crease / corner classification, crease direction, projection onto creases and
-// corners (the tangent cone of DESIGN §5; triangle surfaces use sharp_features.h).
+// corners (the tangent cone of docs/architecture.md#boundary-conditions; triangle surfaces use
+// sharp_features.h).
 #pragma once
 
 #include "hexmesh/core/implicit_function.h"

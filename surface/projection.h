@@ -1,4 +1,5 @@
-// Projection onto the surface u = 0 (operator V of DESIGN §5), tangent frames, ray hits.
+// Projection onto the surface u = 0 (operator V, docs/architecture.md#boundary-conditions), tangent
+// frames, ray hits.
 #pragma once
 
 #include <optional>

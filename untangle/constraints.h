@@ -8,8 +8,8 @@
 namespace hexmesh::untangle {
 
 // Per vertex, a 3 x 3 matrix whose non-zero columns are an orthonormal basis of the allowed
-// displacements at x (DESIGN §5: L_k): identity inside, [l1 l2 0] on a slip vertex (l1, l2
-// tangent to u = 0), [t 0 0] on a feature edge, zero when fixed or a corner.
+// displacements at x (docs/architecture.md#boundary-conditions: L_k): identity inside, [l1 l2 0] on
+// a slip vertex (l1, l2 tangent to u = 0), [t 0 0] on a feature edge, zero when fixed or a corner.
 std::vector<Mat3> movement_bases(const Problem& problem, const std::vector<Vec3>& x);
 
 // Number of allowed directions of each kind (3, 2, 1, 0): the first columns of its basis.

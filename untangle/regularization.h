@@ -12,7 +12,7 @@ inline double regularization_radius(double d, double eps) {
 
 // chi(d, eps) = (d + sqrt(eps^2 + d^2)) / 2: > 0 for every d when eps > 0, -> max(d, 0) as
 // eps -> 0. For d <= 0 it is evaluated as eps^2 / (2 (sqrt(eps^2 + d^2) - d)), which has no
-// cancellation (DESIGN §4). r is regularization_radius(d, eps).
+// cancellation (docs/architecture.md#the-functional). r is regularization_radius(d, eps).
 inline double chi(double d, double eps, double r) {
     return d > 0 ? 0.5 * (d + r) : eps * eps / (2 * (r - d));
 }

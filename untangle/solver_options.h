@@ -1,4 +1,4 @@
-// The descent methods of the untangler and their options (DESIGN §6).
+// The descent methods of the untangler and their options (docs/architecture.md#solvers).
 #pragma once
 
 #include <string>

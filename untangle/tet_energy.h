@@ -16,7 +16,7 @@ using Mat38 = Eigen::Matrix<double, 3, 8>;
 using TetBlocks = std::array<std::array<Mat3, 4>, 4>;
 
 // Parameters of one element: target inverse H^-1 (H = [z1-z0, z2-z0, z3-z0] of the target
-// tet), weight w = det H / 6 and target volume ratio v0 (DESIGN §4).
+// tet), weight w = det H / 6 and target volume ratio v0 (docs/architecture.md#the-functional).
 struct TetTarget {
     Mat3 inverse = Mat3::Identity();
     double weight = 1.0 / 6;

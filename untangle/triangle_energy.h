@@ -1,4 +1,5 @@
-// The 2D energy of a surface triangle, measured in the tangent plane of u = 0 (DESIGN §4).
+// The 2D energy of a surface triangle, measured in the tangent plane of u = 0
+// (docs/architecture.md#the-functional).
 #pragma once
 
 #include <Eigen/Core>

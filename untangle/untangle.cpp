@@ -116,8 +116,8 @@ std::string stall_message(bool stuck, double eps, const Progress& progress, doub
                        stalled);
 }
 
-// The eps of the next outer iteration (DESIGN §4): sigma from the energy's decrease (at
-// least the fast or the safe rule's), mu = (1 - sigma) chi(min det, eps).
+// The eps of the next outer iteration (docs/architecture.md#the-functional): sigma from the
+// energy's decrease (at least the fast or the safe rule's), mu = (1 - sigma) chi(min det, eps).
 double next_eps(double energy, double e_prev, bool fast, const UntangleOptions& options,
                 double min_det, double eps) {
     const double sigma =
@@ -126,9 +126,9 @@ double next_eps(double energy, double e_prev, bool fast, const UntangleOptions& 
     return min_det < mu ? 2 * std::sqrt(mu * (mu - min_det)) : tiny_eps;
 }
 
-// The eps continuation on `problem` (DESIGN §4), from x = problem.points, until at most
-// options.unrepairable elements are inverted, the iteration budget is spent or progress
-// stalls (then result.stopped says how). Every outer iteration is logged and offered to
+// The eps continuation on `problem` (docs/architecture.md#the-functional), from x = problem.points,
+// until at most options.unrepairable elements are inverted, the iteration budget is spent or
+// progress stalls (then result.stopped says how). Every outer iteration is logged and offered to
 // `best` and `progress` (judged on `judge`, the whole problem, since `problem` may be a
 // local part of it). eps first shrinks fast; when that stalls, the continuation restarts
 // from the best state it reached, at the eps that state was found with, and shrinks eps by

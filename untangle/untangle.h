@@ -24,7 +24,7 @@ struct UntangleOptions {
     // 0.1: the optimized grid is the same to the digits reported (min and mean scaled
     // Jacobian) as with 0.01, for about half the CG iterations.
     SolverOptions optimize_solver = loose_solve();
-    double theta = 0.8;           // volume weight while optimizing (DESIGN §4)
+    double theta = 0.8;           // volume weight, optimizing (docs/architecture.md#the-functional)
     double untangle_theta = 0.1;  // volume weight while untangling: shape first is more robust
     int max_untangle_iterations = 200;  // outer iterations (eps updates)
     int stall_iterations = 40;          // stop untangling after this many without progress
@@ -39,10 +39,10 @@ struct UntangleOptions {
     double stall_share = 0.15;
     int stall_minimum = 8;
     // eps continuation speed: eps shrinks as if each inner solve had lowered the energy by at
-    // least this share (DESIGN §4's sigma floor). Untangling starts with fast_sigma (about
-    // 5x smaller eps per outer iteration) and, after fast_stall iterations without fewer
-    // inverted elements, goes back to its best state and on with safe_sigma, the floor of
-    // the published rule (about 10 % per iteration).
+    // least this share (the sigma floor of docs/architecture.md#the-functional). Untangling starts
+    // with fast_sigma (about 5x smaller eps per outer iteration) and, after fast_stall iterations
+    // without fewer inverted elements, goes back to its best state and on with safe_sigma, the
+    // floor of the published rule (about 10 % per iteration).
     double fast_sigma = 0.8;
     double safe_sigma = 0.1;
     int fast_stall = 2;
@@ -109,9 +109,9 @@ struct UntangleResult {
     std::vector<IterationRecord> history;
 };
 
-// Minimizes the functional of DESIGN §4 over problem.points (updated in place): eps
-// continuation from the foldover-free rule until every element has det S > 0, then barrier
-// optimization. Never returns worse than its input: the best state seen (fewest inverted
+// Minimizes the functional (docs/architecture.md#the-functional) over problem.points (updated in
+// place): eps continuation from the foldover-free rule until every element has det S > 0, then
+// barrier optimization. Never returns worse than its input: the best state seen (fewest inverted
 // elements, then lowest energy) is the one kept.
 UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& options);
 

@@ -19,7 +19,8 @@ struct SingleBlockOptions {
 // One block "body": the lattice of the body's bounding box (distributions from the wall law
 // at both ends of each axis), boundary nodes projected radially from the centre onto
 // u = 0 (kind slip), interior filled by TFI. Suited to box-like bodies; on smooth bodies the
-// cells along the 12 box edges flatten (see DESIGN §7), which the O-H grid avoids.
+// cells along the 12 box edges flatten (see docs/architecture.md#construction), which the O-H grid
+// avoids.
 BlockGrid make_single_block_grid(const ImplicitFunction& body, const SingleBlockOptions& options);
 
 // Positions of cells+1 nodes on [0, length] with the wall law applied from both ends.

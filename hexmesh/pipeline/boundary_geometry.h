@@ -1,7 +1,7 @@
-// What boundary vertices slide on (DESIGN §5): the surface u = 0 of an implicit body, with
-// creases and corners from its active pieces, or a triangle surface, with creases by
-// dihedral angle. One interface for the untangler's constraints, the vertex kinds and the
-// distances a report measures.
+// What boundary vertices slide on (docs/architecture.md#boundary-conditions): the surface u = 0 of
+// an implicit body, with creases and corners from its active pieces, or a triangle surface, with
+// creases by dihedral angle. One interface for the untangler's constraints, the vertex kinds and
+// the distances a report measures.
 #pragma once
 
 #include <functional>

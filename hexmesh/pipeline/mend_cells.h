@@ -24,10 +24,10 @@ struct MendResult {
     double min_margin_before = 0, min_margin_after = 0;  // over the refused cells' neighbourhood
 };
 
-// The cells find_refused_cells names (core/quality.h), mended: each node of theirs (interior or
-// slip; slip nodes projected back onto u = 0 of `body`) tries six moves along the axes and keeps
-// the best for the cells around it: fewer refused (solver_margin <= 0), then a higher smallest
-// margin (so a cell the solver accepts is never traded away, and with as many refused the
+// The cells find_refused_cells names (hexmesh/quality/mesh_quality.h), mended: each node of theirs
+// (interior or slip; slip nodes projected back onto u = 0 of `body`) tries six moves along the axes
+// and keeps the best for the cells around it: fewer refused (solver_margin <= 0), then a higher
+// smallest margin (so a cell the solver accepts is never traded away, and with as many refused the
 // smallest margin there never falls), the step halved when none helps. When
 // that leaves refused cells, the nodes of the cells sharing a node with them join in. The
 // functional's corner tets do not see a face pyramid on the cell's centre; this sees exactly

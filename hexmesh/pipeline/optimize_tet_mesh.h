@@ -42,10 +42,10 @@ std::vector<VertexKind> kinds_from_dimensions(const std::vector<std::int8_t>& di
 std::vector<VertexKind> boundary_kinds(const TetMesh& mesh, const BoundaryGeometry& boundary,
                                        double reach);
 
-// Regular targets (DESIGN §4: v0 from the sizing function) whose edges follow `size` at each
-// tet's centroid, all scaled by one factor so that their volumes add up to the mesh's signed
-// volume: the domain's volume, also while the mesh is tangled (its unsigned volume if the
-// signed one is not positive). tets: 4 point ids per tet.
+// Regular targets (docs/architecture.md#the-functional: v0 from the sizing function) whose edges
+// follow `size` at each tet's centroid, all scaled by one factor so that their volumes add up to
+// the mesh's signed volume: the domain's volume, also while the mesh is tangled (its unsigned
+// volume if the signed one is not positive). tets: 4 point ids per tet.
 std::vector<untangle::TetTarget> sized_tet_targets(const std::vector<Vec3>& points,
                                                    const std::vector<Id>& tets,
                                                    const SizingFunction& size);

@@ -17,7 +17,7 @@ namespace hexmesh {
 
 struct RefinementOptions {
     int sweeps = 4;               // descent steps of the block-diagonal solver on the new nodes
-    double theta = 0.8;           // volume weight of the functional (DESIGN §4)
+    double theta = 0.8;           // volume weight (docs/architecture.md#the-functional)
     std::ostream* log = nullptr;  // the solver's progress lines
 };
 

@@ -56,10 +56,10 @@ class SphereMap {
 // Tutte's embedding of the surface without one point (the highest) in a disk, bounded by that
 // point's neighbours on a circle (one to one: every point the mean of its neighbours), carried
 // onto the sphere by the inverse stereographic projection with the removed point at the north
-// pole; then the 2D functional of DESIGN §4 on the sphere (points sliding on it), each
-// triangle's target its own shape scaled so the targets cover the sphere, minimized with the
-// barrier, which never lets a triangle turn over. Throws std::invalid_argument for a surface
-// that is not one closed piece of genus 0 once capped.
+// pole; then the 2D functional (docs/architecture.md#the-functional) on the sphere (points
+// sliding on it), each triangle's target its own shape scaled so the targets cover the sphere,
+// minimized with the barrier, which never lets a triangle turn over. Throws
+// std::invalid_argument for a surface that is not one closed piece of genus 0 once capped.
 // With `start`, the first map is start(point) (unit vectors; some triangles may turn over,
 // which the functional's untangling repairs) instead of Tutte's.
 SphereMap map_to_sphere(const TriangleSurface& surface, const SphereMapOptions& options = {},

@@ -17,11 +17,11 @@ struct SurfaceOptimizationResult {
 };
 
 // Optimizes the grid on u = 0 (the nodes of the blocks' "wall" faces) alone with the 2D
-// functional of DESIGN §4 (untangle/triangle_energy.h), measured in the tangent plane of
-// grad u (DESIGN §7: surface grid first, then the volume). Every wall quad gives its 4
-// corner triangles, each with the target of a rectangle corner with the quad's mean edge
-// lengths as given, so the cells keep their sizes while their corners are driven towards
-// right angles and folds on the surface are untangled. Slip nodes slide on u = 0,
+// functional (docs/architecture.md#the-functional) (untangle/triangle_energy.h), measured in the
+// tangent plane of grad u (docs/architecture.md#construction: surface grid first, then the volume).
+// Every wall quad gives its 4 corner triangles, each with the target of a rectangle corner with the
+// quad's mean edge lengths as given, so the cells keep their sizes while their corners are driven
+// towards right angles and folds on the surface are untangled. Slip nodes slide on u = 0,
 // feature_edge nodes along their crease, corner and fixed nodes stay. Only wall nodes move:
 // the caller builds the volume again from them (build_grid's wall_from) or carries it along
 // (carry_interior_tfi). Never leaves the wall grid worse than given (fewer folded

@@ -65,14 +65,14 @@ struct GridOptimizationResult {
     bool layers_skipped = false;
 };
 
-// Splits every hex of `grid` into its 8 corner tets and minimizes the functional of DESIGN §4
-// over the grid's points (updated in place). Each cell's target is the box of its own initial
-// edge lengths along i, j and k (mean of the 4 parallel edges), so the boundary-layer cells the
-// grid was built with (thin in the wall-normal direction) stay thin while their angles are
-// driven towards 90 degrees; with keep_crease_shapes, the cells along crease lines keep their
-// initial shapes as targets. Nodes move according to grid.kinds: slip nodes slide on
-// u = 0 of `body` (tangent plane of grad u, then the projection V), feature_edge nodes slide
-// along the body's crease through them (surface/implicit_features.h), corner and fixed
+// Splits every hex of `grid` into its 8 corner tets and minimizes the functional
+// (docs/architecture.md#the-functional) over the grid's points (updated in place). Each cell's
+// target is the box of its own initial edge lengths along i, j and k (mean of the 4 parallel
+// edges), so the boundary-layer cells the grid was built with (thin in the wall-normal direction)
+// stay thin while their angles are driven towards 90 degrees; with keep_crease_shapes, the cells
+// along crease lines keep their initial shapes as targets. Nodes move according to grid.kinds: slip
+// nodes slide on u = 0 of `body` (tangent plane of grad u, then the projection V), feature_edge
+// nodes slide along the body's crease through them (surface/implicit_features.h), corner and fixed
 // nodes stay.
 // Never returns a grid worse than its input (fewer inverted corner tets, then lower energy).
 GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& body,

@@ -1,4 +1,5 @@
-// Boundary-layer and surface-fidelity metrics of a grid's wall (DESIGN §8), as plain data.
+// Boundary-layer and surface-fidelity metrics of a grid's wall
+// (docs/architecture.md#quality-metrics), as plain data.
 #pragma once
 
 #include <optional>

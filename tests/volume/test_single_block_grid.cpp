@@ -40,8 +40,8 @@ TEST(SingleBlockGrid, WallLayersAtBothEndsOfEachLine) {
 }
 
 TEST(SingleBlockGrid, SphereCellsAtTheBoxCornersFold) {
-    // The reason the O-H grid is the default for smooth bodies (DESIGN §7): the three wall
-    // faces of each box-corner cell land on an almost flat piece of the sphere.
+    // The reason the O-H grid is the default for smooth bodies (docs/architecture.md#construction):
+    // the three wall faces of each box-corner cell land on an almost flat piece of the sphere.
     const Sphere sphere(Vec3::Zero(), 1.0);
     SingleBlockOptions o;
     o.cells = {12, 12, 12};
