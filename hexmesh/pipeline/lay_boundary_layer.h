@@ -1,6 +1,7 @@
-// Part of stage 4 of `run`, lay_boundary_layer: after the joint untangling and optimization, the
-// boundary layer laid again along the optimized wall's normals by the case's law
-// (volume/wall_extrusion.h), and the grid around it optimized once more, wall and layers held.
+// Stage 5 of `run`, lay_boundary_layer (run from stage 4's optimize_grid): after the joint
+// untangling and optimization, the boundary layer laid again along the optimized wall's normals
+// by the case's law (volume/wall_extrusion.h), and the grid around it optimized once more,
+// wall and layers held.
 #pragma once
 
 #include <vector>
