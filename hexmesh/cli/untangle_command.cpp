@@ -7,16 +7,10 @@
 #include <nlohmann/json.hpp>
 
 #include "hexmesh/cli/commands.h"
-#include "hexmesh/core/memory_limit.h"
-#include "hexmesh/pipeline/make_body.h"
-#include "hexmesh/pipeline/tet_mesh_case.h"
 #include "hexmesh/pipeline/untangle_mesh.h"
 #include "hexmesh/quality/grid_report.h"
 #include "hexmesh/quality/mesh_quality.h"
-#include "hexmesh/quality/tet_quality.h"
-#include "io/case_file.h"
-#include "io/report_page.h"
-#include "io/surface_reader.h"
+#include "io/input_error.h"
 #include "io/volume_mesh_io.h"
 
 namespace hexmesh::cli {
@@ -84,15 +78,7 @@ int run(const Args& args) {
     if (!args.surface.empty()) {
         if (options.boundary != BoundaryMode::slip)
             throw std::invalid_argument("--surface needs --boundary slip");
-        if (std::filesystem::path(args.surface).extension() == ".json") {
-            // A case file: slip on its geometry (u = 0 of the body, or its surface file).
-            const Case c = read_case(args.surface);
-            const Body body = make_body(c.geometry);
-            options.geometry = case_boundary(c, body, tet_sizes(c, *body).wall);
-            options.tet_size = tet_sizing(c, body);
-        } else {
-            options.surface = read_surface(args.surface);
-        }
+        slip_on_file(args.surface, options);
     }
     check_volume_mesh_output(args.output);
     VolumeMesh mesh = read_volume_mesh(args.input);
@@ -120,23 +106,11 @@ int run(const Args& args) {
         return 3;
     }
     const std::string out = valid ? args.output : invalid_name(args.output);
-    write_volume_mesh(mesh, out);
-    std::cout << "\nwritten: " << out << "\n";
-    if (!args.no_report) {
-        const std::string title = "hexmesh untangle " + args.input;
-        ReportPage page;
-        if (mesh.num_hexes() > 0) {
-            const HexMesh hexes{mesh.points, mesh.hexes};
-            page = hex_mesh_report_page(title, hexes,
-                                        r.hex_after ? *r.hex_after : measure_quality(hexes));
-        } else {
-            const TetMesh tets{mesh.points, mesh.tets};
-            page = tet_mesh_report_page(title, tets, measure_tet_quality(tets));
-        }
-        page.settings_json = settings_json(args);
-        page.peak_memory_bytes = peak_memory();
-        std::cout << "written: " << write_report_beside(out, page) << "\n";
-    }
+    const std::string settings = settings_json(args);
+    const std::vector<std::string> written = write_untangled_mesh(
+        mesh, r, out, "hexmesh untangle " + args.input, args.no_report ? nullptr : &settings);
+    std::cout << "\n";
+    for (const std::string& f : written) std::cout << "written: " << f << "\n";
     return valid ? 0 : 3;
 }
 

@@ -4,11 +4,19 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <filesystem>
 #include <map>
 #include <memory>
 
+#include "hexmesh/core/memory_limit.h"
 #include "hexmesh/core/reference_hex.h"
-#include "hexmesh/pipeline/tet_mesh_case.h"
+#include "hexmesh/pipeline/make_body.h"
+#include "hexmesh/pipeline/optimize_tet_mesh.h"
+#include "hexmesh/quality/tet_quality.h"
+#include "io/case_file.h"
+#include "io/report_page.h"
+#include "io/surface_reader.h"
+#include "io/volume_mesh_io.h"
 
 namespace hexmesh {
 namespace {
@@ -216,6 +224,38 @@ std::string describe_blocked(const std::vector<BlockedElement>& blocked) {
             "--boundary slip\n",
             b.cell, b.corner, b.position.x(), b.position.y(), b.position.z());
     return out;
+}
+
+void slip_on_file(const std::string& path, UntangleMeshOptions& options) {
+    if (std::filesystem::path(path).extension() != ".json") {
+        options.surface = read_surface(path);
+        return;
+    }
+    const Case c = read_case(path);
+    const Body body = make_body(c.geometry);
+    options.geometry = case_boundary(c, body, tet_sizes(c, *body).wall);
+    options.tet_size = tet_sizing(c, body);
+}
+
+std::vector<std::string> write_untangled_mesh(const VolumeMesh& mesh, const UntangleMeshResult& r,
+                                              const std::string& path, const std::string& title,
+                                              const std::string* settings_json) {
+    write_volume_mesh(mesh, path);
+    std::vector<std::string> written = {path};
+    if (!settings_json) return written;
+    ReportPage page;
+    if (mesh.num_hexes() > 0) {
+        const HexMesh hexes{mesh.points, mesh.hexes};
+        page =
+            hex_mesh_report_page(title, hexes, r.hex_after ? *r.hex_after : measure_quality(hexes));
+    } else {
+        const TetMesh tets{mesh.points, mesh.tets};
+        page = tet_mesh_report_page(title, tets, measure_tet_quality(tets));
+    }
+    page.settings_json = *settings_json;
+    page.peak_memory_bytes = peak_memory();
+    written.push_back(write_report_beside(path, page));
+    return written;
 }
 
 }  // namespace hexmesh

@@ -61,4 +61,16 @@ UntangleMeshResult untangle_volume_mesh(VolumeMesh& mesh, const UntangleMeshOpti
 // One line per blocked element ("cell 12 corner 3 at (x, y, z): ...") for the user.
 std::string describe_blocked(const std::vector<BlockedElement>& blocked);
 
+// What options.geometry or options.surface the boundary slips on, from the file at `path`: a
+// case file (.json: its body, or its surface file, and its tet sizing for the targets of tets)
+// or a surface file (.stl .obj .off .ply).
+void slip_on_file(const std::string& path, UntangleMeshOptions& options);
+
+// Writes `mesh` (after untangle_volume_mesh, `r` its result) to `path` and, unless
+// `settings_json` is null, its report page beside it (titled `title`, with those settings);
+// returns the paths written.
+std::vector<std::string> write_untangled_mesh(const VolumeMesh& mesh, const UntangleMeshResult& r,
+                                              const std::string& path, const std::string& title,
+                                              const std::string* settings_json);
+
 }  // namespace hexmesh
