@@ -4,26 +4,18 @@
 // `hexmesh compare A B [-o FILE]`: two such pages side by side.
 #include <fmt/format.h>
 
-#include <cctype>
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "hexmesh/cli/commands.h"
 #include "hexmesh/core/memory_limit.h"
-#include "hexmesh/pipeline/make_body.h"
-#include "hexmesh/pipeline/run_case.h"
-#include "hexmesh/pipeline/tet_mesh_case.h"
-#include "hexmesh/quality/block_quality.h"
+#include "hexmesh/pipeline/measure_file.h"
 #include "hexmesh/quality/grid_report.h"
-#include "hexmesh/quality/mesh_quality.h"
 #include "hexmesh/quality/tet_quality.h"
 #include "hexmesh/quality/tet_report.h"
-#include "io/case_file.h"
 #include "io/report_page.h"
-#include "io/volume_mesh_io.h"
-#include "io/vtk_mesh.h"
-#include "volume/grid_meter.h"
 
 namespace hexmesh::cli {
 namespace {
@@ -33,56 +25,9 @@ struct Args {
     bool json = false;
 };
 
-bool is_block_grid_file(const std::string& path) {
-    const std::string ext = std::filesystem::path(path).extension().string();
-    return ext == ".vtm" || ext == ".vts";
-}
-
-// The case a block grid at `path` is measured against: `case_path`, else the grid.case.json
-// `run` writes beside a grid, if any ("" for none).
-std::string case_of_grid(const std::string& path, const std::string& case_path) {
-    if (!case_path.empty()) return case_path;
-    const std::filesystem::path beside =
-        std::filesystem::path(path).parent_path() / "grid.case.json";
-    return std::filesystem::exists(beside) ? beside.string() : std::string();
-}
-
-// The report of a block grid: measured against the body and wall law of the case file `sidecar`
-// (case_of_grid; then also the wall's distance to a surface file, and follows_body), else ("")
-// its cells alone. `settings` gets the case as JSON (empty without one).
-GridReport block_grid_report(const BlockGrid& grid, const std::string& sidecar,
-                             std::string& settings) {
-    settings.clear();
-    if (sidecar.empty()) {
-        GridReport report;
-        report.quality = measure_quality(grid);
-        return report;
-    }
-    const Case c = read_case(sidecar);
-    const Body body = make_body(c.geometry);
-    const std::optional<TriangleSurface> surface = reference_surface(c.geometry);
-    settings = case_to_json(c);
-    return measure_grid(grid, *body, wall_layers(c), surface ? &*surface : nullptr);
-}
-
-// A file of tetrahedra only (legacy VTK or VTK XML unstructured), else nullopt.
-std::optional<TetMesh> read_tet_mesh(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-    if (ext != ".vtu" && ext != ".vtk") return std::nullopt;
-    VolumeMesh m = read_volume_mesh(path);
-    if (m.num_tets() == 0 || m.num_hexes() > 0) return std::nullopt;
-    return TetMesh{std::move(m.points), std::move(m.tets)};
-}
-
 void print_tet_quality(const Args& args, const TetMesh& mesh, const TetQualityReport& q) {
     std::optional<double> distance;
-    if (!args.surface.empty()) {
-        const Case c = read_case(args.surface);
-        const Body body = make_body(c.geometry);
-        const double h = tet_sizes(c, *body).wall;
-        distance = max_boundary_distance(mesh, case_boundary(c, body, h)) / h;
-    }
+    if (!args.surface.empty()) distance = tet_boundary_distance(mesh, args.surface);
     if (args.json) {
         std::cout << tet_quality_json(q, distance);
         return;
@@ -115,18 +60,7 @@ void add_quality_command(CLI::App& app, int& exit_code) {
         }
         if (!args->surface.empty())
             throw std::invalid_argument("--surface is for tetrahedral meshes");
-        GridReport report;
-        const std::string sidecar = is_block_grid_file(args->mesh_path)
-                                        ? case_of_grid(args->mesh_path, args->case_path)
-                                        : std::string();
-        if (!sidecar.empty()) {
-            std::string settings;
-            report = block_grid_report(read_vtk_block_grid(args->mesh_path), sidecar, settings);
-        } else {
-            if (!args->case_path.empty()) throw InputError("--case is for block grids (.vtm .vts)");
-            const HexMesh mesh = read_vtk_mesh(args->mesh_path);
-            report.quality = naming_file(args->mesh_path, [&] { return measure_quality(mesh); });
-        }
+        const GridReport report = hex_file_report(args->mesh_path, args->case_path);
         if (args->json)
             std::cout << quality_json(report);
         else
@@ -135,32 +69,6 @@ void add_quality_command(CLI::App& app, int& exit_code) {
         exit_code = 0;
     });
 }
-
-namespace {
-
-// The page of a block grid, measured as block_grid_report says.
-ReportPage block_grid_page(const std::string& path, const std::string& case_path) {
-    const BlockGrid grid = read_vtk_block_grid(path);
-    std::string settings;
-    const GridReport report = block_grid_report(grid, case_of_grid(path, case_path), settings);
-    return grid_report_page(path, report, draw_grid(grid), settings);
-}
-
-// The page of any mesh file, titled by its path: a tet mesh, a block grid (see
-// block_grid_page) or a hex mesh.
-ReportPage page_of_mesh(const std::string& path, const std::string& case_path) {
-    if (!std::filesystem::exists(path))
-        throw InputError(fmt::format("{}: no such mesh file", path));
-    if (const auto tets = read_tet_mesh(path))
-        return tet_mesh_report_page(path, *tets, measure_tet_quality(*tets));
-    if (is_block_grid_file(path)) return block_grid_page(path, case_path);
-    if (!case_path.empty()) throw InputError("--case is for block grids (.vtm .vts)");
-    const HexMesh mesh = read_vtk_mesh(path);
-    return hex_mesh_report_page(path, mesh,
-                                naming_file(path, [&] { return measure_quality(mesh); }));
-}
-
-}  // namespace
 
 void add_report_command(CLI::App& app, int& exit_code) {
     struct Args {

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "hexmesh/cli/commands.h"
+#include "hexmesh/pipeline/measure_file.h"
 #include "hexmesh/pipeline/refine_grid_file.h"
 #include "hexmesh/quality/grid_report.h"
 #include "io/case_file.h"
@@ -15,16 +16,14 @@ namespace hexmesh::cli {
 namespace {
 
 // The case of a grid: --case, else the grid.case.json `run` wrote beside it.
-Case case_of_grid(const std::string& grid_path, const std::string& case_path) {
-    if (!case_path.empty()) return read_case(case_path);
-    const std::filesystem::path sidecar =
-        std::filesystem::path(grid_path).parent_path() / "grid.case.json";
-    if (!std::filesystem::exists(sidecar))
+Case case_for_refining(const std::string& grid_path, const std::string& case_path) {
+    const std::string path = case_of_grid(grid_path, case_path);
+    if (path.empty())
         throw InputError(fmt::format(
             "{}: no case for this grid: give --case CASE.json (its geometry receives the new wall "
             "nodes) or keep the grid.case.json `run` writes beside the grid",
             grid_path));
-    return read_case(sidecar.string());
+    return read_case(path);
 }
 
 }  // namespace
@@ -50,7 +49,7 @@ void add_refine_command(CLI::App& app, int& exit_code) {
     cmd->callback([args, &exit_code] {
         if (!std::filesystem::exists(args->grid_path))
             throw InputError(fmt::format("{}: no such grid file", args->grid_path));
-        const Case c = case_of_grid(args->grid_path, args->case_path);
+        const Case c = case_for_refining(args->grid_path, args->case_path);
         std::cout << fmt::format("hexmesh refine {}\n", args->grid_path);
         RefineFileOptions options;
         options.levels = args->levels;
