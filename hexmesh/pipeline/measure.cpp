@@ -8,9 +8,9 @@
 
 #include "hexmesh/pipeline/build_blocks.h"
 #include "hexmesh/pipeline/refine.h"
+#include "hexmesh/quality/grid_meter.h"
 #include "hexmesh/quality/grid_report.h"
 #include "hexmesh/quality/mesh_quality.h"
-#include "volume/grid_meter.h"
 
 namespace hexmesh {
 namespace {

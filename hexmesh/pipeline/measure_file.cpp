@@ -9,12 +9,12 @@
 #include "hexmesh/pipeline/make_body.h"
 #include "hexmesh/pipeline/optimize_tet_mesh.h"
 #include "hexmesh/quality/block_quality.h"
+#include "hexmesh/quality/grid_meter.h"
 #include "hexmesh/quality/mesh_quality.h"
 #include "hexmesh/quality/tet_quality.h"
 #include "io/case_file.h"
 #include "io/volume_mesh_io.h"
 #include "io/vtk_mesh.h"
-#include "volume/grid_meter.h"
 
 namespace hexmesh {
 namespace {

@@ -9,11 +9,11 @@
 #include "hexmesh/pipeline/phase_timer.h"
 #include "hexmesh/pipeline/refine.h"
 #include "hexmesh/quality/cell_quality.h"
+#include "hexmesh/quality/grid_meter.h"
 #include "hexmesh/quality/grid_report.h"
 #include "io/report_page.h"
 #include "io/staged_output.h"
 #include "io/vtk_mesh.h"
-#include "volume/grid_meter.h"
 
 namespace hexmesh {
 namespace {

@@ -9,10 +9,10 @@
 
 namespace hexmesh {
 
-// Measured along the wall-normal lines of the grid (volume/wall_metrics.h measures them): one line
-// per node of every block face whose patch is "wall", going into the block. Lengths are in geometry
-// units, fractions in [0, 1]. A target of 0 means "no law given": its fraction is then 0 and means
-// nothing.
+// Measured along the wall-normal lines of the grid (hexmesh/quality/wall_metrics.h measures them):
+// one line per node of every block face whose patch is "wall", going into the block. Lengths are in
+// geometry units, fractions in [0, 1]. A target of 0 means "no law given": its fraction is then 0
+// and means nothing.
 struct WallQuality {
     Id wall_cells = 0;  // cells with a face on a wall patch, counted once per block face
 

@@ -10,10 +10,10 @@
 #include "hexmesh/pipeline/refine.h"
 #include "hexmesh/pipeline/run_case.h"
 #include "hexmesh/pipeline/untangle_and_optimize.h"
+#include "hexmesh/quality/grid_meter.h"
 #include "hexmesh/quality/grid_report.h"
 #include "hexmesh/quality/wall_quality.h"
 #include "tests/scratch_registry.h"
-#include "volume/grid_meter.h"
 
 using namespace hexmesh;
 

@@ -11,10 +11,10 @@
 #include "hexmesh/pipeline/untangle_and_optimize.h"
 #include "hexmesh/quality/block_quality.h"
 #include "hexmesh/quality/cell_quality.h"
+#include "hexmesh/quality/grid_meter.h"
 #include "hexmesh/quality/grid_report.h"
 #include "hexmesh/quality/mesh_quality.h"
 #include "io/vtk_mesh.h"
-#include "volume/grid_meter.h"
 
 using namespace hexmesh;
 namespace fs = std::filesystem;

@@ -1,4 +1,4 @@
-#include "volume/wall_metrics.h"
+#include "hexmesh/quality/wall_metrics.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>

@@ -6,6 +6,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "hexmesh/quality/wall_metrics.h"
 #include "surface/analytic.h"
 #include "tests/surface/sample_surfaces.h"
 #include "volume/o_grid.h"
@@ -13,7 +14,6 @@
 #include "volume/single_block_grid.h"
 #include "volume/wall_extrusion.h"
 #include "volume/wall_lines.h"
-#include "volume/wall_metrics.h"
 
 using namespace hexmesh;
 

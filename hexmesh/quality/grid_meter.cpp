@@ -1,5 +1,5 @@
 // GridMeter: a block grid measured into a GridReport, block by block.
-#include "volume/grid_meter.h"
+#include "hexmesh/quality/grid_meter.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>

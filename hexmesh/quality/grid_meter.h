@@ -11,8 +11,8 @@
 #include "hexmesh/core/triangle_surface.h"
 #include "hexmesh/quality/block_quality.h"
 #include "hexmesh/quality/grid_report.h"
+#include "hexmesh/quality/wall_metrics.h"
 #include "volume/stretching.h"
-#include "volume/wall_metrics.h"
 
 namespace hexmesh {
 
