@@ -126,7 +126,7 @@ GeometrySpec parse_geometry(const json& value, const std::string& file, const st
 }
 
 // `exterior`: the lines run from the wall to the far field, 10 body radii out by default, so
-// wall_cells defaults to twice cells_per_edge (run_case resolves it again when cell_size sets
+// wall_cells defaults to twice cells_per_edge (build_blocks resolves it again when cell_size sets
 // cells_per_edge).
 GridSpec parse_grid(const JsonFields& g, bool exterior) {
     g.allow_only({"topology", "cells_per_edge", "cell_size", "wall_cells", "core_size", "cells",

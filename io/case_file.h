@@ -105,7 +105,7 @@ struct GridSpec {
     int wall_cells = 10;
     bool wall_cells_given = false;
     double core_size = 0.45;       // o-h: core half-size / body half extents
-    bool core_size_given = false;  // else smaller when 0.45 would reach the wall (run_case)
+    bool core_size_given = false;  // else smaller when 0.45 would reach the wall (build_blocks)
     std::array<int, 3> cells = {20, 20, 20};  // single-block
     std::optional<Vec3> center;
     GridAxis axis = GridAxis::automatic;  // o-h only

@@ -23,10 +23,15 @@ struct TetTarget {
     double v0 = 1;
 };
 
+// The volume weight theta of the functional θ·volume + (1 − θ)·shape as the method publishes
+// it (docs/architecture.md#the-functional): the untangler's default when it optimizes. `run`
+// weighs shape more (its case file's solver.theta), tets too (tet_untangle_options).
+inline constexpr double default_theta = 0.8;
+
 // Continuation state shared by all elements: theta weighs volume against shape; eps > 0
 // regularizes det S by chi (untangling), eps = 0 is the pure barrier (F = +inf if det <= 0).
 struct EnergyParams {
-    double theta = 0.8;
+    double theta = default_theta;
     double eps = 0;
 };
 

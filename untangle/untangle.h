@@ -8,6 +8,7 @@
 
 #include "untangle/problem.h"
 #include "untangle/solver_options.h"
+#include "untangle/tet_energy.h"
 
 namespace hexmesh::untangle {
 
@@ -24,8 +25,8 @@ struct UntangleOptions {
     // 0.1: the optimized grid is the same to the digits reported (min and mean scaled
     // Jacobian) as with 0.01, for about half the CG iterations.
     SolverOptions optimize_solver = loose_solve();
-    double theta = 0.8;           // volume weight, optimizing (docs/architecture.md#the-functional)
-    double untangle_theta = 0.1;  // volume weight while untangling: shape first is more robust
+    double theta = default_theta;  // volume weight while optimizing (untangle/tet_energy.h)
+    double untangle_theta = 0.1;   // volume weight while untangling: shape first is more robust
     int max_untangle_iterations = 200;  // outer iterations (eps updates)
     int stall_iterations = 40;          // stop untangling after this many without progress
     // Untangling also stops when the inverted count has not fallen for longer than this share

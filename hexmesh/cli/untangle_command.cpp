@@ -19,7 +19,9 @@ namespace {
 struct Args {
     std::string input, output, solver = "newton-cg", optimize_solver = "block-diagonal";
     std::string preconditioner = "block-jacobi", boundary = "fixed", surface;
-    double theta = 0.8, untangle_theta = 0.1, feature_angle = 30;
+    // The untangler's own weights (untangle/untangle.h).
+    double theta = untangle::UntangleOptions().theta,
+           untangle_theta = untangle::UntangleOptions().untangle_theta, feature_angle = 30;
     int max_iterations = 200, optimize_iterations = 2;
     bool matrix_free = false, keep_invalid = false, no_report = false;
     std::string target = "uniform";

@@ -179,7 +179,8 @@ void build_blocks(Job& job) {
     const Case& c = job.settings;
     const WallRoute& route = job.route;
     try {
-        job.levels = {build_grid(c, *job.body, nullptr, &route)};
+        job.levels.clear();
+        job.levels.push_back(build_grid(c, *job.body, nullptr, &route));
     } catch (const std::invalid_argument& e) {
         if (!route.not_star_shaped.empty())
             throw InputError(fmt::format("{}: {}, and the rays from there do not place a wall: {}",

@@ -1,4 +1,4 @@
-// Stage 1 of `run`, build_blocks: the body read from the case, the route its wall grid takes
+// The first `run` stage, build_blocks: the body read from the case, the route its wall grid takes
 // (rays from a centre, or the sphere map of a body that is not star-shaped), the case's open
 // choices resolved, and the initial block grid (interior O-H or single block, exterior O-grid).
 #pragma once

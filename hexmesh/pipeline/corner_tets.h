@@ -1,7 +1,8 @@
-// Stage 3 of `run`, corner_tets: the untangling problem of a block grid. Every hex is split into
-// its 8 corner tets (core/reference_hex.h: hex_corner_tets) with targets from the grid, and the
-// boundary nodes get the body's geometry through one adapter (boundary_geometry.h): slip on
-// u = 0, feature edges along its creases. Also the node sets the passes hold or free.
+// corner_tets, part of the untangle_and_optimize stage (and of the polish and of refine): the
+// untangling problem of a block grid. Every hex is split into its 8 corner tets
+// (core/reference_hex.h: hex_corner_tets) with targets from the grid, and the boundary nodes
+// get the body's geometry through one adapter (boundary_geometry.h): slip on u = 0, feature
+// edges along its creases. Also the node sets the passes hold or free.
 #pragma once
 
 #include <array>

@@ -1,8 +1,7 @@
 // Job: what the stages of `run` hand on to each other — the case, its body, the grids, their
-// reports, the log and the phase timer. The stages, in the order of the method:
-// build_blocks.h, surface_grid.h, corner_tets.h (the untangling problem of a grid),
-// untangle_and_optimize.h (with lay_boundary_layer.h), refine.h, measure.h, write.h;
-// run_case.h composes them.
+// reports, the log and the phase timer. The stages, in the order run_case.h runs them:
+// build_blocks.h, surface_grid.h, untangle_and_optimize.h (on the problem of corner_tets.h,
+// with the layer pass of lay_boundary_layer.h), measure.h, refine.h, write.h.
 #pragma once
 
 #include <optional>
@@ -43,7 +42,7 @@ struct Job {
     Body body;                               // the implicit body u
     WallRoute route;                         // how the wall grid is placed on it
     // The nested family: levels[0] is the grid the stages build and optimize, each next one
-    // refine_on_body of the one before (c.refinement.levels in all); reports[l] measures
+    // refine_on_body of the one before (settings.refinement.levels in all); reports[l] measures
     // levels[l].
     std::vector<BlockGrid> levels;
     std::vector<GridReport> reports;

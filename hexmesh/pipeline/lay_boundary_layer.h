@@ -1,7 +1,7 @@
-// Stage 5 of `run`, lay_boundary_layer (run from stage 4's optimize_grid): after the joint
-// untangling and optimization, the boundary layer laid again along the optimized wall's normals
-// by the case's law (volume/wall_extrusion.h), and the grid around it optimized once more,
-// wall and layers held.
+// lay_boundary_layer, part of the untangle_and_optimize stage (run by its optimize_grid): after
+// the joint untangling and optimization, the boundary layer laid again along the optimized
+// wall's normals by the case's law (volume/wall_extrusion.h), and the grid around it optimized
+// once more, wall and layers held.
 #pragma once
 
 #include <vector>

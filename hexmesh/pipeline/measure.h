@@ -1,5 +1,6 @@
-// Stage 7 of `run`, measure: the quality report of each grid of the job against its body (cells,
-// faces, wall layers, surface fidelity), and the refusal of a grid a solver cannot take.
+// The `run` stage measure: the quality report of the job's grid against its body
+// (cells, faces, wall layers, surface fidelity; refine_levels measures the finer levels with
+// measure_level), and the refusal of a grid a solver cannot take.
 #pragma once
 
 #include <string>

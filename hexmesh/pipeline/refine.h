@@ -1,4 +1,4 @@
-// Stage 6 of `run`, refine: nested refinement on the body — blocks split (BlockRefiner), new wall
+// The `run` stage refine: nested refinement on the body — blocks split (BlockRefiner), new wall
 // nodes onto u = 0, a local polish; whole, or block by block — and the grid-convergence family.
 #pragma once
 
@@ -10,15 +10,16 @@
 #include "hexmesh/core/implicit_function.h"
 #include "hexmesh/pipeline/job.h"
 #include "hexmesh/quality/grid_report.h"
+#include "untangle/tet_energy.h"
 #include "volume/refine.h"
 #include "volume/stretching.h"
 
 namespace hexmesh {
 
 struct RefinementOptions {
-    int sweeps = 4;               // descent steps of the block-diagonal solver on the new nodes
-    double theta = 0.8;           // volume weight (docs/architecture.md#the-functional)
-    std::ostream* log = nullptr;  // the solver's progress lines
+    int sweeps = 4;  // descent steps of the block-diagonal solver on the new nodes
+    double theta = untangle::default_theta;  // volume weight: the untangler's default
+    std::ostream* log = nullptr;             // the solver's progress lines
 };
 
 struct RefinementResult {

@@ -1,4 +1,4 @@
-// Stage 2 of `run`, surface_grid: the wall grid on u = 0 before the volume — wall nodes snapped
+// The `run` stage surface_grid: the wall grid on u = 0 before the volume — wall nodes snapped
 // to the body's creases and corners, then optimized alone with the 2D functional, and the volume
 // built again from them.
 #pragma once

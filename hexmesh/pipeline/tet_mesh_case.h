@@ -58,7 +58,8 @@ struct TetCaseResult {
 TetCaseResult run_tet_case(const Case& c, const TetCaseOptions& options, std::ostream& log);
 
 // Throws InputError when `output` (or `cgal_output`, unless empty) is not a volume mesh file
-// that can be written (check_volume_mesh_output), or both name the same file.
+// that can be written (check_volume_mesh_output), std::invalid_argument when both name the same
+// file.
 void check_tet_outputs(const std::string& output, const std::string& cgal_output);
 
 // Writes r.mesh to `output` and, unless `cgal_output` is empty, CGAL's perturbed and exuded mesh

@@ -1,4 +1,4 @@
-// Stage 4 of `run`, untangle_and_optimize: the joint untangling and optimization of a block grid
+// The `run` stage untangle_and_optimize: the joint untangling and optimization of a block grid
 // on its body (the variational step), the boundary layer laid again (lay_boundary_layer.h), and
 // the worst cells polished in their neighbourhood.
 #pragma once

@@ -1,4 +1,4 @@
-// Stage 8 of `run`, write: each grid of the job with its quality.json, grid.case.json and
+// The last `run` stage, write: each grid of the job with its quality.json, grid.case.json and
 // report.html, in the formats the case asks for, all or nothing (io/staged_output.h).
 #pragma once
 
