@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "hexmesh/cli/commands.h"
+#include "hexmesh/pipeline/job.h"
 #include "hexmesh/pipeline/tet_mesh_case.h"
 #include "io/case_file.h"
 #include "untangle/solver_options.h"
@@ -84,12 +85,9 @@ TetCaseOptions tet_case_options(const Args& args, const Case& c) {
     options.flip_cycles = args.flip_cycles;
     options.flip_degrees = args.flip_degrees;
     options.cgal_time_limit = args.cgal_time_limit;
+    options.untangle = case_solver_options(c.solver, &std::cout);
     options.untangle.theta = args.theta;
     options.untangle.max_optimize_iterations = args.optimize_iterations;
-    options.untangle.untangle_solver.method = untangle::method_from_name(c.solver.untangle);
-    options.untangle.optimize_solver.method = untangle::method_from_name(c.solver.optimize);
-    options.untangle.max_untangle_iterations = c.solver.max_iterations;
-    options.untangle.log = &std::cout;
     return options;
 }
 

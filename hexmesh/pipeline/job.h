@@ -28,6 +28,19 @@ struct RunOptions {
     bool report = true;
 };
 
+// The untangler's options of a case's solver block (methods, theta, iteration budgets), its
+// progress lines to `log` (none if null).
+inline untangle::UntangleOptions case_solver_options(const SolverSpec& s, std::ostream* log) {
+    untangle::UntangleOptions o;
+    o.untangle_solver.method = untangle::method_from_name(s.untangle);
+    o.optimize_solver.method = untangle::method_from_name(s.optimize);
+    o.theta = s.theta;
+    o.max_untangle_iterations = s.max_iterations;
+    o.max_optimize_iterations = s.optimize_iterations;
+    o.log = log;
+    return o;
+}
+
 struct Job {
     Job(const Case& c, const RunOptions& o, std::ostream& l)
         : settings(c), options(o), log(l), timer(l) {}
@@ -51,14 +64,7 @@ struct Job {
 
     // The untangler's options of the case's solver block, logging to `log`.
     untangle::UntangleOptions solver_options() const {
-        untangle::UntangleOptions o;
-        o.untangle_solver.method = untangle::method_from_name(settings.solver.untangle);
-        o.optimize_solver.method = untangle::method_from_name(settings.solver.optimize);
-        o.theta = settings.solver.theta;
-        o.max_untangle_iterations = settings.solver.max_iterations;
-        o.max_optimize_iterations = settings.solver.optimize_iterations;
-        o.log = &log;
-        return o;
+        return case_solver_options(settings.solver, &log);
     }
 };
 

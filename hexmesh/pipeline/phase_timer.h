@@ -12,27 +12,6 @@
 
 namespace hexmesh {
 
-// Logs one line per finished phase and keeps (phase, seconds) for the report.
-class PhaseTimer {
-  public:
-    explicit PhaseTimer(std::ostream& log) : log_(log) {}
-    void done(const std::string& phase, const std::string& detail = "") {
-        const auto now = std::chrono::steady_clock::now();
-        const double seconds = std::chrono::duration<double>(now - start_).count();
-        log_ << fmt::format("  {:<48}{:8.2f} s\n", detail.empty() ? phase : phase + " " + detail,
-                            seconds);
-        log_.flush();
-        phases_.emplace_back(phase, seconds);
-        start_ = now;
-    }
-    const std::vector<std::pair<std::string, double>>& phases() const { return phases_; }
-
-  private:
-    std::ostream& log_;
-    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-    std::vector<std::pair<std::string, double>> phases_;
-};
-
 // Seconds since the last call (the first: since construction).
 class Lap {
   public:
@@ -45,6 +24,25 @@ class Lap {
 
   private:
     std::chrono::steady_clock::time_point clock_ = std::chrono::steady_clock::now();
+};
+
+// Logs one line per finished phase and keeps (phase, seconds) for the report.
+class PhaseTimer {
+  public:
+    explicit PhaseTimer(std::ostream& log) : log_(log) {}
+    void done(const std::string& phase, const std::string& detail = "") {
+        const double seconds = lap_();
+        log_ << fmt::format("  {:<48}{:8.2f} s\n", detail.empty() ? phase : phase + " " + detail,
+                            seconds);
+        log_.flush();
+        phases_.emplace_back(phase, seconds);
+    }
+    const std::vector<std::pair<std::string, double>>& phases() const { return phases_; }
+
+  private:
+    std::ostream& log_;
+    Lap lap_;
+    std::vector<std::pair<std::string, double>> phases_;
 };
 
 }  // namespace hexmesh

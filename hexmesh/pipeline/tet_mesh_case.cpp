@@ -4,7 +4,6 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -13,6 +12,7 @@
 #include "hexmesh/core/array_hash.h"
 #include "hexmesh/core/memory_limit.h"
 #include "hexmesh/pipeline/make_body.h"
+#include "hexmesh/pipeline/phase_timer.h"
 #include "hexmesh/quality/tet_quality.h"
 #include "hexmesh/quality/tet_report.h"
 #include "io/report_page.h"
@@ -24,10 +24,6 @@
 
 namespace hexmesh {
 namespace {
-
-double elapsed(std::chrono::steady_clock::time_point since) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
-}
 
 // Creases and corners for CGAL's feature protection: a surface file's sharp edges, or the
 // creases of the implicit body traced at spacing `step`.
@@ -157,7 +153,7 @@ Improved improve_tet_mesh(const PlacedTetMesh& start, const BoundaryGeometry& bo
 TetMeshOptions generate(const Case& c, const ImplicitFunction& body, const TetSizes& sizes,
                         const SizingFunction& size, const TetCaseOptions& options, TetCaseResult& r,
                         std::ostream& log) {
-    const auto start = std::chrono::steady_clock::now();
+    Lap lap;
     TetMeshOptions mesh_options;
     mesh_options.size = size;
     mesh_options.facet_distance =
@@ -170,7 +166,7 @@ TetMeshOptions generate(const Case& c, const ImplicitFunction& body, const TetSi
     mesh_options.cgal_sliver_removal = options.compare_cgal;
     mesh_options.cgal_sliver_bound = options.cgal_sliver_bound;
     mesh_options.cgal_time_limit = options.cgal_time_limit;
-    r.seconds_features = elapsed(start);
+    r.seconds_features = lap();
     log << fmt::format("creases: {} polylines, {} corners ({:.2f} s)\n", r.crease_polylines,
                        r.corners, r.seconds_features)
         << std::flush;
@@ -297,7 +293,7 @@ TetCaseResult run_tet_case(const Case& c, const TetCaseOptions& options, std::os
     r.refined_surface_distance = max_placed_distance(refined.mesh, refined.dimension, boundary);
     if (r.generation.cgal_optimized) measure_cgal(r, boundary);
 
-    const auto start = std::chrono::steady_clock::now();
+    Lap lap;
     Kept kept;
     kept.improved = improve_tet_mesh(refined, boundary, size, options, log);
     kept.quality = measure_tet_quality(kept.improved.mesh);
@@ -308,7 +304,7 @@ TetCaseResult run_tet_case(const Case& c, const TetCaseOptions& options, std::os
     r.caps_removed = kept.improved.caps_removed;
     r.flips_23 = kept.improved.flips_23;
     r.edge_removals = kept.improved.edge_removals;
-    r.seconds_optimize = elapsed(start);
+    r.seconds_optimize = lap();
     r.optimized = kept.quality;
     return r;
 }
