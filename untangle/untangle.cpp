@@ -15,6 +15,7 @@
 #include "untangle/local_part.h"
 #include "untangle/minimizer.h"
 #include "untangle/regularization.h"
+#include "untangle/untangle_state.h"
 
 namespace hexmesh::untangle {
 namespace {
@@ -22,35 +23,6 @@ namespace {
 constexpr double infinity = std::numeric_limits<double>::infinity();
 constexpr double tiny_eps = 1e-10;
 constexpr double negligible_eps = 1e-9;
-
-// Orders states: fewer inverted elements first, then lower barrier energy.
-struct Best {
-    std::vector<Vec3> points;
-    Id inverted = std::numeric_limits<Id>::max();
-    double energy = infinity;
-    bool offer(const std::vector<Vec3>& x, Id inv, double barrier_energy) {
-        if (inv < inverted || (inv == inverted && barrier_energy < energy)) {
-            points = x, inverted = inv, energy = barrier_energy;
-            return true;
-        }
-        return false;
-    }
-};
-
-// When the inverted count last fell, over all passes of one untangle_and_optimize call, in
-// work done (each outer iteration 1 plus its conjugate-gradient iterations: deterministic,
-// unlike the clock) and in seconds (for the message).
-struct Progress {
-    Id fewest = std::numeric_limits<Id>::max();
-    double work = 0, last_fewer = 0, last_fewer_seconds = 0;
-    void offer(Id inverted, double iteration_work, double seconds) {
-        work += iteration_work;
-        if (inverted < fewest) fewest = inverted, last_fewer = work, last_fewer_seconds = seconds;
-    }
-    void start_again(double seconds) { last_fewer = work, last_fewer_seconds = seconds; }
-    // Whether the count has not fallen for longer than `share` of the work so far.
-    bool crawling(double share) const { return work - last_fewer > share * work; }
-};
 
 void log_note(std::ostream* log, const std::string& note) {
     if (!log) return;
@@ -126,6 +98,27 @@ double next_eps(double energy, double e_prev, bool fast, const UntangleOptions& 
     return min_det < mu ? 2 * std::sqrt(mu * (mu - min_det)) : tiny_eps;
 }
 
+// The first eps of a continuation from a state whose smallest det is min_det, asked to start
+// at start_eps or above.
+double first_eps(double min_det, double start_eps) {
+    return std::max(start_eps, std::sqrt(tiny_eps + 0.04 * min_det * min_det));
+}
+
+// One outer iteration at p from x, solved: x moves to its end.
+OuterIteration solve_outer(Minimizer& minimizer, const Assembly& assembly, const Assembly& judge,
+                           std::vector<Vec3>& x, const EnergyParams& p,
+                           const UntangleOptions& options,
+                           const std::function<bool(const ElementStats&)>& done) {
+    OuterIteration o;
+    o.energy_before = assembly.energy(x, p);
+    // Untangled is the goal of this phase: stop as soon as it is reached.
+    const auto untangled = [&](const std::vector<Vec3>& y) { return done(judge.stats(y)); };
+    o.m = minimizer.minimize(x, p, options.inner_steps, options.inner_tolerance, untangled);
+    o.stats = judge.stats(x);
+    o.local = assembly.stats(x);
+    return o;
+}
+
 // The eps continuation on `problem` (docs/architecture.md#the-functional), from x = problem.points,
 // until at most options.unrepairable elements are inverted, the iteration budget is spent or
 // progress stalls (then result.stopped says how). Every outer iteration is logged and offered to
@@ -140,7 +133,7 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
     std::vector<Vec3>& x = problem.points;
     ElementStats stats = judge.stats(x);
     Minimizer minimizer(problem, assembly, options.untangle_solver);
-    double eps = std::max(start_eps, std::sqrt(tiny_eps + 0.04 * stats.min_det * stats.min_det));
+    double eps = first_eps(stats.min_det, start_eps);
     bool fast = options.fast_sigma > options.safe_sigma;
     Id fewest = stats.inverted;  // the best state of this continuation, and its eps
     std::vector<Vec3> restart = x;
@@ -148,19 +141,27 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
     int stalled = 0, restart_iteration = 0;
     const int first = int(result.history.size()) + 1;
     // Regularizing a valid start: the goal is every det above regularize_below instead.
-    const auto done = [&](const ElementStats& e) {
+    const std::function<bool(const ElementStats&)> done = [&](const ElementStats& e) {
         return regularize_below > 0 ? e.inverted == 0 && e.min_det >= regularize_below
                                     : e.inverted <= options.unrepairable;
     };
+    // The pass's first iteration, kept when it does not lower the count: a restart to the
+    // start of the pass would solve it again from the same state and eps, to the same bits.
+    FirstIteration once;
+    bool back_to_start = false;
     for (int it = first; it < first + options.max_untangle_iterations && !done(stats); ++it) {
         const EnergyParams p{options.untangle_theta, eps};
-        const double e_prev = assembly.energy(x, p);
-        // Untangled is the goal of this phase: stop as soon as it is reached.
-        const auto untangled = [&](const std::vector<Vec3>& y) { return done(judge.stats(y)); };
-        const MinimizeOutcome m =
-            minimizer.minimize(x, p, options.inner_steps, options.inner_tolerance, untangled);
-        stats = judge.stats(x);
-        const ElementStats local = assembly.stats(x);
+        const bool take = options.reuse_repeats && back_to_start && once.kept();
+        if (take)
+            log_note(options.log,
+                     "the pass's first iteration again (same state, same eps): taken as it was, "
+                     "not solved again");
+        const OuterIteration o =
+            take ? once.take(x) : solve_outer(minimizer, assembly, judge, x, p, options, done);
+        if (it == first && o.stats.inverted >= fewest) once.keep(x, o);
+        back_to_start = false;
+        const MinimizeOutcome& m = o.m;
+        stats = o.stats;
         const IterationRecord r = make_record(it, false, m, eps, stats, seconds());
         record(result, options.log, r);
         best.offer(x, stats.inverted,
@@ -188,7 +189,7 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
                 return;
             }
             fast = false, stalled = 0;
-            x = restart, eps = restart_eps;
+            x = restart, eps = restart_eps, back_to_start = restart_iteration == 0;
             stats = judge.stats(x);
             log_note(options.log, restart_note(options, restart_iteration, fewest, eps));
             continue;
@@ -197,7 +198,7 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
             result.stopped = stall_message(stuck, eps, progress, r.seconds, stalled);
             return;
         }
-        eps = next_eps(m.energy, e_prev, fast, options, local.min_det, eps);
+        eps = next_eps(m.energy, o.energy_before, fast, options, o.local.min_det, eps);
     }
     if (!done(stats))
         result.stopped =
@@ -231,13 +232,15 @@ std::string describe_inverted(const Problem& problem, int most) {
 
 // Repairs the inverted elements of `problem` (x = best.points) in their neighbourhoods of
 // options.local_rings element rings, doubled while the neighbourhood is less than half the
-// problem and the last round repaired something or grew. Returns whether the last round
-// repaired nothing.
+// problem and the last round repaired something or grew. A round that starts as one of
+// `rounds` (the rounds of this untangle_and_optimize call, to which it is added) did is not
+// solved again. Returns whether the last round repaired nothing.
 bool repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
                               const std::vector<std::vector<Id>>& elements_of,
                               const UntangleOptions& options,
                               const std::function<double()>& seconds, Best& best,
-                              Progress& progress, UntangleResult& result, double start_eps = 0) {
+                              Progress& progress, UntangleResult& result,
+                              std::vector<LocalRound>& rounds, double start_eps = 0) {
     bool stalled = false;
     if (best.inverted <= options.unrepairable || options.local_rings <= 0) return stalled;
     // A part no larger than the last one, after a round that repaired nothing, ends this:
@@ -251,12 +254,39 @@ bool repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
         if (part.num_elements() <= previous && best.inverted >= inverted_then) break;
         previous = part.num_elements();
         inverted_then = best.inverted;
+        // Only a round from the best state is known by its start (the best state's version).
+        const bool from_best = problem.points == best.points;
+        LocalRound round;
+        round.rings = rings;
+        round.eps = first_eps(assembly.stats(part.points).min_det, start_eps);
+        round.best_version = best.version;
+        round.kinds = problem.kinds;
+        const auto done = std::find_if(rounds.begin(), rounds.end(),
+                                       [&](const LocalRound& r) { return r.same_start(round); });
+        if (options.reuse_repeats && from_best && done != rounds.end()) {
+            log_note(options.log,
+                     fmt::format("neighbourhoods of {} rings from the same state and eps {:.3e} "
+                                 "as before: {} iterations taken as they were, not solved again",
+                                 rings, round.eps, done->iterations));
+            progress.offer(best.inverted, done->work, seconds());
+            result.stopped = done->stopped;
+            result.left_to_next_pass = done->left_to_next_pass;
+            stalled = true;
+            continue;
+        }
         UntangleOptions local = options;
         local.max_untangle_iterations = std::min(options.max_untangle_iterations, 50);
         local.stall_iterations = std::min(options.stall_iterations, 10);  // the global pass follows
+        const size_t records = result.history.size();
+        const double work = progress.work;
         continuation(part, assembly, local, seconds, best, progress, result, 0, start_eps);
         stalled = best.inverted >= inverted_then;
         problem.points = best.points;
+        round.iterations = int(result.history.size() - records);
+        round.work = progress.work - work;
+        round.stopped = result.stopped;
+        round.left_to_next_pass = result.left_to_next_pass;
+        if (from_best) rounds.push_back(std::move(round));
     }
     return stalled;
 }
@@ -273,11 +303,12 @@ struct Passes {
     Best& best;
     Progress& progress;
     UntangleResult& result;
+    std::vector<LocalRound>& rounds;
 
     // repair_in_neighbourhoods from start_eps; whether its last round repaired nothing.
     bool repair_locally(double start_eps) const {
         return repair_in_neighbourhoods(problem, assembly, elements_of, options, seconds, best,
-                                        progress, result, start_eps);
+                                        progress, result, rounds, start_eps);
     }
 };
 
@@ -304,10 +335,12 @@ void restart_from_room_eps(const Passes& s) {
     if (s.best.inverted > options.unrepairable && options.room_eps > 0 && options.local_rings > 0 &&
         !s.result.left_to_next_pass) {
         s.progress.start_again(s.seconds());  // a new start: the stall clock starts again
-        log_note(
-            options.log,
-            fmt::format("{} inverted elements left: their neighbourhoods start again from eps {}",
-                        s.best.inverted, options.room_eps));
+        // From room_eps, or from 0.2 |min det| as every continuation when that is larger.
+        const double eps = first_eps(s.assembly.stats(s.best.points).min_det, options.room_eps);
+        log_note(options.log,
+                 fmt::format("{} inverted elements left: their neighbourhoods start again from eps "
+                             "{:.3g}",
+                             s.best.inverted, eps));
         s.repair_locally(options.room_eps);
         s.problem.points = s.best.points;
     }
@@ -415,7 +448,9 @@ UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& op
         for (Id e = 0; e < problem.num_elements(); ++e)
             for (Id v : problem.element(e)) elements_of[v].push_back(e);
     }
-    const Passes passes{problem, assembly, elements_of, options, seconds, best, progress, result};
+    std::vector<LocalRound> rounds;
+    const Passes passes{problem, assembly, elements_of, options, seconds,
+                        best,    progress, result,      rounds};
     untangle_locally_then_globally(passes);
     restart_from_room_eps(passes);
     release_creases(passes);

@@ -56,6 +56,11 @@ struct UntangleOptions {
     // When elements stay inverted, the crease and corner vertices among theirs slide on the
     // surface instead and the local repair runs again (validity before the crease's sharpness).
     bool release_creases = true;
+    // Outer iterations and local rounds that start exactly as one already done (the start of
+    // a pass after a restart to it; a round of the same rings from the same best state and
+    // eps, after a last resort that did not change either) end exactly as it did: they are
+    // taken from it instead of being solved again. false solves them again (same result).
+    bool reuse_repeats = true;
     int max_optimize_iterations = 20;
     int inner_steps = 30;  // descent steps per outer iteration
     // Relative energy decrease that ends an inner untangling solve. Each eps is one stage of

@@ -253,6 +253,52 @@ TEST(Untangle, InvertedElementsALaterPassTakesEndTheUntanglingAtItsFirstStall) {
         << r2.stopped;
 }
 
+// The impossible tangle again, beside a valid grid so that its neighbourhood is a part of the
+// problem, with every last resort: its restarts go back to states and eps already solved from
+// (the start of a pass; the same neighbourhood from the same best state and eps, which the
+// second start from room_eps is when 0.2 |min det| is above it). Those are taken as they
+// were, not solved again: the same points and counts as solving them again, in fewer solves.
+TEST(Untangle, RepeatedStartsAreTakenAsTheyWereWithTheSameResult) {
+    const auto impossible_beside_a_grid = [] {
+        Problem p = test_support::displaced_grid_problem(3, 0.1, 5);
+        const Id o = Id(p.points.size());
+        for (const Vec3& x : std::vector<Vec3>{{0, 0, 0},
+                                               {1, 0, 0},
+                                               {0, 1, 0},
+                                               {0, 0, -1},
+                                               {1, 0, -1},
+                                               {0, 1, -1},
+                                               {0.3, 0.3, 0.5}}) {
+            p.points.push_back(x - Vec3(0, 0, 5));
+            p.kinds.push_back(VertexKind::fixed);
+        }
+        p.kinds.back() = VertexKind::interior;
+        p.tets = {{o, o + 1, o + 2, o + 6}, {o + 3, o + 5, o + 4, o + 6}};
+        p.targets.assign(2, regular_tet_target(1.0));
+        return p;
+    };
+    UntangleOptions o = options_for(Method::newton_cg);
+    std::ostringstream reused_log, solved_log;
+    o.log = &reused_log;
+    Problem reused = impossible_beside_a_grid();
+    const UntangleResult r = untangle_and_optimize(reused, o);
+    o.log = &solved_log;
+    o.reuse_repeats = false;
+    Problem solved = impossible_beside_a_grid();
+    const UntangleResult s = untangle_and_optimize(solved, o);
+    const std::string log = reused_log.str();
+    EXPECT_NE(log.find("the pass's first iteration again (same state, same eps): taken as it was"),
+              std::string::npos)
+        << log;
+    EXPECT_NE(log.find("as before: "), std::string::npos) << log;
+    EXPECT_EQ(solved_log.str().find("taken as"), std::string::npos) << solved_log.str();
+    EXPECT_EQ(reused.points, solved.points);
+    EXPECT_EQ(r.inverted_after, 1);
+    EXPECT_EQ(r.inverted_after, s.inverted_after);
+    EXPECT_EQ(r.min_det_after, s.min_det_after);
+    EXPECT_LT(r.history.size(), s.history.size());  // the repeated round's iterations not solved
+}
+
 TEST(Untangle, ValidInputIsOptimizedTowardsTheTarget) {
     Problem p = test_support::displaced_grid_problem(5, 0.15, 4);
     const double before = Assembly(p).energy(p.points, {0.8, 0});

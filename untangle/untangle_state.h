@@ -1,0 +1,95 @@
+// What one untangle_and_optimize call keeps across its passes: the best state seen, when the
+// inverted count last fell, and the outcomes of its own solves. Its restarts can go back to a
+// state and eps it has already solved from, and its solves are deterministic (the same input
+// gives the same bits): such a solve is taken as it was instead of being solved again.
+#pragma once
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "hexmesh/core/vertex_kind.h"
+#include "untangle/assembly.h"
+#include "untangle/minimizer.h"
+
+namespace hexmesh::untangle {
+
+// Orders states: fewer inverted elements first, then lower barrier energy.
+struct Best {
+    std::vector<Vec3> points;
+    Id inverted = std::numeric_limits<Id>::max();
+    double energy = std::numeric_limits<double>::infinity();
+    int version = 0;  // how many times a state was taken: equal versions, equal points
+    bool offer(const std::vector<Vec3>& x, Id inv, double barrier_energy) {
+        if (inv < inverted || (inv == inverted && barrier_energy < energy)) {
+            points = x, inverted = inv, energy = barrier_energy, ++version;
+            return true;
+        }
+        return false;
+    }
+};
+
+// When the inverted count last fell, over all passes of one untangle_and_optimize call, in
+// work done (each outer iteration 1 plus its conjugate-gradient iterations: deterministic,
+// unlike the clock) and in seconds (for the message).
+struct Progress {
+    Id fewest = std::numeric_limits<Id>::max();
+    double work = 0, last_fewer = 0, last_fewer_seconds = 0;
+    void offer(Id inverted, double iteration_work, double seconds) {
+        work += iteration_work;
+        if (inverted < fewest) fewest = inverted, last_fewer = work, last_fewer_seconds = seconds;
+    }
+    void start_again(double seconds) { last_fewer = work, last_fewer_seconds = seconds; }
+    // Whether the count has not fallen for longer than `share` of the work so far.
+    bool crawling(double share) const { return work - last_fewer > share * work; }
+};
+
+// One outer iteration of the eps continuation: the energy before its solve, the solve's
+// outcome, and the element stats after it of the whole problem and of the part solved.
+struct OuterIteration {
+    double energy_before = 0;
+    MinimizeOutcome m;
+    ElementStats stats, local;
+};
+
+// The first outer iteration of a continuation pass, kept: a restart to the start of the pass
+// (its state, its eps) would solve it again to the same bits.
+class FirstIteration {
+  public:
+    bool kept() const { return kept_; }
+    // x: the state the iteration ended in.
+    void keep(const std::vector<Vec3>& x, const OuterIteration& outcome) {
+        after_ = x, outcome_ = outcome, kept_ = true;
+    }
+    // x becomes the state the first iteration ended in; returns its outcome.
+    const OuterIteration& take(std::vector<Vec3>& x) const {
+        x = after_;
+        return outcome_;
+    }
+
+  private:
+    std::vector<Vec3> after_;
+    OuterIteration outcome_;
+    bool kept_ = false;
+};
+
+// A round of the local repair: its start (neighbourhood rings, first eps, the best state's
+// version, the vertices' kinds) and what it did. A round with the same start solves the same
+// part from the same state to the same bits, and leaves the best state as it found it (a round
+// that improves it changes its version), so it is taken as it was.
+struct LocalRound {
+    int rings = 0;
+    double eps = 0;
+    int best_version = 0;
+    std::vector<VertexKind> kinds;
+    int iterations = 0;
+    double work = 0;  // its Progress work, offered again so that later passes decide as before
+    std::string stopped;
+    bool left_to_next_pass = false;
+    bool same_start(const LocalRound& o) const {
+        return rings == o.rings && eps == o.eps && best_version == o.best_version &&
+               kinds == o.kinds;
+    }
+};
+
+}  // namespace hexmesh::untangle
