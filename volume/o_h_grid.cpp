@@ -259,7 +259,7 @@ BlockGrid place_points(const OHLayout& lay, const OHGridOptions& options, const 
                             "{:.4g}); use a smaller core_size",
                             options.core_size, inner.x(), inner.y(), inner.z()));
         }
-        const std::vector<double> d = wall_distances(length, nk, options.wall_layers);
+        const std::vector<double> d = wall_distances(length, nk, options.wall_layers, &wall_node);
         for (int layer = 1; layer <= nk; ++layer)
             grid.points[lay.node_id(core_id, layer)] =
                 wall_node + (inner - wall_node) * (d[nk - layer] / length);

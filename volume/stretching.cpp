@@ -34,16 +34,20 @@ std::vector<double> uniform_distances(double length, int cells) {
     return d;
 }
 
-std::vector<double> wall_distances(double length, int cells, const WallLayers& law) {
+std::vector<double> wall_distances(double length, int cells, const WallLayers& law,
+                                   const Vec3* wall) {
     if (law.layers == 0) return uniform_distances(length, cells);
     const double thickness = layers_thickness(law);
     const int rest = cells - law.layers;
     if (rest < 1 || thickness >= length) {
         throw std::invalid_argument(fmt::format(
-            "boundary layer of {} layers ({:.4g} thick) does not fit a wall-normal line of "
-            "{} cells and length {:.4g}: use fewer layers, a smaller first height or growth "
+            "boundary layer of {} layers ({:.4g} thick) does not fit the wall-normal line of "
+            "{} cells and length {:.4g}{}: use fewer layers, a smaller first height or growth "
             "ratio, or more wall cells",
-            law.layers, thickness, cells, length));
+            law.layers, thickness, cells, length,
+            wall ? fmt::format(" from the wall at ({:.4g}, {:.4g}, {:.4g})", wall->x(), wall->y(),
+                               wall->z())
+                 : std::string()));
     }
     std::vector<double> d(cells + 1, 0.0);
     double h = law.first_height;

@@ -3,6 +3,8 @@
 
 #include <vector>
 
+#include "hexmesh/core/types.h"
+
 namespace hexmesh {
 
 // Boundary-layer law along a wall-normal line: `layers` cells of thickness
@@ -17,8 +19,10 @@ struct WallLayers {
 // d[0] = 0, d[cells] = length, increasing. The first `law.layers` cells follow the law
 // exactly; the remaining cells continue geometrically from the last layer thickness with
 // the ratio that fills the line. Throws std::invalid_argument when the layers do not fit
-// (thicker than the line, or no cell left to fill the rest).
-std::vector<double> wall_distances(double length, int cells, const WallLayers& law);
+// (thicker than the line, or no cell left to fill the rest), naming `wall` (the line's wall
+// end) when given.
+std::vector<double> wall_distances(double length, int cells, const WallLayers& law,
+                                   const Vec3* wall = nullptr);
 
 // Uniform distances 0, length/cells, ..., length.
 std::vector<double> uniform_distances(double length, int cells);

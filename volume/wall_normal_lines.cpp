@@ -69,7 +69,7 @@ struct WallNormalLine {
 // gently there). L is summed over chords of the line sampled 16 times finer than the nodes.
 void place_nodes(const WallNormalLine& line, int nk, const WallLayers& law, std::vector<Vec3>& x) {
     constexpr int refine = 16;
-    const std::vector<double> d = wall_distances(line.length, nk, law);
+    const std::vector<double> d = wall_distances(line.length, nk, law, &line.wall);
     double arc = 0;
     Vec3 previous = line.wall;
     double previous_tau = 0;
@@ -81,7 +81,7 @@ void place_nodes(const WallNormalLine& line, int nk, const WallLayers& law, std:
             previous = p;
             previous_tau = tau;
         }
-    const std::vector<double> a = wall_distances(arc, nk, law);
+    const std::vector<double> a = wall_distances(arc, nk, law, &line.wall);
 
     x.assign(nk + 1, line.wall);
     double tau = 0;

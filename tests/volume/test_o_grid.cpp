@@ -472,7 +472,7 @@ TEST(OGrid, RefusesBadOptions) {
         [&] {
             make_o_grid(sphere, with([](OGridOptions& o) { o.wall_layers = {2.0, 1.2, 10}; }));
         },
-        "does not fit a wall-normal line");
+        "does not fit the wall-normal line of ");
     expect_invalid_argument(
         [&] {
             make_o_grid(sphere, with([](OGridOptions& o) { o.wall_layers = {0.0, 1.2, 10}; }));

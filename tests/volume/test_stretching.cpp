@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "volume/stretching.h"
 
@@ -27,9 +28,20 @@ TEST(WallDistances, UniformWithoutLayers) {
     for (int m = 0; m <= 4; ++m) EXPECT_DOUBLE_EQ(d[m], 0.5 * m);
 }
 
-TEST(WallDistances, RefusesLayersThatDoNotFit) {
+TEST(WallDistances, RefusesLayersThatDoNotFitNamingWhere) {
     EXPECT_THROW(wall_distances(0.01, 10, WallLayers{0.01, 1.2, 5}), std::invalid_argument);
     EXPECT_THROW(wall_distances(1.0, 5, WallLayers{0.01, 1.2, 5}), std::invalid_argument);
+    const Vec3 wall(0.25, -1, 3);
+    try {
+        wall_distances(0.03, 10, WallLayers{0.01, 1.2, 5}, &wall);
+        ADD_FAILURE() << "5 layers 0.0744 thick fitted a line of length 0.03";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("boundary layer of 5 layers (0.07442 thick) does not "
+                                             "fit the wall-normal line of 10 cells and length "
+                                             "0.03 from the wall at (0.25, -1, 3)"),
+                  std::string::npos)
+            << e.what();
+    }
 }
 
 TEST(GeometricRatio, SolvesTheSeries) {
