@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "hexmesh/core/deterministic_for.h"
 #include "surface/implicit_features.h"
 #include "volume/axial_creases.h"
 #include "volume/axial_rings.h"
@@ -229,7 +230,8 @@ double fit_core_size(const OHLayout& lay, const OHGridOptions& options, const Ve
 
 // The grid's points: the core's nodes, then along each wall node's line to its core node the
 // wall layers graded by the law (the last on the wall, a slip node). Throws
-// std::invalid_argument when a line would turn back.
+// std::invalid_argument when a line would turn back or is too short for the layers (the first
+// such line in wall order).
 BlockGrid place_points(const OHLayout& lay, const OHGridOptions& options, const Vec3& centre,
                        bool placed) {
     const int nk = lay.nk;
@@ -241,7 +243,7 @@ BlockGrid place_points(const OHLayout& lay, const OHGridOptions& options, const 
                               ? Vec3(centre + options.core_half->cwiseProduct(lay.inner_t[id]))
                               : Vec3(centre + options.core_size * lay.ray(lay.inner_t[id]));
 
-    tbb::parallel_for(Id(0), lay.ns, [&](Id s) {
+    deterministic_for(lay.ns, [&](Id s) {
         const Id core_id = lay.on_wall[s];
         const Vec3 dir = lay.ray(lay.inner_t[core_id]);
         const Vec3 wall_node = lay.wall[s];

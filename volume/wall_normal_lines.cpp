@@ -3,14 +3,14 @@
 // keeps lines from a concave wall apart, and carries nodes graded by the wall-layer law.
 #include "volume/wall_normal_lines.h"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
 #include <queue>
 #include <utility>
+
+#include "hexmesh/core/deterministic_for.h"
 
 namespace hexmesh {
 namespace {
@@ -201,7 +201,7 @@ void place_nodes_on_lines(const CubeSurfaceLattice& surface, const std::vector<V
     if (creases)
         for (double& b : bend) b = std::min(b, max_bend_per_diagonal * diagonal);
 
-    tbb::parallel_for(Id(0), ns, [&](Id s) {
+    deterministic_for(ns, [&](Id s) {
         const WallNormalLine line{wall[s],   normal[s], (far[s] - wall[s]) / length[s],
                                   length[s], bend[s],   reach[s]};
         std::vector<Vec3> x;
