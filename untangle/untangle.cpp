@@ -15,6 +15,7 @@
 #include "untangle/local_part.h"
 #include "untangle/minimizer.h"
 #include "untangle/regularization.h"
+#include "untangle/untangle_log.h"
 #include "untangle/untangle_state.h"
 
 namespace hexmesh::untangle {
@@ -24,68 +25,12 @@ constexpr double infinity = std::numeric_limits<double>::infinity();
 constexpr double tiny_eps = 1e-10;
 constexpr double negligible_eps = 1e-9;
 
-void log_note(std::ostream* log, const std::string& note) {
-    if (!log) return;
-    *log << "  " << note << "\n";
-    log->flush();
-}
-
-void log_line(std::ostream* log, const IterationRecord& r) {
-    if (!log) return;
-    *log << fmt::format(
-        "  {:<9} {:4d}  E {:12.6e}  eps {:9.3e}  min det {:+10.3e}  inverted {:7d}  "
-        "steps {:3d}  cg {:5d}  {:7.2f} s\n",
-        r.barrier ? "optimize" : "untangle", r.iteration, r.energy, r.eps, r.min_det, r.inverted,
-        r.steps, r.linear_iterations, r.seconds);
-    log->flush();
-}
-
-// The record of outer iteration `it` that ended in m with `stats` (of the whole problem).
-IterationRecord make_record(int it, bool barrier, const MinimizeOutcome& m, double eps,
-                            const ElementStats& stats, double seconds) {
-    return {it,
-            barrier,
-            m.energy,
-            eps,
-            stats.min_det,
-            seconds,
-            stats.inverted,
-            m.steps,
-            m.linear_iterations};
-}
-
-// Appends r to the history and logs it.
-void record(UntangleResult& result, std::ostream* log, const IterationRecord& r) {
-    result.history.push_back(r);
-    log_line(log, r);
-}
-
-// The note logged when eps stops shrinking fast and the continuation goes back to its best
-// state (found at restart_iteration, 0 for the start of the pass; fewest inverted at eps).
-std::string restart_note(const UntangleOptions& options, int restart_iteration, Id fewest,
-                         double eps) {
-    return fmt::format(
-        "no fewer inverted elements in {} iterations: back to {} "
-        "({} inverted, eps {:.3e}), eps now shrinks by the safe rule",
-        options.fast_stall,
-        restart_iteration ? fmt::format("iteration {}", restart_iteration)
-                          : std::string("the start of this pass"),
-        fewest, eps);
-}
-
-// Why a continuation stalled: eps became negligible (stuck), or the inverted count has not
-// fallen for too long (`stalled` outer iterations, up to `seconds`).
-std::string stall_message(bool stuck, double eps, const Progress& progress, double seconds,
-                          int stalled) {
-    return stuck ? fmt::format("eps fell to {:.1e} with {} inverted elements left", eps,
-                               progress.fewest)
-                 : fmt::format(
-                       "no fewer than {} inverted elements for {:.1f} s ({:.0f} % "
-                       "of the untangling "
-                       "work, {} outer iterations of this pass)",
-                       progress.fewest, seconds - progress.last_fewer_seconds,
-                       100 * (progress.work - progress.last_fewer) / std::max(progress.work, 1e-9),
-                       stalled);
+// stall_message, the stop recorded in progress's trace if there is one.
+std::string stop_for_stall(bool stuck, double eps, Progress& progress, double seconds,
+                           int stalled) {
+    if (RoundTrace* t = progress.trace)
+        t->stalled_out = true, t->stuck = stuck, t->eps = eps, t->stalled = stalled;
+    return stall_message(stuck, eps, progress, seconds, stalled);
 }
 
 // The eps of the next outer iteration (docs/architecture.md#the-functional): sigma from the
@@ -158,7 +103,7 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
                      "not solved again");
         const OuterIteration o =
             take ? once.take(x) : solve_outer(minimizer, assembly, judge, x, p, options, done);
-        if (it == first && o.stats.inverted >= fewest) once.keep(x, o);
+        if (options.reuse_repeats && it == first && o.stats.inverted >= fewest) once.keep(x, o);
         back_to_start = false;
         const MinimizeOutcome& m = o.m;
         stats = o.stats;
@@ -177,7 +122,7 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
         // eps this small (in target units) no longer changes anything but the energy's scale.
         const bool stuck = stalled > 0 && eps < negligible_eps;
         const bool crawling = regularize_below == 0 && stalled >= options.stall_minimum &&
-                              progress.crawling(options.stall_share);
+                              progress.ask_crawling(options.stall_share);
         if (fast && !crawling && (stalled >= options.fast_stall || stuck) &&
             stats.inverted > options.unrepairable) {
             if (regularize_below == 0 && options.leave_to_next_pass &&
@@ -195,7 +140,7 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
             continue;
         }
         if (stalled >= options.stall_iterations || stuck || crawling) {
-            result.stopped = stall_message(stuck, eps, progress, r.seconds, stalled);
+            result.stopped = stop_for_stall(stuck, eps, progress, r.seconds, stalled);
             return;
         }
         eps = next_eps(m.energy, o.energy_before, fast, options, o.local.min_det, eps);
@@ -204,30 +149,6 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
         result.stopped =
             fmt::format("the budget of {} outer iterations is spent with {} inverted elements left",
                         options.max_untangle_iterations, progress.fewest);
-}
-
-// Where the first `most` inverted elements of `problem` are and how their vertices may move
-// ("at (0.34, -0.09, -0.16): 1 interior, 2 slip, 1 feature_edge"), one per "; ".
-std::string describe_inverted(const Problem& problem, int most) {
-    std::string out;
-    int n = 0;
-    for (Id e = 0; e < problem.num_elements() && n < most; ++e) {
-        if (problem.det(problem.points, e) > 0) continue;
-        const ElementNodes nodes = problem.element(e);
-        Vec3 centre = Vec3::Zero();
-        std::array<int, 5> kinds{};
-        for (Id v : nodes) centre += problem.points[v] / nodes.size, ++kinds[int(problem.kinds[v])];
-        std::string how;
-        for (int k = 0; k < 5; ++k)
-            if (kinds[k])
-                how += fmt::format("{}{} {}", how.empty() ? "" : ", ", kinds[k],
-                                   to_string(VertexKind(k)));
-        out += fmt::format("{}{} at ({:.4g}, {:.4g}, {:.4g}): {}", n ? "; " : "",
-                           problem.is_triangle(e) ? "surface triangle" : "tet", centre.x(),
-                           centre.y(), centre.z(), how);
-        ++n;
-    }
-    return out;
 }
 
 // Repairs the inverted elements of `problem` (x = best.points) in their neighbourhoods of
@@ -263,13 +184,17 @@ bool repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
         round.kinds = problem.kinds;
         const auto done = std::find_if(rounds.begin(), rounds.end(),
                                        [&](const LocalRound& r) { return r.same_start(round); });
-        if (options.reuse_repeats && from_best && done != rounds.end()) {
+        if (options.reuse_repeats && from_best && done != rounds.end() &&
+            done->decides_as_before(progress, options.stall_share)) {
             log_note(options.log,
                      fmt::format("neighbourhoods of {} rings from the same state and eps {:.3e} "
                                  "as before: {} iterations taken as they were, not solved again",
                                  rings, round.eps, done->iterations));
             progress.offer(best.inverted, done->work, seconds());
-            result.stopped = done->stopped;
+            const RoundTrace& t = done->trace;
+            result.stopped = t.stalled_out
+                                 ? stall_message(t.stuck, t.eps, progress, seconds(), t.stalled)
+                                 : done->stopped;
             result.left_to_next_pass = done->left_to_next_pass;
             stalled = true;
             continue;
@@ -278,12 +203,14 @@ bool repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
         local.max_untangle_iterations = std::min(options.max_untangle_iterations, 50);
         local.stall_iterations = std::min(options.stall_iterations, 10);  // the global pass follows
         const size_t records = result.history.size();
-        const double work = progress.work;
+        round.start_work = progress.work;
+        progress.trace = &round.trace;
         continuation(part, assembly, local, seconds, best, progress, result, 0, start_eps);
+        progress.trace = nullptr;
         stalled = best.inverted >= inverted_then;
         problem.points = best.points;
         round.iterations = int(result.history.size() - records);
-        round.work = progress.work - work;
+        round.work = progress.work - round.start_work;
         round.stopped = result.stopped;
         round.left_to_next_pass = result.left_to_next_pass;
         if (from_best) rounds.push_back(std::move(round));

@@ -6,6 +6,7 @@
 
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "hexmesh/core/vertex_kind.h"
@@ -29,19 +30,37 @@ struct Best {
     }
 };
 
+// What a continuation read from Progress and how it ended, recorded for a local round: every
+// answer of the crawl rule (the work when asked, the answer), and whether the stall rule ended
+// it (stuck: eps negligible; at eps, after `stalled` iterations without fewer).
+struct RoundTrace {
+    std::vector<std::pair<double, bool>> crawl;
+    bool stalled_out = false, stuck = false;
+    double eps = 0;
+    int stalled = 0;
+};
+
 // When the inverted count last fell, over all passes of one untangle_and_optimize call, in
 // work done (each outer iteration 1 plus its conjugate-gradient iterations: deterministic,
-// unlike the clock) and in seconds (for the message).
+// unlike the clock, and whole numbers, so sums are exact) and in seconds (for the message).
 struct Progress {
     Id fewest = std::numeric_limits<Id>::max();
     double work = 0, last_fewer = 0, last_fewer_seconds = 0;
+    RoundTrace* trace = nullptr;  // when set, the crawl rule's answers are recorded there
     void offer(Id inverted, double iteration_work, double seconds) {
         work += iteration_work;
         if (inverted < fewest) fewest = inverted, last_fewer = work, last_fewer_seconds = seconds;
     }
     void start_again(double seconds) { last_fewer = work, last_fewer_seconds = seconds; }
     // Whether the count has not fallen for longer than `share` of the work so far.
-    bool crawling(double share) const { return work - last_fewer > share * work; }
+    bool crawling(double share) const { return crawling_at(work, share); }
+    bool crawling_at(double w, double share) const { return w - last_fewer > share * w; }
+    // crawling(share), recorded in the trace if there is one.
+    bool ask_crawling(double share) {
+        const bool c = crawling(share);
+        if (trace) trace->crawl.emplace_back(work, c);
+        return c;
+    }
 };
 
 // One outer iteration of the eps continuation: the energy before its solve, the solve's
@@ -83,12 +102,21 @@ struct LocalRound {
     int best_version = 0;
     std::vector<VertexKind> kinds;
     int iterations = 0;
+    double start_work = 0;  // Progress work when it started
     double work = 0;  // its Progress work, offered again so that later passes decide as before
+    RoundTrace trace;
     std::string stopped;
     bool left_to_next_pass = false;
     bool same_start(const LocalRound& o) const {
         return rings == o.rings && eps == o.eps && best_version == o.best_version &&
                kinds == o.kinds;
+    }
+    // Whether the round, started now, would get the same answers from the crawl rule: it
+    // does not lower the count, so Progress's last fall stays where it is now.
+    bool decides_as_before(const Progress& now, double share) const {
+        for (const auto& [asked, answer] : trace.crawl)
+            if (now.crawling_at(now.work + (asked - start_work), share) != answer) return false;
+        return true;
     }
 };
 
