@@ -175,17 +175,21 @@ bool repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
         if (part.num_elements() <= previous && best.inverted >= inverted_then) break;
         previous = part.num_elements();
         inverted_then = best.inverted;
-        // Only a round from the best state is known by its start (the best state's version).
-        const bool from_best = problem.points == best.points;
+        // Only a round from the best state is known by its start (the best state's version);
+        // rounds are kept and compared only when repeats are reused.
+        const bool known = options.reuse_repeats && problem.points == best.points;
         LocalRound round;
-        round.rings = rings;
-        round.eps = first_eps(assembly.stats(part.points).min_det, start_eps);
-        round.best_version = best.version;
-        round.kinds = problem.kinds;
-        const auto done = std::find_if(rounds.begin(), rounds.end(),
-                                       [&](const LocalRound& r) { return r.same_start(round); });
-        if (options.reuse_repeats && from_best && done != rounds.end() &&
-            done->decides_as_before(progress, options.stall_share)) {
+        if (known) {
+            round.rings = rings;
+            round.eps = first_eps(assembly.stats(part.points).min_det, start_eps);
+            round.best_version = best.version;
+            round.kinds = problem.kinds;
+        }
+        const auto done =
+            known ? std::find_if(rounds.begin(), rounds.end(),
+                                 [&](const LocalRound& r) { return r.same_start(round); })
+                  : rounds.end();
+        if (done != rounds.end() && done->decides_as_before(progress, options.stall_share)) {
             log_note(options.log,
                      fmt::format("neighbourhoods of {} rings from the same state and eps {:.3e} "
                                  "as before: {} iterations taken as they were, not solved again",
@@ -204,16 +208,17 @@ bool repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
         local.stall_iterations = std::min(options.stall_iterations, 10);  // the global pass follows
         const size_t records = result.history.size();
         round.start_work = progress.work;
-        progress.trace = &round.trace;
+        progress.trace = known ? &round.trace : nullptr;
         continuation(part, assembly, local, seconds, best, progress, result, 0, start_eps);
         progress.trace = nullptr;
         stalled = best.inverted >= inverted_then;
         problem.points = best.points;
+        if (!known) continue;
         round.iterations = int(result.history.size() - records);
         round.work = progress.work - round.start_work;
         round.stopped = result.stopped;
         round.left_to_next_pass = result.left_to_next_pass;
-        if (from_best) rounds.push_back(std::move(round));
+        rounds.push_back(std::move(round));
     }
     return stalled;
 }
