@@ -38,28 +38,37 @@ constexpr double min_theta = 0.05;
 
 // The body's value u at each node of the lattice (n[a] nodes along axis a from lo, spacing
 // h, node id i + n[0] (j + n[1] k)) and the node's kind: box on the lattice's faces, else
-// body where u <= 0, else free.
+// body where u <= 0, else free. For the interior potential (o.source_radius > 0), -u, and the
+// nodes in the source ball are "box" (F = 1) instead of the lattice's faces.
 void sample_nodes(const ImplicitFunction& body, const Vec3& lo, double h,
-                  const std::array<int, 3>& n, std::vector<double>& u,
+                  const std::array<int, 3>& n, const ExteriorPotentialOptions& o,
+                  std::vector<double>& u, std::vector<double>& source,
                   std::vector<NodeKind>& kind) {
+    const bool interior = o.source_radius > 0;
+    source.assign(interior ? size_t(n[0]) * n[1] * n[2] : 0, 0.0);
     const size_t count = size_t(n[0]) * n[1] * n[2];
     u.resize(count);
     kind.resize(count);
     parallel_each(count, [&](size_t id) {
         const int i = int(id % n[0]), j = int((id / n[0]) % n[1]),
                   k = int(id / (size_t(n[0]) * n[1]));
-        u[id] = body.value(lo + h * Vec3(i, j, k));
+        const Vec3 x = lo + h * Vec3(i, j, k);
+        u[id] = interior ? -body.value(x) : body.value(x);
         const bool face =
             i == 0 || j == 0 || k == 0 || i == n[0] - 1 || j == n[1] - 1 || k == n[2] - 1;
-        kind[id] = face ? NodeKind::box : u[id] <= 0 ? NodeKind::body : NodeKind::free;
+        if (interior) source[id] = (x - o.source_centre).norm() - o.source_radius;
+        const bool one = interior ? source[id] <= 0 && u[id] > 0 : face;
+        kind[id] = one ? NodeKind::box : u[id] <= 0 || face ? NodeKind::body : NodeKind::free;
     });
 }
 
 // The operator (A x)_i = diag_i x_i - sum of x over free neighbours, on the free nodes, and
-// its right side: diag and rhs (zero on the other nodes).
+// its right side: diag and rhs (zero on the other nodes). With `source` (the interior
+// potential's |x - centre| - radius at each node), its ball's sphere is placed between nodes
+// as the body's is, at value 1.
 void assemble_operator(const std::vector<NodeKind>& kind, const std::vector<double>& u,
-                       const std::array<long long, 6>& step, std::vector<double>& diag,
-                       std::vector<double>& rhs) {
+                       const std::vector<double>& source, const std::array<long long, 6>& step,
+                       std::vector<double>& diag, std::vector<double>& rhs) {
     const size_t count = kind.size();
     diag.assign(count, 0);
     rhs.assign(count, 0);
@@ -69,6 +78,11 @@ void assemble_operator(const std::vector<NodeKind>& kind, const std::vector<doub
             const size_t m = size_t((long long)id + s);
             if (kind[m] == NodeKind::body) {
                 diag[id] += 1 / std::max(min_theta, u[id] / (u[id] - u[m]));
+            } else if (kind[m] == NodeKind::box && !source.empty()) {
+                const double coupling =
+                    1 / std::max(min_theta, source[id] / (source[id] - source[m]));
+                diag[id] += coupling;
+                rhs[id] += coupling;
             } else {
                 diag[id] += 1;
                 if (kind[m] == NodeKind::box) rhs[id] += 1;
@@ -186,11 +200,15 @@ ExteriorPotential::ExteriorPotential(const ImplicitFunction& body,
         n_[a] = int(std::ceil((b.size()[a] + 2 * o.margin * longest) / h_)) + 1;
     box_ = {lo, lo + h_ * Vec3(n_[0] - 1, n_[1] - 1, n_[2] - 1)};
 
-    std::vector<double> u, diag, rhs;
+    std::vector<double> u, source, diag, rhs;
     std::vector<NodeKind> kind;
-    sample_nodes(body, lo, h_, n_, u, kind);
+    sample_nodes(body, lo, h_, n_, o, u, source, kind);
+    interior_ = o.source_radius > 0;
+    if (interior_ && std::count(kind.begin(), kind.end(), NodeKind::box) == 0)
+        throw std::invalid_argument(
+            "ExteriorPotential: the source ball holds no lattice node inside the body");
     const std::array<long long, 6> step = neighbour_offsets(n_);
-    assemble_operator(kind, u, step, diag, rhs);
+    assemble_operator(kind, u, source, step, diag, rhs);
     unknowns_ = (long long)std::count(kind.begin(), kind.end(), NodeKind::free);
     const double margin = o.margin * longest;
     const std::vector<double> x = solve_potential(kind, u, diag, rhs, step, margin, o, iterations_);
@@ -206,7 +224,7 @@ ExteriorPotential::Cell ExteriorPotential::cell_at(const Vec3& p) const {
 
 double ExteriorPotential::value(const Vec3& p) const {
     const Vec3 outside = (box_.lo - p).cwiseMax(p - box_.hi).cwiseMax(0.0);
-    if (outside.squaredNorm() > 0) return 1 + outside.norm();
+    if (outside.squaredNorm() > 0) return interior_ ? -outside.norm() : 1 + outside.norm();
     const auto [i, j, k, t] = cell_at(p);
     double v = 0;
     for (int c = 0; c < 8; ++c) {
@@ -221,7 +239,7 @@ Vec3 ExteriorPotential::gradient(const Vec3& p) const {
     const Vec3 outside = (box_.lo - p).cwiseMax(p - box_.hi).cwiseMax(0.0);
     if (outside.squaredNorm() > 0) {
         const Vec3 away = p - p.cwiseMax(box_.lo).cwiseMin(box_.hi);
-        return away.normalized();
+        return interior_ ? Vec3(-away.normalized()) : away.normalized();
     }
     const auto [i, j, k, t] = cell_at(p);
     Vec3 g = Vec3::Zero();

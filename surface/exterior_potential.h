@@ -12,6 +12,13 @@ struct ExteriorPotentialOptions {
     int resolution = 96;        // nodes along the body's longest side
     double tolerance = 1e-8;    // relative residual of the linear solve
     int max_iterations = 4000;  // conjugate-gradient iterations
+    // source_radius > 0: the potential of the body's interior instead, harmonic inside the body
+    // between F = 0 on u = 0 and F = 1 on the ball of this radius around source_centre (which
+    // must lie inside the body): its levels run from the wall (c -> 0) in to spheres round the
+    // ball (c near 1), its gradient lines from every wall point to the ball. F < 0 outside the
+    // body (u times the slope at the wall, as inside the body for the exterior one).
+    Vec3 source_centre = Vec3::Zero();
+    double source_radius = 0;
 };
 
 // F(x), harmonic in the box outside the body, F = 0 on u = 0 and 1 on the box's faces: a family
@@ -59,6 +66,7 @@ class ExteriorPotential : public ImplicitFunction {
     std::vector<double> values_;
     int iterations_ = 0;
     long long unknowns_ = 0;
+    bool interior_ = false;  // options.source_radius > 0
 };
 
 }  // namespace hexmesh

@@ -71,3 +71,40 @@ TEST(ExteriorPotential, EntersAGapFromItsOpeningAndItsLevelsAreStarShapedFarOut)
     EXPECT_FALSE(star_shaped_level(u, 0, Vec3(0, -0.4, 0), rays, step, reach, 90));
     EXPECT_TRUE(star_shaped_level(f, 0.9, Vec3::Zero(), rays, step, reach, 80));
 }
+
+TEST(ExteriorPotential, InsideItFallsFromOneOnTheSourceBallToZeroOnTheWall) {
+    // A ball of radius 0.1 at the centre of a sphere of radius 0.5: the potential is the
+    // spherical capacitor's, a function of the radius alone, decreasing outwards; outside the
+    // body it is negative.
+    const Sphere body(Vec3::Zero(), 0.5);
+    ExteriorPotentialOptions o;
+    o.resolution = 48;
+    o.source_radius = 0.1;
+    const ExteriorPotential f(body, o);
+    EXPECT_GT(f.unknowns(), 0);
+    const auto capacitor = [](double r) { return (1 / r - 1 / 0.5) / (1 / 0.1 - 1 / 0.5); };
+    for (const Vec3& d : sphere_directions(50)) {
+        // The zero level within a third of a node spacing of the wall.
+        EXPECT_LT(std::abs(f.value(0.5 * d)) / f.gradient(0.5 * d).norm(), f.spacing() / 3);
+        EXPECT_LT(f.value(0.55 * d), 0);  // outside
+        EXPECT_NEAR(f.value(0.05 * d), 1, 1e-12);
+        double previous = f.value(0.12 * d);
+        for (double r = 0.14; r < 0.49; r += 0.02) {
+            const double v = f.value(r * d);
+            EXPECT_LT(v, previous);
+            EXPECT_GT(v, 0);
+            EXPECT_NEAR(v, capacitor(r), 0.02);
+            previous = v;
+        }
+    }
+    EXPECT_LT(f.value(f.bounds().hi + Vec3::Ones()), 0);  // beyond the lattice: still outside
+}
+
+TEST(ExteriorPotential, ASourceBallWithNoNodeInsideTheBodyIsRefused) {
+    const Sphere body(Vec3::Zero(), 0.5);
+    ExteriorPotentialOptions o;
+    o.resolution = 16;
+    o.source_centre = Vec3(2, 0, 0);
+    o.source_radius = 0.1;
+    EXPECT_THROW(ExteriorPotential(body, o), std::invalid_argument);
+}
