@@ -20,6 +20,7 @@
 #include "volume/core_layout.h"
 #include "volume/cube_sphere.h"
 #include "volume/feature_snapping.h"
+#include "volume/path_lines.h"
 #include "volume/surface_placement.h"
 #include "volume/tfi.h"
 #include "volume/wall_lines.h"
@@ -228,12 +229,40 @@ double fit_core_size(const OHLayout& lay, const OHGridOptions& options, const Ve
     return options.core_size > 0.9 * nearest ? 0.5 * nearest : options.core_size;
 }
 
+// The wall lines along `paths` (place_nodes_on_paths), on from each path's end to its core
+// node, whose point is set. A path left as its wall point alone, or with no room for the
+// boundary layer and a cell beyond it (a wall next to the potential's source), runs straight to
+// its core node, its level rising evenly to the far level halfway.
+void place_on_paths(const OHLayout& lay, WallPaths paths, const WallLayers& law, BlockGrid& grid) {
+    const int nk = lay.nk;
+    std::vector<Vec3> core(size_t(lay.ns));
+    // The boundary layer and one cell more beyond it.
+    const double room =
+        law.layers > 0
+            ? layers_thickness(law) + law.first_height * std::pow(law.growth_ratio, law.layers)
+            : 0.0;
+    for (Id s = 0; s < lay.ns; ++s) {
+        core[s] = grid.points[lay.on_wall[s]];
+        const std::vector<Vec3>& x = paths.lines[s];
+        double length = 0;
+        for (size_t k = 1; k < x.size(); ++k) length += (x[k] - x[k - 1]).norm();
+        if (x.size() >= 2 && length > room) continue;
+        paths.lines[s] = {lay.wall[s], 0.5 * (lay.wall[s] + core[s])};
+        paths.levels[s] = {0.0, paths.far_level};
+    }
+    place_nodes_on_paths(paths, lay.wall, core, nk, law, [&](Id s, const std::vector<Vec3>& x) {
+        const Id core_id = lay.on_wall[s];
+        for (int k = 0; k < nk; ++k) grid.points[lay.node_id(core_id, nk - k)] = x[k];
+        grid.kinds[lay.node_id(core_id, nk)] = VertexKind::slip;
+    });
+}
+
 // The grid's points: the core's nodes, then along each wall node's line to its core node the
 // wall layers graded by the law (the last on the wall, a slip node). Throws
 // std::invalid_argument when a line would turn back or is too short for the layers (the first
 // such line in wall order).
 BlockGrid place_points(const OHLayout& lay, const OHGridOptions& options, const Vec3& centre,
-                       bool placed) {
+                       bool placed, const WallPaths* paths) {
     const int nk = lay.nk;
     BlockGrid grid;
     grid.points.assign(lay.core_nodes + nk * lay.ns, Vec3::Zero());
@@ -243,6 +272,10 @@ BlockGrid place_points(const OHLayout& lay, const OHGridOptions& options, const 
                               ? Vec3(centre + options.core_half->cwiseProduct(lay.inner_t[id]))
                               : Vec3(centre + options.core_size * lay.ray(lay.inner_t[id]));
 
+    if (paths) {
+        place_on_paths(lay, *paths, options.wall_layers, grid);
+        return grid;
+    }
     deterministic_for(lay.ns, [&](Id s) {
         const Id core_id = lay.on_wall[s];
         const Vec3 dir = lay.ray(lay.inner_t[core_id]);
@@ -324,7 +357,9 @@ BlockGrid o_h_grid(const ImplicitFunction& body, const OHGridOptions& options,
         *fitted_core_size = fit_core_size(lay, options, centre, placed);
         return {};
     }
-    BlockGrid grid = place_points(lay, options, centre, placed);
+    std::optional<WallPaths> paths;
+    if (placed && options.paths && lay.nk >= 2) paths = options.paths(lay.wall);
+    BlockGrid grid = place_points(lay, options, centre, placed, paths ? &*paths : nullptr);
     add_blocks(grid, lay);
     return grid;
 }

@@ -2,11 +2,13 @@
 // O-gridded around an axis (column, rings, frame) with its wall blocks.
 #pragma once
 
+#include <functional>
 #include <optional>
 
 #include "hexmesh/core/block_grid.h"
 #include "hexmesh/core/implicit_function.h"
 #include "volume/stretching.h"
+#include "volume/wall_paths.h"
 
 namespace hexmesh {
 
@@ -43,6 +45,12 @@ struct OHGridOptions {
     // to straighten them, and no line is refused.
     const std::vector<Vec3>* wall_nodes = nullptr;
     std::optional<Vec3> core_half;
+    // With such a wall: the path of each of its nodes (given the wall nodes, in lattice order)
+    // in to a surface star-shaped around the centre that holds the core box, e.g. a level of
+    // the body's interior potential (volume/wall_paths.h). Each line then runs along its path
+    // and on straight to its core node, its nodes spaced along that by the WallLayers law.
+    // Empty: straight from the wall node to the core node.
+    std::function<WallPaths(const std::vector<Vec3>& wall)> paths;
 };
 
 // Grid of the body's interior. Blocks: "core" (n^3 cells) and "wall_xmin", "wall_xmax", ...,

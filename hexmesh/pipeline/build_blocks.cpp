@@ -167,6 +167,10 @@ BlockGrid build_grid(const Case& c, const ImplicitFunction& body,
         o.centre = route->centre;
         o.core_half = route->core_half;
         if (!wall_from) o.wall_nodes = route->wall.get();
+        if (route->potential)  // in along the interior potential's gradient lines
+            o.paths = [&](const std::vector<Vec3>& wall) {
+                return interior_paths(*route, wall, o.cells_per_edge);
+            };
         return make_o_h_grid(body, o);
     }
     if (c.grid.axis == GridAxis::automatic) o.axis = choose_o_h_axis(body, o);

@@ -140,9 +140,17 @@ std::vector<Vec3> gradient_line_up(const ImplicitFunction& potential, Vec3 p, do
     return line;
 }
 
-WallPaths exterior_paths(const ImplicitFunction& potential, const std::vector<Vec3>& wall,
-                         double c0, int n, const Vec3& centre,
-                         const untangle::UntangleOptions& solver) {
+namespace {
+
+// Whether path s ends below the level c0.
+bool short_of_level(const WallPaths& paths, size_t s) {
+    return paths.levels[s].back() < (1 - 1e-9) * paths.far_level;
+}
+
+// The gradient lines of the wall nodes up to c0, each traced again climbing out of pockets
+// when it stops short (see exterior_paths); far_directions left empty.
+WallPaths trace_paths(const ImplicitFunction& potential, const std::vector<Vec3>& wall, double c0,
+                      int n, const Vec3& centre) {
     WallPaths paths;
     paths.cells_per_edge = n;
     paths.centre = centre;
@@ -150,12 +158,32 @@ WallPaths exterior_paths(const ImplicitFunction& potential, const std::vector<Ve
     paths.lines.resize(wall.size());
     paths.levels.resize(wall.size());
     const double step = 0.25 * grid_length_scale(potential, n);
-    const auto short_of_level = [&](size_t s) { return paths.levels[s].back() < (1 - 1e-9) * c0; };
     tbb::parallel_for(size_t(0), wall.size(), [&](size_t s) {
         paths.lines[s] = gradient_line_up(potential, wall[s], c0, step, paths.levels[s]);
-        if (short_of_level(s))
+        if (short_of_level(paths, s))
             paths.lines[s] = gradient_line_up(potential, wall[s], c0, step, paths.levels[s], true);
     });
+    return paths;
+}
+
+}  // namespace
+
+WallPaths interior_paths(const ImplicitFunction& potential, const std::vector<Vec3>& wall,
+                         double c0, int n, const Vec3& centre) {
+    WallPaths paths = trace_paths(potential, wall, c0, n, centre);
+    for (size_t s = 0; s < wall.size(); ++s)
+        if (short_of_level(paths, s)) {
+            paths.lines[s] = {wall[s]};
+            paths.levels[s] = {0.0};
+        }
+    return paths;
+}
+
+WallPaths exterior_paths(const ImplicitFunction& potential, const std::vector<Vec3>& wall,
+                         double c0, int n, const Vec3& centre,
+                         const untangle::UntangleOptions& solver) {
+    WallPaths paths = trace_paths(potential, wall, c0, n, centre);
+    const auto short_of_level = [&](size_t s) { return hexmesh::short_of_level(paths, s); };
     std::vector<Vec3> directions(wall.size());
     for (size_t s = 0; s < wall.size(); ++s) {
         // A line that stopped short of the far level (no higher point near its end, or it

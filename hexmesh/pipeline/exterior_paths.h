@@ -42,4 +42,13 @@ WallPaths exterior_paths(const ImplicitFunction& potential, const std::vector<Ve
                          double c0, int cells_per_edge, const Vec3& centre,
                          const untangle::UntangleOptions& solver);
 
+// The paths of an interior grid's lines (volume/wall_paths.h) from the wall lattice `wall` up
+// the body's interior potential (0 on the body, rising in to 1 on a ball round `centre`:
+// surface/exterior_potential.h) to its level c0, star-shaped around `centre`; points every
+// quarter of a wall edge. A line that stops short of c0 even climbing out of pockets (in a
+// long limb the potential decays below its solve's noise) is left as its wall point alone: its
+// grid line runs straight from the wall. No far-field directions.
+WallPaths interior_paths(const ImplicitFunction& potential, const std::vector<Vec3>& wall,
+                         double c0, int cells_per_edge, const Vec3& centre);
+
 }  // namespace hexmesh

@@ -99,6 +99,18 @@ void exterior_level(const Case& c, const ImplicitFunction& body, const std::stri
     route.potential = std::move(potential);
 }
 
+// -F: the interior potential falls away from its centre, which star_shaped takes as rising.
+class Negated : public ImplicitFunction {
+  public:
+    explicit Negated(const ImplicitFunction& f) : f_(f) {}
+    double value(const Vec3& p) const override { return -f_.value(p); }
+    Vec3 gradient(const Vec3& p) const override { return -f_.gradient(p); }
+    Box3 bounds() const override { return f_.bounds(); }
+
+  private:
+    const ImplicitFunction& f_;
+};
+
 // The surface mapped onto the sphere, and route.wall: the wall lattice placed through it.
 void map_wall(const Case& c, const TriangleSurface& surface, const ImplicitFunction& body,
               int cells_per_edge, WallRoute& route, Lap& lap, std::ostream& log) {
@@ -115,9 +127,14 @@ void map_wall(const Case& c, const TriangleSurface& surface, const ImplicitFunct
     log << fmt::format(
                "  its surface mapped onto the sphere ({} triangles, {} turned over, {:.2f} s)",
                map.surface().triangles.size(), map.inverted(), lap())
-        << (route.potential
+        << (!route.core_half
                 ? fmt::format("; lines out to the potential's level {:.1f}\n", route.far_level)
-                : fmt::format("; core cube of half-size {:.4g}\n", route.core_half->x()));
+            : route.potential
+                ? fmt::format("; lines in to the potential's level {:.1f}, then straight to a core "
+                              "cube of half-size {:.4g}\n",
+                              route.far_level, route.core_half->x())
+                : fmt::format("; lines straight to a core cube of half-size {:.4g}\n",
+                              route.core_half->x()));
     route.wall = std::make_shared<std::vector<Vec3>>(
         wall_from_sphere_map(aligned_with_body(map, route.centre), cells_per_edge, body));
 }
@@ -148,8 +165,10 @@ WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
     if (c.domain != Domain::exterior) {
         const double depth = exact ? exact->distance(route.centre) : -body.value(route.centre);
         route.core_half = Vec3::Constant(0.45 * depth);
+        route.depth = depth;
         log << fmt::format("  the body is not star-shaped around {} {} (depth {:.4g}):\n",
                            centre.what, point(route.centre), depth);
+        add_interior_potential(body, route, log);
     } else {
         exterior_level(c, body, centre.what, route, lap, log);
     }
@@ -163,6 +182,39 @@ WallPaths exterior_paths(const WallRoute& route, const std::vector<Vec3>& wall,
                          int cells_per_edge) {
     return exterior_paths(*route.potential, wall, route.far_level, cells_per_edge, route.centre,
                           route.solver);
+}
+
+bool add_interior_potential(const ImplicitFunction& body, WallRoute& route, std::ostream& log) {
+    Lap lap;
+    ExteriorPotentialOptions o;
+    o.source_centre = route.centre;
+    o.source_radius = 0.9 * route.depth;
+    std::shared_ptr<ExteriorPotential> potential;
+    try {
+        potential = std::make_shared<ExteriorPotential>(body, o);
+    } catch (const std::exception& e) {
+        log << "  no interior potential (" << e.what() << "): lines straight to the core\n";
+        return false;
+    }
+    // The highest: the lines follow the potential as far in as they can.
+    for (int tenth = 9; tenth >= 1 && route.far_level == 0; --tenth)
+        if (star_shaped(Negated(*potential), -0.1 * tenth, route.centre, potential->spacing() / 2,
+                        80))
+            route.far_level = 0.1 * tenth;
+    log << fmt::format("  interior potential ({} unknowns, {} iterations, {:.2f} s)",
+                       potential->unknowns(), potential->iterations(), lap());
+    if (route.far_level == 0) {
+        log << ": no level of it is star-shaped around the centre, lines straight to the core\n";
+        return false;
+    }
+    log << fmt::format(": level {:.1f} star-shaped around the centre\n", route.far_level);
+    route.potential = std::move(potential);
+    return true;
+}
+
+WallPaths interior_paths(const WallRoute& route, const std::vector<Vec3>& wall,
+                         int cells_per_edge) {
+    return interior_paths(*route.potential, wall, route.far_level, cells_per_edge, route.centre);
 }
 
 }  // namespace hexmesh

@@ -25,8 +25,12 @@ struct WallRoute {
     std::shared_ptr<const std::vector<Vec3>> wall;
     std::shared_ptr<const ImplicitFunction> potential;
     double far_level = 0;
-    // Interior: the core box's half extents, around `centre`, inside the body.
+    // Interior: the core box's half extents, around `centre`, inside the body, and the
+    // centre's distance to the surface. With `potential` (add_interior_potential), the
+    // lines run in along its gradient lines to its level far_level, then on straight to the
+    // core; else straight from the wall to the core.
     std::optional<Vec3> core_half;
+    double depth = 0;
     // Radial all the same for a body that is not star-shaped (no surface file to map): why,
     // for the message of a construction that then fails.
     std::string not_star_shaped;
@@ -42,8 +46,10 @@ struct WallRoute {
 // - interior: else radial from the body's deepest point (smallest u) when it is star-shaped
 //   around that; else the wall lattice through a map of the surface onto the sphere, around a
 //   core cube at the deepest point inside the largest ball there (half-size 0.45 of its
-//   radius), the lines straight from the core to the wall (the optimizer's untangling bends
-//   them into what sticks out); surface files only (see below);
+//   radius), the lines in along the gradient lines of the body's interior potential
+//   (add_interior_potential) and on straight to the core, or, when it has no star-shaped
+//   level, straight from the wall to the core (the optimizer's untangling bends them into
+//   what sticks out); surface files only (see below);
 // - exterior: else the wall lattice through a map of the surface onto the sphere, and the
 //   lines out along the gradient lines of the body's exterior potential
 //   (surface/exterior_potential.h) to its lowest level in 0.1, 0.2, ... 0.9 that is star-shaped
@@ -63,5 +69,17 @@ WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
 // route's, or the same moved on u = 0) up the route's potential; their far-field directions
 // untangled on the unit sphere. The route must not be radial.
 WallPaths exterior_paths(const WallRoute& route, const std::vector<Vec3>& wall, int cells_per_edge);
+
+// For an interior route that is not radial (choose_wall_route calls it): the body's interior
+// potential, 1 on the ball of 0.9 route.depth round route.centre (surface/exterior_potential.h),
+// and its highest level in tenths star-shaped around the centre, into route.potential and
+// route.far_level, so that build_grid lays the lines in along its gradient. Logs the solve;
+// false (the route as it was: lines straight to the core) when the solve fails or no level is
+// star-shaped.
+bool add_interior_potential(const ImplicitFunction& body, WallRoute& route, std::ostream& log);
+
+// The paths of an interior grid's lines from these wall nodes in along the route's interior
+// potential (hexmesh/pipeline/exterior_paths.h: interior_paths). The route must have one.
+WallPaths interior_paths(const WallRoute& route, const std::vector<Vec3>& wall, int cells_per_edge);
 
 }  // namespace hexmesh

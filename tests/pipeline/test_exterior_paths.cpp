@@ -111,3 +111,48 @@ TEST(ExteriorPaths, ALineClimbsOutOfAPocketWhereTheGradientVanishes) {
         EXPECT_GE(unchanged, int(wall.size()) - 1);
     }
 }
+
+namespace {
+
+// F = (1/|x| - 1) / (1/0.2 - 1) inside the unit ball: 0 on the sphere, 1 on the ball of radius
+// 0.2 (the interior potential of a sphere with its source there), rising inwards.
+class InnerBallPotential : public ImplicitFunction {
+  public:
+    double value(const Vec3& p) const override { return (1 / p.norm() - 1) / (1 / 0.2 - 1); }
+    Vec3 gradient(const Vec3& p) const override {
+        return -p / std::pow(p.norm(), 3) / (1 / 0.2 - 1);
+    }
+    Box3 bounds() const override { return {Vec3::Constant(-1), Vec3::Constant(1)}; }
+};
+
+}  // namespace
+
+TEST(InteriorPaths, LinesOfABallsInteriorPotentialAreItsRaysInToTheLevel) {
+    const int n = 4;
+    std::vector<Vec3> wall = unit_sphere_wall(n);
+    for (Vec3& x : wall) x /= 1.0002;  // just inside
+    const WallPaths paths = interior_paths(InnerBallPotential(), wall, 0.5, n, Vec3::Zero());
+    ASSERT_EQ(paths.lines.size(), wall.size());
+    EXPECT_TRUE(paths.far_directions.empty());
+    // F = 0.5 at 1/|x| = 3, |x| = 1/3; the last step of 0.125 lands there by linear
+    // interpolation of F, which is curved (1/|x|): up to F'' h^2 / 8 / F' = 0.012 off in |x|.
+    for (size_t s = 0; s < wall.size(); ++s) {
+        EXPECT_NEAR(paths.lines[s].back().norm(), 1.0 / 3, 0.012) << s;
+        EXPECT_NEAR(paths.lines[s].back().normalized().dot(wall[s].normalized()), 1, 1e-9) << s;
+        EXPECT_NEAR(paths.levels[s].back(), 0.5, 1e-9) << s;
+    }
+}
+
+TEST(InteriorPaths, ALineThatStopsShortOfTheLevelIsLeftAsItsWallPoint) {
+    // A potential flat everywhere (as in a long limb, where it decays below its solve's noise):
+    // no line rises, and each is left as its wall point for the grid to run straight from.
+    const int n = 4;
+    const std::vector<Vec3> wall = unit_sphere_wall(n);
+    const WallPaths paths =
+        interior_paths(BallPotential(Flat::everywhere), wall, 0.5, n, Vec3::Zero());
+    ASSERT_EQ(paths.lines.size(), wall.size());
+    for (size_t s = 0; s < wall.size(); ++s) {
+        ASSERT_EQ(paths.lines[s].size(), 1u) << s;
+        EXPECT_EQ(paths.lines[s][0], wall[s]) << s;
+    }
+}

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <set>
 #include <stdexcept>
 #include <string>
 
@@ -84,6 +85,65 @@ TEST(OHGrid, LinesAreBuiltFromAGivenWallGrid) {
         EXPECT_NE(std::string(e.what()).find("lies behind its core node"), std::string::npos)
             << e.what();
     }
+}
+
+TEST(OHGrid, LinesRunAlongGivenPathsThenStraightToTheCore) {
+    // A wall placed without rays (the lattice on the sphere, a core cube of half-size 0.3) and
+    // each node's path a bent polyline in to 0.6 of its radius, its level rising from 0 to 1:
+    // every node of a line lies on its path or on the segment on to its core node, the first
+    // layer along the path's first leg at the law's height, and one node of each line, the
+    // same k for all, on the path's end (place_nodes_on_paths).
+    const Sphere sphere(Vec3::Zero(), 1.0);
+    OHGridOptions o = sphere_options();
+    const CubeSurfaceLattice lattice = make_cube_surface_lattice(o.cells_per_edge);
+    std::vector<Vec3> wall(lattice.size());
+    for (Id s = 0; s < lattice.size(); ++s)
+        wall[s] = cube_sphere_ray(lattice.points[s], o.cells_per_edge, Vec3::Ones()).normalized();
+    o.wall_nodes = &wall;
+    o.core_half = Vec3::Constant(0.3);
+    const auto bend = [](const Vec3& w) {  // a point off the ray, between wall and 0.6 w
+        return Vec3(0.8 * w + 0.05 * w.cross(Vec3(0.3, 0.5, 0.8)).normalized());
+    };
+    std::vector<Vec3> given_wall;
+    o.paths = [&](const std::vector<Vec3>& at) {
+        given_wall = at;
+        WallPaths p;
+        p.cells_per_edge = o.cells_per_edge;
+        for (const Vec3& w : at) {
+            p.lines.push_back({w, bend(w), 0.6 * w});
+            p.levels.push_back({0.0, 0.5, 1.0});
+        }
+        return p;
+    };
+    const BlockGrid grid = make_o_h_grid(sphere, o);
+    EXPECT_EQ(given_wall, wall);
+    const auto distance_to_segment = [](const Vec3& x, const Vec3& a, const Vec3& b) {
+        const double t = std::clamp((x - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+        return (x - (a + t * (b - a))).norm();
+    };
+    const int nk = o.wall_cells;
+    std::set<int> k_at_end;
+    for (const Block& b : grid.blocks) {
+        if (b.name.rfind("wall_", 0) != 0) continue;
+        for (int j = 0; j <= o.cells_per_edge; ++j)
+            for (int i = 0; i <= o.cells_per_edge; ++i) {
+                const Vec3 w = grid.points[b.node(i, j, nk)], core = grid.points[b.node(i, j, 0)];
+                const std::vector<Vec3> polyline = {w, bend(w), 0.6 * w, core};
+                for (int layer = 1; layer < nk; ++layer) {
+                    const Vec3 x = grid.points[b.node(i, j, layer)];
+                    double off = std::numeric_limits<double>::infinity();
+                    for (size_t k = 1; k < polyline.size(); ++k)
+                        off = std::min(off, distance_to_segment(x, polyline[k - 1], polyline[k]));
+                    EXPECT_LT(off, 1e-12) << b.name << " " << i << " " << j << " " << layer;
+                    if ((x - 0.6 * w).norm() < 1e-12) k_at_end.insert(nk - layer);
+                }
+                const Vec3 first = grid.points[b.node(i, j, nk - 1)];
+                EXPECT_NEAR((first - w).norm(), o.wall_layers.first_height, 1e-12);
+                EXPECT_LT((first - w).normalized().cross((bend(w) - w).normalized()).norm(), 1e-12);
+            }
+    }
+    EXPECT_EQ(k_at_end.size(), 1u);
+    EXPECT_EQ(measure_quality(to_hex_mesh(grid)).inverted_corner_tets, 0);
 }
 
 TEST(OHGrid, SphereGridIsValidWithWallNodesOnTheSphere) {
