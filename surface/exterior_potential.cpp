@@ -143,8 +143,8 @@ std::vector<double> solve_potential(const std::vector<NodeKind>& kind, const std
     iterations = it;
     if (residual > o.tolerance * norm_b)
         throw std::runtime_error(fmt::format(
-            "the exterior potential did not converge in {} iterations (relative residual {:.3g})",
-            it, residual / norm_b));
+            "the {} potential did not converge in {} iterations (relative residual {:.3g})",
+            o.source_radius > 0 ? "interior" : "exterior", it, residual / norm_b));
     return x;
 }
 
@@ -224,7 +224,9 @@ ExteriorPotential::Cell ExteriorPotential::cell_at(const Vec3& p) const {
 
 double ExteriorPotential::value(const Vec3& p) const {
     const Vec3 outside = (box_.lo - p).cwiseMax(p - box_.hi).cwiseMax(0.0);
-    if (outside.squaredNorm() > 0) return interior_ ? -outside.norm() : 1 + outside.norm();
+    if (outside.squaredNorm() > 0)
+        return interior_ ? value(p.cwiseMax(box_.lo).cwiseMin(box_.hi)) - outside.norm()
+                         : 1 + outside.norm();
     const auto [i, j, k, t] = cell_at(p);
     double v = 0;
     for (int c = 0; c < 8; ++c) {

@@ -1,4 +1,5 @@
-// The harmonic potential of a body's exterior in a box: 0 on the body, 1 on the box.
+// The harmonic potential of a body's exterior in a box: 0 on the body, 1 on the box; or of its
+// interior: 0 on the body, 1 on a ball inside it.
 #pragma once
 
 #include <vector>
@@ -34,6 +35,11 @@ struct ExteriorPotentialOptions {
 // interpolation lies on the body to second order. value() and gradient() interpolate
 // trilinearly (the gradient piecewise, exact for the interpolant); outside the box value() is
 // 1 plus the distance to it. Thread safe for concurrent calls.
+//
+// With options.source_radius > 0 the same for the interior: harmonic inside the body outside
+// the ball, the ball's sphere placed between nodes by the same rule at value 1; outside the
+// body the nodes take u times the slope, so F < 0 there, and outside the box value() is the
+// value at the nearest point of the box minus the distance to it.
 class ExteriorPotential : public ImplicitFunction {
   public:
     // `body` is sampled at the lattice nodes (u < 0 inside, a distance near u = 0). Throws

@@ -231,36 +231,52 @@ double fit_core_size(const OHLayout& lay, const OHGridOptions& options, const Ve
 
 // The wall lines along `paths` (place_nodes_on_paths), on from each path's end to its core
 // node, whose point is set. A path left as its wall point alone, or with no room for the
-// boundary layer and a cell beyond it (a wall next to the potential's source), runs straight to
-// its core node, its level rising evenly to the far level halfway.
+// boundary layer and a cell beyond it (a wall next to the potential's source), is laid as a
+// straight line from the wall to its core node. Throws std::invalid_argument, naming the wall
+// point, when the layers do not fit a line (path and segment, or straight), as the straight
+// construction does.
 void place_on_paths(const OHLayout& lay, WallPaths paths, const WallLayers& law, BlockGrid& grid) {
     const int nk = lay.nk;
+    if (Id(paths.lines.size()) != lay.ns || Id(paths.levels.size()) != lay.ns)
+        throw std::invalid_argument("paths: one per wall node expected");
     std::vector<Vec3> core(size_t(lay.ns));
-    // The boundary layer and one cell more beyond it.
-    const double room =
+    const double room =  // the boundary layer and one cell more beyond it
         law.layers > 0
             ? layers_thickness(law) + law.first_height * std::pow(law.growth_ratio, law.layers)
             : 0.0;
+    std::vector<char> straight(size_t(lay.ns), 0);
     for (Id s = 0; s < lay.ns; ++s) {
         core[s] = grid.points[lay.on_wall[s]];
         const std::vector<Vec3>& x = paths.lines[s];
         double length = 0;
         for (size_t k = 1; k < x.size(); ++k) length += (x[k] - x[k - 1]).norm();
+        wall_distances(length + (core[s] - x.back()).norm(), nk, law, &lay.wall[s]);  // fits?
         if (x.size() >= 2 && length > room) continue;
+        straight[s] = 1;  // a stand-in path for place_nodes_on_paths' typical line
         paths.lines[s] = {lay.wall[s], 0.5 * (lay.wall[s] + core[s])};
         paths.levels[s] = {0.0, paths.far_level};
     }
+    const auto set = [&](Id s, int layer, const Vec3& x) {
+        grid.points[lay.node_id(lay.on_wall[s], layer)] = x;
+    };
     place_nodes_on_paths(paths, lay.wall, core, nk, law, [&](Id s, const std::vector<Vec3>& x) {
-        const Id core_id = lay.on_wall[s];
-        for (int k = 0; k < nk; ++k) grid.points[lay.node_id(core_id, nk - k)] = x[k];
-        grid.kinds[lay.node_id(core_id, nk)] = VertexKind::slip;
+        if (!straight[s])
+            for (int k = 0; k < nk; ++k) set(s, nk - k, x[k]);
+    });
+    deterministic_for(lay.ns, [&](Id s) {
+        grid.kinds[lay.node_id(lay.on_wall[s], nk)] = VertexKind::slip;
+        if (!straight[s]) return;
+        const double length = (lay.wall[s] - core[s]).norm();
+        const std::vector<double> d = wall_distances(length, nk, law, &lay.wall[s]);
+        for (int layer = 1; layer <= nk; ++layer)
+            set(s, layer, lay.wall[s] + (core[s] - lay.wall[s]) * (d[nk - layer] / length));
     });
 }
 
 // The grid's points: the core's nodes, then along each wall node's line to its core node the
-// wall layers graded by the law (the last on the wall, a slip node). Throws
-// std::invalid_argument when a line would turn back or is too short for the layers (the first
-// such line in wall order).
+// wall layers graded by the law (the last on the wall, a slip node), or with `paths` as
+// place_on_paths lays them. Throws std::invalid_argument when a line would turn back or is too
+// short for the layers (the first such line in wall order).
 BlockGrid place_points(const OHLayout& lay, const OHGridOptions& options, const Vec3& centre,
                        bool placed, const WallPaths* paths) {
     const int nk = lay.nk;

@@ -48,8 +48,11 @@ struct OHGridOptions {
     // With such a wall: the path of each of its nodes (given the wall nodes, in lattice order)
     // in to a surface star-shaped around the centre that holds the core box, e.g. a level of
     // the body's interior potential (volume/wall_paths.h). Each line then runs along its path
-    // and on straight to its core node, its nodes spaced along that by the WallLayers law.
-    // Empty: straight from the wall node to the core node.
+    // and on straight to its core node, its nodes laid by place_nodes_on_paths
+    // (volume/path_lines.h: the boundary layer along the path, the next layers on its levels,
+    // the rest on to the core node). A path of one point, or with no room for the boundary
+    // layer and one cell beyond it, gives a straight line from its wall node. Empty: straight
+    // lines from every wall node to its core node.
     std::function<WallPaths(const std::vector<Vec3>& wall)> paths;
 };
 

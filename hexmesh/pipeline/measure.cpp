@@ -13,10 +13,7 @@
 #include "hexmesh/quality/mesh_quality.h"
 
 namespace hexmesh {
-namespace {
 
-// What makes the grid invalid, for the refusal: its inverted cells, else what a finite-volume
-// solver refuses in it.
 std::string invalid_cells(const QualityReport& q) {
     if (q.inverted_cells > 0) return fmt::format("{} inverted cells", q.inverted_cells);
     std::vector<std::string> what;
@@ -29,8 +26,6 @@ std::string invalid_cells(const QualityReport& q) {
         what.push_back(fmt::format("{} cells of volume <= 0", q.nonpositive_volumes));
     return fmt::format("cells that a finite-volume solver refuses: {}", fmt::join(what, ", "));
 }
-
-}  // namespace
 
 GridReport measure_level(const Job& job, int level) {
     const WallLayers law = refined_wall_layers(wall_layers(job.settings), level);

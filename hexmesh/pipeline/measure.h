@@ -18,6 +18,10 @@ void measure(Job& job);
 // The report of job.levels[level - 1] (a refined level: the wall law refined_wall_layers).
 GridReport measure_level(const Job& job, int level);
 
+// What makes a grid invalid, for messages: "N inverted cells", else what a finite-volume
+// solver refuses in it ("cells that a finite-volume solver refuses: ...").
+std::string invalid_cells(const QualityReport& q);
+
 // Throws std::runtime_error (nothing written) when `report`'s grid is not valid for a solver
 // (QualityReport::solver_valid: inverted cells, cells turned inside out at their centre or faces
 // warped past it), unless job.options.keep_invalid; `dir` ("" or "level_2/") names the level.

@@ -1,5 +1,8 @@
 #include "hexmesh/pipeline/run_case.h"
 
+#include <fmt/format.h>
+
+#include "hexmesh/pipeline/build_blocks.h"
 #include "hexmesh/pipeline/measure.h"
 #include "hexmesh/pipeline/refine.h"
 #include "hexmesh/pipeline/surface_grid.h"
@@ -9,6 +12,42 @@
 #include "io/staged_output.h"
 
 namespace hexmesh {
+namespace {
+
+// Untangled and optimized, the interior grid of a body that is not star-shaped, its lines in
+// along the interior potential's gradient lines, may keep cells a solver refuses where the
+// straight lines from the wall to the core would not (which of the two a body takes is not
+// known beforehand). Then the grid is made again with its lines straight to the core, and the
+// better of the two kept: the valid one, or the one with fewer inverted cells.
+void retry_with_straight_lines(Job& job) {
+    const Case& c = job.settings;
+    WallRoute& route = job.route;
+    if (c.domain == Domain::exterior || route.radial() || !route.potential) return;
+    const QualityReport along = measure_quality(job.grid());
+    if (along.solver_valid()) return;
+    job.log << fmt::format(
+        "  the lines along the interior potential left {}: the grid again, its lines straight "
+        "to the core\n",
+        invalid_cells(along));
+    WallRoute kept_route = route;
+    BlockGrid kept = std::move(job.grid());
+    route.potential.reset();
+    route.far_level = 0;
+    job.grid() = build_grid(c, *job.body, nullptr, &route);
+    job.timer.done("grid", "(lines straight to the core)");
+    make_surface_grid(job);
+    untangle_and_optimize(job);
+    const QualityReport straight = measure_quality(job.grid());
+    if (straight.solver_valid() || straight.inverted_cells < along.inverted_cells) return;
+    job.log << fmt::format(
+        "  the lines straight to the core left {}: the grid with lines along the interior "
+        "potential is kept\n",
+        invalid_cells(straight));
+    job.grid() = std::move(kept);
+    route = std::move(kept_route);
+}
+
+}  // namespace
 
 RunResult run_case(const Case& c, const std::string& outdir, const RunOptions& options,
                    std::ostream& log) {
@@ -18,6 +57,7 @@ RunResult run_case(const Case& c, const std::string& outdir, const RunOptions& o
     if (c.solver.optimize_iterations > 0 || measure_quality(job.grid()).inverted_cells > 0) {
         make_surface_grid(job);
         untangle_and_optimize(job);
+        retry_with_straight_lines(job);
     }
     measure(job);
     refine_levels(job);

@@ -169,6 +169,7 @@ WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
         log << fmt::format("  the body is not star-shaped around {} {} (depth {:.4g}):\n",
                            centre.what, point(route.centre), depth);
         add_interior_potential(body, route, log);
+        lap();  // the sphere map's time from here
     } else {
         exterior_level(c, body, centre.what, route, lap, log);
     }
@@ -196,18 +197,23 @@ bool add_interior_potential(const ImplicitFunction& body, WallRoute& route, std:
         log << "  no interior potential (" << e.what() << "): lines straight to the core\n";
         return false;
     }
+    const double solve = lap();
     // The highest: the lines follow the potential as far in as they can.
     for (int tenth = 9; tenth >= 1 && route.far_level == 0; --tenth)
         if (star_shaped(Negated(*potential), -0.1 * tenth, route.centre, potential->spacing() / 2,
                         80))
             route.far_level = 0.1 * tenth;
     log << fmt::format("  interior potential ({} unknowns, {} iterations, {:.2f} s)",
-                       potential->unknowns(), potential->iterations(), lap());
+                       potential->unknowns(), potential->iterations(), solve);
     if (route.far_level == 0) {
-        log << ": no level of it is star-shaped around the centre, lines straight to the core\n";
+        log << fmt::format(
+            ": no level of it is star-shaped around the centre ({:.2f} s), lines straight to the "
+            "core\n",
+            lap());
         return false;
     }
-    log << fmt::format(": level {:.1f} star-shaped around the centre\n", route.far_level);
+    log << fmt::format(": level {:.1f} star-shaped around the centre ({:.2f} s)\n", route.far_level,
+                       lap());
     route.potential = std::move(potential);
     return true;
 }

@@ -18,10 +18,11 @@ namespace hexmesh {
 struct WallRoute {
     Vec3 centre = Vec3::Zero();
     // Not radial: the wall lattice (CubeSurfaceLattice numbering) placed through a map of the
-    // body's surface onto the sphere (hexmesh/pipeline/sphere_map.h) and, for an exterior
-    // grid, the potential whose gradient lines carry it out to its level far_level, which is
-    // star-shaped around `centre` (hexmesh/pipeline/exterior_paths.h). Radial: empty, the
-    // builders project rays from `centre`.
+    // body's surface onto the sphere (hexmesh/pipeline/sphere_map.h) and the potential whose
+    // gradient lines carry it to its level far_level, which is star-shaped around `centre`
+    // (hexmesh/pipeline/exterior_paths.h): out, for an exterior grid; in, for an interior one
+    // (none: straight lines to the core). Radial: empty, the builders project rays from
+    // `centre`.
     std::shared_ptr<const std::vector<Vec3>> wall;
     std::shared_ptr<const ImplicitFunction> potential;
     double far_level = 0;
@@ -47,9 +48,10 @@ struct WallRoute {
 //   around that; else the wall lattice through a map of the surface onto the sphere, around a
 //   core cube at the deepest point inside the largest ball there (half-size 0.45 of its
 //   radius), the lines in along the gradient lines of the body's interior potential
-//   (add_interior_potential) and on straight to the core, or, when it has no star-shaped
-//   level, straight from the wall to the core (the optimizer's untangling bends them into
-//   what sticks out); surface files only (see below);
+//   (add_interior_potential) and on straight to the core, or, when its solve fails or it has
+//   no star-shaped level, straight from the wall to the core (the optimizer's untangling bends
+//   them into what sticks out; so are single lines laid, see OHGridOptions::paths); surface
+//   files only (see below);
 // - exterior: else the wall lattice through a map of the surface onto the sphere, and the
 //   lines out along the gradient lines of the body's exterior potential
 //   (surface/exterior_potential.h) to its lowest level in 0.1, 0.2, ... 0.9 that is star-shaped

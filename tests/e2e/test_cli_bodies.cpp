@@ -183,13 +183,39 @@ TEST(CliBodies, AnInteriorOfABodyWithFingersRunsItsLinesAlongThePotential) {
                           "s\\): level 0\\.[1-9] star-shaped around the centre")))
         << r.out;
     EXPECT_NE(r.out.find("; lines in to the potential's level 0."), std::string::npos) << r.out;
-    EXPECT_EQ(r.out.find("its lines straight to the core"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("lines straight to"), std::string::npos) << r.out;
     const nlohmann::json q = quality_in(dir);
     EXPECT_TRUE(q.at("valid").get<bool>());
     EXPECT_GT(q.at("min_scaled_jacobian").get<double>(), 0);
     EXPECT_GE(
         q.at("wall").at("first_layer_thickness").at("fraction_within_10_percent").get<double>(),
         0.85);
+    expect_valid_by_the_checker_and_check_mesh(dir);
+    fs::remove_all(dir);
+}
+
+// The camel inside: its grid with lines along the interior potential is left with inverted
+// cells (the legs' lines crowd into the body), the one with lines straight from the wall to
+// the core is valid: the run makes both, says so, and writes the valid one. About two minutes.
+TEST(CliBodies, AnInteriorLeftInvertedAlongThePotentialIsMadeAgainWithStraightLines) {
+    const fs::path camel = bodies / "camel.off";
+    if (!fs::exists(camel)) GTEST_SKIP() << "shared bodies not beside the project: " << bodies;
+    const fs::path dir = scratch("bodies_camel_interior");
+    fs::remove_all(dir);
+    const CommandResult r = run_case_in(
+        dir, {{"geometry", {{"file", camel.string()}}},
+              {"domain", "interior"},
+              {"boundary_layer", {{"first_height", 0.002}, {"growth_ratio", 1.2}, {"layers", 5}}}});
+    // Written; exit code 3: the wall misses the legs (see bench/RESULTS.md).
+    ASSERT_TRUE(r.exit_code == 0 || r.exit_code == 3) << r.out << r.err;
+    EXPECT_TRUE(std::regex_search(
+        r.out, std::regex("the lines along the interior potential left [1-9][0-9]* inverted "
+                          "cells: the grid again, its lines straight to the core")))
+        << r.out;
+    EXPECT_EQ(r.out.find("potential is kept"), std::string::npos) << r.out;
+    const nlohmann::json q = quality_in(dir);
+    EXPECT_TRUE(q.at("valid").get<bool>());
+    EXPECT_GT(q.at("min_scaled_jacobian").get<double>(), 0);
     expect_valid_by_the_checker_and_check_mesh(dir);
     fs::remove_all(dir);
 }

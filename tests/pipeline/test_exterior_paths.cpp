@@ -144,12 +144,29 @@ TEST(InteriorPaths, LinesOfABallsInteriorPotentialAreItsRaysInToTheLevel) {
 }
 
 TEST(InteriorPaths, ALineThatStopsShortOfTheLevelIsLeftAsItsWallPoint) {
-    // A potential flat everywhere (as in a long limb, where it decays below its solve's noise):
-    // no line rises, and each is left as its wall point for the grid to run straight from.
+    // The ball's interior potential capped at 0.3 (flat beyond, as in a long limb where it
+    // decays below its solve's noise): every line rises from its wall point, then stops short
+    // of the level 0.5, and is left as its wall point for the grid to run straight from.
+    class Capped : public ImplicitFunction {
+      public:
+        double value(const Vec3& p) const override { return std::min(ball_.value(p), 0.3); }
+        Vec3 gradient(const Vec3& p) const override {
+            return ball_.value(p) >= 0.3 ? Vec3(Vec3::Zero()) : ball_.gradient(p);
+        }
+        Box3 bounds() const override { return ball_.bounds(); }
+
+      private:
+        InnerBallPotential ball_;
+    };
     const int n = 4;
-    const std::vector<Vec3> wall = unit_sphere_wall(n);
-    const WallPaths paths =
-        interior_paths(BallPotential(Flat::everywhere), wall, 0.5, n, Vec3::Zero());
+    std::vector<Vec3> wall = unit_sphere_wall(n);
+    for (Vec3& x : wall) x /= 1.0002;
+    // Traced as interior_paths traces them, the lines do rise before they stop.
+    std::vector<double> levels;
+    const std::vector<Vec3> risen = gradient_line_up(Capped(), wall[0], 0.5, 0.125, levels, true);
+    EXPECT_GT(risen.size(), 2u);
+    EXPECT_NEAR(levels.back(), 0.3, 1e-9);
+    const WallPaths paths = interior_paths(Capped(), wall, 0.5, n, Vec3::Zero());
     ASSERT_EQ(paths.lines.size(), wall.size());
     for (size_t s = 0; s < wall.size(); ++s) {
         ASSERT_EQ(paths.lines[s].size(), 1u) << s;
