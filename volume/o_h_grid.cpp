@@ -231,10 +231,12 @@ double fit_core_size(const OHLayout& lay, const OHGridOptions& options, const Ve
 
 // The wall lines along `paths` (place_nodes_on_paths), on from each path's end to its core
 // node, whose point is set. A path left as its wall point alone, or with no room for the
-// boundary layer and a cell beyond it (a wall next to the potential's source), is laid as a
-// straight line from the wall to its core node. Throws std::invalid_argument, naming the wall
-// point, when the layers do not fit a line (path and segment, or straight), as the straight
-// construction does.
+// boundary layer and a cell beyond it (a wall next to the potential's source), is replaced by
+// the straight segment from its wall node towards its core node, halfway (0.95 of the way when
+// the layer and a cell do not fit halfway), its level rising evenly to the far level: the line
+// runs straight to the core.
+// Throws std::invalid_argument, naming the wall point, when the layers do not fit a line (path
+// and segment), as the straight construction does.
 void place_on_paths(const OHLayout& lay, WallPaths paths, const WallLayers& law, BlockGrid& grid) {
     const int nk = lay.nk;
     if (Id(paths.lines.size()) != lay.ns || Id(paths.levels.size()) != lay.ns)
@@ -244,7 +246,6 @@ void place_on_paths(const OHLayout& lay, WallPaths paths, const WallLayers& law,
         law.layers > 0
             ? layers_thickness(law) + law.first_height * std::pow(law.growth_ratio, law.layers)
             : 0.0;
-    std::vector<char> straight(size_t(lay.ns), 0);
     for (Id s = 0; s < lay.ns; ++s) {
         core[s] = grid.points[lay.on_wall[s]];
         const std::vector<Vec3>& x = paths.lines[s];
@@ -252,24 +253,16 @@ void place_on_paths(const OHLayout& lay, WallPaths paths, const WallLayers& law,
         for (size_t k = 1; k < x.size(); ++k) length += (x[k] - x[k - 1]).norm();
         wall_distances(length + (core[s] - x.back()).norm(), nk, law, &lay.wall[s]);  // fits?
         if (x.size() >= 2 && length > room) continue;
-        straight[s] = 1;  // a stand-in path for place_nodes_on_paths' typical line
-        paths.lines[s] = {lay.wall[s], 0.5 * (lay.wall[s] + core[s])};
+        const bool halfway = room < 0.5 * (core[s] - lay.wall[s]).norm();
+        paths.lines[s] = {lay.wall[s], halfway
+                                           ? Vec3(0.5 * (lay.wall[s] + core[s]))
+                                           : Vec3(lay.wall[s] + 0.95 * (core[s] - lay.wall[s]))};
         paths.levels[s] = {0.0, paths.far_level};
     }
-    const auto set = [&](Id s, int layer, const Vec3& x) {
-        grid.points[lay.node_id(lay.on_wall[s], layer)] = x;
-    };
     place_nodes_on_paths(paths, lay.wall, core, nk, law, [&](Id s, const std::vector<Vec3>& x) {
-        if (!straight[s])
-            for (int k = 0; k < nk; ++k) set(s, nk - k, x[k]);
-    });
-    deterministic_for(lay.ns, [&](Id s) {
-        grid.kinds[lay.node_id(lay.on_wall[s], nk)] = VertexKind::slip;
-        if (!straight[s]) return;
-        const double length = (lay.wall[s] - core[s]).norm();
-        const std::vector<double> d = wall_distances(length, nk, law, &lay.wall[s]);
-        for (int layer = 1; layer <= nk; ++layer)
-            set(s, layer, lay.wall[s] + (core[s] - lay.wall[s]) * (d[nk - layer] / length));
+        const Id core_id = lay.on_wall[s];
+        for (int k = 0; k < nk; ++k) grid.points[lay.node_id(core_id, nk - k)] = x[k];
+        grid.kinds[lay.node_id(core_id, nk)] = VertexKind::slip;
     });
 }
 
