@@ -45,8 +45,8 @@ void sample_nodes(const ImplicitFunction& body, const Vec3& lo, double h,
                   std::vector<double>& u, std::vector<double>& source,
                   std::vector<NodeKind>& kind) {
     const bool interior = o.source_radius > 0;
-    source.assign(interior ? size_t(n[0]) * n[1] * n[2] : 0, 0.0);
     const size_t count = size_t(n[0]) * n[1] * n[2];
+    source.assign(interior ? count : 0, 0.0);
     u.resize(count);
     kind.resize(count);
     parallel_each(count, [&](size_t id) {

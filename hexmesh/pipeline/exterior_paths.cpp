@@ -183,12 +183,11 @@ WallPaths exterior_paths(const ImplicitFunction& potential, const std::vector<Ve
                          double c0, int n, const Vec3& centre,
                          const untangle::UntangleOptions& solver) {
     WallPaths paths = trace_paths(potential, wall, c0, n, centre);
-    const auto short_of_level = [&](size_t s) { return hexmesh::short_of_level(paths, s); };
     std::vector<Vec3> directions(wall.size());
     for (size_t s = 0; s < wall.size(); ++s) {
         // A line that stopped short of the far level (no higher point near its end, or it
         // wandered four diagonals) would pile its nodes on its last point.
-        if (paths.lines[s].size() < 2 || short_of_level(s))
+        if (paths.lines[s].size() < 2 || short_of_level(paths, s))
             throw std::invalid_argument(fmt::format(
                 "the exterior potential's gradient line from the wall point ({:.4g}, {:.4g}, "
                 "{:.4g}) stops at level {:.3g} short of the far level {:.3g} (no higher point "

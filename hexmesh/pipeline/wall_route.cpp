@@ -165,10 +165,9 @@ WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
     if (c.domain != Domain::exterior) {
         const double depth = exact ? exact->distance(route.centre) : -body.value(route.centre);
         route.core_half = Vec3::Constant(0.45 * depth);
-        route.depth = depth;
         log << fmt::format("  the body is not star-shaped around {} {} (depth {:.4g}):\n",
                            centre.what, point(route.centre), depth);
-        add_interior_potential(body, route, log);
+        add_interior_potential(body, depth, route, log);
         lap();  // the sphere map's time from here
     } else {
         exterior_level(c, body, centre.what, route, lap, log);
@@ -185,11 +184,12 @@ WallPaths exterior_paths(const WallRoute& route, const std::vector<Vec3>& wall,
                           route.solver);
 }
 
-bool add_interior_potential(const ImplicitFunction& body, WallRoute& route, std::ostream& log) {
+bool add_interior_potential(const ImplicitFunction& body, double depth, WallRoute& route,
+                            std::ostream& log) {
     Lap lap;
     ExteriorPotentialOptions o;
     o.source_centre = route.centre;
-    o.source_radius = 0.9 * route.depth;
+    o.source_radius = 0.9 * depth;
     std::shared_ptr<ExteriorPotential> potential;
     try {
         potential = std::make_shared<ExteriorPotential>(body, o);

@@ -26,12 +26,10 @@ struct WallRoute {
     std::shared_ptr<const std::vector<Vec3>> wall;
     std::shared_ptr<const ImplicitFunction> potential;
     double far_level = 0;
-    // Interior: the core box's half extents, around `centre`, inside the body, and the
-    // centre's distance to the surface. With `potential` (add_interior_potential), the
-    // lines run in along its gradient lines to its level far_level, then on straight to the
-    // core; else straight from the wall to the core.
+    // Interior: the core box's half extents, around `centre`, inside the body. With
+    // `potential` (add_interior_potential), the lines run in along its gradient lines to its
+    // level far_level, then on straight to the core; else straight from the wall to the core.
     std::optional<Vec3> core_half;
-    double depth = 0;
     // Radial all the same for a body that is not star-shaped (no surface file to map): why,
     // for the message of a construction that then fails.
     std::string not_star_shaped;
@@ -73,12 +71,14 @@ WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
 WallPaths exterior_paths(const WallRoute& route, const std::vector<Vec3>& wall, int cells_per_edge);
 
 // For an interior route that is not radial (choose_wall_route calls it): the body's interior
-// potential, 1 on the ball of 0.9 route.depth round route.centre (surface/exterior_potential.h),
+// potential, 1 on the ball of 0.9 `depth` (the centre's distance to the surface) round
+// route.centre (surface/exterior_potential.h),
 // and its highest level in tenths star-shaped around the centre, into route.potential and
 // route.far_level, so that build_grid lays the lines in along its gradient. Logs the solve;
 // false (the route as it was: lines straight to the core) when the solve fails or no level is
 // star-shaped.
-bool add_interior_potential(const ImplicitFunction& body, WallRoute& route, std::ostream& log);
+bool add_interior_potential(const ImplicitFunction& body, double depth, WallRoute& route,
+                            std::ostream& log);
 
 // The paths of an interior grid's lines from these wall nodes in along the route's interior
 // potential (hexmesh/pipeline/exterior_paths.h: interior_paths). The route must have one.

@@ -34,6 +34,16 @@ CommandResult run_case_in(const fs::path& dir, const nlohmann::json& c) {
                        "'");
 }
 
+// run_case_in(dir, ...) from a fresh DIR of the case the body table runs: only the file, the
+// domain and a boundary layer of 5 layers from 0.002, growth 1.2.
+CommandResult run_body_in(const fs::path& dir, const fs::path& file, const std::string& domain) {
+    fs::remove_all(dir);
+    return run_case_in(
+        dir, {{"geometry", {{"file", file.string()}}},
+              {"domain", domain},
+              {"boundary_layer", {{"first_height", 0.002}, {"growth_ratio", 1.2}, {"layers", 5}}}});
+}
+
 // The quality.json that run_case_in(dir, ...) wrote.
 nlohmann::json quality_in(const fs::path& dir) {
     std::ifstream in(dir / "out" / "quality.json");
@@ -171,11 +181,7 @@ TEST(CliBodies, AnInteriorOfABodyWithFingersRunsItsLinesAlongThePotential) {
     const fs::path hand = bodies / "hand.off";
     if (!fs::exists(hand)) GTEST_SKIP() << "shared bodies not beside the project: " << bodies;
     const fs::path dir = scratch("bodies_hand_interior");
-    fs::remove_all(dir);
-    const CommandResult r = run_case_in(
-        dir, {{"geometry", {{"file", hand.string()}}},
-              {"domain", "interior"},
-              {"boundary_layer", {{"first_height", 0.002}, {"growth_ratio", 1.2}, {"layers", 5}}}});
+    const CommandResult r = run_body_in(dir, hand, "interior");
     // Written; exit code 3: the wall misses the fingertips (see bench/RESULTS.md).
     ASSERT_TRUE(r.exit_code == 0 || r.exit_code == 3) << r.out << r.err;
     EXPECT_TRUE(std::regex_search(
@@ -201,11 +207,7 @@ TEST(CliBodies, AnInteriorLeftInvertedAlongThePotentialIsMadeAgainWithStraightLi
     const fs::path camel = bodies / "camel.off";
     if (!fs::exists(camel)) GTEST_SKIP() << "shared bodies not beside the project: " << bodies;
     const fs::path dir = scratch("bodies_camel_interior");
-    fs::remove_all(dir);
-    const CommandResult r = run_case_in(
-        dir, {{"geometry", {{"file", camel.string()}}},
-              {"domain", "interior"},
-              {"boundary_layer", {{"first_height", 0.002}, {"growth_ratio", 1.2}, {"layers", 5}}}});
+    const CommandResult r = run_body_in(dir, camel, "interior");
     // Written; exit code 3: the wall misses the legs (see bench/RESULTS.md).
     ASSERT_TRUE(r.exit_code == 0 || r.exit_code == 3) << r.out << r.err;
     EXPECT_TRUE(std::regex_search(
@@ -299,11 +301,7 @@ TEST_P(FromTheFileAlone, IsValidForTheSolverAndKeepsItsFirstLayer) {
     if (!fs::exists(file)) GTEST_SKIP() << "shared bodies not beside the project: " << bodies;
     const fs::path dir =
         scratch(std::string("from_file_") + fs::path(p.body).stem().string() + "_" + p.domain);
-    fs::remove_all(dir);
-    const CommandResult r = run_case_in(
-        dir, {{"geometry", {{"file", file.string()}}},
-              {"domain", p.domain},
-              {"boundary_layer", {{"first_height", 0.002}, {"growth_ratio", 1.2}, {"layers", 5}}}});
+    const CommandResult r = run_body_in(dir, file, p.domain);
     // Written either way; exit code 3 and a warning when the wall misses part of the body.
     ASSERT_TRUE(r.exit_code == 0 || r.exit_code == 3) << r.out << r.err;
     const nlohmann::json q = quality_in(dir);
