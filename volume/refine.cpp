@@ -110,11 +110,19 @@ void fill_line(int coarse_count, WallEnds wall, At&& at) {
         interpolate_line(coarse_count, at);
 }
 
-// Positions of the fine nodes of one block (fine dims, flat i fastest), by tensor-product
-// interpolation: along i on the coarse j, k lines, then along j, then along k; along an
-// index direction with a wall face at an end, by interpolate_wall_line.
-std::vector<Vec3> fine_positions(const BlockGrid& coarse, const Block& block, const Dims& fine) {
-    std::vector<Vec3> x(fine.count());
+// Whether a node (i, j, k) of a block of dims d lies on one of its faces.
+bool on_block_face(const Dims& d, int i, int j, int k) {
+    return i == 0 || i == d.ni - 1 || j == 0 || j == d.nj - 1 || k == 0 || k == d.nk - 1;
+}
+
+// Positions of the fine nodes of one block (fine dims, flat i fastest; at(m) is node m), by
+// tensor-product interpolation: along i on the coarse j, k lines, then along j, then along
+// k; along an index direction with a wall face at an end, by interpolate_wall_line. With
+// `faces_only`, only the lines that lie in a block face: a node on a face depends on that
+// face's nodes alone, so its position is the same bit for bit.
+template <class At>
+void fine_positions(const BlockGrid& coarse, const Block& block, const Dims& fine, bool faces_only,
+                    At&& at) {
     const Dims c = block.nodes;
     WallEnds wall[3];
     for (int d = 0; d < 3; ++d)
@@ -122,22 +130,27 @@ std::vector<Vec3> fine_positions(const BlockGrid& coarse, const Block& block, co
     tbb::parallel_for(0, c.nk, [&](int k) {
         for (int j = 0; j < c.nj; ++j)
             for (int i = 0; i < c.ni; ++i)
-                x[fine.flat(2 * i, 2 * j, 2 * k)] = coarse.points[block.node(i, j, k)];
+                if (!faces_only || on_block_face(fine, 2 * i, 2 * j, 2 * k))
+                    at(fine.flat(2 * i, 2 * j, 2 * k)) = coarse.points[block.node(i, j, k)];
     });
     // Along i on (even j, even k); along j on (all i, even k); along k on (all i, all j).
     tbb::parallel_for(0, c.nk, [&](int k) {
         for (int j = 0; j < c.nj; ++j)
-            fill_line(c.ni, wall[0], [&](int f) -> Vec3& { return x[fine.flat(f, 2 * j, 2 * k)]; });
+            if (!faces_only || on_block_face(fine, 1, 2 * j, 2 * k))
+                fill_line(c.ni, wall[0],
+                          [&](int f) -> Vec3& { return at(fine.flat(f, 2 * j, 2 * k)); });
     });
     tbb::parallel_for(0, c.nk, [&](int k) {
         for (int i = 0; i < fine.ni; ++i)
-            fill_line(c.nj, wall[1], [&](int f) -> Vec3& { return x[fine.flat(i, f, 2 * k)]; });
+            if (!faces_only || on_block_face(fine, i, 1, 2 * k))
+                fill_line(c.nj, wall[1],
+                          [&](int f) -> Vec3& { return at(fine.flat(i, f, 2 * k)); });
     });
     tbb::parallel_for(0, fine.nj, [&](int j) {
         for (int i = 0; i < fine.ni; ++i)
-            fill_line(c.nk, wall[2], [&](int f) -> Vec3& { return x[fine.flat(i, j, f)]; });
+            if (!faces_only || on_block_face(fine, i, j, 1))
+                fill_line(c.nk, wall[2], [&](int f) -> Vec3& { return at(fine.flat(i, j, f)); });
     });
-    return x;
 }
 
 // Where placement moved a new wall node by d (onto the body), the new interior nodes of its
@@ -146,11 +159,13 @@ std::vector<Vec3> fine_positions(const BlockGrid& coarse, const Block& block, co
 // the same factor, so the first layer keeps its thickness and the line its growth ratios
 // (projection moves a node of the interpolated wall by up to a few percent of a cell, as
 // much as a thin first layer). The line's far end does not move. Coarse nodes and nodes of
-// other kinds (on a wall, a crease, the far field) stay. A node other blocks placed first
-// moves too, but gets their position back afterwards, as every shared node does.
-void carry_wall_moves(const Block& block, const std::vector<VertexKind>& kinds,
-                      const std::vector<bool>& coarse,
-                      const std::unordered_map<Id, Vec3>& wall_moves, std::vector<Vec3>& x) {
+// other kinds (on a wall, a crease, the far field) stay: movable(m) says which may. A node
+// other blocks placed first moves too, but gets their position back afterwards, as every
+// shared node does. With `faces_only`, only the lines that lie in a block face. at(m) is
+// node m's position.
+template <class At, class Movable>
+void carry_wall_moves(const Block& block, const std::unordered_map<Id, Vec3>& wall_moves,
+                      bool faces_only, At&& at, Movable&& movable) {
     if (wall_moves.empty()) return;
     const Dims& f = block.nodes;
     for (int side = 0; side < 6; ++side) {
@@ -167,19 +182,19 @@ void carry_wall_moves(const Block& block, const std::vector<VertexKind>& kinds,
         tbb::parallel_for(0, f[q], [&](int b) {
             std::vector<double> s(size_t(n), 0.0);
             for (int a = 0; a < f[p]; ++a) {
+                if (faces_only && a > 0 && a < f[p] - 1 && b > 0 && b < f[q] - 1) continue;
                 const auto moved = wall_moves.find(node(a, b, 0));
                 if (moved == wall_moves.end()) continue;
                 // Lengths along the line as interpolated, the wall node where it was.
-                Vec3 before = x[node(a, b, 0)] - moved->second;
+                Vec3 before = at(node(a, b, 0)) - moved->second;
                 for (int t = 1; t < n; ++t) {
-                    s[t] = s[t - 1] + (x[node(a, b, t)] - before).norm();
-                    before = x[node(a, b, t)];
+                    s[t] = s[t - 1] + (at(node(a, b, t)) - before).norm();
+                    before = at(node(a, b, t));
                 }
                 if (!(s[n - 1] > 0)) continue;
                 for (int t = 1; t + 1 < n; ++t) {
                     const Id m = node(a, b, t);
-                    if (!coarse[m] && kinds[m] == VertexKind::interior)
-                        x[m] += (1 - s[t] / s[n - 1]) * moved->second;
+                    if (movable(m)) at(m) += (1 - s[t] / s[n - 1]) * moved->second;
                 }
             }
         });
@@ -274,17 +289,81 @@ BlockRefiner::BlockRefiner(const BlockGrid& coarse) : coarse_(coarse) {
     }
 }
 
-RefinedBlock BlockRefiner::refine(size_t b, const Place& place) {
+const Block& BlockRefiner::next(size_t b) {
     if (b != next_block_ || b >= coarse_.blocks.size())
-        throw std::logic_error("BlockRefiner::refine: blocks are refined once each, in order");
+        throw std::logic_error("BlockRefiner: blocks are refined once each, in order");
     ++next_block_;
-    const Block& block = coarse_.blocks[b];
+    return coarse_.blocks[b];
+}
+
+template <class Visit>
+void BlockRefiner::number(const Block& block, const Dims& f, Visit&& visit) {
+    for (int k = 0; k < f.nk; ++k)
+        for (int j = 0; j < f.nj; ++j) {
+            const bool face_row = k == 0 || k == f.nk - 1 || j == 0 || j == f.nj - 1;
+            for (int i = 0; i < f.ni; ++i) {
+                if (!face_row && i == 1 && !visit.each_inner_node && f.ni > 2) {
+                    // The row's inner nodes at once: new but the coarse ones (even i, j, k).
+                    const Id coarse_inner = (j % 2 == 0 && k % 2 == 0) ? (f.ni - 3) / 2 : 0;
+                    next_id_ += f.ni - 2 - coarse_inner;
+                    i = f.ni - 2;
+                    continue;
+                }
+                const Id m = f.flat(i, j, k);
+                if ((i & 1) + (j & 1) + (k & 1) == 0) {
+                    visit.coarse(m, block.node(i / 2, j / 2, k / 2));
+                    continue;
+                }
+                if (!face_row && i != 0 && i != f.ni - 1) {
+                    visit.inner(m, next_id_++);
+                    continue;
+                }
+                const int idx[3] = {i, j, k};
+                const FaceNodes::iterator e = face_nodes_.find(entity_key(block, idx));
+                assert(e != face_nodes_.end());
+                FaceNode& n = e->second;
+                const bool first = n.id < 0;
+                if (first) n.id = next_id_++;
+                visit.face(m, Reached{m, e}, first);
+            }
+        }
+}
+
+template <class At, class Movable>
+void BlockRefiner::settle(const Block& fine, const std::vector<Reached>& first,
+                          const std::vector<Reached>& again, const Place& place, bool faces_only,
+                          At&& at, Movable&& movable) {
+    if (place) {
+        std::vector<Vec3> moves(first.size());
+        tbb::parallel_for(size_t(0), first.size(), [&](size_t n) {
+            Vec3& x = at(first[n].m);
+            const Vec3 placed = place(x, first[n].e->second.kind);
+            moves[n] = placed - x;
+            x = placed;
+        });
+        std::unordered_map<Id, Vec3> wall_moves;
+        for (size_t n = 0; n < first.size(); ++n)
+            if (moves[n] != Vec3::Zero()) wall_moves.emplace(first[n].m, moves[n]);
+        carry_wall_moves(fine, wall_moves, faces_only, at, movable);
+    }
+    for (const Reached& r : first) r.e->second.x = at(r.m);
+    for (const Reached& r : again) at(r.m) = r.e->second.x;
+    for (auto* list : {&first, &again})
+        for (const Reached& r : *list)
+            if (--r.e->second.remaining == 0) face_nodes_.erase(r.e);
+}
+
+RefinedBlock BlockRefiner::refine(size_t b, const Place& place) {
+    const Block& block = next(b);
     const Dims f = fine_dims(block.nodes);
     const Id count = f.count();
 
     RefinedBlock out;
     out.fine_points = num_points_;
-    out.grid.points = fine_positions(coarse_, block, f);
+    std::vector<Vec3>& x = out.grid.points;
+    x.resize(size_t(count));
+    const auto at = [&](Id m) -> Vec3& { return x[size_t(m)]; };
+    fine_positions(coarse_, block, f, false, at);
     out.grid.kinds.assign(size_t(count), VertexKind::interior);
     out.ids.assign(size_t(count), -1);
     out.shared.assign(size_t(count), false);
@@ -298,60 +377,63 @@ RefinedBlock BlockRefiner::refine(size_t b, const Place& place) {
 
     // Ids in refine_grid's order; the block-face nodes this block reaches first get placed,
     // the others take the position their first block gave them.
-    using Entry = decltype(face_nodes_)::iterator;
-    std::vector<std::pair<Id, Entry>> first, again;
-    for (int k = 0; k < f.nk; ++k)
-        for (int j = 0; j < f.nj; ++j)
-            for (int i = 0; i < f.ni; ++i) {
-                const Id m = f.flat(i, j, k);
-                if ((i & 1) + (j & 1) + (k & 1) == 0) {
-                    const Id v = block.node(i / 2, j / 2, k / 2);
-                    out.ids[m] = v;
-                    out.grid.kinds[m] = coarse_.kinds[v];
-                    out.coarse[m] = true;
-                    continue;
-                }
-                const bool on_face =
-                    i == 0 || i == f.ni - 1 || j == 0 || j == f.nj - 1 || k == 0 || k == f.nk - 1;
-                if (!on_face) {
-                    out.ids[m] = next_id_++;
-                    continue;
-                }
-                const int idx[3] = {i, j, k};
-                const Entry e = face_nodes_.find(entity_key(block, idx));
-                assert(e != face_nodes_.end());
-                FaceNode& n = e->second;
-                out.grid.kinds[m] = n.kind;
-                if (n.id < 0) {
-                    n.id = next_id_++;
-                    out.shared[m] = n.remaining > 1;
-                    first.emplace_back(m, e);
-                } else {
-                    out.shared[m] = true;
-                    again.emplace_back(m, e);
-                }
-                out.ids[m] = n.id;
-            }
-    std::vector<Vec3>& x = out.grid.points;
-    if (place) {
-        std::vector<Vec3> moves(first.size());
-        tbb::parallel_for(size_t(0), first.size(), [&](size_t n) {
-            const Id m = first[n].first;
-            const Vec3 placed = place(x[m], out.grid.kinds[m]);
-            moves[n] = placed - x[m];
-            x[m] = placed;
-        });
-        std::unordered_map<Id, Vec3> wall_moves;
-        for (size_t n = 0; n < first.size(); ++n)
-            if (moves[n] != Vec3::Zero()) wall_moves.emplace(first[n].first, moves[n]);
-        carry_wall_moves(fine, out.grid.kinds, out.coarse, wall_moves, x);
-    }
-    for (const auto& [m, e] : first) e->second.x = x[m];
-    for (const auto& [m, e] : again) x[m] = e->second.x;
-    for (auto* list : {&first, &again})
-        for (const auto& [m, e] : *list)
-            if (--e->second.remaining == 0) face_nodes_.erase(e);
+    std::vector<Reached> first, again;
+    struct Visit {
+        RefinedBlock& out;
+        const BlockGrid& coarse_grid;
+        std::vector<Reached>&first, &again;
+        bool each_inner_node = true;
+        void coarse(Id m, Id v) {
+            out.ids[m] = v;
+            out.grid.kinds[m] = coarse_grid.kinds[v];
+            out.coarse[m] = true;
+        }
+        void inner(Id m, Id id) { out.ids[m] = id; }
+        void face(Id m, const Reached& r, bool is_first) {
+            const FaceNode& n = r.e->second;
+            out.grid.kinds[m] = n.kind;
+            out.ids[m] = n.id;
+            out.shared[m] = !is_first || n.remaining > 1;
+            (is_first ? first : again).push_back(r);
+        }
+    } visit{out, coarse_, first, again, true};
+    number(block, f, visit);
+    settle(fine, first, again, place, false, at,
+           [&](Id m) { return !out.coarse[m] && out.grid.kinds[m] == VertexKind::interior; });
     return out;
+}
+
+void BlockRefiner::skip(size_t b, const Place& place) {
+    const Block& block = next(b);
+    const Dims f = fine_dims(block.nodes);
+    // The block's face nodes alone: their positions, and whether carry_wall_moves may move
+    // them (new interior nodes).
+    struct FacePoint {
+        Vec3 x = Vec3::Zero();
+        bool movable = false;
+    };
+    std::unordered_map<Id, FacePoint> points;
+    for_each_face_node(f, [&](int i, int j, int k) { points[f.flat(i, j, k)]; });
+    const auto at = [&](Id m) -> Vec3& { return points.find(m)->second.x; };
+    fine_positions(coarse_, block, f, true, at);
+    std::vector<Reached> first, again;
+    struct Visit {
+        std::unordered_map<Id, FacePoint>& points;
+        std::vector<Reached>&first, &again;
+        bool each_inner_node = false;
+        void coarse(Id, Id) {}
+        void inner(Id, Id) {}
+        void face(Id m, const Reached& r, bool is_first) {
+            points.find(m)->second.movable = r.e->second.kind == VertexKind::interior;
+            (is_first ? first : again).push_back(r);
+        }
+    } visit{points, first, again, false};
+    number(block, f, visit);
+    Block fine;
+    fine.face_patch = block.face_patch;
+    fine.nodes = f;
+    settle(fine, first, again, place, true, at,
+           [&](Id m) { return points.find(m)->second.movable; });
 }
 
 BlockGrid refine_grid(const BlockGrid& coarse) {

@@ -84,6 +84,14 @@ class BlockRefiner {
     // Fine block b (blocks are taken in order 0, 1, ..., each once).
     RefinedBlock refine(size_t b, const Place& place = nullptr);
 
+    // Takes block b's turn without making it: only the nodes on its faces are interpolated
+    // and placed, those it reaches first, exactly as refine(b) would (a node on a block face
+    // depends on that face alone), and the ids it would use are counted. So the blocks after
+    // it get the same nodes and ids as after refine(b): a process that makes some blocks of
+    // a grid and skips the others makes them as the whole refinement does, bit for bit.
+    // Costs the block's faces, not its cells.
+    void skip(size_t b, const Place& place = nullptr);
+
     // Points of the whole fine grid (refine_grid(coarse).points.size()), and its cells.
     Id num_points() const { return num_points_; }
     Id num_cells() const { return 8 * coarse_.num_cells(); }
@@ -97,9 +105,28 @@ class BlockRefiner {
         int remaining = 0;  // occurrences (block, fine node) not yet taken
     };
     using Key = std::array<Id, 4>;
+    using FaceNodes = std::unordered_map<Key, FaceNode, ArrayHash<Id, 4>>;
+    // A block-face node of the block being taken (its fine index m) and its entry.
+    struct Reached {
+        Id m;
+        FaceNodes::iterator e;
+    };
+
+    const Block& next(size_t b);  // block b, checking the order
+    // Visits the fine nodes of `block` (fine dims f) in refine_grid's order, giving new nodes
+    // their ids: visit.coarse(m, id), visit.inner(m, id) (only counted, unless
+    // Visit::each_inner_node), visit.face(m, reached, first).
+    template <class Visit>
+    void number(const Block& block, const Dims& f, Visit&& visit);
+    // Places the block-face nodes reached first (place, then carry_wall_moves), gives those
+    // reached again their first position, and drops the nodes no block will reach again.
+    template <class At, class Movable>
+    void settle(const Block& fine, const std::vector<Reached>& first,
+                const std::vector<Reached>& again, const Place& place, bool faces_only, At&& at,
+                Movable&& movable);
 
     const BlockGrid& coarse_;
-    std::unordered_map<Key, FaceNode, ArrayHash<Id, 4>> face_nodes_;
+    FaceNodes face_nodes_;
     Id num_points_ = 0, next_id_ = 0;
     size_t next_block_ = 0;
 };

@@ -162,7 +162,8 @@ Id polish_block(RefinedBlock& piece, const ImplicitFunction& body,
 }  // namespace
 
 RefinementStats refine_blocks(const BlockGrid& coarse, const ImplicitFunction& body,
-                              const RefinementOptions& options, const BlockSink& sink) {
+                              const RefinementOptions& options, const BlockSink& sink,
+                              const std::vector<bool>* made) {
     RefinementStats stats;
     BlockRefiner refiner(coarse);
     // The fine grid's length scale: half the coarse one (8 times the cells in the same box).
@@ -184,6 +185,10 @@ RefinementStats refine_blocks(const BlockGrid& coarse, const ImplicitFunction& b
         return p;
     };
     for (size_t b = 0; b < coarse.blocks.size(); ++b) {
+        if (made && !(*made)[b]) {
+            refiner.skip(b, place);
+            continue;
+        }
         RefinedBlock piece = refiner.refine(b, place);
         stats.polished += polish_block(piece, body, options);
         sink(piece);

@@ -60,9 +60,13 @@ using BlockSink = std::function<void(RefinedBlock& block)>;
 // positions, so refinement never lowers the interpolation's min scaled Jacobian. Coarse
 // nodes keep their exact positions. Inverted cells (there should be none) are untangled
 // by the same local solver. Then `sink` gets the block. Blocks run in order, each one
-// multi-threaded (TBB).
+// multi-threaded (TBB). With `made`, only the blocks b with (*made)[b] are made and given to
+// `sink`; the others are skipped (BlockRefiner::skip: their faces only), and the blocks
+// made are the same, bit for bit, as when every block is (one process of several, each
+// making its share of the grid). `polished` then counts the blocks made.
 RefinementStats refine_blocks(const BlockGrid& coarse, const ImplicitFunction& body,
-                              const RefinementOptions& options, const BlockSink& sink);
+                              const RefinementOptions& options, const BlockSink& sink,
+                              const std::vector<bool>* made = nullptr);
 
 // The nested family level_1 = `coarse`, level_2, ..., level_`levels` (levels >= 1), each
 // level refine_on_body of the one before.

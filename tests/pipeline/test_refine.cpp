@@ -2,6 +2,7 @@
 // and the bean STL; the refined wall law on the families `run` makes of the bundled cases.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
 #include <sstream>
@@ -133,6 +134,39 @@ TEST_P(RefineFamily, BlockByBlockLevelMatchesTheAssembledOne) {
     EXPECT_EQ(streamed.wall->first_layer_mean, whole.wall->first_layer_mean);
     EXPECT_EQ(streamed.wall->orthogonality_max_deg, whole.wall->orthogonality_max_deg);
     EXPECT_EQ(*streamed.max_surface_distance, *whole.max_surface_distance);
+}
+
+// One process of several makes its share of the blocks and skips the others (their faces
+// only): what it makes is the whole refinement's blocks, bit for bit, whichever it makes.
+TEST_P(RefineFamily, BlocksMadeWhileTheOthersAreSkippedAreTheSameBitForBit) {
+    const Family& f = family(GetParam());
+    const BlockGrid& assembled = f.levels[2];
+    const size_t blocks = assembled.blocks.size();
+    ASSERT_GE(blocks, 3u);
+    for (int share = 0; share < 3; ++share) {
+        // Every other block, the last alone, all but the first.
+        std::vector<bool> made(blocks);
+        for (size_t b = 0; b < blocks; ++b)
+            made[b] = share == 0 ? b % 2 == 1 : share == 1 ? b + 1 == blocks : b > 0;
+        std::vector<size_t> got;
+        size_t next = 0;
+        const RefinementStats stats = refine_blocks(
+            f.levels[1], *f.body, {},
+            [&](RefinedBlock& piece) {
+                while (next < blocks && !made[next]) ++next;
+                ASSERT_LT(next, blocks);
+                const Block& block = assembled.blocks[next];
+                EXPECT_EQ(piece.grid.blocks[0].name, block.name);
+                ASSERT_EQ(piece.ids, block.node_ids) << "block " << next;
+                for (size_t m = 0; m < piece.ids.size(); ++m)
+                    ASSERT_EQ(piece.grid.points[m], assembled.points[piece.ids[m]])
+                        << "share " << share << ", block " << next << ", node " << m;
+                got.push_back(next++);
+            },
+            &made);
+        EXPECT_EQ(got.size(), size_t(std::count(made.begin(), made.end(), true)));
+        EXPECT_EQ(stats.points, Id(assembled.points.size()));
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(Bodies, RefineFamily, ::testing::Values("sphere", "bean"));
