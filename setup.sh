@@ -12,6 +12,7 @@ build_packages=(
   libeigen3-dev libopenvdb-dev libboost-iostreams-dev libtbb-dev
   libcgal-dev libvtk9-dev libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libfmt-dev libcgns-dev libnetcdf-dev liblzma-dev
+  libopenmpi-dev openmpi-bin
 )
 # Independent readers and checkers the end-to-end tests compare against, and the formatter
 # whose rules the sources follow (a test checks them).

@@ -10,7 +10,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
+#include "hexmesh/core/bytes.h"
 #include "hexmesh/core/reference_hex.h"
 
 namespace hexmesh {
@@ -290,6 +292,29 @@ void GridPictures::add_block(const BlockGrid& grid, const Block& block, const do
             add_wall_face(q, value);
         }
     });
+}
+
+std::string GridPictures::pack() const {
+    ByteWriter out;
+    for (const auto* canvases : {&wall_, &cuts_})
+        for (const Canvas& c : *canvases) out.put(c.rgb), out.put(c.depth);
+    return out.bytes();
+}
+
+void GridPictures::merge(const std::string& packed) {
+    ByteReader in(packed);
+    for (auto* canvases : {&wall_, &cuts_})
+        for (Canvas& c : *canvases) {
+            const std::vector<unsigned char> rgb = in.next<std::vector<unsigned char>>();
+            const std::vector<double> depth = in.next<std::vector<double>>();
+            if (depth.size() != c.depth.size() || rgb.size() != c.rgb.size())
+                throw std::runtime_error("pictures of another size cannot be merged");
+            for (std::size_t at = 0; at < depth.size(); ++at) {
+                if (!(depth[at] >= c.depth[at])) continue;
+                c.depth[at] = depth[at];
+                for (int k = 0; k < 3; ++k) c.rgb[3 * at + k] = rgb[3 * at + k];
+            }
+        }
 }
 
 std::vector<Picture> GridPictures::pictures() const {

@@ -60,6 +60,12 @@ class GridPictures {
 
     std::vector<Picture> pictures() const;  // PNG-encoded
 
+    // What has been drawn, as bytes for another process; merge() draws another GridPictures'
+    // pack() (the same frames) into this one, the nearer of the two at each pixel: the
+    // blocks of one grid drawn by several processes, then put together.
+    std::string pack() const;
+    void merge(const std::string& packed);
+
   private:
     struct Canvas;
     std::vector<Canvas> wall_;

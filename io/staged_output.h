@@ -33,6 +33,9 @@ class StagedOutput {
     StagedOutput& operator=(const StagedOutput&) = delete;
 
     std::string path(const std::string& name);
+    // The staging folder itself, for other processes of the same job to write into (what they
+    // write there is committed with the rest).
+    const std::string& staging_folder() const { return staging_; }
     void write_text(const std::string& name, const std::string& text);
     // Moves the staged outputs into place; returns their final paths.
     std::vector<std::string> commit();

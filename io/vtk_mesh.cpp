@@ -191,34 +191,45 @@ void VtkGridWriter::add(const BlockGrid& grid, const Block& block) {
     if (names_.size() >= num_blocks_)
         throw std::logic_error(
             fmt::format("{}: more blocks than the {} announced", path_, num_blocks_));
+    add_piece(names_.size(), grid, block);
+    names_.push_back(block.name);
+}
+
+void VtkGridWriter::add_piece(size_t index, const BlockGrid& grid, const Block& block) const {
+    if (index >= num_blocks_)
+        throw std::logic_error(
+            fmt::format("{}: block {} of the {} announced", path_, index, num_blocks_));
     // .vtm: the pieces where VTK's multiblock writer puts them, STEM/STEM_<index>.vts.
-    const std::string piece = pieces_.empty()
-                                  ? std::string()
-                                  : fmt::format("{}/{}_{}.vts", pieces_, pieces_, names_.size());
     const std::string file =
-        pieces_.empty() ? path_ : (fs::path(path_).parent_path() / piece).string();
+        pieces_.empty()
+            ? path_
+            : (fs::path(path_).parent_path() / pieces_ / fmt::format("{}_{}.vts", pieces_, index))
+                  .string();
     vtk_support::take_message();
     vtkNew<vtkXMLStructuredGridWriter> writer;
     writer->SetFileName(file.c_str());
     writer->SetInputData(to_vtk_block(grid, block));
     vtk_support::configure_xml_writer(*writer);
     vtk_support::check_written(writer->Write(), file);
-    names_.push_back(block.name);
 }
 
 void VtkGridWriter::finish() {
     if (names_.size() != num_blocks_)
         throw std::logic_error(fmt::format("{}: {} blocks written of the {} announced", path_,
                                            names_.size(), num_blocks_));
+    write_index(names_);
+}
+
+void VtkGridWriter::write_index(const std::vector<std::string>& names) const {
     if (pieces_.empty()) return;
     // The index VTK's XML multiblock reader reads: one DataSet per block, named.
     std::string xml =
         "<VTKFile type=\"vtkMultiBlockDataSet\" version=\"1.0\" byte_order=\"LittleEndian\" "
         "header_type=\"UInt64\">\n  <vtkMultiBlockDataSet>\n";
-    for (size_t b = 0; b < names_.size(); ++b)
-        xml += fmt::format("    <DataSet index=\"{}\" name=\"{}\" file=\"{}/{}_{}.vts\"/>\n", b,
-                           escape_markup(names_[b]), escape_markup(pieces_), escape_markup(pieces_),
-                           b);
+    for (size_t b = 0; b < names.size(); ++b)
+        xml +=
+            fmt::format("    <DataSet index=\"{}\" name=\"{}\" file=\"{}/{}_{}.vts\"/>\n", b,
+                        escape_markup(names[b]), escape_markup(pieces_), escape_markup(pieces_), b);
     xml += "  </vtkMultiBlockDataSet>\n</VTKFile>\n";
     std::ofstream out(path_, std::ios::binary);
     out << xml;

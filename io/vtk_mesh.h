@@ -30,6 +30,12 @@ class VtkGridWriter {
     // Throws std::logic_error unless num_blocks blocks were added.
     void finish();
 
+    // For a grid whose blocks several processes write, each its own: add_piece() writes
+    // `block` as block `index` of the grid, write_index() (one process) the .vtm naming every
+    // block (`names`, in order). The files are those of add() and finish().
+    void add_piece(size_t index, const BlockGrid& grid, const Block& block) const;
+    void write_index(const std::vector<std::string>& names) const;
+
   private:
     std::string path_;
     size_t num_blocks_;

@@ -5,9 +5,11 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <sstream>
 
 #include "hexmesh/cli/commands.h"
 #include "hexmesh/pipeline/measure_file.h"
+#include "hexmesh/pipeline/ranks.h"
 #include "hexmesh/pipeline/refine_grid_file.h"
 #include "hexmesh/quality/grid_report.h"
 #include "io/case_file.h"
@@ -50,16 +52,20 @@ void add_refine_command(CLI::App& app, int& exit_code) {
         if (!std::filesystem::exists(args->grid_path))
             throw InputError(fmt::format("{}: no such grid file", args->grid_path));
         const Case c = case_for_refining(args->grid_path, args->case_path);
-        std::cout << fmt::format("hexmesh refine {}\n", args->grid_path);
+        // Under mpirun, rank 0 speaks for every process.
+        std::ostringstream quiet;
+        std::ostream& out = ranks::rank() == 0 ? std::cout : quiet;
+        out << fmt::format("hexmesh refine {}{}\n", args->grid_path,
+                           ranks::size() > 1 ? fmt::format(" ({} processes)", ranks::size()) : "");
         RefineFileOptions options;
         options.levels = args->levels;
         options.report = !args->no_report;
         const RefineFileResult result =
-            refine_grid_file(args->grid_path, c, args->outdir, options, std::cout);
-        for (const std::string& f : result.files) std::cout << "written: " << f << "\n";
+            refine_grid_file(args->grid_path, c, args->outdir, options, out);
+        for (const std::string& f : result.files) out << "written: " << f << "\n";
         // As in run: a refined grid whose wall misses part of the body is written with a warning.
-        const std::string warning = body_missed_warning(result.report);
-        std::cout << warning;
+        const std::string warning = ranks::rank() == 0 ? body_missed_warning(result.report) : "";
+        out << warning;
         exit_code = warning.empty() ? 0 : 3;
     });
 }

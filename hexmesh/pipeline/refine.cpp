@@ -201,6 +201,22 @@ RefinementStats refine_blocks(const BlockGrid& coarse, const ImplicitFunction& b
     return stats;
 }
 
+std::vector<int> share_blocks(const BlockGrid& grid, int processes) {
+    std::vector<size_t> order(grid.blocks.size());
+    for (size_t b = 0; b < order.size(); ++b) order[b] = b;
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+        return grid.blocks[a].cells().count() > grid.blocks[b].cells().count();
+    });
+    std::vector<Id> load(size_t(std::max(1, processes)), 0);
+    std::vector<int> owner(grid.blocks.size(), 0);
+    for (const size_t b : order) {
+        const auto least = std::min_element(load.begin(), load.end());
+        owner[b] = int(least - load.begin());
+        *least += grid.blocks[b].cells().count();
+    }
+    return owner;
+}
+
 RefinementResult refine_on_body(const BlockGrid& coarse, const ImplicitFunction& body,
                                 const RefinementOptions& options) {
     RefinementResult result;

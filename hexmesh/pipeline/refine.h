@@ -68,6 +68,11 @@ RefinementStats refine_blocks(const BlockGrid& coarse, const ImplicitFunction& b
                               const RefinementOptions& options, const BlockSink& sink,
                               const std::vector<bool>* made = nullptr);
 
+// Which of `processes` processes makes each block of the level finer than `grid`: the
+// blocks by decreasing cell count, each to the process with the fewest cells so far (the
+// lowest rank among equals), so the shares differ by at most the largest block.
+std::vector<int> share_blocks(const BlockGrid& grid, int processes);
+
 // The nested family level_1 = `coarse`, level_2, ..., level_`levels` (levels >= 1), each
 // level refine_on_body of the one before.
 std::vector<BlockGrid> refine_family(const BlockGrid& coarse, const ImplicitFunction& body,

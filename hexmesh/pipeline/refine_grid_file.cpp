@@ -2,11 +2,15 @@
 
 #include <fmt/format.h>
 
+#include <filesystem>
 #include <optional>
+#include <sstream>
 
+#include "hexmesh/core/bytes.h"
 #include "hexmesh/core/memory_limit.h"
 #include "hexmesh/pipeline/make_body.h"
 #include "hexmesh/pipeline/phase_timer.h"
+#include "hexmesh/pipeline/ranks.h"
 #include "hexmesh/pipeline/refine.h"
 #include "hexmesh/quality/cell_quality.h"
 #include "hexmesh/quality/grid_meter.h"
@@ -18,34 +22,86 @@
 namespace hexmesh {
 namespace {
 
-// The last level made block by block: each fine block measured by `meter`, drawn into
-// `pictures` (if any) and written by `writer` as it comes, one log line per block. Adds the
-// time spent in each to `seconds` (refine, quality, write).
-RefinementStats refine_last_level(const BlockGrid& grid, const ImplicitFunction& body,
-                                  GridMeter& meter, std::optional<GridPictures>& pictures,
-                                  VtkGridWriter& writer, Lap& lap, double (&seconds)[3],
-                                  std::ostream& log) {
+// What refine_last_level measured and drew of the blocks it made, and their times.
+struct LastLevel {
+    RefinementStats stats;
+    double seconds[3] = {0, 0, 0};  // refine, quality, write
+};
+
+// The last level made block by block, this process's share (`made`; every block with one
+// process): each fine block measured by `meter` (its cells numbered as in the whole grid),
+// drawn into `pictures` (if any) and written by `writer` as block b of the grid as it comes,
+// one log line per block.
+LastLevel refine_last_level(const BlockGrid& grid, const ImplicitFunction& body,
+                            const std::vector<bool>& made, GridMeter& meter,
+                            std::optional<GridPictures>& pictures, const VtkGridWriter& writer,
+                            std::ostream& log) {
+    std::vector<Id> first_cell(grid.blocks.size(), 0);  // of each fine block
+    for (size_t b = 1; b < grid.blocks.size(); ++b)
+        first_cell[b] = first_cell[b - 1] + 8 * grid.blocks[b - 1].cells().count();
+    LastLevel out;
     std::vector<double> values;
-    return refine_blocks(grid, body, {}, [&](RefinedBlock& piece) {
-        const Block& block = piece.grid.blocks[0];
-        const double r = lap();
-        meter.add(piece.grid, block, &piece.ids);
-        if (pictures) {
-            values.resize(std::size_t(block.cells().count()));
-            scaled_jacobians(piece.grid, block, values.data());
-            pictures->add_block(piece.grid, block, values.data());
-        }
-        const double q = lap();
-        writer.add(piece.grid, block);
-        const double w = lap();
-        seconds[0] += r;
-        seconds[1] += q;
-        seconds[2] += w;
-        log << fmt::format(
-            "    block {:<12} {:>11} cells: refine {:.2f} s, quality {:.2f} s, write {:.2f} "
-            "s\n",
-            block.name, block.cells().count(), r, q, w);
-    });
+    size_t b = 0;  // the block coming
+    Lap lap;
+    out.stats = refine_blocks(
+        grid, body, {},
+        [&](RefinedBlock& piece) {
+            while (!made[b]) ++b;
+            const Block& block = piece.grid.blocks[0];
+            const double r = lap();
+            meter.add(piece.grid, block, &piece.ids, first_cell[b]);
+            if (pictures) {
+                values.resize(std::size_t(block.cells().count()));
+                scaled_jacobians(piece.grid, block, values.data());
+                pictures->add_block(piece.grid, block, values.data());
+            }
+            const double q = lap();
+            writer.add_piece(b, piece.grid, block);
+            const double w = lap();
+            out.seconds[0] += r;
+            out.seconds[1] += q;
+            out.seconds[2] += w;
+            log << fmt::format(
+                "    block {:<12} {:>11} cells: refine {:.2f} s, quality {:.2f} s, write {:.2f} "
+                "s\n",
+                block.name, block.cells().count(), r, q, w);
+            log.flush();
+            ++b;
+        },
+        &made);
+    out.seconds[0] += lap();  // the blocks skipped
+    return out;
+}
+
+// The last level's blocks made by each process: its own blocks, made and written; then
+// every process's measures and pictures merged into rank 0's, with their log lines and
+// times.
+void gather_measures(GridMeter& meter, std::optional<GridPictures>& pictures, LastLevel& level,
+                     const std::string& lines, std::ostream& log) {
+    ByteWriter mine;
+    mine.put(meter.pack());
+    mine.put(pictures ? pictures->pack() : std::string());
+    mine.put(lines);
+    mine.put(level.stats.polished);
+    mine.put(double(peak_memory()));
+    const std::vector<std::string> all = ranks::gather(mine.bytes());
+    double peak = 0;
+    for (size_t r = 0; r < all.size(); ++r) {
+        ByteReader in(all[r]);
+        const std::string packed_meter = in.next<std::string>();
+        const std::string packed_pictures = in.next<std::string>();
+        const std::string rank_lines = in.next<std::string>();
+        const Id polished = in.next<Id>();
+        peak = std::max(peak, in.next<double>());
+        if (r == 0) continue;
+        meter.merge(packed_meter);
+        if (pictures) pictures->merge(packed_pictures);
+        level.stats.polished += polished;
+        log << fmt::format("  process {}:\n{}", r, rank_lines);
+    }
+    if (all.size() > 1)
+        log << fmt::format("  {} processes, the largest peak memory {:.2f} GB\n", all.size(),
+                           peak / 1e9);
 }
 
 }  // namespace
@@ -53,8 +109,19 @@ RefinementStats refine_last_level(const BlockGrid& grid, const ImplicitFunction&
 RefineFileResult refine_grid_file(const std::string& grid_path, const Case& c,
                                   const std::string& outdir, const RefineFileOptions& options,
                                   std::ostream& log) {
+    const int rank = ranks::rank(), processes = ranks::size();
     PhaseTimer timer(log);
-    StagedOutput out(outdir);  // locked from the start: a second run into it is refused
+    // Rank 0 holds the output folder (locked from the start: a second run into it is
+    // refused); every process writes its blocks into its staging folder.
+    std::optional<StagedOutput> out;
+    std::string staging;
+    ranks::together([&] {
+        if (rank == 0) {
+            out.emplace(outdir);
+            staging = out->staging_folder();
+        }
+    });
+    staging = ranks::broadcast(staging);
     BlockGrid grid = read_vtk_block_grid(grid_path);
     timer.done("read", fmt::format("({} blocks, {} cells)", grid.blocks.size(), grid.num_cells()));
     const Body body = make_body(c.geometry);
@@ -69,41 +136,54 @@ RefineFileResult refine_grid_file(const std::string& grid_path, const Case& c,
     }
     const std::optional<TriangleSurface> surface = reference_surface(c.geometry);
     GridMeter meter(*body, {}, surface ? &*surface : nullptr);
-    VtkGridWriter writer(out.path(grid.blocks.size() == 1 ? "grid.vts" : "grid.vtm"),
-                         grid.blocks.size());
+    const std::string vtk_name = grid.blocks.size() == 1 ? "grid.vts" : "grid.vtm";
     // The last level's pictures, drawn block by block too (framed on the level before).
     std::optional<GridPictures> pictures;
     if (options.report) pictures.emplace(grid_pictures_for(grid));
-    Lap lap;
-    double seconds[3] = {0, 0, 0};  // refine, quality, write
-    const RefinementStats stats =
-        refine_last_level(grid, *body, meter, pictures, writer, lap, seconds, log);
-    writer.finish();
-    seconds[2] += lap();
+    const std::vector<int> owner = share_blocks(grid, processes);
+    std::vector<bool> made(grid.blocks.size());
+    for (size_t b = 0; b < made.size(); ++b) made[b] = owner[b] == rank;
+    std::ostringstream rank_lines;  // the block lines of the other processes, for rank 0
+    LastLevel level;
+    std::optional<VtkGridWriter> writer;
+    ranks::together([&] {
+        writer.emplace((std::filesystem::path(staging) / vtk_name).string(), grid.blocks.size());
+        level = refine_last_level(grid, *body, made, meter, pictures, *writer,
+                                  rank == 0 ? log : rank_lines);
+    });
+    gather_measures(meter, pictures, level, rank_lines.str(), log);
     RefineFileResult result;
-    result.report = meter.report();
-    seconds[1] += lap();
-    timer.done("refine", fmt::format("({} cells, {} wall nodes projected, max move {:.3g}; block "
-                                     "by block: refine {:.2f} s, quality {:.2f} s, write {:.2f} s)",
-                                     result.report.quality.cells, stats.projected,
-                                     stats.max_projection, seconds[0], seconds[1], seconds[2]));
-    log << "\n" << format_quality_table(result.report) << "\n";
-    if (result.report.quality.inverted_cells > 0)
-        throw std::runtime_error(
-            fmt::format("{}: the refined grid has {} inverted cells; "
-                        "nothing written",
-                        grid_path, result.report.quality.inverted_cells));
-    out.write_text("quality.json", quality_json(result.report));
-    out.write_text("grid.case.json", case_to_json(c));
-    if (pictures) {
-        ReportPage page = grid_report_page("hexmesh refine " + grid_path, result.report,
-                                           pictures->pictures(), case_to_json(c));
-        page.phase_seconds = timer.phases();
-        page.peak_memory_bytes = peak_memory();
-        out.write_text("report.html", report_page_html(page));
-    }
-    result.files = out.commit();
-    timer.done("write");
+    ranks::together([&] {
+        if (rank != 0) return;
+        std::vector<std::string> names;
+        for (const Block& block : grid.blocks) names.push_back(block.name);
+        out->path(vtk_name);  // written below, or by add_piece for a grid of one block
+        writer->write_index(names);
+        result.report = meter.report();
+        const double* seconds = level.seconds;
+        timer.done("refine",
+                   fmt::format("({} cells, {} wall nodes projected, max move {:.3g}; block "
+                               "by block: refine {:.2f} s, quality {:.2f} s, write {:.2f} s)",
+                               result.report.quality.cells, level.stats.projected,
+                               level.stats.max_projection, seconds[0], seconds[1], seconds[2]));
+        log << "\n" << format_quality_table(result.report) << "\n";
+        if (result.report.quality.inverted_cells > 0)
+            throw std::runtime_error(
+                fmt::format("{}: the refined grid has {} inverted cells; "
+                            "nothing written",
+                            grid_path, result.report.quality.inverted_cells));
+        out->write_text("quality.json", quality_json(result.report));
+        out->write_text("grid.case.json", case_to_json(c));
+        if (pictures) {
+            ReportPage page = grid_report_page("hexmesh refine " + grid_path, result.report,
+                                               pictures->pictures(), case_to_json(c));
+            page.phase_seconds = timer.phases();
+            page.peak_memory_bytes = peak_memory();
+            out->write_text("report.html", report_page_html(page));
+        }
+        result.files = out->commit();
+        timer.done("write");
+    });
     return result;
 }
 

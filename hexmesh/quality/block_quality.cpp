@@ -19,6 +19,7 @@
 #include <utility>
 
 #include "hexmesh/core/array_hash.h"
+#include "hexmesh/core/bytes.h"
 #include "hexmesh/core/reference_hex.h"
 #include "hexmesh/quality/face_geometry.h"
 #include "hexmesh/quality/quality_tally.h"
@@ -252,11 +253,14 @@ BlockQuality::~BlockQuality() = default;
 // the block's boundary are computed from the cell's own points and left open, to be paired
 // by node ids with the cell across. The scaled-Jacobian sum is added slab by slab in order,
 // so the result does not depend on how the slabs are split between threads.
-void BlockQuality::add(const BlockGrid& grid, const Block& block, const std::vector<Id>* ids) {
+void BlockQuality::add(const BlockGrid& grid, const Block& block, const std::vector<Id>* ids,
+                       Id first_cell) {
     State& st = *state_;
     const Dims d = block.cells();
     if (d.count() == 0) return;
-    const BlockPass pass{block, grid.points, d, size_t(d.ni) * size_t(d.nj), st.cells, ids};
+    const BlockPass pass{
+        block, grid.points, d, size_t(d.ni) * size_t(d.nj), first_cell >= 0 ? first_cell : st.cells,
+        ids};
     std::vector<CellStats> slab_stats(size_t(d.nk));
     BlockFaces block_faces = measure_slabs(pass, slab_stats);
     st.per_face.join(block_faces.stats);
@@ -274,6 +278,77 @@ QualityReport BlockQuality::report() const {
             per_face.max_skew,
             detail::boundary_face_skewness(face.p, detail::quad_geometry(face.p), face.centre));
     return make_report(st.cells, st.per_cell, per_face);
+}
+
+namespace {
+
+void put(ByteWriter& out, const RankedCell& r) {
+    out.put(r.cell), out.put(r.scaled_jacobian), out.put(r.centre);
+}
+void get(ByteReader& in, RankedCell& r) {
+    in.get(r.cell), in.get(r.scaled_jacobian), in.get(r.centre);
+}
+
+void put(ByteWriter& out, const CellStats& c) {
+    out.put(c.min_sj), out.put(c.worst), out.put(c.worst_centre), out.put(c.sum_sj);
+    out.put(c.max_aspect), out.put(c.min_volume), out.put(c.inverted_tets);
+    out.put(c.inverted_cells), out.put(c.negative_pyramids), out.put(c.nonpositive_volumes);
+    out.put(c.sj_histogram);
+    out.put(c.lowest.size());
+    for (const RankedCell& r : c.lowest) put(out, r);
+}
+
+void get(ByteReader& in, CellStats& c) {
+    in.get(c.min_sj), in.get(c.worst), in.get(c.worst_centre), in.get(c.sum_sj);
+    in.get(c.max_aspect), in.get(c.min_volume), in.get(c.inverted_tets);
+    in.get(c.inverted_cells), in.get(c.negative_pyramids), in.get(c.nonpositive_volumes);
+    in.get(c.sj_histogram);
+    c.lowest.resize(in.next<size_t>());
+    for (RankedCell& r : c.lowest) get(in, r);
+}
+
+void put(ByteWriter& out, const FaceStats& f) {
+    out.put(f.min_ortho), out.put(f.max_skew), out.put(f.max_volume_ratio);
+    out.put(f.over_90_deg), out.put(f.non_orthogonality);
+}
+
+void get(ByteReader& in, FaceStats& f) {
+    in.get(f.min_ortho), in.get(f.max_skew), in.get(f.max_volume_ratio);
+    in.get(f.over_90_deg), in.get(f.non_orthogonality);
+}
+
+}  // namespace
+
+std::string BlockQuality::pack() const {
+    const State& st = *state_;
+    ByteWriter out;
+    out.put(st.cells);
+    put(out, st.per_cell);
+    put(out, st.per_face);
+    out.put(st.open.size());
+    for (const auto& [key, face] : st.open) {
+        out.put(key), out.put(face.cell), out.put(face.p), out.put(face.centre);
+        out.put(face.volume);
+    }
+    return out.bytes();
+}
+
+void BlockQuality::merge(const std::string& packed) {
+    State& st = *state_;
+    ByteReader in(packed);
+    st.cells += in.next<Id>();
+    CellStats per_cell;
+    get(in, per_cell);
+    st.per_cell.join(per_cell);
+    FaceStats per_face;
+    get(in, per_face);
+    st.per_face.join(per_face);
+    std::vector<std::pair<FaceKey, OpenFace>> open(in.next<size_t>());
+    for (auto& [key, face] : open) {
+        in.get(key), in.get(face.cell), in.get(face.p), in.get(face.centre);
+        in.get(face.volume);
+    }
+    pair_open_faces(open, st.open, st.matched, st.per_face);
 }
 
 QualityReport measure_quality(const BlockGrid& grid) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "hexmesh/core/block_grid.h"
@@ -35,9 +36,18 @@ class BlockQuality {
     // points on its own (one block made at a time), ids[v] is point v's id in the whole grid,
     // which is what pairs faces across blocks. Throws std::invalid_argument, naming the
     // cells, when a face is shared by more than two cells.
-    void add(const BlockGrid& grid, const Block& block, const std::vector<Id>* ids = nullptr);
+    // With `first_cell` >= 0, the block's cells are numbered from it (the blocks of one grid
+    // measured by several processes, each adding its own).
+    void add(const BlockGrid& grid, const Block& block, const std::vector<Id>* ids = nullptr,
+             Id first_cell = -1);
 
     QualityReport report() const;
+
+    // What has been added, as bytes for another process; merge() adds another BlockQuality's
+    // pack() to this one (its cells, and its open faces paired with these): the blocks of one
+    // grid measured apart, then put together.
+    std::string pack() const;
+    void merge(const std::string& packed);
 
   private:
     struct State;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "hexmesh/core/bytes.h"
 #include "hexmesh/core/reference_hex.h"
 
 namespace hexmesh {
@@ -61,9 +62,11 @@ GridMeter::GridMeter(const ImplicitFunction& body, const WallLayers& law,
                      const TriangleSurface* surface)
     : body_(body), surface_(surface), wall_(body, law) {}
 
-void GridMeter::add(const BlockGrid& grid, const Block& block, const std::vector<Id>* ids) {
-    quality_.add(grid, block, ids);
-    Added a{block.name, block.cells(), {}};
+void GridMeter::add(const BlockGrid& grid, const Block& block, const std::vector<Id>* ids,
+                    Id first_cell) {
+    quality_.add(grid, block, ids, first_cell);
+    Added a{block.name, block.cells(), {}, first_cell >= 0 ? first_cell : cells_};
+    cells_ += block.cells().count();
     for (int f = 0; f < 6; ++f) a.wall[f] = block.face_patch[f] == "wall";
     const bool walled = std::find(a.wall.begin(), a.wall.end(), true) != a.wall.end();
     added_.push_back(std::move(a));
@@ -79,9 +82,8 @@ void GridMeter::add(const BlockGrid& grid, const Block& block, const std::vector
 }
 
 std::optional<CellPlace> GridMeter::place(Id cell) const {
-    Id first = 0;  // the first cell of each block, in to_hex_mesh order
     for (const Added& a : added_) {
-        const Id c = cell - first;
+        const Id c = cell - a.first_cell;
         if (c >= 0 && c < a.cells.count()) {
             CellPlace w{a.name, int(c % a.cells.ni), int(c / a.cells.ni % a.cells.nj),
                         int(c / (Id(a.cells.ni) * a.cells.nj)), false};
@@ -89,9 +91,46 @@ std::optional<CellPlace> GridMeter::place(Id cell) const {
                 w.on_wall = w.on_wall || (a.wall[f] && on_block_face(a.cells, {w.i, w.j, w.k}, f));
             return w;
         }
-        first += a.cells.count();
     }
     return std::nullopt;
+}
+
+std::string GridMeter::pack() const {
+    ByteWriter out;
+    out.put(quality_.pack());
+    out.put(wall_.pack());
+    out.put(has_wall_), out.put(cells_);
+    out.put(wall_triangles_.points), out.put(wall_triangles_.triangles);
+    out.put(wall_edge_length_), out.put(wall_edges_), out.put(max_slip_value_);
+    out.put(added_.size());
+    for (const Added& a : added_)
+        out.put(a.name), out.put(a.cells), out.put(a.wall), out.put(a.first_cell);
+    return out.bytes();
+}
+
+void GridMeter::merge(const std::string& packed) {
+    ByteReader in(packed);
+    quality_.merge(in.next<std::string>());
+    wall_.merge(in.next<std::string>());
+    has_wall_ = in.next<bool>() || has_wall_;
+    cells_ += in.next<Id>();
+    const int offset = int(wall_triangles_.points.size());
+    const std::vector<Vec3> points = in.next<std::vector<Vec3>>();
+    std::vector<std::array<int, 3>> triangles = in.next<std::vector<std::array<int, 3>>>();
+    wall_triangles_.points.insert(wall_triangles_.points.end(), points.begin(), points.end());
+    for (std::array<int, 3>& t : triangles) {
+        for (int& v : t) v += offset;
+        wall_triangles_.triangles.push_back(t);
+    }
+    wall_edge_length_ += in.next<double>();
+    wall_edges_ += in.next<Id>();
+    max_slip_value_ = std::max(max_slip_value_, in.next<double>());
+    const size_t blocks = in.next<size_t>();
+    for (size_t b = 0; b < blocks; ++b) {
+        Added a;
+        in.get(a.name), in.get(a.cells), in.get(a.wall), in.get(a.first_cell);
+        added_.push_back(std::move(a));
+    }
 }
 
 GridReport GridMeter::report() const {

@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "hexmesh/core/block_grid.h"
@@ -26,8 +27,18 @@ class GridMeter {
     GridMeter(const ImplicitFunction& body, const WallLayers& law = {},
               const TriangleSurface* surface = nullptr);
 
-    void add(const BlockGrid& grid, const Block& block, const std::vector<Id>* ids = nullptr);
+    // With `first_cell` >= 0, the block's cells are numbered from it: the blocks of one grid
+    // measured by several processes, each adding its own (in order), then merged.
+    void add(const BlockGrid& grid, const Block& block, const std::vector<Id>* ids = nullptr,
+             Id first_cell = -1);
     GridReport report() const;
+
+    // What has been added, as bytes for another process; merge() adds another GridMeter's
+    // pack() (the same body, law and surface; other blocks of the same grid) to this one.
+    // The report of meters merged is the report of one meter given all their blocks, but for
+    // the rounding of sums (means).
+    std::string pack() const;
+    void merge(const std::string& packed);
 
   private:
     std::optional<CellPlace> place(Id cell) const;  // of a cell added, by its id
@@ -46,7 +57,9 @@ class GridMeter {
         std::string name;
         Dims cells;
         std::array<bool, 6> wall;  // BlockFace order
+        Id first_cell = 0;         // the id of its first cell
     };
+    Id cells_ = 0;  // cells added
     std::vector<Added> added_;
 };
 

@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "hexmesh/core/bytes.h"
 #include "surface/exact_distance.h"
 #include "volume/wall_lines.h"
 
@@ -174,6 +175,38 @@ WallQuality WallMeter::result() const {
         w.growth_ratio_min = w.growth_ratio_max = 0;
     }
     return w;
+}
+
+std::string WallMeter::pack() const {
+    ByteWriter out;
+    const WallQuality& w = w_;
+    out.put(w.wall_cells), out.put(w.first_layer_min), out.put(w.first_layer_max);
+    out.put(w.growth_ratios), out.put(w.growth_ratio_min), out.put(w.growth_ratio_max);
+    out.put(w.orthogonality_max_deg);
+    out.put(w.first_layer_histogram), out.put(w.growth_ratio_histogram);
+    out.put(thickness_sum_), out.put(angle_sum_), out.put(ratio_sum_);
+    out.put(thickness_within_), out.put(angles_), out.put(ratios_within_);
+    return out.bytes();
+}
+
+void WallMeter::merge(const std::string& packed) {
+    ByteReader in(packed);
+    WallQuality& w = w_;
+    w.wall_cells += in.next<Id>();
+    w.first_layer_min = std::min(w.first_layer_min, in.next<double>());
+    w.first_layer_max = std::max(w.first_layer_max, in.next<double>());
+    w.growth_ratios += in.next<Id>();
+    w.growth_ratio_min = std::min(w.growth_ratio_min, in.next<double>());
+    w.growth_ratio_max = std::max(w.growth_ratio_max, in.next<double>());
+    w.orthogonality_max_deg = std::max(w.orthogonality_max_deg, in.next<double>());
+    w.first_layer_histogram.join(in.next<Histogram>());
+    w.growth_ratio_histogram.join(in.next<Histogram>());
+    thickness_sum_ += in.next<double>();
+    angle_sum_ += in.next<double>();
+    ratio_sum_ += in.next<double>();
+    thickness_within_ += in.next<Id>();
+    angles_ += in.next<Id>();
+    ratios_within_ += in.next<Id>();
 }
 
 WallQuality measure_wall(const BlockGrid& grid, const ImplicitFunction& body,

@@ -2,6 +2,8 @@
 // orthogonality) and its Hausdorff distance to a triangle surface.
 #pragma once
 
+#include <string>
+
 #include "hexmesh/core/block_grid.h"
 #include "hexmesh/core/implicit_function.h"
 #include "hexmesh/core/triangle_surface.h"
@@ -33,6 +35,11 @@ class WallMeter {
     WallMeter(const ImplicitFunction& body, const WallLayers& law);
     void add(const BlockGrid& grid, const Block& block);
     WallQuality result() const;
+
+    // What has been added, as bytes for another process; merge() adds another WallMeter's
+    // pack() (the same body and law) to this one.
+    std::string pack() const;
+    void merge(const std::string& packed);
 
   private:
     const ImplicitFunction& body_;

@@ -1,0 +1,127 @@
+#include "hexmesh/pipeline/ranks.h"
+
+#include <algorithm>
+#include <climits>
+#include <cstdlib>
+#include <stdexcept>
+
+#ifdef HEXMESH_MPI
+#include <mpi.h>
+#endif
+
+namespace hexmesh::ranks {
+namespace {
+
+int rank_ = 0, size_ = 1;
+
+// The process count the launcher announced (1 when none did).
+int launched_size() {
+    for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE"})
+        if (const char* v = std::getenv(name)) return std::max(1, std::atoi(v));
+    return 1;
+}
+
+}  // namespace
+
+#ifdef HEXMESH_MPI
+
+namespace {
+bool started_ = false;
+
+// MPI counts in int: a message longer than INT_MAX bytes is refused.
+int count_of(size_t n) {
+    if (n > size_t(INT_MAX))
+        throw std::runtime_error("a message between processes is longer than 2 GB");
+    return int(n);
+}
+}  // namespace
+
+Session::Session(int& argc, char**& argv) {
+    if (launched_size() <= 1 && !std::getenv("PMIX_RANK")) return;
+    int provided = 0;
+    MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+    started_ = true;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+    MPI_Comm_size(MPI_COMM_WORLD, &size_);
+}
+
+Session::~Session() {
+    if (started_) MPI_Finalize();
+}
+
+bool all(bool ok) {
+    if (!started_) return ok;
+    int mine = ok ? 1 : 0, every = 0;
+    MPI_Allreduce(&mine, &every, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+    return every == 1;
+}
+
+std::vector<std::string> gather(const std::string& bytes) {
+    if (!started_) return {bytes};
+    const long long mine = static_cast<long long>(bytes.size());
+    std::vector<long long> lengths(static_cast<size_t>(size_));
+    MPI_Gather(&mine, 1, MPI_LONG_LONG, lengths.data(), 1, MPI_LONG_LONG, 0, MPI_COMM_WORLD);
+    // Rank by rank (each message within MPI's int counts), not one MPI_Gatherv.
+    std::vector<std::string> out;
+    if (rank_ == 0) {
+        out.resize(size_t(size_));
+        out[0] = bytes;
+        for (int r = 1; r < size_; ++r) {
+            out[size_t(r)].resize(size_t(lengths[size_t(r)]));
+            MPI_Recv(out[size_t(r)].data(), count_of(out[size_t(r)].size()), MPI_BYTE, r, 0,
+                     MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        }
+    } else {
+        MPI_Send(bytes.data(), count_of(bytes.size()), MPI_BYTE, 0, 0, MPI_COMM_WORLD);
+    }
+    return out;
+}
+
+std::string broadcast(const std::string& bytes) {
+    if (!started_) return bytes;
+    long long length = static_cast<long long>(bytes.size());
+    MPI_Bcast(&length, 1, MPI_LONG_LONG, 0, MPI_COMM_WORLD);
+    std::string out = rank_ == 0 ? bytes : std::string(size_t(length), '\0');
+    MPI_Bcast(out.data(), count_of(out.size()), MPI_BYTE, 0, MPI_COMM_WORLD);
+    return out;
+}
+
+Id sum(Id n) {
+    if (!started_) return n;
+    long long mine = n, total = 0;
+    MPI_Allreduce(&mine, &total, 1, MPI_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
+    return Id(total);
+}
+
+#else  // without MPI: one process
+
+Session::Session(int&, char**&) {
+    if (launched_size() > 1)
+        throw std::runtime_error(
+            "this hexmesh was built without MPI, so it cannot run as one of several processes "
+            "(mpirun -np N): install libopenmpi-dev and build again, or run it without mpirun");
+}
+Session::~Session() = default;
+bool all(bool ok) {
+    return ok;
+}
+std::vector<std::string> gather(const std::string& bytes) {
+    return {bytes};
+}
+std::string broadcast(const std::string& bytes) {
+    return bytes;
+}
+Id sum(Id n) {
+    return n;
+}
+
+#endif
+
+int rank() {
+    return rank_;
+}
+int size() {
+    return size_;
+}
+
+}  // namespace hexmesh::ranks

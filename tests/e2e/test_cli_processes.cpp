@@ -1,0 +1,116 @@
+// `mpirun -np N hexmesh refine`: the refined grid made by several processes, each its share of
+// the blocks, is the grid one process makes, bit for bit.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "cli.h"
+
+using namespace hexmesh::test_support;
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+#ifdef HEXMESH_TEST_MPIRUN
+// mpirun as the tests run it: as root too (a container's CI), more processes than cores.
+std::string mpirun(int processes) {
+    return "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " HEXMESH_TEST_MPIRUN
+           " --oversubscribe -np " +
+           std::to_string(processes) + " '" + HEXMESH_EXE + "' ";
+}
+#endif
+
+const fs::path coarse_dir = scratch("coarse");
+
+fs::path refined(int processes) {
+    return scratch("refined_" + std::to_string(processes));
+}
+
+// A small sphere grid, refined once by one process and by 2 and 3 (more than the cores
+// of a small machine: oversubscribed).
+class RefineOnProcesses : public ::testing::Test {
+  protected:
+    static void SetUpTestSuite() {
+#ifdef HEXMESH_TEST_MPIRUN
+        std::ofstream(scratch("case.json")) << R"({
+          "geometry": {"sphere": {"center": [0, 0, 0], "radius": 1.0}},
+          "grid": {"cells_per_edge": 8, "wall_cells": 6},
+          "boundary_layer": {"first_height": 0.02, "growth_ratio": 1.2, "layers": 3},
+          "solver": {"optimize_iterations": 5}
+        })";
+        run = run_hexmesh("run '" + scratch("case.json").string() + "' -o '" + coarse_dir.string() +
+                          "'");
+        const std::string grid = "'" + (coarse_dir / "grid.vtm").string() + "'";
+        serial = run_hexmesh("refine " + grid + " -o '" + refined(1).string() + "'");
+        for (int n : {2, 3})
+            parallel[n - 2] =
+                run_command(mpirun(n) + "refine " + grid + " -o '" + refined(n).string() + "'");
+#endif
+    }
+    void SetUp() override {
+#ifndef HEXMESH_TEST_MPIRUN
+        GTEST_SKIP() << "hexmesh was built without MPI (libopenmpi-dev): nothing to run on "
+                        "several processes";
+#endif
+    }
+    static CommandResult run, serial, parallel[2];
+};
+CommandResult RefineOnProcesses::run, RefineOnProcesses::serial, RefineOnProcesses::parallel[2];
+
+}  // namespace
+
+TEST_F(RefineOnProcesses, EveryBlockIsTheSerialOneBitForBit) {
+    ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+    ASSERT_EQ(serial.exit_code, 0) << serial.out << serial.err;
+    const fs::path pieces = refined(1) / "grid";
+    int blocks = 0;
+    for (const auto& entry : fs::directory_iterator(pieces)) {
+        ++blocks;
+        const std::string one = read_text(entry.path());
+        for (int n : {2, 3}) {
+            const fs::path other = refined(n) / "grid" / entry.path().filename();
+            ASSERT_TRUE(fs::exists(other)) << other;
+            EXPECT_TRUE(read_text(other) == one) << other << " differs from " << entry.path();
+        }
+    }
+    EXPECT_EQ(blocks, 7);  // the O-H grid: a core and six wall blocks
+    for (int n : {2, 3})
+        EXPECT_EQ(read_text(refined(n) / "grid.vtm"), read_text(refined(1) / "grid.vtm"));
+}
+
+TEST_F(RefineOnProcesses, TheReportIsTheSerialOne) {
+    for (int n : {2, 3}) {
+        const CommandResult& r = parallel[n - 2];
+        ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+        EXPECT_NE(r.out.find("(" + std::to_string(n) + " processes)"), std::string::npos) << r.out;
+        // Each process's blocks listed, each block once.
+        EXPECT_NE(r.out.find("process " + std::to_string(n - 1) + ":"), std::string::npos);
+        EXPECT_EQ(count_lines(r.out) - count_lines(serial.out), n /* "process r:" lines */);
+        const json one = json::parse(read_text(refined(1) / "quality.json"));
+        const json many = json::parse(read_text(refined(n) / "quality.json"));
+        for (const char* key : {"cells", "inverted_corner_tets", "min_scaled_jacobian",
+                                "max_non_orthogonality_deg", "max_skewness"})
+            EXPECT_EQ(many.at(key), one.at(key)) << key << ", " << n << " processes";
+        // Means are sums merged in another order: equal to rounding.
+        EXPECT_NEAR(many.at("mean_scaled_jacobian").get<double>(),
+                    one.at("mean_scaled_jacobian").get<double>(), 1e-12);
+        EXPECT_EQ(many.at("wall").at("cells"), one.at("wall").at("cells"));
+        EXPECT_TRUE(fs::exists(refined(n) / "report.html"));
+        EXPECT_TRUE(fs::exists(refined(n) / "grid.case.json"));
+    }
+}
+
+#ifdef HEXMESH_TEST_MPIRUN
+TEST(CommandsOnProcesses, OnlyRefineRunsOnSeveralAndTheRefusalIsSaidOnce) {
+    const CommandResult r =
+        run_command(mpirun(2) + "quality '" HEXMESH_SOURCE_DIR "/cases/bean/bean.stl'");
+    EXPECT_NE(r.exit_code, 0);
+    const std::string line = "hexmesh: error: only `refine` runs on several processes";
+    const size_t at = r.err.find(line);
+    ASSERT_NE(at, std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find(line, at + 1), std::string::npos) << r.err;
+}
+#endif
