@@ -87,9 +87,10 @@ void for_each_internal_face(const BlockGrid& grid, const GridFaces& faces, F&& f
     }
 }
 
-// Calls f(owner, nodes) for every boundary face of patch `patch`, nodes oriented outwards.
+// Calls f(b, face, i, j, k, owner, nodes) for every boundary face of patch `patch`: the face
+// `face` of cell (i, j, k) of block b, its cell's global id and its nodes oriented outwards.
 template <class F>
-void for_each_patch_face(const BlockGrid& grid, const GridFaces& faces, int patch, F&& f) {
+void for_each_patch_face_at(const BlockGrid& grid, const GridFaces& faces, int patch, F&& f) {
     for (int b = 0; b < int(grid.blocks.size()); ++b) {
         const Block& block = grid.blocks[b];
         const Dims c = block.cells();
@@ -104,10 +105,19 @@ void for_each_patch_face(const BlockGrid& grid, const GridFaces& faces, int patc
                 for (int j = lo[1]; j < hi[1]; ++j)
                     for (int i = lo[0]; i < hi[0]; ++i)
                         if (across[face_cell_index(c, face, i, j, k)] < 0)
-                            f(faces.first_cell[b] + c.flat(i, j, k),
+                            f(b, face, i, j, k, faces.first_cell[b] + c.flat(i, j, k),
                               cell_face_nodes(block, i, j, k, face));
         }
     }
+}
+
+// Calls f(owner, nodes) for every boundary face of patch `patch`, nodes oriented outwards.
+template <class F>
+void for_each_patch_face(const BlockGrid& grid, const GridFaces& faces, int patch, F&& f) {
+    for_each_patch_face_at(grid, faces, patch,
+                           [&](int, int, int, int, int, Id owner, const std::array<Id, 4>& nodes) {
+                               f(owner, nodes);
+                           });
 }
 
 }  // namespace hexmesh

@@ -13,6 +13,7 @@
 #include "hexmesh/pipeline/refine_grid_file.h"
 #include "hexmesh/quality/grid_report.h"
 #include "io/case_file.h"
+#include "io/export_grid.h"
 
 namespace hexmesh::cli {
 namespace {
@@ -35,6 +36,7 @@ void add_refine_command(CLI::App& app, int& exit_code) {
         std::string grid_path, outdir, case_path;
         int levels = 1;
         bool no_report = false;
+        std::vector<std::string> formats;
     };
     auto args = std::make_shared<Args>();
     CLI::App* cmd = app.add_subcommand(
@@ -46,11 +48,23 @@ void add_refine_command(CLI::App& app, int& exit_code) {
         ->capture_default_str();
     cmd->add_option("--case", args->case_path,
                     "case file of the grid (default: grid.case.json beside it)");
+    cmd->add_option(
+        "--format", args->formats,
+        "also write the finest level in this format (repeatable): " + export_format_list() +
+            " but vtk; under mpirun, openfoam is a decomposed case (processor0 "
+            ".. processorN-1) and the others are gathered at the first process");
     cmd->add_flag("--no-report", args->no_report,
                   "do not write report.html (pictures, histograms, worst cells)");
     cmd->callback([args, &exit_code] {
         if (!std::filesystem::exists(args->grid_path))
             throw InputError(fmt::format("{}: no such grid file", args->grid_path));
+        for (const std::string& f : args->formats)
+            if (f == "vtk" || !is_export_format(f))
+                throw InputError(fmt::format(
+                    "--format {}: {}", f,
+                    f == "vtk" ? "the grid is always written as VTK (grid.vtm)"
+                               : "unknown format (expected one of: " + export_format_list() +
+                                     " but vtk)"));
         const Case c = case_for_refining(args->grid_path, args->case_path);
         // Under mpirun, rank 0 speaks for every process.
         std::ostringstream quiet;
@@ -60,6 +74,7 @@ void add_refine_command(CLI::App& app, int& exit_code) {
         RefineFileOptions options;
         options.levels = args->levels;
         options.report = !args->no_report;
+        options.formats = args->formats;
         const RefineFileResult result =
             refine_grid_file(args->grid_path, c, args->outdir, options, out);
         for (const std::string& f : result.files) out << "written: " << f << "\n";

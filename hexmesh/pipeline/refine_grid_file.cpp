@@ -1,6 +1,7 @@
 #include "hexmesh/pipeline/refine_grid_file.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <filesystem>
 #include <optional>
@@ -12,6 +13,7 @@
 #include "hexmesh/pipeline/phase_timer.h"
 #include "hexmesh/pipeline/ranks.h"
 #include "hexmesh/pipeline/refine.h"
+#include "hexmesh/pipeline/refined_outputs.h"
 #include "hexmesh/quality/cell_quality.h"
 #include "hexmesh/quality/grid_meter.h"
 #include "hexmesh/quality/grid_report.h"
@@ -31,11 +33,11 @@ struct LastLevel {
 // The last level made block by block, this process's share (`made`; every block with one
 // process): each fine block measured by `meter` (its cells numbered as in the whole grid),
 // drawn into `pictures` (if any) and written by `writer` as block b of the grid as it comes,
-// one log line per block.
+// one log line per block; kept in `kept` when given (for other formats), else dropped.
 LastLevel refine_last_level(const BlockGrid& grid, const ImplicitFunction& body,
                             const std::vector<bool>& made, GridMeter& meter,
                             std::optional<GridPictures>& pictures, const VtkGridWriter& writer,
-                            std::ostream& log) {
+                            MadeBlocks* kept, std::ostream& log) {
     std::vector<Id> first_cell(grid.blocks.size(), 0);  // of each fine block
     for (size_t b = 1; b < grid.blocks.size(); ++b)
         first_cell[b] = first_cell[b - 1] + 8 * grid.blocks[b - 1].cells().count();
@@ -66,6 +68,10 @@ LastLevel refine_last_level(const BlockGrid& grid, const ImplicitFunction& body,
                 "s\n",
                 block.name, block.cells().count(), r, q, w);
             log.flush();
+            if (kept) {
+                kept->index.push_back(b);
+                kept->blocks.push_back(std::move(piece));
+            }
             ++b;
         },
         &made);
@@ -146,12 +152,21 @@ RefineFileResult refine_grid_file(const std::string& grid_path, const Case& c,
     std::ostringstream rank_lines;  // the block lines of the other processes, for rank 0
     LastLevel level;
     std::optional<VtkGridWriter> writer;
+    MadeBlocks kept;
     ranks::together([&] {
         writer.emplace((std::filesystem::path(staging) / vtk_name).string(), grid.blocks.size());
         level = refine_last_level(grid, *body, made, meter, pictures, *writer,
+                                  options.formats.empty() ? nullptr : &kept,
                                   rank == 0 ? log : rank_lines);
     });
     gather_measures(meter, pictures, level, rank_lines.str(), log);
+    std::vector<std::string> formats_written;
+    ranks::together([&] {
+        formats_written =
+            write_refined_formats(grid, owner, kept, options.formats, staging, c.flow);
+    });
+    if (!options.formats.empty())
+        timer.done("formats", fmt::format("({})", fmt::join(options.formats, ", ")));
     RefineFileResult result;
     ranks::together([&] {
         if (rank != 0) return;
@@ -172,6 +187,7 @@ RefineFileResult refine_grid_file(const std::string& grid_path, const Case& c,
                 fmt::format("{}: the refined grid has {} inverted cells; "
                             "nothing written",
                             grid_path, result.report.quality.inverted_cells));
+        for (const std::string& name : formats_written) out->path(name);
         out->write_text("quality.json", quality_json(result.report));
         out->write_text("grid.case.json", case_to_json(c));
         if (pictures) {

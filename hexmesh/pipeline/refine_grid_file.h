@@ -14,6 +14,11 @@ namespace hexmesh {
 struct RefineFileOptions {
     int levels = 1;      // how many times every cell is split into 8
     bool report = true;  // write report.html (pictures, histograms, worst cells)
+    // Export formats besides VTK (export_format_list but vtk), named as export_file_name
+    // names them ("grid"): with several processes "openfoam" is a decomposed case, one
+    // processor folder per process, and the others are written from the level gathered
+    // whole at rank 0 (write_refined_formats).
+    std::vector<std::string> formats;
 };
 
 struct RefineFileResult {

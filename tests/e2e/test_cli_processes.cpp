@@ -1,7 +1,9 @@
 // `mpirun -np N hexmesh refine`: the refined grid made by several processes, each its share of
-// the blocks, is the grid one process makes, bit for bit.
+// the blocks, is the grid one process makes, bit for bit; its OpenFOAM case comes decomposed,
+// one processor folder per process, and OpenFOAM's parallel tools take it.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -44,10 +46,12 @@ class RefineOnProcesses : public ::testing::Test {
         run = run_hexmesh("run '" + scratch("case.json").string() + "' -o '" + coarse_dir.string() +
                           "'");
         const std::string grid = "'" + (coarse_dir / "grid.vtm").string() + "'";
-        serial = run_hexmesh("refine " + grid + " -o '" + refined(1).string() + "'");
+        serial = run_hexmesh("refine " + grid + " -o '" + refined(1).string() +
+                             "' --format openfoam --format gmsh");
         for (int n : {2, 3})
             parallel[n - 2] =
-                run_command(mpirun(n) + "refine " + grid + " -o '" + refined(n).string() + "'");
+                run_command(mpirun(n) + "refine " + grid + " -o '" + refined(n).string() +
+                            "' --format openfoam --format gmsh");
 #endif
     }
     void SetUp() override {
@@ -81,6 +85,12 @@ TEST_F(RefineOnProcesses, EveryBlockIsTheSerialOneBitForBit) {
         EXPECT_EQ(read_text(refined(n) / "grid.vtm"), read_text(refined(1) / "grid.vtm"));
 }
 
+TEST_F(RefineOnProcesses, AFormatGatheredAtTheFirstProcessIsTheSerialFile) {
+    const std::string one = read_text(refined(1) / "grid.msh");
+    ASSERT_GT(one.size(), 1000u);
+    for (int n : {2, 3}) EXPECT_TRUE(read_text(refined(n) / "grid.msh") == one) << n;
+}
+
 TEST_F(RefineOnProcesses, TheReportIsTheSerialOne) {
     for (int n : {2, 3}) {
         const CommandResult& r = parallel[n - 2];
@@ -104,6 +114,73 @@ TEST_F(RefineOnProcesses, TheReportIsTheSerialOne) {
 }
 
 #ifdef HEXMESH_TEST_MPIRUN
+namespace {
+
+// An OpenFOAM tool on `processes` processes (1: without mpirun) on the case `dir`.
+CommandResult foam(int processes, const std::string& tool, const fs::path& dir) {
+    const std::string env =
+        std::getenv("WM_PROJECT_DIR") ? "" : "WM_PROJECT_DIR=/usr/share/openfoam ";
+    if (processes == 1) return run_command(env + tool + " -case '" + dir.string() + "'");
+    return run_command(env + "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " +
+                       HEXMESH_TEST_MPIRUN " --oversubscribe -np " + std::to_string(processes) +
+                       " " + tool + " -parallel -case '" + dir.string() + "'");
+}
+
+// The number checkMesh prints after `name` (e.g. "cells:").
+long long mesh_count(const std::string& out, const std::string& name) {
+    const size_t at = out.find(name);
+    return at == std::string::npos ? -1 : std::stoll(out.substr(at + name.size()));
+}
+
+}  // namespace
+
+TEST_F(RefineOnProcesses, TheOpenFoamCaseComesDecomposedAndCheckMeshPassesInParallel) {
+    for (int n : {2, 3}) {
+        const fs::path dir = refined(n) / "grid_openfoam";
+        for (int r = 0; r < n; ++r)
+            EXPECT_TRUE(fs::exists(dir / ("processor" + std::to_string(r)) / "constant" /
+                                   "polyMesh" / "boundary"))
+                << r;
+        EXPECT_FALSE(fs::exists(dir / ("processor" + std::to_string(n))));
+        EXPECT_NE(read_text(dir / "system" / "decomposeParDict")
+                      .find("numberOfSubdomains " + std::to_string(n) + ";"),
+                  std::string::npos);
+        const CommandResult mesh = foam(n, "checkMesh", dir);
+        EXPECT_NE(mesh.out.find("Mesh OK."), std::string::npos) << mesh.out << mesh.err;
+        EXPECT_NE(mesh.out.find("Coupled point location match (average 0) OK."), std::string::npos)
+            << mesh.out;
+    }
+}
+
+TEST_F(RefineOnProcesses, ReconstructedItIsTheSerialGridsCellsAndFaces) {
+    const CommandResult one = foam(1, "checkMesh", refined(1) / "grid_openfoam");
+    ASSERT_NE(one.out.find("Mesh OK."), std::string::npos) << one.out << one.err;
+    for (int n : {2, 3}) {
+        const fs::path dir = refined(n) / "grid_openfoam";
+        const CommandResult joined = foam(1, "reconstructParMesh -constant", dir);
+        ASSERT_EQ(joined.exit_code, 0) << joined.out << joined.err;
+        const CommandResult mesh = foam(1, "checkMesh", dir);
+        EXPECT_NE(mesh.out.find("Mesh OK."), std::string::npos) << mesh.out << mesh.err;
+        for (const char* count : {"points:", "faces:", "internal faces:", "cells:"})
+            EXPECT_EQ(mesh_count(mesh.out, count), mesh_count(one.out, count)) << count << n;
+    }
+}
+
+TEST_F(RefineOnProcesses, SimpleFoamRunsOnTheDecomposedCase) {
+    const fs::path dir = refined(2) / "grid_openfoam";
+    // Two iterations are enough to read every processor's mesh and fields and exchange
+    // across the processor patches.
+    std::string control = read_text(dir / "system" / "controlDict");
+    const size_t at = control.find("endTime ");
+    ASSERT_NE(at, std::string::npos);
+    control.replace(at, control.find(';', at) - at, "endTime 2");
+    std::ofstream(dir / "system" / "controlDict") << control;
+    const CommandResult solve = foam(2, "simpleFoam", dir);
+    EXPECT_EQ(solve.exit_code, 0) << solve.out << solve.err;
+    EXPECT_NE(solve.out.find("Solving for p"), std::string::npos) << solve.out;
+    EXPECT_NE(solve.out.find("End"), std::string::npos) << solve.out;
+}
+
 TEST(CommandsOnProcesses, OnlyRefineRunsOnSeveralAndTheRefusalIsSaidOnce) {
     const CommandResult r =
         run_command(mpirun(2) + "quality '" HEXMESH_SOURCE_DIR "/cases/bean/bean.stl'");
