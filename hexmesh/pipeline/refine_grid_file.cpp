@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <optional>
 #include <sstream>
@@ -17,6 +18,7 @@
 #include "hexmesh/quality/cell_quality.h"
 #include "hexmesh/quality/grid_meter.h"
 #include "hexmesh/quality/grid_report.h"
+#include "io/input_error.h"
 #include "io/report_page.h"
 #include "io/staged_output.h"
 #include "io/vtk_mesh.h"
@@ -146,6 +148,14 @@ RefineFileResult refine_grid_file(const std::string& grid_path, const Case& c,
     // The last level's pictures, drawn block by block too (framed on the level before).
     std::optional<GridPictures> pictures;
     if (options.report) pictures.emplace(grid_pictures_for(grid));
+    const bool decomposed_case =
+        processes > 1 && std::count(options.formats.begin(), options.formats.end(), "openfoam");
+    if (decomposed_case && size_t(processes) > grid.blocks.size())
+        throw InputError(fmt::format(
+            "--format openfoam on {} processes: the grid has {} blocks and each process's part "
+            "of the case needs one at least (a block is not split between processes): run on "
+            "at most {} processes",
+            processes, grid.blocks.size(), grid.blocks.size()));
     const std::vector<int> owner = share_blocks(grid, processes);
     std::vector<bool> made(grid.blocks.size());
     for (size_t b = 0; b < made.size(); ++b) made[b] = owner[b] == rank;
