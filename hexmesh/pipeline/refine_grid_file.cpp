@@ -105,11 +105,63 @@ void gather_measures(GridMeter& meter, std::optional<GridPictures>& pictures, La
         meter.merge(packed_meter);
         if (pictures) pictures->merge(packed_pictures);
         level.stats.polished += polished;
-        log << fmt::format("  process {}:\n{}", r, rank_lines);
+        log << fmt::format(
+            "  process {}:{}", r,
+            rank_lines.empty() ? " no block (more processes than blocks)\n" : "\n" + rank_lines);
     }
     if (all.size() > 1)
         log << fmt::format("  {} processes, the largest peak memory {:.2f} GB\n", all.size(),
                            peak / 1e9);
+}
+
+// A decomposed OpenFOAM case needs a block per process at least (a block is not split).
+void refuse_idle_processors(const std::vector<std::string>& formats, int processes, size_t blocks) {
+    if (processes > 1 && size_t(processes) > blocks &&
+        std::count(formats.begin(), formats.end(), "openfoam"))
+        throw InputError(fmt::format(
+            "--format openfoam on {} processes: the grid has {} blocks and each process's part "
+            "of the case needs one at least (a block is not split between processes): run on "
+            "at most {} processes",
+            processes, blocks, blocks));
+}
+
+// At rank 0, every measure merged: the level's report, its log line and table; throws when
+// the level has inverted cells (nothing is written then).
+GridReport report_level(const GridMeter& meter, const LastLevel& level,
+                        const std::string& grid_path, PhaseTimer& timer, std::ostream& log) {
+    GridReport report = meter.report();
+    const double* seconds = level.seconds;
+    timer.done("refine",
+               fmt::format("({} cells, {} wall nodes projected, max move {:.3g}; block "
+                           "by block: refine {:.2f} s, quality {:.2f} s, write {:.2f} s)",
+                           report.quality.cells, level.stats.projected, level.stats.max_projection,
+                           seconds[0], seconds[1], seconds[2]));
+    log << "\n" << format_quality_table(report) << "\n";
+    if (report.quality.inverted_cells > 0)
+        throw std::runtime_error(
+            fmt::format("{}: the refined grid has {} inverted cells; "
+                        "nothing written",
+                        grid_path, report.quality.inverted_cells));
+    return report;
+}
+
+// quality.json, grid.case.json and report.html (with pictures) into `out`, then the output
+// moved into place; returns its files.
+std::vector<std::string> write_summary(StagedOutput& out, const Case& c, const std::string& title,
+                                       const GridReport& report,
+                                       const std::optional<GridPictures>& pictures,
+                                       PhaseTimer& timer) {
+    out.write_text("quality.json", quality_json(report));
+    out.write_text("grid.case.json", case_to_json(c));
+    if (pictures) {
+        ReportPage page = grid_report_page(title, report, pictures->pictures(), case_to_json(c));
+        page.phase_seconds = timer.phases();
+        page.peak_memory_bytes = peak_memory();
+        out.write_text("report.html", report_page_html(page));
+    }
+    std::vector<std::string> files = out.commit();
+    timer.done("write");
+    return files;
 }
 
 }  // namespace
@@ -148,14 +200,7 @@ RefineFileResult refine_grid_file(const std::string& grid_path, const Case& c,
     // The last level's pictures, drawn block by block too (framed on the level before).
     std::optional<GridPictures> pictures;
     if (options.report) pictures.emplace(grid_pictures_for(grid));
-    const bool decomposed_case =
-        processes > 1 && std::count(options.formats.begin(), options.formats.end(), "openfoam");
-    if (decomposed_case && size_t(processes) > grid.blocks.size())
-        throw InputError(fmt::format(
-            "--format openfoam on {} processes: the grid has {} blocks and each process's part "
-            "of the case needs one at least (a block is not split between processes): run on "
-            "at most {} processes",
-            processes, grid.blocks.size(), grid.blocks.size()));
+    refuse_idle_processors(options.formats, processes, grid.blocks.size());
     const std::vector<int> owner = share_blocks(grid, processes);
     std::vector<bool> made(grid.blocks.size());
     for (size_t b = 0; b < made.size(); ++b) made[b] = owner[b] == rank;
@@ -170,6 +215,12 @@ RefineFileResult refine_grid_file(const std::string& grid_path, const Case& c,
                                   rank == 0 ? log : rank_lines);
     });
     gather_measures(meter, pictures, level, rank_lines.str(), log);
+    // Rank 0 has every measure now: the report, and the refusal of an inverted level before
+    // any other format is written.
+    RefineFileResult result;
+    ranks::together([&] {
+        if (rank == 0) result.report = report_level(meter, level, grid_path, timer, log);
+    });
     std::vector<std::string> formats_written;
     ranks::together([&] {
         formats_written =
@@ -177,38 +228,15 @@ RefineFileResult refine_grid_file(const std::string& grid_path, const Case& c,
     });
     if (!options.formats.empty())
         timer.done("formats", fmt::format("({})", fmt::join(options.formats, ", ")));
-    RefineFileResult result;
     ranks::together([&] {
         if (rank != 0) return;
         std::vector<std::string> names;
         for (const Block& block : grid.blocks) names.push_back(block.name);
         out->path(vtk_name);  // written below, or by add_piece for a grid of one block
         writer->write_index(names);
-        result.report = meter.report();
-        const double* seconds = level.seconds;
-        timer.done("refine",
-                   fmt::format("({} cells, {} wall nodes projected, max move {:.3g}; block "
-                               "by block: refine {:.2f} s, quality {:.2f} s, write {:.2f} s)",
-                               result.report.quality.cells, level.stats.projected,
-                               level.stats.max_projection, seconds[0], seconds[1], seconds[2]));
-        log << "\n" << format_quality_table(result.report) << "\n";
-        if (result.report.quality.inverted_cells > 0)
-            throw std::runtime_error(
-                fmt::format("{}: the refined grid has {} inverted cells; "
-                            "nothing written",
-                            grid_path, result.report.quality.inverted_cells));
         for (const std::string& name : formats_written) out->path(name);
-        out->write_text("quality.json", quality_json(result.report));
-        out->write_text("grid.case.json", case_to_json(c));
-        if (pictures) {
-            ReportPage page = grid_report_page("hexmesh refine " + grid_path, result.report,
-                                               pictures->pictures(), case_to_json(c));
-            page.phase_seconds = timer.phases();
-            page.peak_memory_bytes = peak_memory();
-            out->write_text("report.html", report_page_html(page));
-        }
-        result.files = out->commit();
-        timer.done("write");
+        result.files =
+            write_summary(*out, c, "hexmesh refine " + grid_path, result.report, pictures, timer);
     });
     return result;
 }
