@@ -169,6 +169,36 @@ TEST_P(RefineFamily, BlocksMadeWhileTheOthersAreSkippedAreTheSameBitForBit) {
     }
 }
 
+// Processes that each measure some blocks of a grid, then merge their meters at one: the
+// report of the whole grid, but for the rounding of its means.
+TEST_P(RefineFamily, MetersOfSomeBlocksEachMergedGiveTheWholeReport) {
+    const Family& f = family(GetParam());
+    const BlockGrid& grid = f.levels[2];
+    GridMeter first(*f.body), second(*f.body);
+    Id cell = 0;
+    for (size_t b = 0; b < grid.blocks.size(); ++b) {
+        (b % 2 ? second : first).add(grid, grid.blocks[b], nullptr, cell);
+        cell += grid.blocks[b].cells().count();
+    }
+    first.merge(second.pack());
+    const GridReport merged = first.report(), whole = f.reports[2];
+    EXPECT_EQ(merged.quality.cells, whole.quality.cells);
+    EXPECT_EQ(merged.quality.inverted_corner_tets, whole.quality.inverted_corner_tets);
+    EXPECT_EQ(merged.quality.min_scaled_jacobian, whole.quality.min_scaled_jacobian);
+    EXPECT_NEAR(merged.quality.mean_scaled_jacobian, whole.quality.mean_scaled_jacobian, 1e-12);
+    EXPECT_EQ(merged.quality.max_non_orthogonality_deg, whole.quality.max_non_orthogonality_deg);
+    EXPECT_EQ(merged.quality.max_skewness, whole.quality.max_skewness);
+    EXPECT_EQ(merged.quality.worst_cell, whole.quality.worst_cell);
+    ASSERT_TRUE(merged.worst_cell && whole.worst_cell);
+    EXPECT_EQ(merged.worst_cell->block, whole.worst_cell->block);
+    EXPECT_EQ(merged.worst_cell->k, whole.worst_cell->k);
+    ASSERT_TRUE(merged.wall && whole.wall);
+    EXPECT_EQ(merged.wall->wall_cells, whole.wall->wall_cells);
+    EXPECT_NEAR(merged.wall->first_layer_mean, whole.wall->first_layer_mean, 1e-12);
+    EXPECT_EQ(merged.wall->orthogonality_max_deg, whole.wall->orthogonality_max_deg);
+    EXPECT_EQ(*merged.max_surface_distance, *whole.max_surface_distance);
+}
+
 INSTANTIATE_TEST_SUITE_P(Bodies, RefineFamily, ::testing::Values("sphere", "bean"));
 
 TEST(RefinedWallLayers, SplitTheFirstCellInTwoOfRatioSqrtR) {
