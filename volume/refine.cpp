@@ -445,6 +445,91 @@ BlockGrid refine_grid(const BlockGrid& coarse) {
     return fine;
 }
 
+RefinedBlock part_of(const RefinedBlock& block, int axis, int lo, int hi) {
+    const Block& whole = block.grid.blocks.at(0);
+    const Dims w = whole.nodes;
+    if (axis < 0 || axis > 2 || lo < 0 || hi <= lo || hi >= w[axis])
+        throw std::invalid_argument("part_of: cells " + std::to_string(lo) + ".." +
+                                    std::to_string(hi) + " along a block of " +
+                                    std::to_string(w[axis]) + " nodes");
+    Dims d = w;
+    (axis == 0 ? d.ni : axis == 1 ? d.nj : d.nk) = hi - lo + 1;
+    RefinedBlock part;
+    part.fine_points = block.fine_points;
+    Block& b = part.grid.blocks.emplace_back();
+    b.name = whole.name;
+    b.face_patch = whole.face_patch;
+    if (lo > 0) b.face_patch[size_t(2 * axis)].clear();
+    if (hi < w[axis] - 1) b.face_patch[size_t(2 * axis + 1)].clear();
+    b.nodes = d;
+    const Id count = d.count();
+    b.node_ids.resize(size_t(count));
+    part.grid.points.resize(size_t(count));
+    part.grid.kinds.resize(size_t(count));
+    part.ids.resize(size_t(count));
+    part.shared.resize(size_t(count));
+    part.coarse.resize(size_t(count));
+    for (int k = 0; k < d.nk; ++k)
+        for (int j = 0; j < d.nj; ++j)
+            for (int i = 0; i < d.ni; ++i) {
+                int at[3] = {i, j, k};
+                const bool cut =
+                    (at[axis] == 0 && lo > 0) || (at[axis] == d[axis] - 1 && hi < w[axis] - 1);
+                at[axis] += lo;
+                const Id m = d.flat(i, j, k), v = w.flat(at[0], at[1], at[2]);
+                b.node_ids[size_t(m)] = m;
+                part.grid.points[size_t(m)] = block.grid.points[size_t(v)];
+                part.grid.kinds[size_t(m)] = block.grid.kinds[size_t(v)];
+                part.ids[size_t(m)] = block.ids[size_t(v)];
+                part.shared[size_t(m)] = block.shared[size_t(v)] || cut;
+                part.coarse[size_t(m)] = block.coarse[size_t(v)];
+            }
+    return part;
+}
+
+RefinedBlock join_parts(const std::vector<RefinedBlock>& parts, int axis) {
+    if (parts.empty() || axis < 0 || axis > 2)
+        throw std::invalid_argument("join_parts: no part, or no such axis");
+    Dims d = parts[0].grid.blocks.at(0).nodes;
+    int& along = axis == 0 ? d.ni : axis == 1 ? d.nj : d.nk;
+    along = 1;
+    for (const RefinedBlock& p : parts) along += p.grid.blocks.at(0).nodes[axis] - 1;
+    RefinedBlock whole;
+    whole.fine_points = parts[0].fine_points;
+    Block& b = whole.grid.blocks.emplace_back();
+    b.name = parts[0].grid.blocks[0].name;
+    b.face_patch = parts[0].grid.blocks[0].face_patch;
+    b.face_patch[size_t(2 * axis + 1)] =
+        parts.back().grid.blocks[0].face_patch[size_t(2 * axis + 1)];
+    b.nodes = d;
+    const Id count = d.count();
+    b.node_ids.resize(size_t(count));
+    whole.grid.points.resize(size_t(count));
+    whole.grid.kinds.resize(size_t(count));
+    whole.ids.resize(size_t(count));
+    whole.shared.resize(size_t(count));
+    whole.coarse.resize(size_t(count));
+    for (Id m = 0; m < count; ++m) b.node_ids[size_t(m)] = m;
+    int lo = 0;
+    for (const RefinedBlock& p : parts) {
+        const Dims pd = p.grid.blocks[0].nodes;
+        for (int k = 0; k < pd.nk; ++k)
+            for (int j = 0; j < pd.nj; ++j)
+                for (int i = 0; i < pd.ni; ++i) {
+                    int at[3] = {i, j, k};
+                    at[axis] += lo;
+                    const Id m = pd.flat(i, j, k), v = d.flat(at[0], at[1], at[2]);
+                    whole.grid.points[size_t(v)] = p.grid.points[size_t(m)];
+                    whole.grid.kinds[size_t(v)] = p.grid.kinds[size_t(m)];
+                    whole.ids[size_t(v)] = p.ids[size_t(m)];
+                    whole.shared[size_t(v)] = p.shared[size_t(m)];
+                    whole.coarse[size_t(v)] = p.coarse[size_t(m)];
+                }
+        lo += pd[axis] - 1;
+    }
+    return whole;
+}
+
 void add_refined_block(BlockGrid& fine, RefinedBlock&& piece) {
     if (fine.points.size() < size_t(piece.fine_points)) {
         fine.points.resize(size_t(piece.fine_points));

@@ -58,6 +58,15 @@ struct RefinedBlock {
     Id fine_points = 0;        // points of the whole fine grid
 };
 
+// The part of a fine block made of its cells [lo, hi) along index direction `axis` (nodes lo
+// .. hi), all of them along the other two: its points, kinds, ids, coarse flags and patches
+// but on the faces cut, which become interfaces (no patch), their nodes marked shared.
+RefinedBlock part_of(const RefinedBlock& block, int axis, int lo, int hi);
+
+// The fine block whose parts, in order along `axis`, are `parts` (part_of undone; the
+// nodes on a cut keep the shared flag).
+RefinedBlock join_parts(const std::vector<RefinedBlock>& parts, int axis);
+
 // Puts a fine block into the fine grid being assembled (`fine` starts as a copy of the coarse
 // grid's points and kinds; the first block sizes it to the whole fine grid): refine_grid is
 // BlockRefiner's blocks in order, each added so.

@@ -201,20 +201,47 @@ RefinementStats refine_blocks(const BlockGrid& coarse, const ImplicitFunction& b
     return stats;
 }
 
-std::vector<int> share_blocks(const BlockGrid& grid, int processes) {
-    std::vector<size_t> order(grid.blocks.size());
-    for (size_t b = 0; b < order.size(); ++b) order[b] = b;
-    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-        return grid.blocks[a].cells().count() > grid.blocks[b].cells().count();
-    });
-    std::vector<Id> load(size_t(std::max(1, processes)), 0);
-    std::vector<int> owner(grid.blocks.size(), 0);
-    for (const size_t b : order) {
-        const auto least = std::min_element(load.begin(), load.end());
-        owner[b] = int(least - load.begin());
-        *least += grid.blocks[b].cells().count();
+std::vector<BlockPiece> share_blocks(const BlockGrid& grid, int processes) {
+    std::vector<BlockPiece> pieces;
+    for (size_t b = 0; b < grid.blocks.size(); ++b) {
+        const Block& block = grid.blocks[b];
+        const Dims c = block.cells();
+        const Dims fine{2 * c.ni, 2 * c.nj, 2 * c.nk};
+        int axis = -1;
+        for (int walls_allowed = 0; walls_allowed < 2 && axis < 0; ++walls_allowed)
+            for (int d = 0; d < 3; ++d) {
+                const bool walled = block.face_patch[size_t(2 * d)] == "wall" ||
+                                    block.face_patch[size_t(2 * d + 1)] == "wall";
+                if ((walls_allowed || !walled) && (axis < 0 || fine[d] > fine[axis])) axis = d;
+            }
+        pieces.push_back({b, axis, 0, fine[axis], 0, fine.count()});
     }
-    return owner;
+    // Halve the largest piece that has two coarse cells along its axis, until one per process;
+    // at a coarse cell's side, so that each coarse cell is in one piece.
+    while (int(pieces.size()) < processes) {
+        auto largest = pieces.end();
+        for (auto p = pieces.begin(); p != pieces.end(); ++p)
+            if (p->hi - p->lo >= 4 && (largest == pieces.end() || p->cells > largest->cells))
+                largest = p;
+        if (largest == pieces.end()) break;
+        BlockPiece upper = *largest;
+        const Id per_layer = largest->cells / (largest->hi - largest->lo);
+        largest->hi = upper.lo = largest->lo + 2 * ((largest->hi - largest->lo) / 4);
+        largest->cells = per_layer * (largest->hi - largest->lo);
+        upper.cells = per_layer * (upper.hi - upper.lo);
+        pieces.insert(largest + 1, upper);
+    }
+    std::vector<size_t> order(pieces.size());
+    for (size_t p = 0; p < order.size(); ++p) order[p] = p;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](size_t a, size_t b) { return pieces[a].cells > pieces[b].cells; });
+    std::vector<Id> load(size_t(std::max(1, processes)), 0);
+    for (const size_t p : order) {
+        const auto least = std::min_element(load.begin(), load.end());
+        pieces[p].process = int(least - load.begin());
+        *least += pieces[p].cells;
+    }
+    return pieces;
 }
 
 RefinementResult refine_on_body(const BlockGrid& coarse, const ImplicitFunction& body,

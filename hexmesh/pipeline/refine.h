@@ -68,10 +68,26 @@ RefinementStats refine_blocks(const BlockGrid& coarse, const ImplicitFunction& b
                               const RefinementOptions& options, const BlockSink& sink,
                               const std::vector<bool>* made = nullptr);
 
-// Which of `processes` processes makes each block of the level finer than `grid`: the
-// blocks by decreasing cell count, each to the process with the fewest cells so far (the
-// lowest rank among equals), so the shares differ by at most the largest block.
-std::vector<int> share_blocks(const BlockGrid& grid, int processes);
+// A part of a block of the level finer than a grid, made by one process: the fine cells
+// [lo, hi) along index direction `axis` and all of them along the other two (the whole block
+// when lo = 0 and hi is its fine cell count along `axis`).
+struct BlockPiece {
+    size_t block = 0;
+    int axis = 0, lo = 0, hi = 0;
+    int process = 0;
+    Id cells = 0;  // fine cells
+};
+
+// The pieces of the level finer than `grid` that `processes` processes make, in block order,
+// then along their axis. With no more processes than blocks, the blocks whole, by decreasing
+// cell count each to the process with the fewest cells so far (the lowest rank among equals),
+// so the shares differ by at most the largest block. With more, the largest piece is halved
+// (between two coarse cells: each coarse cell's fine cells stay in one piece) until there is
+// one per process or no piece has two coarse cells left, along its block's longest index
+// direction among those
+// without a "wall" face at either end (so every wall-normal line stays in one piece, and is
+// measured whole), the longest of all when each has one.
+std::vector<BlockPiece> share_blocks(const BlockGrid& grid, int processes);
 
 // The nested family level_1 = `coarse`, level_2, ..., level_`levels` (levels >= 1), each
 // level refine_on_body of the one before.

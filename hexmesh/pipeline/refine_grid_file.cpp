@@ -32,47 +32,63 @@ struct LastLevel {
     double seconds[3] = {0, 0, 0};  // refine, quality, write
 };
 
-// The last level made block by block, this process's share (`made`; every block with one
-// process): each fine block measured by `meter` (its cells numbered as in the whole grid),
-// drawn into `pictures` (if any) and written by `writer` as block b of the grid as it comes,
-// one log line per block; kept in `kept` when given (for other formats), else dropped.
+// The last level made block by block, this process's share of `pieces` (every block whole
+// with one process): each piece measured by `meter` (its cells numbered as in the whole
+// grid), drawn into `pictures` (if any) and written by `writer` as piece p as it comes, one
+// log line per piece; kept in `kept` when given (for other formats), else dropped. A block
+// split between processes is made whole by each of them, each keeping its part.
 LastLevel refine_last_level(const BlockGrid& grid, const ImplicitFunction& body,
-                            const std::vector<bool>& made, GridMeter& meter,
+                            const std::vector<BlockPiece>& pieces, GridMeter& meter,
                             std::optional<GridPictures>& pictures, const VtkGridWriter& writer,
                             MadeBlocks* kept, std::ostream& log) {
+    const int rank = ranks::rank();
     std::vector<Id> first_cell(grid.blocks.size(), 0);  // of each fine block
     for (size_t b = 1; b < grid.blocks.size(); ++b)
         first_cell[b] = first_cell[b - 1] + 8 * grid.blocks[b - 1].cells().count();
+    std::vector<bool> made(grid.blocks.size(), false);
+    for (const BlockPiece& p : pieces) made[p.block] = made[p.block] || p.process == rank;
     LastLevel out;
     std::vector<double> values;
     size_t b = 0;  // the block coming
     Lap lap;
     out.stats = refine_blocks(
         grid, body, {},
-        [&](RefinedBlock& piece) {
+        [&](RefinedBlock& fine) {
             while (!made[b]) ++b;
-            const Block& block = piece.grid.blocks[0];
             const double r = lap();
-            meter.add(piece.grid, block, &piece.ids, first_cell[b]);
-            if (pictures) {
-                values.resize(std::size_t(block.cells().count()));
-                scaled_jacobians(piece.grid, block, values.data());
-                pictures->add_block(piece.grid, block, values.data());
-            }
-            const double q = lap();
-            writer.add_piece(b, piece.grid, block);
-            const double w = lap();
             out.seconds[0] += r;
-            out.seconds[1] += q;
-            out.seconds[2] += w;
-            log << fmt::format(
-                "    block {:<12} {:>11} cells: refine {:.2f} s, quality {:.2f} s, write {:.2f} "
-                "s\n",
-                block.name, block.cells().count(), r, q, w);
-            log.flush();
-            if (kept) {
-                kept->index.push_back(b);
-                kept->blocks.push_back(std::move(piece));
+            for (size_t p = 0; p < pieces.size(); ++p) {
+                const BlockPiece& at = pieces[p];
+                if (at.block != b || at.process != rank) continue;
+                const bool whole = at.lo == 0 && at.hi == fine.grid.blocks[0].cells()[at.axis];
+                RefinedBlock part = whole ? RefinedBlock{} : part_of(fine, at.axis, at.lo, at.hi);
+                RefinedBlock& piece = whole ? fine : part;
+                const Block& block = piece.grid.blocks[0];
+                CellNumbering numbering{first_cell[b], {0, 0, 0}, fine.grid.blocks[0].cells()};
+                numbering.offset[size_t(at.axis)] = at.lo;
+                meter.add(piece.grid, block, &piece.ids, numbering);
+                if (pictures) {
+                    values.resize(std::size_t(block.cells().count()));
+                    scaled_jacobians(piece.grid, block, values.data());
+                    pictures->add_block(piece.grid, block, values.data());
+                }
+                const double q = lap();
+                writer.add_piece(p, piece.grid, block);
+                const double w = lap();
+                out.seconds[1] += q;
+                out.seconds[2] += w;
+                log << fmt::format(
+                    "    block {:<12} {:>11} cells: refine {:.2f} s, quality {:.2f} s, write "
+                    "{:.2f} s{}\n",
+                    block.name, block.cells().count(), r, q, w,
+                    whole ? ""
+                          : fmt::format(" (cells {} to {} along {})", at.lo, at.hi - 1,
+                                        "ijk"[at.axis]));
+                log.flush();
+                if (kept) {
+                    kept->index.push_back(p);
+                    kept->blocks.push_back(std::move(piece));
+                }
             }
             ++b;
         },
@@ -114,15 +130,16 @@ void gather_measures(GridMeter& meter, std::optional<GridPictures>& pictures, La
                            peak / 1e9);
 }
 
-// A decomposed OpenFOAM case needs a block per process at least (a block is not split).
-void refuse_idle_processors(const std::vector<std::string>& formats, int processes, size_t blocks) {
-    if (processes > 1 && size_t(processes) > blocks &&
+// A decomposed OpenFOAM case needs a piece per process: a block is cut no finer than two
+// coarse cells along an index direction (share_blocks).
+void refuse_idle_processors(const std::vector<std::string>& formats, int processes, size_t pieces) {
+    if (processes > 1 && size_t(processes) > pieces &&
         std::count(formats.begin(), formats.end(), "openfoam"))
         throw InputError(fmt::format(
-            "--format openfoam on {} processes: the grid has {} blocks and each process's part "
-            "of the case needs one at least (a block is not split between processes): run on "
-            "at most {} processes",
-            processes, blocks, blocks));
+            "--format openfoam on {} processes: the grid's blocks make {} pieces at most (a "
+            "piece has two coarse cells along the direction it is cut in at least), one per "
+            "process: run on at most {} processes",
+            processes, pieces, pieces));
 }
 
 // At rank 0, every measure merged: the level's report, its log line and table; throws when
@@ -196,21 +213,20 @@ RefineFileResult refine_grid_file(const std::string& grid_path, const Case& c,
     }
     const std::optional<TriangleSurface> surface = reference_surface(c.geometry);
     GridMeter meter(*body, {}, surface ? &*surface : nullptr);
-    const std::string vtk_name = grid.blocks.size() == 1 ? "grid.vts" : "grid.vtm";
+
     // The last level's pictures, drawn block by block too (framed on the level before).
     std::optional<GridPictures> pictures;
     if (options.report) pictures.emplace(grid_pictures_for(grid));
-    refuse_idle_processors(options.formats, processes, grid.blocks.size());
-    const std::vector<int> owner = share_blocks(grid, processes);
-    std::vector<bool> made(grid.blocks.size());
-    for (size_t b = 0; b < made.size(); ++b) made[b] = owner[b] == rank;
+    const std::vector<BlockPiece> pieces = share_blocks(grid, processes);
+    refuse_idle_processors(options.formats, processes, pieces.size());
+    const std::string vtk_name = pieces.size() == 1 ? "grid.vts" : "grid.vtm";
     std::ostringstream rank_lines;  // the block lines of the other processes, for rank 0
     LastLevel level;
     std::optional<VtkGridWriter> writer;
     MadeBlocks kept;
     ranks::together([&] {
-        writer.emplace((std::filesystem::path(staging) / vtk_name).string(), grid.blocks.size());
-        level = refine_last_level(grid, *body, made, meter, pictures, *writer,
+        writer.emplace((std::filesystem::path(staging) / vtk_name).string(), pieces.size());
+        level = refine_last_level(grid, *body, pieces, meter, pictures, *writer,
                                   options.formats.empty() ? nullptr : &kept,
                                   rank == 0 ? log : rank_lines);
     });
@@ -224,14 +240,14 @@ RefineFileResult refine_grid_file(const std::string& grid_path, const Case& c,
     std::vector<std::string> formats_written;
     ranks::together([&] {
         formats_written =
-            write_refined_formats(grid, owner, kept, options.formats, staging, c.flow);
+            write_refined_formats(grid, pieces, kept, options.formats, staging, c.flow);
     });
     if (!options.formats.empty())
         timer.done("formats", fmt::format("({})", fmt::join(options.formats, ", ")));
     ranks::together([&] {
         if (rank != 0) return;
         std::vector<std::string> names;
-        for (const Block& block : grid.blocks) names.push_back(block.name);
+        for (const BlockPiece& p : pieces) names.push_back(grid.blocks[p.block].name);
         out->path(vtk_name);  // written below, or by add_piece for a grid of one block
         writer->write_index(names);
         for (const std::string& name : formats_written) out->path(name);

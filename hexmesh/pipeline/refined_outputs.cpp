@@ -3,7 +3,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <filesystem>
+#include <iterator>
 #include <unordered_map>
 
 #include "hexmesh/core/bytes.h"
@@ -43,57 +45,82 @@ BlockGrid share_of(const MadeBlocks& made, std::vector<Id>& global_ids) {
     return share;
 }
 
+// The process making fine cell `at` (fine indices) of block b (a coarse cell's fine cells
+// are in one piece, see share_blocks).
+int process_of(const std::vector<BlockPiece>& pieces, size_t b, const std::array<int, 3>& at) {
+    for (const BlockPiece& p : pieces)
+        if (p.block == b && at[size_t(p.axis)] >= p.lo && at[size_t(p.axis)] < p.hi)
+            return p.process;
+    return -1;
+}
+
 // Writes this process's processor folder of the decomposed case `case_dir`.
-void write_processor(const BlockGrid& coarse, const std::vector<int>& owner, const MadeBlocks& made,
-                     const std::string& case_dir, const FlowSpec& flow) {
+void write_processor(const BlockGrid& coarse, const std::vector<BlockPiece>& pieces,
+                     const MadeBlocks& made, const std::string& case_dir, const FlowSpec& flow) {
     const GridFaces coarse_faces = make_grid_faces(coarse);
     ProcessorShare p;
     p.process = ranks::rank();
     p.processes = ranks::size();
     p.patches = coarse_faces.patch_names;
     p.wall_extent = wall_extent(coarse);
-    // A fine cell (i, j, k) lies in coarse cell (i / 2, j / 2, k / 2) of its block: the cell
-    // across a fine face on a block face is in the coarse cell across it.
+    // Fine cell (i, j, k) of a piece is fine cell (i, j, k) + its offset along the axis of
+    // its block, in coarse cell (i / 2, j / 2, k / 2): across a cut, the cell is the next
+    // piece's; across a block face, in the coarse cell across, in whichever piece holds it.
     p.process_across = [&](int b, int face, int i, int j, int k) {
-        const size_t block = made.index[size_t(b)];
-        const Dims cells = coarse.blocks[block].cells();
-        const Id across =
-            coarse_faces.across[block][size_t(face)]
-                               [size_t(face_cell_index(cells, face, i / 2, j / 2, k / 2))];
+        const BlockPiece& piece = pieces[made.index[size_t(b)]];
+        std::array<int, 3> at = {i, j, k};
+        at[size_t(piece.axis)] += piece.lo;
+        const int axis = face / 2;
+        if (axis == piece.axis) {
+            std::array<int, 3> next = at;
+            next[size_t(axis)] += face % 2 ? 1 : -1;
+            const int fine = 2 * coarse.blocks[piece.block].cells()[axis];
+            if (next[size_t(axis)] >= 0 && next[size_t(axis)] < fine)
+                return process_of(pieces, piece.block, next);
+        }
+        const Dims cells = coarse.blocks[piece.block].cells();
+        const Id across = coarse_faces.across[piece.block][size_t(face)][size_t(
+            face_cell_index(cells, face, at[0] / 2, at[1] / 2, at[2] / 2))];
         if (across < 0) return -1;
         const auto& first = coarse_faces.first_cell;
         const size_t other =
             size_t(std::upper_bound(first.begin(), first.end(), across) - first.begin()) - 1;
-        return owner[other];
+        const Dims c = coarse.blocks[other].cells();
+        const Id in = across - first[other];
+        const std::array<int, 3> fine = {int(2 * (in % c.ni)), int(2 * (in / c.ni % c.nj)),
+                                         int(2 * (in / (Id(c.ni) * c.nj)))};
+        return process_of(pieces, other, fine);
     };
     BlockGrid share = share_of(made, p.global_ids);
-    // The block interfaces that other processes' blocks meet take the patch shared_faces.
+    // The interfaces (and cuts) that other processes' cells meet take the patch shared_faces.
     for (size_t b = 0; b < share.blocks.size(); ++b) {
-        const size_t block = made.index[b];
+        const Dims d = share.blocks[b].cells();
         for (int face = 0; face < 6; ++face) {
             std::string& patch = share.blocks[b].face_patch[size_t(face)];
             if (!patch.empty()) continue;
             int others = 0, own = 0;
-            for (const Id across : coarse_faces.across[block][size_t(face)]) {
-                const auto& first = coarse_faces.first_cell;
-                const size_t other =
-                    size_t(std::upper_bound(first.begin(), first.end(), across) - first.begin()) -
-                    1;
-                (across >= 0 && owner[other] != p.process ? others : own) += 1;
-            }
+            const int axis = face / 2, u = axis == 0 ? 1 : 0, v = axis == 2 ? 1 : 2;
+            std::array<int, 3> at;
+            at[size_t(axis)] = face % 2 ? d[axis] - 1 : 0;
+            for (at[size_t(v)] = 0; at[size_t(v)] < d[v]; ++at[size_t(v)])
+                for (at[size_t(u)] = 0; at[size_t(u)] < d[u]; ++at[size_t(u)]) {
+                    const int across = p.process_across(int(b), face, at[0], at[1], at[2]);
+                    (across >= 0 && across != p.process ? others : own) += 1;
+                }
             if (others > 0 && own > 0)
                 throw std::runtime_error(fmt::format(
-                    "block {}: a face met by blocks of this process and of others; the "
+                    "block {}: a face met by cells of this process and of others; the "
                     "decomposed OpenFOAM case needs each block face on one process's side",
-                    coarse.blocks[block].name));
+                    share.blocks[b].name));
             if (others > 0) patch = ProcessorShare::shared_faces;
         }
     }
     write_openfoam_processor(share, p, case_dir, flow);
 }
 
-// The whole level at rank 0, from every process's blocks (collective; elsewhere empty).
-BlockGrid gather_level(const BlockGrid& coarse, const MadeBlocks& made) {
+// The whole level at rank 0, from every process's pieces (collective; elsewhere empty).
+BlockGrid gather_level(const BlockGrid& coarse, const std::vector<BlockPiece>& pieces,
+                       const MadeBlocks& made) {
     ByteWriter out;
     out.put(made.blocks.size());
     for (size_t n = 0; n < made.blocks.size(); ++n) {
@@ -107,42 +134,57 @@ BlockGrid gather_level(const BlockGrid& coarse, const MadeBlocks& made) {
     const std::vector<std::string> all = ranks::gather(out.bytes());
     BlockGrid level;
     if (all.empty()) return level;
-    std::vector<RefinedBlock> pieces(coarse.blocks.size());
+    std::vector<RefinedBlock> parts(pieces.size());
     for (const std::string& bytes : all) {
         ByteReader in(bytes);
         for (size_t n = in.next<size_t>(); n > 0; --n) {
-            RefinedBlock& piece = pieces.at(in.next<size_t>());
+            RefinedBlock& piece = parts.at(in.next<size_t>());
             Block& block = piece.grid.blocks.emplace_back();
             in.get(block.name), in.get(block.nodes);
             for (std::string& patch : block.face_patch) in.get(patch);
             in.get(piece.ids), in.get(piece.grid.points), in.get(piece.grid.kinds);
             in.get(piece.fine_points);
+            piece.shared.assign(piece.ids.size(), false);  // not needed to write it
+            piece.coarse.assign(piece.ids.size(), false);
         }
     }
     level.points = coarse.points;
     level.kinds = coarse.kinds;
-    for (RefinedBlock& piece : pieces) add_refined_block(level, std::move(piece));
+    // Pieces come in block order, then along their axis: a block split is joined again.
+    for (size_t p = 0; p < pieces.size();) {
+        size_t end = p + 1;
+        while (end < pieces.size() && pieces[end].block == pieces[p].block) ++end;
+        if (end == p + 1) {
+            add_refined_block(level, std::move(parts[p]));
+        } else {
+            const std::vector<RefinedBlock> split(std::make_move_iterator(parts.begin() + p),
+                                                  std::make_move_iterator(parts.begin() + end));
+            add_refined_block(level, join_parts(split, pieces[p].axis));
+        }
+        p = end;
+    }
     return level;
 }
 
 }  // namespace
 
 std::vector<std::string> write_refined_formats(const BlockGrid& coarse,
-                                               const std::vector<int>& owner, MadeBlocks& made,
+                                               const std::vector<BlockPiece>& pieces,
+                                               MadeBlocks& made,
                                                const std::vector<std::string>& formats,
                                                const std::string& folder, const FlowSpec& flow) {
     std::vector<std::string> names, gathered;
     for (const std::string& format : formats) {
         if (format == "openfoam" && ranks::size() > 1) {
             const std::string name = export_file_name(format, "grid", coarse);
-            write_processor(coarse, owner, made, (fs::path(folder) / name).string(), flow);
+            write_processor(coarse, pieces, made, (fs::path(folder) / name).string(), flow);
             names.push_back(name);
         } else {
             gathered.push_back(format);
         }
     }
     if (gathered.empty()) return names;
-    const BlockGrid level = gather_level(coarse, made);
+    const BlockGrid level = gather_level(coarse, pieces, made);
     made = {};  // held whole now, at rank 0
     if (ranks::rank() != 0) return names;
     for (const std::string& format : gathered) {

@@ -93,10 +93,15 @@ struct BlockPass {
     const std::vector<Vec3>& points;
     Dims d;
     size_t plane;  // cells per k-slab
-    Id first;
+    Id first;      // of the whole block this one is part of (CellNumbering)
+    std::array<int, 3> offset;
+    Dims whole;
     const std::vector<Id>* ids;
 
     Id global(Id v) const { return ids ? (*ids)[size_t(v)] : v; }
+    Id cell(int i, int j, int k) const {
+        return first + whole.flat(i + offset[0], j + offset[1], k + offset[2]);
+    }
 };
 
 // The six faces of a cell with corner points p as it sees them: on the block boundary or
@@ -177,7 +182,7 @@ void measure_slab(const BlockPass& b, int k, Slab& out, const Slab* below, CellS
             imax = faces[1];
             jmax[size_t(i)] = faces[3];
             if (!stats) continue;
-            const Id c = b.first + Id(at) + Id(b.plane) * k;
+            const Id c = b.cell(i, j, k);
             add_cell(*stats, c, faces, g, p);
             // Faces: internal ones from below (i, j, k), then block-boundary ones.
             add_faces_from_below(faces_acc->stats, b, at, p, inside, faces, g, out, below);
@@ -254,13 +259,18 @@ BlockQuality::~BlockQuality() = default;
 // by node ids with the cell across. The scaled-Jacobian sum is added slab by slab in order,
 // so the result does not depend on how the slabs are split between threads.
 void BlockQuality::add(const BlockGrid& grid, const Block& block, const std::vector<Id>* ids,
-                       Id first_cell) {
+                       const CellNumbering& numbering) {
     State& st = *state_;
     const Dims d = block.cells();
     if (d.count() == 0) return;
-    const BlockPass pass{
-        block, grid.points, d, size_t(d.ni) * size_t(d.nj), first_cell >= 0 ? first_cell : st.cells,
-        ids};
+    const BlockPass pass{block,
+                         grid.points,
+                         d,
+                         size_t(d.ni) * size_t(d.nj),
+                         numbering.first >= 0 ? numbering.first : st.cells,
+                         numbering.offset,
+                         numbering.whole.count() > 0 ? numbering.whole : d,
+                         ids};
     std::vector<CellStats> slab_stats(size_t(d.nk));
     BlockFaces block_faces = measure_slabs(pass, slab_stats);
     st.per_face.join(block_faces.stats);

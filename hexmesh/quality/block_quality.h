@@ -2,6 +2,7 @@
 // grid is made.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -18,6 +19,18 @@ namespace hexmesh {
 // and neither an unstructured copy nor per-cell arrays are made. A BlockQuality over the
 // blocks in order.
 QualityReport measure_quality(const BlockGrid& grid);
+
+// Where the cells of a block added sit in the whole grid's numbering (to_hex_mesh order), for
+// blocks measured apart: the block added is the part at `offset` (in cells) of a block of
+// `whole` cells whose first cell is `first`, so its cell (i, j, k) is cell first + (i +
+// offset[0]) + whole.ni (j + offset[1]) + whole.ni whole.nj (k + offset[2]). whole empty:
+// the block added is whole. first < 0: numbered after the cells added before (one process
+// adding every block in order).
+struct CellNumbering {
+    Id first = -1;
+    std::array<int, 3> offset = {0, 0, 0};
+    Dims whole;
+};
 
 // measure_quality of a block grid taken block by block, so that a grid too large to hold can
 // be measured as its blocks are made: add() each block in order, then report(). Cells are
@@ -36,10 +49,10 @@ class BlockQuality {
     // points on its own (one block made at a time), ids[v] is point v's id in the whole grid,
     // which is what pairs faces across blocks. Throws std::invalid_argument, naming the
     // cells, when a face is shared by more than two cells.
-    // With `first_cell` >= 0, the block's cells are numbered from it (the blocks of one grid
-    // measured by several processes, each adding its own).
+    // `numbering`: where the block's cells sit in the whole grid (the blocks of one grid, or
+    // parts of them, measured by several processes, each adding its own).
     void add(const BlockGrid& grid, const Block& block, const std::vector<Id>* ids = nullptr,
-             Id first_cell = -1);
+             const CellNumbering& numbering = {});
 
     QualityReport report() const;
 

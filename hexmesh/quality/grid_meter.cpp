@@ -63,9 +63,14 @@ GridMeter::GridMeter(const ImplicitFunction& body, const WallLayers& law,
     : body_(body), surface_(surface), wall_(body, law) {}
 
 void GridMeter::add(const BlockGrid& grid, const Block& block, const std::vector<Id>* ids,
-                    Id first_cell) {
-    quality_.add(grid, block, ids, first_cell);
-    Added a{block.name, block.cells(), {}, first_cell >= 0 ? first_cell : cells_};
+                    const CellNumbering& numbering) {
+    quality_.add(grid, block, ids, numbering);
+    Added a;
+    a.name = block.name;
+    a.cells = block.cells();
+    a.first_cell = numbering.first >= 0 ? numbering.first : cells_;
+    a.offset = numbering.offset;
+    a.whole = numbering.whole.count() > 0 ? numbering.whole : a.cells;
     cells_ += block.cells().count();
     for (int f = 0; f < 6; ++f) a.wall[f] = block.face_patch[f] == "wall";
     const bool walled = std::find(a.wall.begin(), a.wall.end(), true) != a.wall.end();
@@ -84,13 +89,18 @@ void GridMeter::add(const BlockGrid& grid, const Block& block, const std::vector
 std::optional<CellPlace> GridMeter::place(Id cell) const {
     for (const Added& a : added_) {
         const Id c = cell - a.first_cell;
-        if (c >= 0 && c < a.cells.count()) {
-            CellPlace w{a.name, int(c % a.cells.ni), int(c / a.cells.ni % a.cells.nj),
-                        int(c / (Id(a.cells.ni) * a.cells.nj)), false};
-            for (int f = 0; f < 6; ++f)
-                w.on_wall = w.on_wall || (a.wall[f] && on_block_face(a.cells, {w.i, w.j, w.k}, f));
-            return w;
-        }
+        if (c < 0 || c >= a.whole.count()) continue;
+        const std::array<int, 3> at = {int(c % a.whole.ni), int(c / a.whole.ni % a.whole.nj),
+                                       int(c / (Id(a.whole.ni) * a.whole.nj))};
+        std::array<int, 3> in;  // in the part added
+        for (int d = 0; d < 3; ++d) in[d] = at[d] - a.offset[d];
+        if (in[0] < 0 || in[1] < 0 || in[2] < 0 || in[0] >= a.cells.ni || in[1] >= a.cells.nj ||
+            in[2] >= a.cells.nk)
+            continue;
+        CellPlace w{a.name, at[0], at[1], at[2], false};
+        for (int f = 0; f < 6; ++f)
+            w.on_wall = w.on_wall || (a.wall[f] && on_block_face(a.cells, in, f));
+        return w;
     }
     return std::nullopt;
 }
@@ -104,7 +114,8 @@ std::string GridMeter::pack() const {
     out.put(wall_edge_length_), out.put(wall_edges_), out.put(max_slip_value_);
     out.put(added_.size());
     for (const Added& a : added_)
-        out.put(a.name), out.put(a.cells), out.put(a.wall), out.put(a.first_cell);
+        out.put(a.name), out.put(a.cells), out.put(a.wall), out.put(a.first_cell),
+            out.put(a.offset), out.put(a.whole);
     return out.bytes();
 }
 
@@ -128,7 +139,8 @@ void GridMeter::merge(const std::string& packed) {
     const size_t blocks = in.next<size_t>();
     for (size_t b = 0; b < blocks; ++b) {
         Added a;
-        in.get(a.name), in.get(a.cells), in.get(a.wall), in.get(a.first_cell);
+        in.get(a.name), in.get(a.cells), in.get(a.wall), in.get(a.first_cell), in.get(a.offset),
+            in.get(a.whole);
         added_.push_back(std::move(a));
     }
 }

@@ -27,10 +27,11 @@ class GridMeter {
     GridMeter(const ImplicitFunction& body, const WallLayers& law = {},
               const TriangleSurface* surface = nullptr);
 
-    // With `first_cell` >= 0, the block's cells are numbered from it: the blocks of one grid
-    // measured by several processes, each adding its own (in order), then merged.
+    // `numbering`: where the block's cells sit in the whole grid, for the blocks of one grid
+    // (or parts of blocks) measured by several processes, each adding its own (in order),
+    // then merged. A worst cell is placed in its whole block (its name, its indices there).
     void add(const BlockGrid& grid, const Block& block, const std::vector<Id>* ids = nullptr,
-             Id first_cell = -1);
+             const CellNumbering& numbering = {});
     GridReport report() const;
 
     // What has been added, as bytes for another process; merge() adds another GridMeter's
@@ -57,7 +58,9 @@ class GridMeter {
         std::string name;
         Dims cells;
         std::array<bool, 6> wall;  // BlockFace order
-        Id first_cell = 0;         // the id of its first cell
+        Id first_cell = 0;         // of the whole block it is part of (CellNumbering)
+        std::array<int, 3> offset = {0, 0, 0};
+        Dims whole;
     };
     Id cells_ = 0;  // cells added
     std::vector<Added> added_;

@@ -3,13 +3,16 @@
 // one processor folder per process, and OpenFOAM's parallel tools take it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "cli.h"
+#include "io/vtk_mesh.h"
 
+using namespace hexmesh;
 using namespace hexmesh::test_support;
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -91,6 +94,63 @@ TEST_F(RefineOnProcesses, AFormatGatheredAtTheFirstProcessIsTheSerialFile) {
     for (int n : {2, 3}) EXPECT_TRUE(read_text(refined(n) / "grid.msh") == one) << n;
 }
 
+#ifdef HEXMESH_TEST_MPIRUN
+namespace {
+
+// An OpenFOAM tool on `processes` processes (1: without mpirun) on the case `dir`.
+CommandResult foam(int processes, const std::string& tool, const fs::path& dir) {
+    const std::string env =
+        std::getenv("WM_PROJECT_DIR") ? "" : "WM_PROJECT_DIR=/usr/share/openfoam ";
+    if (processes == 1) return run_command(env + tool + " -case '" + dir.string() + "'");
+    return run_command(env + "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " +
+                       HEXMESH_TEST_MPIRUN " --oversubscribe -np " + std::to_string(processes) +
+                       " " + tool + " -parallel -case '" + dir.string() + "'");
+}
+
+// The number checkMesh prints after `name` (e.g. "cells:").
+long long mesh_count(const std::string& out, const std::string& name) {
+    const size_t at = out.find(name);
+    return at == std::string::npos ? -1 : std::stoll(out.substr(at + name.size()));
+}
+
+}  // namespace
+
+// More processes than blocks (9 for 7): the largest blocks are split between processes, each
+// writing its part as a piece of its own; the grid read back is the serial one, and the
+// OpenFOAM case is decomposed across the cuts too.
+TEST_F(RefineOnProcesses, OnMoreProcessesThanBlocksSplitBlocksGiveTheSameGrid) {
+    const CommandResult r =
+        run_command(mpirun(9) + "refine '" + (coarse_dir / "grid.vtm").string() + "' -o '" +
+                    refined(9).string() + "' --format gmsh --format openfoam");
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    EXPECT_NE(r.out.find(" along "), std::string::npos) << r.out;  // a part of a block
+    EXPECT_EQ(r.out.find("no block"), std::string::npos) << r.out;
+    const BlockGrid one = read_vtk_block_grid((refined(1) / "grid.vtm").string());
+    const BlockGrid nine = read_vtk_block_grid((refined(9) / "grid.vtm").string());
+    EXPECT_EQ(nine.blocks.size(), 9u);
+    EXPECT_EQ(nine.num_cells(), one.num_cells());
+    auto sorted = [](std::vector<Vec3> p) {
+        std::sort(p.begin(), p.end(), [](const Vec3& a, const Vec3& b) {
+            return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+        });
+        return p;
+    };
+    EXPECT_TRUE(sorted(nine.points) == sorted(one.points));
+    EXPECT_TRUE(read_text(refined(9) / "grid.msh") == read_text(refined(1) / "grid.msh"));
+    const json a = json::parse(read_text(refined(1) / "quality.json"));
+    const json b = json::parse(read_text(refined(9) / "quality.json"));
+    for (const char* key : {"cells", "inverted_corner_tets", "min_scaled_jacobian", "worst_cell",
+                            "max_non_orthogonality_deg"})
+        EXPECT_EQ(b.at(key), a.at(key)) << key;
+    // The decomposed case: processor patches across the cuts too.
+    const fs::path dir = refined(9) / "grid_openfoam";
+    EXPECT_TRUE(fs::exists(dir / "processor8" / "constant" / "polyMesh" / "boundary"));
+    const CommandResult mesh = foam(9, "checkMesh", dir);
+    EXPECT_NE(mesh.out.find("Mesh OK."), std::string::npos) << mesh.out << mesh.err;
+    EXPECT_NE(mesh.out.find("Coupled point location match (average 0) OK."), std::string::npos);
+}
+#endif
+
 TEST_F(RefineOnProcesses, TheReportIsTheSerialOne) {
     for (int n : {2, 3}) {
         const CommandResult& r = parallel[n - 2];
@@ -114,26 +174,6 @@ TEST_F(RefineOnProcesses, TheReportIsTheSerialOne) {
 }
 
 #ifdef HEXMESH_TEST_MPIRUN
-namespace {
-
-// An OpenFOAM tool on `processes` processes (1: without mpirun) on the case `dir`.
-CommandResult foam(int processes, const std::string& tool, const fs::path& dir) {
-    const std::string env =
-        std::getenv("WM_PROJECT_DIR") ? "" : "WM_PROJECT_DIR=/usr/share/openfoam ";
-    if (processes == 1) return run_command(env + tool + " -case '" + dir.string() + "'");
-    return run_command(env + "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " +
-                       HEXMESH_TEST_MPIRUN " --oversubscribe -np " + std::to_string(processes) +
-                       " " + tool + " -parallel -case '" + dir.string() + "'");
-}
-
-// The number checkMesh prints after `name` (e.g. "cells:").
-long long mesh_count(const std::string& out, const std::string& name) {
-    const size_t at = out.find(name);
-    return at == std::string::npos ? -1 : std::stoll(out.substr(at + name.size()));
-}
-
-}  // namespace
-
 TEST_F(RefineOnProcesses, TheOpenFoamCaseComesDecomposedAndCheckMeshPassesInParallel) {
     for (int n : {2, 3}) {
         const fs::path dir = refined(n) / "grid_openfoam";

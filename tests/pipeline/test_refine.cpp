@@ -177,7 +177,8 @@ TEST_P(RefineFamily, MetersOfSomeBlocksEachMergedGiveTheWholeReport) {
     GridMeter first(*f.body), second(*f.body);
     Id cell = 0;
     for (size_t b = 0; b < grid.blocks.size(); ++b) {
-        (b % 2 ? second : first).add(grid, grid.blocks[b], nullptr, cell);
+        (b % 2 ? second : first)
+            .add(grid, grid.blocks[b], nullptr, CellNumbering{cell, {0, 0, 0}, {}});
         cell += grid.blocks[b].cells().count();
     }
     first.merge(second.pack());
@@ -199,6 +200,53 @@ TEST_P(RefineFamily, MetersOfSomeBlocksEachMergedGiveTheWholeReport) {
     // max |u| over h, the mean wall edge: a sum too.
     EXPECT_NEAR(*merged.max_surface_distance, *whole.max_surface_distance,
                 1e-9 * *whole.max_surface_distance);
+}
+
+// Shares for processes: whole blocks balanced while there are enough, then halves of the
+// largest pieces, never across a wall-normal line; parts of a fine block join back into it.
+TEST_P(RefineFamily, BlocksAreSharedWholeThenSplitAlongLinesParallelToTheWall) {
+    const Family& f = family(GetParam());
+    const BlockGrid& coarse = f.levels[1];
+    const size_t blocks = coarse.blocks.size();
+    const Id cells = 8 * coarse.num_cells();
+    Id largest = 0;
+    for (const Block& b : coarse.blocks) largest = std::max(largest, 8 * b.cells().count());
+    for (int processes : {1, 2, 3, int(blocks), int(blocks) + 2, 4 * int(blocks)}) {
+        const std::vector<BlockPiece> pieces = share_blocks(coarse, processes);
+        std::vector<Id> load(size_t(processes), 0);
+        Id total = 0;
+        for (const BlockPiece& p : pieces) {
+            ASSERT_LT(p.process, processes);
+            load[size_t(p.process)] += p.cells;
+            total += p.cells;
+            const Block& block = coarse.blocks[p.block];
+            EXPECT_FALSE(block.face_patch[size_t(2 * p.axis)] == "wall" ||
+                         block.face_patch[size_t(2 * p.axis + 1)] == "wall")
+                << "block " << block.name << " split along its wall-normal lines";
+        }
+        EXPECT_EQ(total, cells);
+        const auto [low, high] = std::minmax_element(load.begin(), load.end());
+        if (size_t(processes) <= blocks) {
+            EXPECT_EQ(pieces.size(), blocks) << processes;
+            EXPECT_LE(*high - *low, largest) << processes;
+        } else {
+            EXPECT_EQ(pieces.size(), size_t(processes));
+            EXPECT_GT(*low, 0) << processes << " processes: one has nothing to make";
+        }
+    }
+    // A fine block cut in three along j, joined again.
+    BlockRefiner refiner(coarse);
+    const RefinedBlock fine = refiner.refine(0);
+    const int nj = fine.grid.blocks[0].cells().nj;
+    const std::vector<RefinedBlock> parts = {part_of(fine, 1, 0, 3), part_of(fine, 1, 3, 7),
+                                             part_of(fine, 1, 7, nj)};
+    EXPECT_EQ(parts[1].grid.blocks[0].cells().nj, 4);
+    EXPECT_TRUE(parts[1].grid.blocks[0].face_patch[2].empty());
+    EXPECT_TRUE(parts[1].shared[0]);  // on the cut
+    const RefinedBlock joined = join_parts(parts, 1);
+    EXPECT_EQ(joined.ids, fine.ids);
+    EXPECT_EQ(joined.grid.points, fine.grid.points);
+    EXPECT_EQ(joined.grid.blocks[0].face_patch, fine.grid.blocks[0].face_patch);
 }
 
 INSTANTIATE_TEST_SUITE_P(Bodies, RefineFamily, ::testing::Values("sphere", "bean"));
