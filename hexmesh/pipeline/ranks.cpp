@@ -1,7 +1,6 @@
 #include "hexmesh/pipeline/ranks.h"
 
 #include <algorithm>
-#include <climits>
 #include <cstdlib>
 #include <stdexcept>
 
@@ -28,11 +27,19 @@ int launched_size() {
 namespace {
 bool started_ = false;
 
-// MPI counts in int: a message longer than INT_MAX bytes is refused.
-int count_of(size_t n) {
-    if (n > size_t(INT_MAX))
-        throw std::runtime_error("a message between processes is longer than 2 GB");
-    return int(n);
+// MPI counts in int: longer messages go in pieces of 1 GiB.
+constexpr size_t piece = size_t(1) << 30;
+
+void send(const std::string& bytes, int to) {
+    for (size_t at = 0; at < bytes.size(); at += piece)
+        MPI_Send(bytes.data() + at, int(std::min(piece, bytes.size() - at)), MPI_BYTE, to, 0,
+                 MPI_COMM_WORLD);
+}
+
+void receive(std::string& bytes, int from) {
+    for (size_t at = 0; at < bytes.size(); at += piece)
+        MPI_Recv(bytes.data() + at, int(std::min(piece, bytes.size() - at)), MPI_BYTE, from, 0,
+                 MPI_COMM_WORLD, MPI_STATUS_IGNORE);
 }
 }  // namespace
 
@@ -61,18 +68,17 @@ std::vector<std::string> gather(const std::string& bytes) {
     const long long mine = static_cast<long long>(bytes.size());
     std::vector<long long> lengths(static_cast<size_t>(size_));
     MPI_Gather(&mine, 1, MPI_LONG_LONG, lengths.data(), 1, MPI_LONG_LONG, 0, MPI_COMM_WORLD);
-    // Rank by rank (each message within MPI's int counts), not one MPI_Gatherv.
+    // Rank by rank, in pieces within MPI's int counts, not one MPI_Gatherv.
     std::vector<std::string> out;
     if (rank_ == 0) {
         out.resize(size_t(size_));
         out[0] = bytes;
         for (int r = 1; r < size_; ++r) {
             out[size_t(r)].resize(size_t(lengths[size_t(r)]));
-            MPI_Recv(out[size_t(r)].data(), count_of(out[size_t(r)].size()), MPI_BYTE, r, 0,
-                     MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+            receive(out[size_t(r)], r);
         }
     } else {
-        MPI_Send(bytes.data(), count_of(bytes.size()), MPI_BYTE, 0, 0, MPI_COMM_WORLD);
+        send(bytes, 0);
     }
     return out;
 }
@@ -82,7 +88,9 @@ std::string broadcast(const std::string& bytes) {
     long long length = static_cast<long long>(bytes.size());
     MPI_Bcast(&length, 1, MPI_LONG_LONG, 0, MPI_COMM_WORLD);
     std::string out = rank_ == 0 ? bytes : std::string(size_t(length), '\0');
-    MPI_Bcast(out.data(), count_of(out.size()), MPI_BYTE, 0, MPI_COMM_WORLD);
+    for (size_t at = 0; at < out.size(); at += piece)
+        MPI_Bcast(out.data() + at, int(std::min(piece, out.size() - at)), MPI_BYTE, 0,
+                  MPI_COMM_WORLD);
     return out;
 }
 

@@ -34,20 +34,13 @@ fs::path refined(int processes) {
     return scratch("refined_" + std::to_string(processes));
 }
 
-// A small sphere grid, refined once by one process and by 2 and 3 (more than the cores
-// of a small machine: oversubscribed).
+// The bundled sphere case's grid (32 000 cells), refined once by one process and by 2 and 3
+// (more than the cores of a small machine: oversubscribed).
 class RefineOnProcesses : public ::testing::Test {
   protected:
     static void SetUpTestSuite() {
 #ifdef HEXMESH_TEST_MPIRUN
-        std::ofstream(scratch("case.json")) << R"({
-          "geometry": {"sphere": {"center": [0, 0, 0], "radius": 1.0}},
-          "grid": {"cells_per_edge": 8, "wall_cells": 6},
-          "boundary_layer": {"first_height": 0.02, "growth_ratio": 1.2, "layers": 3},
-          "solver": {"optimize_iterations": 5}
-        })";
-        run = run_hexmesh("run '" + scratch("case.json").string() + "' -o '" + coarse_dir.string() +
-                          "'");
+        run = run_hexmesh("run cases/sphere/case.json -o '" + coarse_dir.string() + "'");
         const std::string grid = "'" + (coarse_dir / "grid.vtm").string() + "'";
         serial = run_hexmesh("refine " + grid + " -o '" + refined(1).string() +
                              "' --format openfoam --format gmsh");
