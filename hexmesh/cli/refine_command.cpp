@@ -56,16 +56,20 @@ void add_refine_command(CLI::App& app, int& exit_code) {
     cmd->add_flag("--no-report", args->no_report,
                   "do not write report.html (pictures, histograms, worst cells)");
     cmd->callback([args, &exit_code] {
-        if (!std::filesystem::exists(args->grid_path))
-            throw InputError(fmt::format("{}: no such grid file", args->grid_path));
-        for (const std::string& f : args->formats)
-            if (f == "vtk" || !is_export_format(f))
-                throw InputError(fmt::format(
-                    "--format {}: {}", f,
-                    f == "vtk" ? "the grid is always written as VTK (grid.vtm)"
-                               : "unknown format (expected one of: " + export_format_list() +
-                                     " but vtk)"));
-        const Case c = case_for_refining(args->grid_path, args->case_path);
+        // Under mpirun every process checks its input: if one cannot read it, all stop.
+        Case c;
+        ranks::together([&] {
+            if (!std::filesystem::exists(args->grid_path))
+                throw InputError(fmt::format("{}: no such grid file", args->grid_path));
+            for (const std::string& f : args->formats)
+                if (f == "vtk" || !is_export_format(f))
+                    throw InputError(fmt::format(
+                        "--format {}: {}", f,
+                        f == "vtk" ? "the grid is always written as VTK (grid.vtm)"
+                                   : "unknown format (expected one of: " + export_format_list() +
+                                         " but vtk)"));
+            c = case_for_refining(args->grid_path, args->case_path);
+        });
         // Under mpirun, rank 0 speaks for every process.
         std::ostringstream quiet;
         std::ostream& out = ranks::rank() == 0 ? std::cout : quiet;

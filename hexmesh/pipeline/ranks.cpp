@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <new>
 #include <stdexcept>
 
 #ifdef HEXMESH_MPI
@@ -94,6 +95,14 @@ std::string broadcast(const std::string& bytes) {
     return out;
 }
 
+std::vector<double> max(std::vector<double> values) {
+    if (!started_) return values;
+    std::vector<double> out(values.size());
+    MPI_Allreduce(values.data(), out.data(), int(values.size()), MPI_DOUBLE, MPI_MAX,
+                  MPI_COMM_WORLD);
+    return out;
+}
+
 Id sum(Id n) {
     if (!started_) return n;
     long long mine = n, total = 0;
@@ -122,8 +131,22 @@ std::string broadcast(const std::string& bytes) {
 Id sum(Id n) {
     return n;
 }
+std::vector<double> max(std::vector<double> values) {
+    return values;
+}
 
 #endif
+
+void rethrow_as_own(std::exception_ptr error) {
+    try {
+        std::rethrow_exception(error);
+    } catch (const std::bad_alloc&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw std::runtime_error(e.what());
+    }
+    throw std::runtime_error("an unknown error");
+}
 
 int rank() {
     return rank_;

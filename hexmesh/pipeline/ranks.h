@@ -44,8 +44,17 @@ std::string broadcast(const std::string& bytes);
 // The sum of every rank's n, on every rank (collective).
 Id sum(Id n);
 
+// The largest of every rank's values, entry by entry, on every rank (collective).
+std::vector<double> max(std::vector<double> values);
+
+// Rethrows `error` as a std::runtime_error of the same message (std::bad_alloc as itself): an
+// error of this rank alone, which it reports itself.
+[[noreturn]] void rethrow_as_own(std::exception_ptr error);
+
 // Runs f() on every rank (collective); when it throws on any rank, it throws on every one:
-// its own error where it failed, EveryRankError elsewhere (so no rank waits for one gone).
+// its own error where it failed (as the rank's own, rethrow_as_own, unless every rank failed,
+// when rank 0 speaks for all), EveryRankError elsewhere, so no rank waits for one gone. f()
+// must not itself call a collective step after something that can throw on some ranks only.
 template <class F>
 void together(F&& f) {
     std::exception_ptr error;
@@ -54,9 +63,11 @@ void together(F&& f) {
     } catch (...) {
         error = std::current_exception();
     }
-    if (all(!error)) return;
-    if (error) std::rethrow_exception(error);
-    throw EveryRankError("another process failed (its error above); nothing written");
+    const Id failed = sum(error ? 1 : 0);
+    if (failed == 0) return;
+    if (!error) throw EveryRankError("another process failed (its error above); nothing written");
+    if (failed < size()) rethrow_as_own(error);
+    std::rethrow_exception(error);
 }
 
 }  // namespace hexmesh::ranks

@@ -103,31 +103,35 @@ LastLevel refine_last_level(const BlockGrid& grid, const ImplicitFunction& body,
 void gather_measures(GridMeter& meter, std::optional<GridPictures>& pictures, LastLevel& level,
                      const std::string& lines, std::ostream& log) {
     ByteWriter mine;
-    mine.put(meter.pack());
-    mine.put(pictures ? pictures->pack() : std::string());
-    mine.put(lines);
-    mine.put(level.stats.polished);
-    mine.put(double(peak_memory()));
+    ranks::together([&] {
+        mine.put(meter.pack());
+        mine.put(pictures ? pictures->pack() : std::string());
+        mine.put(lines);
+        mine.put(level.stats.polished);
+        mine.put(double(peak_memory()));
+    });
     const std::vector<std::string> all = ranks::gather(mine.bytes());
-    double peak = 0;
-    for (size_t r = 0; r < all.size(); ++r) {
-        ByteReader in(all[r]);
-        const std::string packed_meter = in.next<std::string>();
-        const std::string packed_pictures = in.next<std::string>();
-        const std::string rank_lines = in.next<std::string>();
-        const Id polished = in.next<Id>();
-        peak = std::max(peak, in.next<double>());
-        if (r == 0) continue;
-        meter.merge(packed_meter);
-        if (pictures) pictures->merge(packed_pictures);
-        level.stats.polished += polished;
-        log << fmt::format(
-            "  process {}:{}", r,
-            rank_lines.empty() ? " no block (more processes than blocks)\n" : "\n" + rank_lines);
-    }
-    if (all.size() > 1)
-        log << fmt::format("  {} processes, the largest peak memory {:.2f} GB\n", all.size(),
-                           peak / 1e9);
+    ranks::together([&] {
+        double peak = 0;
+        for (size_t r = 0; r < all.size(); ++r) {
+            ByteReader in(all[r]);
+            const std::string packed_meter = in.next<std::string>();
+            const std::string packed_pictures = in.next<std::string>();
+            const std::string rank_lines = in.next<std::string>();
+            const Id polished = in.next<Id>();
+            peak = std::max(peak, in.next<double>());
+            if (r == 0) continue;
+            meter.merge(packed_meter);
+            if (pictures) pictures->merge(packed_pictures);
+            level.stats.polished += polished;
+            log << fmt::format("  process {}:{}", r,
+                               rank_lines.empty() ? " no block (more processes than blocks)\n"
+                                                  : "\n" + rank_lines);
+        }
+        if (all.size() > 1)
+            log << fmt::format("  {} processes, the largest peak memory {:.2f} GB\n", all.size(),
+                               peak / 1e9);
+    });
 }
 
 // A decomposed OpenFOAM case needs a piece per process: a block is cut no finer than two
@@ -199,26 +203,34 @@ RefineFileResult refine_grid_file(const std::string& grid_path, const Case& c,
         }
     });
     staging = ranks::broadcast(staging);
-    BlockGrid grid = read_vtk_block_grid(grid_path);
-    timer.done("read", fmt::format("({} blocks, {} cells)", grid.blocks.size(), grid.num_cells()));
-    const Body body = make_body(c.geometry);
-    timer.done("geometry");
-    // Every level but the last in memory (each is 8 times smaller than the next); the
-    // last one block by block: each fine block is measured, written and dropped.
-    for (int level = 1; level < options.levels; ++level) {
-        RefinementResult r = refine_on_body(grid, *body);
-        grid = std::move(r.grid);
-        timer.done("refine", fmt::format("({} cells, {} wall nodes projected, max move {:.3g})",
-                                         grid.num_cells(), r.projected, r.max_projection));
-    }
-    const std::optional<TriangleSurface> surface = reference_surface(c.geometry);
-    GridMeter meter(*body, {}, surface ? &*surface : nullptr);
-
-    // The last level's pictures, drawn block by block too (framed on the level before).
+    // Every process reads the grid and the geometry and makes the levels before the last.
+    BlockGrid grid;
+    Body body;
+    std::optional<TriangleSurface> surface;
+    std::optional<GridMeter> meter;
     std::optional<GridPictures> pictures;
-    if (options.report) pictures.emplace(grid_pictures_for(grid));
-    const std::vector<BlockPiece> pieces = share_blocks(grid, processes);
-    refuse_idle_processors(options.formats, processes, pieces.size());
+    std::vector<BlockPiece> pieces;
+    ranks::together([&] {
+        grid = read_vtk_block_grid(grid_path);
+        timer.done("read",
+                   fmt::format("({} blocks, {} cells)", grid.blocks.size(), grid.num_cells()));
+        body = make_body(c.geometry);
+        timer.done("geometry");
+        // Every level but the last in memory (each is 8 times smaller than the next); the
+        // last one block by block: each fine block is measured, written and dropped.
+        for (int level = 1; level < options.levels; ++level) {
+            RefinementResult r = refine_on_body(grid, *body);
+            grid = std::move(r.grid);
+            timer.done("refine", fmt::format("({} cells, {} wall nodes projected, max move {:.3g})",
+                                             grid.num_cells(), r.projected, r.max_projection));
+        }
+        surface = reference_surface(c.geometry);
+        meter.emplace(*body, WallLayers{}, surface ? &*surface : nullptr);
+        // The last level's pictures, drawn block by block too (framed on the level before).
+        if (options.report) pictures.emplace(grid_pictures_for(grid));
+        pieces = share_blocks(grid, processes);
+        refuse_idle_processors(options.formats, processes, pieces.size());
+    });
     const std::string vtk_name = pieces.size() == 1 ? "grid.vts" : "grid.vtm";
     std::ostringstream rank_lines;  // the block lines of the other processes, for rank 0
     LastLevel level;
@@ -226,22 +238,19 @@ RefineFileResult refine_grid_file(const std::string& grid_path, const Case& c,
     MadeBlocks kept;
     ranks::together([&] {
         writer.emplace((std::filesystem::path(staging) / vtk_name).string(), pieces.size());
-        level = refine_last_level(grid, *body, pieces, meter, pictures, *writer,
+        level = refine_last_level(grid, *body, pieces, *meter, pictures, *writer,
                                   options.formats.empty() ? nullptr : &kept,
                                   rank == 0 ? log : rank_lines);
     });
-    gather_measures(meter, pictures, level, rank_lines.str(), log);
+    gather_measures(*meter, pictures, level, rank_lines.str(), log);
     // Rank 0 has every measure now: the report, and the refusal of an inverted level before
     // any other format is written.
     RefineFileResult result;
     ranks::together([&] {
-        if (rank == 0) result.report = report_level(meter, level, grid_path, timer, log);
+        if (rank == 0) result.report = report_level(*meter, level, grid_path, timer, log);
     });
-    std::vector<std::string> formats_written;
-    ranks::together([&] {
-        formats_written =
-            write_refined_formats(grid, pieces, kept, options.formats, staging, c.flow);
-    });
+    const std::vector<std::string> formats_written =
+        write_refined_formats(grid, pieces, kept, options.formats, staging, c.flow);
     if (!options.formats.empty())
         timer.done("formats", fmt::format("({})", fmt::join(options.formats, ", ")));
     ranks::together([&] {

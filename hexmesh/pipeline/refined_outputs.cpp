@@ -54,15 +54,51 @@ int process_of(const std::vector<BlockPiece>& pieces, size_t b, const std::array
     return -1;
 }
 
-// Writes this process's processor folder of the decomposed case `case_dir`.
+// The bounding box of the "wall" faces of this process's pieces (empty: lo above hi).
+Box3 wall_box_of(const MadeBlocks& made) {
+    Box3 box{Vec3::Constant(1e300), Vec3::Constant(-1e300)};
+    for (const RefinedBlock& piece : made.blocks) {
+        const Block& block = piece.grid.blocks[0];
+        const Dims d = block.nodes;
+        for (int face = 0; face < 6; ++face) {
+            if (block.face_patch[size_t(face)] != "wall") continue;
+            const int axis = face / 2;
+            int lo[3] = {0, 0, 0}, hi[3] = {d.ni, d.nj, d.nk};
+            lo[axis] = face % 2 ? d[axis] - 1 : 0;
+            hi[axis] = lo[axis] + 1;
+            for (int k = lo[2]; k < hi[2]; ++k)
+                for (int j = lo[1]; j < hi[1]; ++j)
+                    for (int i = lo[0]; i < hi[0]; ++i) {
+                        const Vec3& x = piece.grid.points[size_t(block.node(i, j, k))];
+                        box.lo = box.lo.cwiseMin(x), box.hi = box.hi.cwiseMax(x);
+                    }
+        }
+    }
+    return box;
+}
+
+// The largest extent of the whole level's wall, from every process's pieces (collective),
+// as write_openfoam_mesh measures it on the level held whole.
+double wall_extent_of_level(const MadeBlocks& made) {
+    Box3 box;
+    ranks::together([&] { box = wall_box_of(made); });
+    const std::vector<double> far =
+        ranks::max({-box.lo.x(), -box.lo.y(), -box.lo.z(), box.hi.x(), box.hi.y(), box.hi.z()});
+    const Vec3 size(far[3] + far[0], far[4] + far[1], far[5] + far[2]);
+    return size.x() >= 0 ? size.maxCoeff() : 0;
+}
+
+// Writes this process's processor folder of the decomposed case `case_dir`; `extent`: the
+// whole level's wall extent.
 void write_processor(const BlockGrid& coarse, const std::vector<BlockPiece>& pieces,
-                     const MadeBlocks& made, const std::string& case_dir, const FlowSpec& flow) {
+                     const MadeBlocks& made, double extent, const std::string& case_dir,
+                     const FlowSpec& flow) {
     const GridFaces coarse_faces = make_grid_faces(coarse);
     ProcessorShare p;
     p.process = ranks::rank();
     p.processes = ranks::size();
     p.patches = coarse_faces.patch_names;
-    p.wall_extent = wall_extent(coarse);
+    p.wall_extent = extent;
     // Fine cell (i, j, k) of a piece is fine cell (i, j, k) + its offset along the axis of
     // its block, in coarse cell (i / 2, j / 2, k / 2): across a cut, the cell is the next
     // piece's; across a block face, in the coarse cell across, in whichever piece holds it.
@@ -118,9 +154,8 @@ void write_processor(const BlockGrid& coarse, const std::vector<BlockPiece>& pie
     write_openfoam_processor(share, p, case_dir, flow);
 }
 
-// The whole level at rank 0, from every process's pieces (collective; elsewhere empty).
-BlockGrid gather_level(const BlockGrid& coarse, const std::vector<BlockPiece>& pieces,
-                       const MadeBlocks& made) {
+// This process's pieces as bytes, for join_level at rank 0.
+std::string pack_pieces(const MadeBlocks& made) {
     ByteWriter out;
     out.put(made.blocks.size());
     for (size_t n = 0; n < made.blocks.size(); ++n) {
@@ -131,7 +166,12 @@ BlockGrid gather_level(const BlockGrid& coarse, const std::vector<BlockPiece>& p
         out.put(piece.ids), out.put(piece.grid.points), out.put(piece.grid.kinds);
         out.put(piece.fine_points);
     }
-    const std::vector<std::string> all = ranks::gather(out.bytes());
+    return out.bytes();
+}
+
+// The whole level from every process's pack_pieces (`all`), split blocks joined again.
+BlockGrid join_level(const BlockGrid& coarse, const std::vector<BlockPiece>& pieces,
+                     const std::vector<std::string>& all) {
     BlockGrid level;
     if (all.empty()) return level;
     std::vector<RefinedBlock> parts(pieces.size());
@@ -177,21 +217,34 @@ std::vector<std::string> write_refined_formats(const BlockGrid& coarse,
     for (const std::string& format : formats) {
         if (format == "openfoam" && ranks::size() > 1) {
             const std::string name = export_file_name(format, "grid", coarse);
-            write_processor(coarse, pieces, made, (fs::path(folder) / name).string(), flow);
+            const double extent = wall_extent_of_level(made);
+            ranks::together([&] {
+                write_processor(coarse, pieces, made, extent, (fs::path(folder) / name).string(),
+                                flow);
+            });
             names.push_back(name);
         } else {
             gathered.push_back(format);
         }
     }
     if (gathered.empty()) return names;
-    const BlockGrid level = gather_level(coarse, pieces, made);
-    made = {};  // held whole now, at rank 0
-    if (ranks::rank() != 0) return names;
-    for (const std::string& format : gathered) {
-        const std::string name = export_file_name(format, "grid", level);
-        write_grid_format(level, format, (fs::path(folder) / name).string(), flow);
-        names.push_back(name);
-    }
+    // The level gathered whole at rank 0.
+    std::string mine;
+    ranks::together([&] {
+        mine = pack_pieces(made);
+        made = {};
+    });
+    const std::vector<std::string> all = ranks::gather(mine);
+    mine.clear();
+    ranks::together([&] {
+        if (ranks::rank() != 0) return;
+        const BlockGrid level = join_level(coarse, pieces, all);
+        for (const std::string& format : gathered) {
+            const std::string name = export_file_name(format, "grid", level);
+            write_grid_format(level, format, (fs::path(folder) / name).string(), flow);
+            names.push_back(name);
+        }
+    });
     return names;
 }
 

@@ -25,8 +25,8 @@ struct MadeBlocks {
 // ("grid"): with several processes, "openfoam" as a decomposed case (every process writes
 // its processor folder, see write_openfoam_processor; each piece a whole block) and the other
 // formats from the level gathered whole at rank 0 (split blocks joined again); with one,
-// every format from the level held whole. Collective. Returns the names written in `folder`
-// (at rank 0).
+// every format from the level held whole. Collective (every step in ranks::together, so an
+// error on one process stops every one). Returns the names written in `folder` (at rank 0).
 std::vector<std::string> write_refined_formats(const BlockGrid& coarse,
                                                const std::vector<BlockPiece>& pieces,
                                                MadeBlocks& made,

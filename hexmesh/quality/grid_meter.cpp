@@ -77,7 +77,8 @@ void GridMeter::add(const BlockGrid& grid, const Block& block, const std::vector
     added_.push_back(std::move(a));
     if (walled) {
         has_wall_ = true;
-        wall_.add(grid, block);
+        wall_.add(grid, block,
+                  {numbering.offset[0] > 0, numbering.offset[1] > 0, numbering.offset[2] > 0});
         if (surface_) append_wall_triangles(grid, block, wall_triangles_);
     }
     const auto [length, edges] = wall_edge_lengths(grid, block);

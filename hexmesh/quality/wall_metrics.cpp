@@ -115,9 +115,15 @@ WallMeter::WallMeter(const ImplicitFunction& body, const WallLayers& law) : body
     w_.first_layer_max = w_.growth_ratio_max = -inf;
 }
 
-void WallMeter::add(const BlockGrid& grid, const Block& block) {
+void WallMeter::add(const BlockGrid& grid, const Block& block,
+                    const std::array<bool, 3>& skip_first) {
     WallQuality& w = w_;
     for (const WallFace& f : wall_faces(block)) {
+        // The lines another part of the same block measures too (see wall_metrics.h).
+        const auto skipped = [&](Id l) {
+            return (skip_first[size_t(f.axis_p)] && l % f.np == 0) ||
+                   (skip_first[size_t(f.axis_q)] && l / f.np == 0);
+        };
         const double side = grid_side(f, grid.points, body_);
         // Ratios m = 0 .. ratios-1 compare edges m and m+1 of the line.
         const int edges = f.depth - 1;
@@ -127,14 +133,19 @@ void WallMeter::add(const BlockGrid& grid, const Block& block) {
         // The ratios' bins per thread (counts: the order does not matter).
         tbb::enumerable_thread_specific<Histogram> ratio_bins(
             [&] { return w.growth_ratio_histogram.empty_copy(); });
+        tbb::enumerable_thread_specific<Histogram> ignored(
+            [&] { return w.growth_ratio_histogram.empty_copy(); });
         tbb::parallel_for(Id(0), f.lines(), [&](Id l) {
             lines[l] = measure_line(f, int(l % f.np), int(l / f.np), grid.points, body_, side,
-                                    ratios, w.growth_ratio_target, ratio_bins.local());
+                                    ratios, w.growth_ratio_target,
+                                    skipped(l) ? ignored.local() : ratio_bins.local());
         });
         for (const Histogram& local : ratio_bins) w.growth_ratio_histogram.join(local);
 
         // Reduced in a fixed order, so the sums do not depend on the thread count.
-        for (const LineMeasures& m : lines) {
+        for (Id l = 0; l < f.lines(); ++l) {
+            if (skipped(l)) continue;
+            const LineMeasures& m = lines[size_t(l)];
             w.orthogonality_max_deg = std::max(w.orthogonality_max_deg, m.angle_deg);
             angle_sum_ += m.angle_deg;
             ++angles_;

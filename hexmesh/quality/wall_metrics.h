@@ -2,6 +2,7 @@
 // orthogonality) and its Hausdorff distance to a triangle surface.
 #pragma once
 
+#include <array>
 #include <string>
 
 #include "hexmesh/core/block_grid.h"
@@ -33,7 +34,10 @@ WallQuality measure_wall(const BlockGrid& grid, const ImplicitFunction& body,
 class WallMeter {
   public:
     WallMeter(const ImplicitFunction& body, const WallLayers& law);
-    void add(const BlockGrid& grid, const Block& block);
+    // With skip_first[d], the block is a part of a block cut at its first nodes along d: the
+    // lines there, which the part before it measures too, count for its cells' first-layer
+    // thickness but not again in the line measures (angles, growth ratios).
+    void add(const BlockGrid& grid, const Block& block, const std::array<bool, 3>& skip_first = {});
     WallQuality result() const;
 
     // What has been added, as bytes for another process; merge() adds another WallMeter's

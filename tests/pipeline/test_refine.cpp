@@ -202,6 +202,35 @@ TEST_P(RefineFamily, MetersOfSomeBlocksEachMergedGiveTheWholeReport) {
                 1e-9 * *whole.max_surface_distance);
 }
 
+// Blocks cut in two along i (parallel to the wall) and measured part by part, as processes
+// that share a block do: the lines on the cut count once, the report is the whole one.
+TEST_P(RefineFamily, BlocksMeasuredInTwoPartsGiveTheWholeReport) {
+    const Family& f = family(GetParam());
+    GridMeter meter(*f.body);
+    Id first = 0;
+    refine_blocks(f.levels[1], *f.body, {}, [&](RefinedBlock& piece) {
+        const Dims cells = piece.grid.blocks[0].cells();
+        const int cut = cells.ni / 2;
+        for (const auto& [lo, hi] : {std::pair{0, cut}, std::pair{cut, cells.ni}}) {
+            const RefinedBlock part = part_of(piece, 0, lo, hi);
+            meter.add(part.grid, part.grid.blocks[0], &part.ids,
+                      CellNumbering{first, {lo, 0, 0}, cells});
+        }
+        first += cells.count();
+    });
+    const GridReport parts = meter.report(), whole = f.reports[2];
+    EXPECT_EQ(parts.quality.cells, whole.quality.cells);
+    EXPECT_EQ(parts.quality.min_scaled_jacobian, whole.quality.min_scaled_jacobian);
+    EXPECT_EQ(parts.quality.worst_cell, whole.quality.worst_cell);
+    EXPECT_EQ(parts.quality.max_non_orthogonality_deg, whole.quality.max_non_orthogonality_deg);
+    ASSERT_TRUE(parts.wall && whole.wall);
+    EXPECT_EQ(parts.wall->wall_cells, whole.wall->wall_cells);
+    EXPECT_EQ(parts.wall->growth_ratios, whole.wall->growth_ratios);
+    EXPECT_NEAR(parts.wall->growth_ratio_mean, whole.wall->growth_ratio_mean, 1e-12);
+    EXPECT_NEAR(parts.wall->orthogonality_mean_deg, whole.wall->orthogonality_mean_deg, 1e-9);
+    EXPECT_EQ(parts.wall->growth_ratio_histogram.counts, whole.wall->growth_ratio_histogram.counts);
+}
+
 // Shares for processes: whole blocks balanced while there are enough, then halves of the
 // largest pieces, never across a wall-normal line; parts of a fine block join back into it.
 TEST_P(RefineFamily, BlocksAreSharedWholeThenSplitAlongLinesParallelToTheWall) {
