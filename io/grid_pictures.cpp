@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 
@@ -69,6 +70,10 @@ struct GridPictures::Canvas {
     double offset = 0;
     std::vector<unsigned char> rgb;
     std::vector<double> depth;
+    // With several processes drawing (GridPictures::set_order): the order of what each pixel
+    // shows, so that merging breaks depth ties as one process drawing in that order would.
+    std::vector<std::uint32_t> order;
+    std::uint32_t drawing = 0;
 
     Canvas(std::string title_, const View& v) : title(std::move(title_)), view(v) {
         rgb.assign(std::size_t(v.width) * v.height * 3, 255);
@@ -113,6 +118,7 @@ struct GridPictures::Canvas {
         if (!(z >= depth[at])) return;
         depth[at] = z;
         for (int k = 0; k < 3; ++k) rgb[3 * at + k] = col[k];
+        if (!order.empty()) order[at] = drawing;
     }
 
     std::string png() const {
@@ -294,10 +300,21 @@ void GridPictures::add_block(const BlockGrid& grid, const Block& block, const do
     });
 }
 
+void GridPictures::set_order(std::uint32_t order) {
+    for (auto* canvases : {&wall_, &cuts_})
+        for (Canvas& c : *canvases) {
+            if (c.order.empty()) c.order.assign(c.depth.size(), 0);
+            c.drawing = order;
+        }
+}
+
 std::string GridPictures::pack() const {
     ByteWriter out;
     for (const auto* canvases : {&wall_, &cuts_})
-        for (const Canvas& c : *canvases) out.put(c.rgb), out.put(c.depth);
+        for (const Canvas& c : *canvases) {
+            out.put(c.rgb), out.put(c.depth);
+            out.put(c.order.empty() ? std::vector<std::uint32_t>(c.depth.size(), 0) : c.order);
+        }
     return out.bytes();
 }
 
@@ -307,11 +324,18 @@ void GridPictures::merge(const std::string& packed) {
         for (Canvas& c : *canvases) {
             const std::vector<unsigned char> rgb = in.next<std::vector<unsigned char>>();
             const std::vector<double> depth = in.next<std::vector<double>>();
-            if (depth.size() != c.depth.size() || rgb.size() != c.rgb.size())
+            const std::vector<std::uint32_t> order = in.next<std::vector<std::uint32_t>>();
+            if (depth.size() != c.depth.size() || rgb.size() != c.rgb.size() ||
+                order.size() != depth.size())
                 throw std::runtime_error("pictures of another size cannot be merged");
+            if (c.order.empty()) c.order.assign(c.depth.size(), 0);
+            // The nearer wins; at equal depth, what was drawn later in the order.
             for (std::size_t at = 0; at < depth.size(); ++at) {
-                if (!(depth[at] >= c.depth[at])) continue;
+                if (!(depth[at] > c.depth[at] ||
+                      (depth[at] == c.depth[at] && order[at] >= c.order[at])))
+                    continue;
                 c.depth[at] = depth[at];
+                c.order[at] = order[at];
                 for (int k = 0; k < 3; ++k) c.rgb[3 * at + k] = rgb[3 * at + k];
             }
         }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -62,7 +63,11 @@ class GridPictures {
 
     // What has been drawn, as bytes for another process; merge() draws another GridPictures'
     // pack() (the same frames) into this one, the nearer of the two at each pixel: the
-    // blocks of one grid drawn by several processes, then put together.
+    // blocks of one grid drawn by several processes, then put together. set_order(n) before
+    // drawing block n (several processes, each drawing some blocks in increasing n) makes
+    // merge() break depth ties as one process drawing every block in order does, so the
+    // pictures are the same.
+    void set_order(std::uint32_t order);
     std::string pack() const;
     void merge(const std::string& packed);
 

@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <sstream>
@@ -68,6 +69,7 @@ LastLevel refine_last_level(const BlockGrid& grid, const ImplicitFunction& body,
                 numbering.offset[size_t(at.axis)] = at.lo;
                 meter.add(piece.grid, block, &piece.ids, numbering);
                 if (pictures) {
+                    if (ranks::size() > 1) pictures->set_order(std::uint32_t(p));
                     values.resize(std::size_t(block.cells().count()));
                     scaled_jacobians(piece.grid, block, values.data());
                     pictures->add_block(piece.grid, block, values.data());

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <sstream>
@@ -11,9 +12,12 @@
 #include "hexmesh/pipeline/refine.h"
 #include "hexmesh/pipeline/run_case.h"
 #include "hexmesh/pipeline/untangle_and_optimize.h"
+#include "hexmesh/quality/cell_quality.h"
 #include "hexmesh/quality/grid_meter.h"
 #include "hexmesh/quality/grid_report.h"
 #include "hexmesh/quality/wall_quality.h"
+#include "io/grid_pictures.h"
+#include "io/report_page.h"
 #include "tests/scratch_registry.h"
 
 using namespace hexmesh;
@@ -229,6 +233,28 @@ TEST_P(RefineFamily, BlocksMeasuredInTwoPartsGiveTheWholeReport) {
     EXPECT_NEAR(parts.wall->growth_ratio_mean, whole.wall->growth_ratio_mean, 1e-12);
     EXPECT_NEAR(parts.wall->orthogonality_mean_deg, whole.wall->orthogonality_mean_deg, 1e-9);
     EXPECT_EQ(parts.wall->growth_ratio_histogram.counts, whole.wall->growth_ratio_histogram.counts);
+}
+
+// The report page's pictures drawn by two processes, each some blocks in order, then merged:
+// the pictures one process draws, pixel for pixel.
+TEST_P(RefineFamily, PicturesDrawnApartAndMergedAreThePicturesDrawnWhole) {
+    const BlockGrid& grid = family(GetParam()).levels[2];
+    GridPictures whole = grid_pictures_for(grid), first = grid_pictures_for(grid),
+                 second = grid_pictures_for(grid);
+    std::vector<double> values;
+    for (size_t b = 0; b < grid.blocks.size(); ++b) {
+        const Block& block = grid.blocks[b];
+        values.resize(size_t(block.cells().count()));
+        scaled_jacobians(grid, block, values.data());
+        whole.add_block(grid, block, values.data());
+        GridPictures& part = b % 2 ? second : first;
+        part.set_order(std::uint32_t(b));
+        part.add_block(grid, block, values.data());
+    }
+    first.merge(second.pack());
+    const std::vector<Picture> a = whole.pictures(), merged = first.pictures();
+    ASSERT_EQ(a.size(), merged.size());
+    for (size_t n = 0; n < a.size(); ++n) EXPECT_TRUE(a[n].png == merged[n].png) << a[n].title;
 }
 
 // Shares for processes: whole blocks balanced while there are enough, then halves of the
