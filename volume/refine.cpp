@@ -445,6 +445,39 @@ BlockGrid refine_grid(const BlockGrid& coarse) {
     return fine;
 }
 
+namespace {
+
+// A fine block named and patched as `like`, of node dims d: its arrays sized, its node ids
+// its own (0, 1, ...), its nodes to be copied in (copy_node).
+RefinedBlock block_of_dims(const Block& like, const Dims& d, Id fine_points) {
+    RefinedBlock out;
+    out.fine_points = fine_points;
+    Block& b = out.grid.blocks.emplace_back();
+    b.name = like.name;
+    b.face_patch = like.face_patch;
+    b.nodes = d;
+    const size_t count = size_t(d.count());
+    b.node_ids.resize(count);
+    for (size_t m = 0; m < count; ++m) b.node_ids[m] = Id(m);
+    out.grid.points.resize(count);
+    out.grid.kinds.resize(count);
+    out.ids.resize(count);
+    out.shared.resize(count);
+    out.coarse.resize(count);
+    return out;
+}
+
+// Node v of `from` as node m of `to`.
+void copy_node(RefinedBlock& to, Id m, const RefinedBlock& from, Id v) {
+    to.grid.points[size_t(m)] = from.grid.points[size_t(v)];
+    to.grid.kinds[size_t(m)] = from.grid.kinds[size_t(v)];
+    to.ids[size_t(m)] = from.ids[size_t(v)];
+    to.shared[size_t(m)] = from.shared[size_t(v)];
+    to.coarse[size_t(m)] = from.coarse[size_t(v)];
+}
+
+}  // namespace
+
 RefinedBlock part_of(const RefinedBlock& block, int axis, int lo, int hi) {
     const Block& whole = block.grid.blocks.at(0);
     const Dims w = whole.nodes;
@@ -454,21 +487,10 @@ RefinedBlock part_of(const RefinedBlock& block, int axis, int lo, int hi) {
                                     std::to_string(w[axis]) + " nodes");
     Dims d = w;
     (axis == 0 ? d.ni : axis == 1 ? d.nj : d.nk) = hi - lo + 1;
-    RefinedBlock part;
-    part.fine_points = block.fine_points;
-    Block& b = part.grid.blocks.emplace_back();
-    b.name = whole.name;
-    b.face_patch = whole.face_patch;
-    if (lo > 0) b.face_patch[size_t(2 * axis)].clear();
-    if (hi < w[axis] - 1) b.face_patch[size_t(2 * axis + 1)].clear();
-    b.nodes = d;
-    const Id count = d.count();
-    b.node_ids.resize(size_t(count));
-    part.grid.points.resize(size_t(count));
-    part.grid.kinds.resize(size_t(count));
-    part.ids.resize(size_t(count));
-    part.shared.resize(size_t(count));
-    part.coarse.resize(size_t(count));
+    RefinedBlock part = block_of_dims(whole, d, block.fine_points);
+    std::array<std::string, 6>& patch = part.grid.blocks[0].face_patch;
+    if (lo > 0) patch[size_t(2 * axis)].clear();
+    if (hi < w[axis] - 1) patch[size_t(2 * axis + 1)].clear();
     for (int k = 0; k < d.nk; ++k)
         for (int j = 0; j < d.nj; ++j)
             for (int i = 0; i < d.ni; ++i) {
@@ -476,13 +498,9 @@ RefinedBlock part_of(const RefinedBlock& block, int axis, int lo, int hi) {
                 const bool cut =
                     (at[axis] == 0 && lo > 0) || (at[axis] == d[axis] - 1 && hi < w[axis] - 1);
                 at[axis] += lo;
-                const Id m = d.flat(i, j, k), v = w.flat(at[0], at[1], at[2]);
-                b.node_ids[size_t(m)] = m;
-                part.grid.points[size_t(m)] = block.grid.points[size_t(v)];
-                part.grid.kinds[size_t(m)] = block.grid.kinds[size_t(v)];
-                part.ids[size_t(m)] = block.ids[size_t(v)];
-                part.shared[size_t(m)] = block.shared[size_t(v)] || cut;
-                part.coarse[size_t(m)] = block.coarse[size_t(v)];
+                const Id m = d.flat(i, j, k);
+                copy_node(part, m, block, w.flat(at[0], at[1], at[2]));
+                if (cut) part.shared[size_t(m)] = true;
             }
     return part;
 }
@@ -494,22 +512,9 @@ RefinedBlock join_parts(const std::vector<RefinedBlock>& parts, int axis) {
     int& along = axis == 0 ? d.ni : axis == 1 ? d.nj : d.nk;
     along = 1;
     for (const RefinedBlock& p : parts) along += p.grid.blocks.at(0).nodes[axis] - 1;
-    RefinedBlock whole;
-    whole.fine_points = parts[0].fine_points;
-    Block& b = whole.grid.blocks.emplace_back();
-    b.name = parts[0].grid.blocks[0].name;
-    b.face_patch = parts[0].grid.blocks[0].face_patch;
-    b.face_patch[size_t(2 * axis + 1)] =
+    RefinedBlock whole = block_of_dims(parts[0].grid.blocks[0], d, parts[0].fine_points);
+    whole.grid.blocks[0].face_patch[size_t(2 * axis + 1)] =
         parts.back().grid.blocks[0].face_patch[size_t(2 * axis + 1)];
-    b.nodes = d;
-    const Id count = d.count();
-    b.node_ids.resize(size_t(count));
-    whole.grid.points.resize(size_t(count));
-    whole.grid.kinds.resize(size_t(count));
-    whole.ids.resize(size_t(count));
-    whole.shared.resize(size_t(count));
-    whole.coarse.resize(size_t(count));
-    for (Id m = 0; m < count; ++m) b.node_ids[size_t(m)] = m;
     int lo = 0;
     for (const RefinedBlock& p : parts) {
         const Dims pd = p.grid.blocks[0].nodes;
@@ -518,12 +523,7 @@ RefinedBlock join_parts(const std::vector<RefinedBlock>& parts, int axis) {
                 for (int i = 0; i < pd.ni; ++i) {
                     int at[3] = {i, j, k};
                     at[axis] += lo;
-                    const Id m = pd.flat(i, j, k), v = d.flat(at[0], at[1], at[2]);
-                    whole.grid.points[size_t(v)] = p.grid.points[size_t(m)];
-                    whole.grid.kinds[size_t(v)] = p.grid.kinds[size_t(m)];
-                    whole.ids[size_t(v)] = p.ids[size_t(m)];
-                    whole.shared[size_t(v)] = p.shared[size_t(m)];
-                    whole.coarse[size_t(v)] = p.coarse[size_t(m)];
+                    copy_node(whole, d.flat(at[0], at[1], at[2]), p, pd.flat(i, j, k));
                 }
         lo += pd[axis] - 1;
     }
