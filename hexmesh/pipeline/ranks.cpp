@@ -57,13 +57,6 @@ Session::~Session() {
     if (started_) MPI_Finalize();
 }
 
-bool all(bool ok) {
-    if (!started_) return ok;
-    int mine = ok ? 1 : 0, every = 0;
-    MPI_Allreduce(&mine, &every, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
-    return every == 1;
-}
-
 std::vector<std::string> gather(const std::string& bytes) {
     if (!started_) return {bytes};
     const long long mine = static_cast<long long>(bytes.size());
@@ -119,9 +112,6 @@ Session::Session(int&, char**&) {
             "(mpirun -np N): install libopenmpi-dev and build again, or run it without mpirun");
 }
 Session::~Session() = default;
-bool all(bool ok) {
-    return ok;
-}
 std::vector<std::string> gather(const std::string& bytes) {
     return {bytes};
 }

@@ -32,9 +32,6 @@ struct EveryRankError : std::runtime_error {
 int rank();  // 0 .. size() - 1
 int size();  // 1 without a launcher
 
-// Whether every rank passes `ok` (collective: every rank calls it at the same point).
-bool all(bool ok);
-
 // At rank 0, every rank's `bytes` in rank order; at the others, nothing (collective).
 std::vector<std::string> gather(const std::string& bytes);
 
