@@ -94,6 +94,16 @@ void expect_valid_by_the_checker_and_check_mesh(const fs::path& dir) {
     EXPECT_NE(mesh.out.find("Mesh OK."), std::string::npos) << mesh.out << mesh.err;
 }
 
+// The grid run_body_in(dir, ...) wrote is valid by its quality.json (min scaled Jacobian
+// above 0), by the independent checker and by checkMesh; returns quality.json.
+nlohmann::json expect_written_valid(const fs::path& dir) {
+    const nlohmann::json q = quality_in(dir);
+    EXPECT_TRUE(q.at("valid").get<bool>());
+    EXPECT_GT(q.at("min_scaled_jacobian").get<double>(), 0);
+    expect_valid_by_the_checker_and_check_mesh(dir);
+    return q;
+}
+
 }  // namespace
 
 TEST(CliBodies, ASurfaceWithAHandleIsRefusedAtOnce) {
@@ -190,13 +200,10 @@ TEST(CliBodies, AnInteriorOfABodyWithFingersRunsItsLinesAlongThePotential) {
         << r.out;
     EXPECT_NE(r.out.find("; lines in to the potential's level 0."), std::string::npos) << r.out;
     EXPECT_EQ(r.out.find("lines straight to"), std::string::npos) << r.out;
-    const nlohmann::json q = quality_in(dir);
-    EXPECT_TRUE(q.at("valid").get<bool>());
-    EXPECT_GT(q.at("min_scaled_jacobian").get<double>(), 0);
+    const nlohmann::json q = expect_written_valid(dir);
     EXPECT_GE(
         q.at("wall").at("first_layer_thickness").at("fraction_within_10_percent").get<double>(),
         0.85);
-    expect_valid_by_the_checker_and_check_mesh(dir);
     fs::remove_all(dir);
 }
 
@@ -215,10 +222,7 @@ TEST(CliBodies, AnInteriorLeftInvertedAlongThePotentialIsMadeAgainWithStraightLi
                           "cells: the grid again, its lines straight to the core")))
         << r.out;
     EXPECT_EQ(r.out.find("potential is kept"), std::string::npos) << r.out;
-    const nlohmann::json q = quality_in(dir);
-    EXPECT_TRUE(q.at("valid").get<bool>());
-    EXPECT_GT(q.at("min_scaled_jacobian").get<double>(), 0);
-    expect_valid_by_the_checker_and_check_mesh(dir);
+    expect_written_valid(dir);
     fs::remove_all(dir);
 }
 
