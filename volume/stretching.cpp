@@ -34,21 +34,34 @@ std::vector<double> uniform_distances(double length, int cells) {
     return d;
 }
 
-std::vector<double> wall_distances(double length, int cells, const WallLayers& law,
+int layers_that_fit(double length, int cells, const WallLayers& law) {
+    if (law.layers <= 0) return 0;
+    if (layers_thickness(law) < length && cells - law.layers >= 1) return law.layers;
+    int m = 0;
+    while (m + 1 < std::min(law.layers, cells) &&
+           layers_thickness({law.first_height, law.growth_ratio, m + 1}) <= 0.5 * length)
+        ++m;
+    return m;
+}
+
+std::vector<double> wall_distances(double length, int cells, const WallLayers& whole_law,
                                    const Vec3* wall) {
-    if (law.layers == 0) return uniform_distances(length, cells);
-    const double thickness = layers_thickness(law);
-    const int rest = cells - law.layers;
-    if (rest < 1 || thickness >= length) {
+    if (whole_law.layers == 0) return uniform_distances(length, cells);
+    const WallLayers law{whole_law.first_height, whole_law.growth_ratio,
+                         layers_that_fit(length, cells, whole_law)};
+    if (law.layers == 0) {
         throw std::invalid_argument(fmt::format(
             "boundary layer of {} layers ({:.4g} thick) does not fit the wall-normal line of "
-            "{} cells and length {:.4g}{}: use fewer layers, a smaller first height or growth "
-            "ratio, or more wall cells",
-            law.layers, thickness, cells, length,
+            "{} cells and length {:.4g}{}, not even its first layer ({:.4g}) in half of it: use "
+            "a smaller first height or more wall cells",
+            whole_law.layers, layers_thickness(whole_law), cells, length,
             wall ? fmt::format(" from the wall at ({:.4g}, {:.4g}, {:.4g})", wall->x(), wall->y(),
                                wall->z())
-                 : std::string()));
+                 : std::string(),
+            law.first_height));
     }
+    const double thickness = layers_thickness(law);
+    const int rest = cells - law.layers;
     std::vector<double> d(cells + 1, 0.0);
     double h = law.first_height;
     for (int m = 0; m < law.layers; ++m, h *= law.growth_ratio) d[m + 1] = d[m] + h;

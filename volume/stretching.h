@@ -15,12 +15,18 @@ struct WallLayers {
     int layers = 0;
 };
 
+// How many of the law's layers a line of the given length and cell count takes: all of them
+// when they fit (thinner than the line, with a cell left beyond them); else, where the body is
+// thin, the most whose thickness is at most half the line and that leave a cell beyond them,
+// each at the law's height (the layer is cut, its first height kept); 0 when not even the first
+// layer fits so.
+int layers_that_fit(double length, int cells, const WallLayers& law);
+
 // Distances from the wall of the cells+1 nodes of a line of the given length:
-// d[0] = 0, d[cells] = length, increasing. The first `law.layers` cells follow the law
-// exactly; the remaining cells continue geometrically from the last layer thickness with
-// the ratio that fills the line. Throws std::invalid_argument when the layers do not fit
-// (thicker than the line, or no cell left to fill the rest), naming `wall` (the line's wall
-// end) when given.
+// d[0] = 0, d[cells] = length, increasing. The first layers_that_fit(length, cells, law) cells
+// follow the law exactly; the remaining cells continue geometrically from the last layer
+// thickness with the ratio that fills the line. Throws std::invalid_argument when not even the
+// first layer fits, naming `wall` (the line's wall end) when given.
 std::vector<double> wall_distances(double length, int cells, const WallLayers& law,
                                    const Vec3* wall = nullptr);
 

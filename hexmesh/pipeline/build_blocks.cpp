@@ -11,6 +11,7 @@
 #include "surface/surface_topology.h"
 #include "volume/o_grid.h"
 #include "volume/single_block_grid.h"
+#include "volume/wall_extrusion.h"
 
 namespace hexmesh {
 namespace {
@@ -127,6 +128,18 @@ void resolve_case(Job& job) {
     }
 }
 
+// Logs the wall-normal lines where the body is too thin for the whole boundary layer.
+void log_thin_wall_lines(const BlockGrid& grid, const WallLayers& law, std::ostream& log) {
+    const ThinWallLines thin = thin_wall_lines(grid, law);
+    if (thin.cut == 0) return;
+    log << fmt::format(
+        "  the body is thin for the boundary layer's {} layers ({:.4g} thick) on {} of {} wall "
+        "lines: they take fewer layers of the same first height, down to {} on a line {:.4g} "
+        "long from the wall at ({:.4g}, {:.4g}, {:.4g})\n",
+        law.layers, layers_thickness(law), thin.cut, thin.lines, thin.fewest, thin.length,
+        thin.wall.x(), thin.wall.y(), thin.wall.z());
+}
+
 }  // namespace
 
 WallLayers wall_layers(const Case& c) {
@@ -192,6 +205,7 @@ void build_blocks(Job& job) {
         if (!route.radial()) throw InputError(fmt::format("{}: {}", c.path, e.what()));
         throw;
     }
+    log_thin_wall_lines(job.grid(), wall_layers(c), job.log);
     job.timer.done("grid",
                    fmt::format("({}, {} blocks, {} cells)",
                                c.domain == Domain::exterior ? "o-grid" : name_of(c.grid.topology),

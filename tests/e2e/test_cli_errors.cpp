@@ -59,16 +59,17 @@ TEST(CliErrors, BodyThatCannotBeGridded) {
                    "the body is not star-shaped around its deepest point");
 }
 
-// A body thinner than the boundary layer asked for: refused at once, naming where.
-TEST(CliErrors, ABoundaryLayerThickerThanTheBodyIsRefusedNamingWhere) {
+// A boundary layer whose first cell alone fills more than half of a line: refused at once,
+// naming where. (Thinner layers are cut to fit there: CliRun.ThinBodyTakesFewerLayersThere.)
+TEST(CliErrors, FirstLayerThickerThanTheBody) {
     const std::string thin = R"({"geometry": {"ellipsoid": {"center": [0, 0, 0],
                                                            "semi_axes": [1, 1, 0.05]}},
         "grid": {"topology": "o-h", "cells_per_edge": 8, "wall_cells": 10},
-        "boundary_layer": {"first_height": 0.005, "growth_ratio": 1.3, "layers": 8}})";
+        "boundary_layer": {"first_height": 0.05, "growth_ratio": 1.3, "layers": 8}})";
     for (const std::string& message :
-         {std::string("boundary layer of 8 layers (0.1193 thick) does not fit the wall-normal "
+         {std::string("boundary layer of 8 layers (1.193 thick) does not fit the wall-normal "
                       "line of 10 cells and length "),
-          std::string(" from the wall at (")})
+          std::string(" from the wall at ("), std::string("not even its first layer (0.05)")})
         expect_refused("thin", thin, message);
 }
 

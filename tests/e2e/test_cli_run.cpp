@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "cli.h"
@@ -85,4 +86,30 @@ TEST_F(SphereRun, IndependentCheckerAgrees) {
     EXPECT_EQ(j.at("inverted").get<long>(), 0);
     EXPECT_EQ(j.at("hexes").get<long>(), q.at("cells").get<long>());
     EXPECT_GE(j.at("min_sj").get<double>(), 0.3);
+}
+
+// A body thinner than the boundary layer asked for (8 layers 0.119 thick in a disc 0.1 thick):
+// the lines there take fewer layers of the same first height, the log says how many lines and
+// where, and the grid is written valid.
+TEST(CliRun, ThinBodyTakesFewerLayersThere) {
+    const fs::path dir = scratch("thin_layers");
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    std::ofstream(dir / "case.json") << R"({"geometry": {"ellipsoid": {"center": [0, 0, 0],
+                                                      "semi_axes": [1, 1, 0.05]}},
+        "grid": {"topology": "o-h", "cells_per_edge": 8, "wall_cells": 10},
+        "boundary_layer": {"first_height": 0.005, "growth_ratio": 1.3, "layers": 8}})";
+    const CommandResult r = run_hexmesh("run '" + (dir / "case.json").string() + "' -o '" +
+                                        (dir / "out").string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("the body is thin for the boundary layer's 8 layers (0.1193 thick) on "),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("they take fewer layers of the same first height, down to "),
+              std::string::npos)
+        << r.out;
+    const auto q = nlohmann::json::parse(read_text(dir / "out" / "quality.json"));
+    EXPECT_TRUE(q.at("valid").get<bool>());
+    EXPECT_EQ(q.at("inverted_cells").get<long>(), 0);
+    fs::remove_all(dir);
 }

@@ -470,7 +470,7 @@ TEST(OGrid, RefusesBadOptions) {
         "wall_layers has 10 layers but the lines have only 10 cells");
     expect_invalid_argument(
         [&] {
-            make_o_grid(sphere, with([](OGridOptions& o) { o.wall_layers = {2.0, 1.2, 10}; }));
+            make_o_grid(sphere, with([](OGridOptions& o) { o.wall_layers = {6.0, 1.2, 10}; }));
         },
         "does not fit the wall-normal line of ");
     expect_invalid_argument(

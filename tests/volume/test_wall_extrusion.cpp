@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "surface/analytic.h"
 #include "volume/feature_snapping.h"
 #include "volume/o_h_grid.h"
@@ -39,6 +41,52 @@ TEST(WallExtrusion, LayersLieOnTheOffsetsOfEveryFaceAtEdgesAndCorners) {
             }
     EXPECT_GT(crease_lines, 0);
     EXPECT_EQ(lines, 6 * 9 * 9);
+}
+
+// Where the body is thin a line takes only the layers that fit it (layers_that_fit of its
+// length), each at the law's distance from its wall node; thin_wall_lines counts those lines and
+// names the one cut the most.
+TEST(WallExtrusion, ThinPartsOfTheBodyTakeFewerLayers) {
+    const Box body(Vec3::Zero(), Vec3(1, 0.75, 0.25));
+    OHGridOptions o;
+    o.cells_per_edge = 8;
+    o.wall_cells = 6;
+    o.core_size = 0.2;
+    BlockGrid grid = make_o_h_grid(body, o);
+    snap_to_features(grid, body);
+    const WallLayers law{0.04, 1.5, 4};  // 0.325 thick
+    const ThinWallLines thin = thin_wall_lines(grid, law);
+    EXPECT_EQ(thin.lines, 6 * 9 * 9);
+    ASSERT_GT(thin.cut, 0);
+    EXPECT_LT(thin.cut, thin.lines);
+    EXPECT_GE(thin.fewest, 1);
+    EXPECT_LT(thin.fewest, 4);
+    EXPECT_LT(thin.length, 0.325);
+    EXPECT_NEAR(std::abs(thin.wall.z()), 0.25, 1e-12);  // on a face of the thin side
+
+    std::vector<int> fit;
+    for (const WallFace& f : wall_faces(grid))
+        for (int q = 0; q < f.nq; ++q)
+            for (int p = 0; p < f.np; ++p)
+                fit.push_back(layers_that_fit(line_length(grid, f, p, q), f.depth - 1, law));
+    const std::vector<bool> placed = extrude_wall_layers(grid, body, law);
+    const double d[5] = {0, 0.04, 0.1, 0.19, 0.325};
+    size_t line = 0;
+    Id cut = 0;
+    for (const WallFace& f : wall_faces(grid))
+        for (int q = 0; q < f.nq; ++q)
+            for (int p = 0; p < f.np; ++p, ++line) {
+                cut += fit[line] < 4;
+                const Vec3 x0 = grid.points[f.node(p, q, 0)];
+                const bool on_a_face = grid.kinds[f.node(p, q, 0)] == VertexKind::slip;
+                for (int m = 0; m <= fit[line]; ++m) {
+                    EXPECT_TRUE(placed[f.node(p, q, m)]);
+                    if (on_a_face)  // straight along the face's normal
+                        EXPECT_NEAR((grid.points[f.node(p, q, m)] - x0).norm(), d[m], 1e-12);
+                }
+                if (fit[line] < 4) EXPECT_FALSE(placed[f.node(p, q, fit[line] + 1)]);
+            }
+    EXPECT_EQ(cut, thin.cut);
 }
 
 // In a single block walled on all six sides every wall-normal line runs into lines from the
