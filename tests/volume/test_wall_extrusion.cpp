@@ -11,15 +11,24 @@
 
 using namespace hexmesh;
 
+namespace {
+
+// The O-H grid of a box body, 8 cells per patch edge, 6 from the core to the wall.
+BlockGrid box_grid(const Box& body, double core_size) {
+    OHGridOptions o;
+    o.cells_per_edge = 8;
+    o.wall_cells = 6;
+    o.core_size = core_size;
+    return make_o_h_grid(body, o);
+}
+
+}  // namespace
+
 // On a box the layer nodes of every line, at its faces, edges and corners alike, end up at
 // the law's distance from every face through their wall node: value = -d_m exactly.
 TEST(WallExtrusion, LayersLieOnTheOffsetsOfEveryFaceAtEdgesAndCorners) {
     const Box body(Vec3::Zero(), Vec3(1, 0.75, 0.5));
-    OHGridOptions o;
-    o.cells_per_edge = 8;
-    o.wall_cells = 6;
-    o.core_size = 0.4;
-    BlockGrid grid = make_o_h_grid(body, o);
+    BlockGrid grid = box_grid(body, 0.4);
     const FeatureSnapping snapped = snap_to_features(grid, body);
     ASSERT_EQ(snapped.corner_nodes, 8);
     ASSERT_EQ(snapped.crease_nodes, 12 * 7);
@@ -48,11 +57,7 @@ TEST(WallExtrusion, LayersLieOnTheOffsetsOfEveryFaceAtEdgesAndCorners) {
 // names the one cut the most.
 TEST(WallExtrusion, ThinPartsOfTheBodyTakeFewerLayers) {
     const Box body(Vec3::Zero(), Vec3(1, 0.75, 0.25));
-    OHGridOptions o;
-    o.cells_per_edge = 8;
-    o.wall_cells = 6;
-    o.core_size = 0.2;
-    BlockGrid grid = make_o_h_grid(body, o);
+    BlockGrid grid = box_grid(body, 0.2);
     snap_to_features(grid, body);
     const WallLayers law{0.04, 1.5, 4};  // 0.325 thick
     const ThinWallLines thin = thin_wall_lines(grid, law);
@@ -93,11 +98,7 @@ TEST(WallExtrusion, ThinPartsOfTheBodyTakeFewerLayers) {
 // law's height and nothing more placed; one capped at 0 is left as it is.
 TEST(WallExtrusion, LinesTakeAtMostTheLayersGivenAtTheirWallNode) {
     const Box body(Vec3::Zero(), Vec3(1, 0.75, 0.5));
-    OHGridOptions o;
-    o.cells_per_edge = 8;
-    o.wall_cells = 6;
-    o.core_size = 0.4;
-    BlockGrid grid = make_o_h_grid(body, o);
+    BlockGrid grid = box_grid(body, 0.4);
     const std::vector<Vec3> built = grid.points;
     const WallLayers law{0.01, 1.2, 3};
     std::vector<int> at_most(grid.points.size(), 3);
