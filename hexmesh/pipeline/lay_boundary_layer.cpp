@@ -153,11 +153,25 @@ untangle::UntangleOptions short_budget(const untangle::UntangleOptions& given) {
     return o;
 }
 
+// Whether a `hit` node lies on a wall line laid with fewer layers than the law's.
+bool on_cut_lines(const BlockGrid& grid, const std::vector<bool>& hit,
+                  const std::vector<bool>& placed, const std::vector<int>& at_most, int layers) {
+    bool found = false;
+    for_each_wall_line(grid, [&](const WallFace& f, int p, int q) {
+        if (found || !placed[f.node(p, q, 0)] || at_most[f.node(p, q, 0)] >= layers) return;
+        for (int t = 0; t < f.depth && !found; ++t) found = hit[f.node(p, q, t)];
+    });
+    return found;
+}
+
 // lay_boundary_layer with the lines whose laid cells cross stepped back layer by layer
-// (step_back) or given back whole.
-void lay_layers(BlockGrid& grid, const ImplicitFunction& body,
+// (step_back) or given back whole. Returns whether the pass, left invalid, had cells inverted
+// on lines laid with fewer layers (or blocked while some were): whole lines might do better.
+bool lay_layers(BlockGrid& grid, const ImplicitFunction& body,
                 const GridOptimizationOptions& options, const std::vector<Vec3>& initial,
                 const std::vector<bool>& shaped, bool step_back, GridOptimizationResult& result) {
+    const int layers = options.wall_layers.layers;
+    bool beside_cut_lines = false;
     const std::vector<Vec3> joint = grid.points;
     const std::vector<double> joint_sj = scaled_jacobians(grid);
     const double joint_min_sj =
@@ -165,7 +179,7 @@ void lay_layers(BlockGrid& grid, const ImplicitFunction& body,
     std::vector<Vec3> first_laid;  // a valid laid grid whose worst cell fell below half the joint's
     std::vector<bool> placed =
         extrude_wall_layers(grid, body, options.wall_layers, options.relax_rings);
-    std::vector<int> at_most(grid.points.size(), options.wall_layers.layers);
+    std::vector<int> at_most(grid.points.size(), layers);
     for (int attempt = 0; attempt < 2; ++attempt) {
         result.lines_given_back += step_back_crossing_lines(grid, body, options, joint, placed,
                                                             at_most, step_back, result.lines_cut);
@@ -178,7 +192,10 @@ void lay_layers(BlockGrid& grid, const ImplicitFunction& body,
             if (placed[g.grid_id(i)]) problem.kinds[i] = VertexKind::fixed;
         // A cell inverted between held nodes (beyond the relaxed rings) cannot be repaired.
         result.layers_blocked = Id(problem.blocked_elements().size());
-        if (result.layers_blocked > 0) break;
+        if (result.layers_blocked > 0) {
+            beside_cut_lines = result.lines_cut > 0;
+            break;
+        }
         result.layers_held =
             untangle::untangle_and_optimize(problem, short_budget(options.untangle));
         BlockGrid tried = grid;
@@ -190,19 +207,21 @@ void lay_layers(BlockGrid& grid, const ImplicitFunction& body,
             if (attempt > 0 || !(*std::min_element(sj.begin(), sj.end()) < floor)) {
                 grid.points = std::move(tried.points);
                 result.layers_laid = true;
-                return;
+                return false;
             }
             first_laid = tried.points;
             hit.assign(grid.points.size(), false);
             mark_cells_below(grid, sj, floor, hit);
         } else {
             hit = inverted_tet_nodes(grid, tried.points, placed, false);
+            beside_cut_lines = on_cut_lines(grid, hit, placed, at_most, layers);
         }
         result.lines_given_back += give_back_lines(grid, joint, placed, hit);
     }
     result.layers_laid = !first_laid.empty();
     // The first valid laid grid, else the joint result (the laid layers cross the rest).
     grid.points = result.layers_laid ? first_laid : joint;
+    return !result.layers_laid && beside_cut_lines;
 }
 
 }  // namespace
@@ -216,10 +235,9 @@ void lay_boundary_layer(BlockGrid& grid, const ImplicitFunction& body,
                         const std::vector<bool>& shaped, GridOptimizationResult& result) {
     const std::vector<Vec3> joint = grid.points;
     const GridOptimizationResult before = result;
-    lay_layers(grid, body, options, initial, shaped, true, result);
-    if (result.layers_laid || result.lines_cut == 0) return;
     // Lines laid with fewer layers beside whole ones can leave cells that no solve frees (at a
-    // knife edge): those lines given back whole instead, as they were before.
+    // knife edge): when cells on them are left inverted, those lines are given back whole.
+    if (!lay_layers(grid, body, options, initial, shaped, true, result)) return;
     const Id cut = result.lines_cut;
     grid.points = joint;
     result = before;
