@@ -166,7 +166,8 @@ bool on_cut_lines(const BlockGrid& grid, const std::vector<bool>& hit,
 
 // lay_boundary_layer with the lines whose laid cells cross stepped back layer by layer
 // (step_back) or given back whole. Returns whether the pass, left invalid, had cells inverted
-// on lines laid with fewer layers (or blocked while some were): whole lines might do better.
+// within two rings of lines laid with fewer layers (or blocked while some were): whole lines
+// might do better.
 bool lay_layers(BlockGrid& grid, const ImplicitFunction& body,
                 const GridOptimizationOptions& options, const std::vector<Vec3>& initial,
                 const std::vector<bool>& shaped, bool step_back, GridOptimizationResult& result) {
@@ -214,7 +215,8 @@ bool lay_layers(BlockGrid& grid, const ImplicitFunction& body,
             mark_cells_below(grid, sj, floor, hit);
         } else {
             hit = inverted_tet_nodes(grid, tried.points, placed, false);
-            beside_cut_lines = on_cut_lines(grid, hit, placed, at_most, layers);
+            beside_cut_lines =
+                on_cut_lines(grid, grow_by_cells(grid, hit, 2), placed, at_most, layers);
         }
         result.lines_given_back += give_back_lines(grid, joint, placed, hit);
     }

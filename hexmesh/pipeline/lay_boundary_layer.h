@@ -25,10 +25,10 @@ bool inverted_away_from_layers(const BlockGrid& grid, int layers);
 // fewer layers, down to none (given back to the joint result); when the pass still leaves
 // inverted cells, or cells under half the joint result's worst scaled Jacobian, the lines
 // through them are given back too and it runs once more; then the better valid result is kept.
-// When none is valid and cells on lines with fewer layers were left inverted, the whole pass
-// runs again with the crossing lines given back whole at once; else the joint result is kept. Fills
-// result's layers_held, layers_laid, layers_blocked, lines_given_back, lines_cut, lines_cut_undone
-// and laid_nodes.
+// When none is valid and cells within two rings of lines with fewer layers were left inverted,
+// the whole pass runs again with the crossing lines given back whole at once; else the joint
+// result is kept. Fills result's layers_held, layers_laid, layers_blocked, lines_given_back,
+// lines_cut, lines_cut_undone and laid_nodes.
 void lay_boundary_layer(BlockGrid& grid, const ImplicitFunction& body,
                         const GridOptimizationOptions& options, const std::vector<Vec3>& initial,
                         const std::vector<bool>& shaped, GridOptimizationResult& result);
