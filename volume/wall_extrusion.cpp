@@ -64,8 +64,7 @@ ThinWallLines thin_wall_lines(const BlockGrid& grid, const WallLayers& law) {
 }
 
 std::vector<bool> extrude_wall_layers(BlockGrid& grid, const ImplicitFunction& body,
-                                      const WallLayers& law, int blend,
-                                      const std::vector<int>* at_most) {
+                                      const WallLayers& law, int blend) {
     std::vector<bool> placed(grid.points.size(), false);
     if (law.layers <= 0) return placed;
     std::vector<double> d(law.layers + 1, 0.0);
@@ -84,10 +83,8 @@ std::vector<bool> extrude_wall_layers(BlockGrid& grid, const ImplicitFunction& b
             const int p = int(l % f.np), q = int(l / f.np);
             for (int m = 1; m < last; ++m)
                 if (crossed[f.node(p, q, m)]) return;
-            const int cap = at_most ? (*at_most)[f.node(p, q, 0)] : law.layers;
-            if (cap <= 0) return;
             const int layers =
-                std::min({layers_that_fit(line_length(grid, f, p, q), last, law), last - 1, cap});
+                std::min(layers_that_fit(line_length(grid, f, p, q), last, law), last - 1);
             if (layers <= 0) return;
             const Vec3 x0 = grid.points[f.node(p, q, 0)];
             const std::optional<Vec3> n = unit_offset(body, x0, side, 1e-3 * law.first_height);

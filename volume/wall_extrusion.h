@@ -38,10 +38,8 @@ ThinWallLines thin_wall_lines(const BlockGrid& grid, const WallLayers& law);
 // Lines shorter than M + 1 edges keep their last node. Lines that would move a node another
 // line (from a different wall node) moves too, or another line's wall node, are left as they
 // are: in a single block walled on all sides that is every line, and its layers stay as the
-// grid was built. law.layers == 0 leaves the grid as it is. With `at_most` (per node, read at
-// wall nodes), a line takes at most that many layers, and none (left as it is) at 0.
+// grid was built. law.layers == 0 leaves the grid as it is.
 std::vector<bool> extrude_wall_layers(BlockGrid& grid, const ImplicitFunction& body,
-                                      const WallLayers& law, int blend = 0,
-                                      const std::vector<int>* at_most = nullptr);
+                                      const WallLayers& law, int blend = 0);
 
 }  // namespace hexmesh

@@ -74,58 +74,16 @@ Id give_back_lines(BlockGrid& grid, const std::vector<Vec3>& joint, std::vector<
     return given;
 }
 
-// Calls f(face, p, q) for every wall-normal line of `grid`, face by face.
-template <class F>
-void for_each_wall_line(const BlockGrid& grid, F&& f) {
-    for (const WallFace& face : wall_faces(grid))
-        for (int q = 0; q < face.nq; ++q)
-            for (int p = 0; p < face.np; ++p) f(face, p, q);
-}
-
-// Steps back the wall lines whose laid cells cross: a line with a node in a corner tet that is
-// inverted and has all four nodes placed goes back to `joint` and is laid again with one layer
-// fewer (the layers nearest the wall, at the law's heights, are the last to go), until no such
-// tet is left; a line left with no layer stays as `joint` had it. Without step_back such a line
-// is given back whole at once. `at_most` holds, at wall nodes, the layers each line may still
-// take. Returns the number of lines given back whole; `cut` counts the lines laid with fewer
-// layers than the law's.
-Id step_back_crossing_lines(BlockGrid& grid, const ImplicitFunction& body,
-                            const GridOptimizationOptions& options, const std::vector<Vec3>& joint,
-                            std::vector<bool>& placed, std::vector<int>& at_most, bool step_back,
-                            Id& cut) {
-    const int layers = options.wall_layers.layers;
-    std::vector<int> again(grid.points.size(), 0);
+// Gives back to `joint` the wall lines whose laid cells cross: a line with a node in a corner
+// tet that is inverted and has all four nodes placed, until no such tet is left (a line given
+// back can leave its neighbour's cell blocked only through its own nodes, which are no longer
+// placed). Returns the number of lines given back.
+Id give_back_crossing_lines(BlockGrid& grid, const std::vector<Vec3>& joint,
+                            std::vector<bool>& placed) {
     Id given = 0;
-    for (;;) {
-        const std::vector<bool> hit = inverted_tet_nodes(grid, grid.points, placed, true);
-        std::fill(again.begin(), again.end(), 0);
-        Id stepped = 0;
-        for_each_wall_line(grid, [&](const WallFace& f, int p, int q) {
-            const Id wall = f.node(p, q, 0);
-            if (!placed[wall]) return;
-            bool line_hit = false;
-            for (int t = 0; t < f.depth && !line_hit; ++t) line_hit = hit[f.node(p, q, t)];
-            if (!line_hit) return;
-            int nodes = 0;  // laid: the wall node and its layers
-            for (int t = 0; t < f.depth; ++t) {
-                nodes += placed[f.node(p, q, t)];
-                grid.points[f.node(p, q, t)] = joint[f.node(p, q, t)];
-                placed[f.node(p, q, t)] = false;
-            }
-            again[wall] = at_most[wall] = step_back ? std::max(0, nodes - 2) : 0;
-            given += at_most[wall] == 0;
-            ++stepped;
-        });
-        if (stepped == 0) break;
-        const std::vector<bool> laid =
-            extrude_wall_layers(grid, body, options.wall_layers, options.relax_rings, &again);
-        for (size_t v = 0; v < laid.size(); ++v) placed[v] = placed[v] || laid[v];
-    }
-    cut = 0;
-    for_each_wall_line(grid, [&](const WallFace& f, int p, int q) {
-        const Id wall = f.node(p, q, 0);
-        cut += placed[wall] && at_most[wall] < layers;
-    });
+    for (Id more = 1; more > 0; given += more)
+        more = give_back_lines(grid, joint, placed,
+                               inverted_tet_nodes(grid, grid.points, placed, true));
     return given;
 }
 
@@ -153,26 +111,15 @@ untangle::UntangleOptions short_budget(const untangle::UntangleOptions& given) {
     return o;
 }
 
-// Whether a `hit` node lies on a wall line laid with fewer layers than the law's.
-bool on_cut_lines(const BlockGrid& grid, const std::vector<bool>& hit,
-                  const std::vector<bool>& placed, const std::vector<int>& at_most, int layers) {
-    bool found = false;
-    for_each_wall_line(grid, [&](const WallFace& f, int p, int q) {
-        if (found || !placed[f.node(p, q, 0)] || at_most[f.node(p, q, 0)] >= layers) return;
-        for (int t = 0; t < f.depth && !found; ++t) found = hit[f.node(p, q, t)];
-    });
-    return found;
+}  // namespace
+
+bool inverted_away_from_layers(const BlockGrid& grid, int layers) {
+    return inverted_away_from(grid, wall_layer_nodes(grid, layers));
 }
 
-// lay_boundary_layer with the lines whose laid cells cross stepped back layer by layer
-// (step_back) or given back whole. Returns whether the pass, left invalid, had cells inverted
-// within two rings of lines laid with fewer layers (or blocked while some were): whole lines
-// might do better.
-bool lay_layers(BlockGrid& grid, const ImplicitFunction& body,
-                const GridOptimizationOptions& options, const std::vector<Vec3>& initial,
-                const std::vector<bool>& shaped, bool step_back, GridOptimizationResult& result) {
-    const int layers = options.wall_layers.layers;
-    bool beside_cut_lines = false;
+void lay_boundary_layer(BlockGrid& grid, const ImplicitFunction& body,
+                        const GridOptimizationOptions& options, const std::vector<Vec3>& initial,
+                        const std::vector<bool>& shaped, GridOptimizationResult& result) {
     const std::vector<Vec3> joint = grid.points;
     const std::vector<double> joint_sj = scaled_jacobians(grid);
     const double joint_min_sj =
@@ -180,10 +127,8 @@ bool lay_layers(BlockGrid& grid, const ImplicitFunction& body,
     std::vector<Vec3> first_laid;  // a valid laid grid whose worst cell fell below half the joint's
     std::vector<bool> placed =
         extrude_wall_layers(grid, body, options.wall_layers, options.relax_rings);
-    std::vector<int> at_most(grid.points.size(), layers);
     for (int attempt = 0; attempt < 2; ++attempt) {
-        result.lines_given_back += step_back_crossing_lines(grid, body, options, joint, placed,
-                                                            at_most, step_back, result.lines_cut);
+        result.lines_given_back += give_back_crossing_lines(grid, joint, placed);
         result.laid_nodes = Id(std::count(placed.begin(), placed.end(), true));
         if (result.laid_nodes == 0) break;  // no line could be laid
         GridProblem g =
@@ -193,10 +138,7 @@ bool lay_layers(BlockGrid& grid, const ImplicitFunction& body,
             if (placed[g.grid_id(i)]) problem.kinds[i] = VertexKind::fixed;
         // A cell inverted between held nodes (beyond the relaxed rings) cannot be repaired.
         result.layers_blocked = Id(problem.blocked_elements().size());
-        if (result.layers_blocked > 0) {
-            beside_cut_lines = result.lines_cut > 0;
-            break;
-        }
+        if (result.layers_blocked > 0) break;
         result.layers_held =
             untangle::untangle_and_optimize(problem, short_budget(options.untangle));
         BlockGrid tried = grid;
@@ -208,43 +150,19 @@ bool lay_layers(BlockGrid& grid, const ImplicitFunction& body,
             if (attempt > 0 || !(*std::min_element(sj.begin(), sj.end()) < floor)) {
                 grid.points = std::move(tried.points);
                 result.layers_laid = true;
-                return false;
+                return;
             }
             first_laid = tried.points;
             hit.assign(grid.points.size(), false);
             mark_cells_below(grid, sj, floor, hit);
         } else {
             hit = inverted_tet_nodes(grid, tried.points, placed, false);
-            beside_cut_lines =
-                on_cut_lines(grid, grow_by_cells(grid, hit, 2), placed, at_most, layers);
         }
         result.lines_given_back += give_back_lines(grid, joint, placed, hit);
     }
     result.layers_laid = !first_laid.empty();
     // The first valid laid grid, else the joint result (the laid layers cross the rest).
     grid.points = result.layers_laid ? first_laid : joint;
-    return !result.layers_laid && beside_cut_lines;
-}
-
-}  // namespace
-
-bool inverted_away_from_layers(const BlockGrid& grid, int layers) {
-    return inverted_away_from(grid, wall_layer_nodes(grid, layers));
-}
-
-void lay_boundary_layer(BlockGrid& grid, const ImplicitFunction& body,
-                        const GridOptimizationOptions& options, const std::vector<Vec3>& initial,
-                        const std::vector<bool>& shaped, GridOptimizationResult& result) {
-    const std::vector<Vec3> joint = grid.points;
-    const GridOptimizationResult before = result;
-    // Lines laid with fewer layers beside whole ones can leave cells that no solve frees (at a
-    // knife edge): when cells on them are left inverted, those lines are given back whole.
-    if (!lay_layers(grid, body, options, initial, shaped, true, result)) return;
-    const Id cut = result.lines_cut;
-    grid.points = joint;
-    result = before;
-    lay_layers(grid, body, options, initial, shaped, false, result);
-    result.lines_cut_undone = cut;
 }
 
 }  // namespace hexmesh

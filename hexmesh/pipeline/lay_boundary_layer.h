@@ -21,14 +21,11 @@ bool inverted_away_from_layers(const BlockGrid& grid, int layers);
 // GridOptimizationOptions::wall_layers): the layer nodes laid by options.wall_layers, the
 // layers, the cells below options.relax_below and the cells up to options.relax_rings rings
 // around both optimized again towards the targets of `initial` (the grid as given; `shaped`
-// as in corner_tet_problem), the rest held. Lines whose laid cells cross are laid again with
-// fewer layers, down to none (given back to the joint result); when the pass still leaves
-// inverted cells, or cells under half the joint result's worst scaled Jacobian, the lines
-// through them are given back too and it runs once more; then the better valid result is kept.
-// When none is valid and cells within two rings of lines with fewer layers were left inverted,
-// the whole pass runs again with the crossing lines given back whole at once; else the joint
-// result is kept. Fills result's layers_held, layers_laid, layers_blocked, lines_given_back,
-// lines_cut, lines_cut_undone and laid_nodes.
+// as in corner_tet_problem), the rest held. Lines whose laid cells cross are given back to the
+// joint result first; when the pass still leaves inverted cells, or cells under half the
+// joint result's worst scaled Jacobian, the lines through them are given back too and it runs
+// once more; then the better valid result is kept, else the joint one. Fills result's
+// layers_held, layers_laid, layers_blocked, lines_given_back and laid_nodes.
 void lay_boundary_layer(BlockGrid& grid, const ImplicitFunction& body,
                         const GridOptimizationOptions& options, const std::vector<Vec3>& initial,
                         const std::vector<bool>& shaped, GridOptimizationResult& result);

@@ -1,7 +1,6 @@
 #include "hexmesh/pipeline/untangle_and_optimize.h"
 
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 
 #include <algorithm>
 
@@ -83,24 +82,13 @@ void log_layer_pass(const GridOptimizationResult& r, int layers, std::ostream& l
             "inverted between held nodes): the joint optimization's grid is kept\n",
             r.layers_blocked);
     } else if (layers > 0) {
-        std::vector<std::string> but;
-        if (r.lines_cut > 0)
-            but.push_back(fmt::format("{} wall lines with fewer layers, where all {} would cross",
-                                      r.lines_cut, layers));
-        if (r.lines_given_back > 0)
-            but.push_back(
-                fmt::format("{} wall lines whose laid cells would cross or fall under "
-                            "half the worst scaled Jacobian before keep the joint "
-                            "optimization's",
-                            r.lines_given_back));
-        if (r.lines_cut_undone > 0)
-            log << fmt::format(
-                "  the boundary layer laid with fewer layers on {} wall lines where all {} "
-                "would cross left inverted cells: those lines keep the joint optimization's "
-                "instead\n",
-                r.lines_cut_undone, layers);
         log << "  boundary layer laid along the wall normals"
-            << (but.empty() ? std::string() : fmt::format(" (but {})", fmt::join(but, "; ")))
+            << (r.lines_given_back > 0 ? fmt::format(" (but on {} wall lines, whose laid cells "
+                                                     "would cross or fall under half "
+                                                     "the worst scaled Jacobian before: they "
+                                                     "keep the joint optimization's)",
+                                                     r.lines_given_back)
+                                       : std::string())
             << ", rest optimized again:\n"
             << untangle::format_untangle_summary(r.layers_held);
         if (!r.layers_laid)

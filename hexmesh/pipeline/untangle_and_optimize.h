@@ -57,12 +57,6 @@ struct GridOptimizationResult {
     // Wall lines whose laid cells would have crossed (an inverted corner tet of laid nodes
     // only): given back the joint optimization's nodes, their layers as it left them.
     Id lines_given_back = 0;
-    // Wall lines whose whole layer would have crossed, laid with fewer layers (the first at
-    // the law's height) that do not.
-    Id lines_cut = 0;
-    // Lines that were laid with fewer layers in a first try whose laid layers left inverted
-    // cells, and were given back whole in the pass that counts.
-    Id lines_cut_undone = 0;
     // Wall and layer nodes the law placed; 0 when no wall-normal line could be laid alone
     // (volume/wall_extrusion.h) and the second pass was skipped, or when layers_skipped.
     Id laid_nodes = 0;

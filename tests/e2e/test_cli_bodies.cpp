@@ -161,9 +161,11 @@ TEST(CliBodies, LaidLayersThatWouldCrossAreGivenBackLineByLine) {
     // Written; exit code 3 when the wall cuts the arms' corners (follows_body false).
     ASSERT_TRUE(r.exit_code == 0 || r.exit_code == 3) << r.out << r.err;
     EXPECT_EQ(r.exit_code, quality_in(dir).at("follows_body").get<bool>() ? 0 : 3);
-    EXPECT_NE(r.out.find("wall lines whose laid cells would cross or fall under half the worst "
-                         "scaled Jacobian before keep the joint optimization's"),
-              std::string::npos)
+    EXPECT_NE(
+        r.out.find(
+            "wall lines, whose laid cells would cross or fall under half the worst scaled Jacobian "
+            "before: they keep the joint optimization's"),
+        std::string::npos)
         << r.out;
     EXPECT_EQ(r.out.find("the joint optimization's grid is kept"), std::string::npos) << r.out;
     EXPECT_TRUE(std::regex_search(

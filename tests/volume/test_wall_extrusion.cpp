@@ -94,29 +94,6 @@ TEST(WallExtrusion, ThinPartsOfTheBodyTakeFewerLayers) {
     EXPECT_EQ(cut, thin.cut);
 }
 
-// at_most caps a line's layers by its wall node: a line capped at 1 gets its first layer at the
-// law's height and nothing more placed; one capped at 0 is left as it is.
-TEST(WallExtrusion, LinesTakeAtMostTheLayersGivenAtTheirWallNode) {
-    const Box body(Vec3::Zero(), Vec3(1, 0.75, 0.5));
-    BlockGrid grid = box_grid(body, 0.4);
-    const std::vector<Vec3> built = grid.points;
-    const WallLayers law{0.01, 1.2, 3};
-    std::vector<int> at_most(grid.points.size(), 3);
-    const std::vector<WallFace> faces = wall_faces(grid);
-    const WallFace& f = faces.front();
-    at_most[f.node(4, 4, 0)] = 1;
-    at_most[f.node(2, 3, 0)] = 0;
-    const std::vector<bool> placed = extrude_wall_layers(grid, body, law, 0, &at_most);
-    EXPECT_TRUE(placed[f.node(4, 4, 1)]);
-    EXPECT_FALSE(placed[f.node(4, 4, 2)]);
-    EXPECT_NEAR((grid.points[f.node(4, 4, 1)] - grid.points[f.node(4, 4, 0)]).norm(), 0.01, 1e-12);
-    for (int t = 0; t < f.depth; ++t) {
-        EXPECT_FALSE(placed[f.node(2, 3, t)]);
-        EXPECT_EQ(grid.points[f.node(2, 3, t)], built[f.node(2, 3, t)]);
-    }
-    EXPECT_TRUE(placed[f.node(3, 3, 3)]);  // the others take all three
-}
-
 // In a single block walled on all six sides every wall-normal line runs into lines from the
 // opposite and the neighbouring faces: none is laid, the layers stay as the block was built.
 TEST(WallExtrusion, CrossingLinesOfASingleBlockAreLeftAsBuilt) {
