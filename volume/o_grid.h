@@ -83,9 +83,9 @@ struct OGridOptions {
 // part and the segment by the number of growth-ratio steps each spans. The far-field nodes lie
 // radially out from the paths' ends.
 // Throws std::invalid_argument, with a message naming the option, on n < 2, nk < 1, a law
-// that does not fit the lines (wall_layers.layers >= nk, or thicker than a line), a far field
-// that does not enclose the body's bounds with the margin, a centre outside the body, or a
-// body that is not star-shaped around it.
+// that does not fit the lines (wall_layers.layers >= nk, or a first layer over half a line),
+// a far field that does not enclose the body's bounds with the margin, a centre outside the
+// body, or a body that is not star-shaped around it.
 BlockGrid make_o_grid(const ImplicitFunction& body, const OGridOptions& options);
 
 }  // namespace hexmesh

@@ -235,8 +235,9 @@ double fit_core_size(const OHLayout& lay, const OHGridOptions& options, const Ve
 // the straight segment from its wall node towards its core node, halfway (0.95 of the way when
 // the layer and a cell do not fit halfway), its level rising evenly to the far level: the line
 // runs straight to the core.
-// Throws std::invalid_argument, naming the wall point, when the layers do not fit a line (path
-// and segment), as the straight construction does.
+// Throws std::invalid_argument, naming the wall point, when the whole layer does not fit a line
+// (path and segment): the paths lay the same layers on every line, so a line where the body is
+// thin cannot take fewer as the straight construction's do.
 void place_on_paths(const OHLayout& lay, WallPaths paths, const WallLayers& law, BlockGrid& grid) {
     const int nk = lay.nk;
     if (Id(paths.lines.size()) != lay.ns || Id(paths.levels.size()) != lay.ns)
@@ -251,7 +252,7 @@ void place_on_paths(const OHLayout& lay, WallPaths paths, const WallLayers& law,
         const std::vector<Vec3>& x = paths.lines[s];
         double length = 0;
         for (size_t k = 1; k < x.size(); ++k) length += (x[k] - x[k - 1]).norm();
-        wall_distances(length + (core[s] - x.back()).norm(), nk, law, &lay.wall[s]);  // fits?
+        require_whole_layers(length + (core[s] - x.back()).norm(), nk, law, &lay.wall[s]);
         if (x.size() >= 2 && length > room) continue;
         const bool halfway = room < 0.5 * (core[s] - lay.wall[s]).norm();
         paths.lines[s] = {lay.wall[s], halfway
@@ -268,8 +269,9 @@ void place_on_paths(const OHLayout& lay, WallPaths paths, const WallLayers& law,
 
 // The grid's points: the core's nodes, then along each wall node's line to its core node the
 // wall layers graded by the law (the last on the wall, a slip node), or with `paths` as
-// place_on_paths lays them. Throws std::invalid_argument when a line would turn back or is too
-// short for the layers (the first such line in wall order).
+// place_on_paths lays them. A line too short for the whole layer takes the layers that fit it
+// (layers_that_fit). Throws std::invalid_argument when a line would turn back or is too short
+// for even the first layer (the first such line in wall order).
 BlockGrid place_points(const OHLayout& lay, const OHGridOptions& options, const Vec3& centre,
                        bool placed, const WallPaths* paths) {
     const int nk = lay.nk;

@@ -34,6 +34,24 @@ std::vector<double> uniform_distances(double length, int cells) {
     return d;
 }
 
+namespace {
+
+std::string wall_words(const Vec3* wall) {
+    return wall ? fmt::format(" from the wall at ({:.4g}, {:.4g}, {:.4g})", wall->x(), wall->y(),
+                              wall->z())
+                : std::string();
+}
+
+}  // namespace
+
+void require_whole_layers(double length, int cells, const WallLayers& law, const Vec3* wall) {
+    if (law.layers <= 0 || layers_that_fit(length, cells, law) == law.layers) return;
+    throw std::invalid_argument(fmt::format(
+        "boundary layer of {} layers ({:.4g} thick) does not fit the wall-normal line of {} "
+        "cells and length {:.4g}{}: use fewer layers, a smaller first height or growth ratio",
+        law.layers, layers_thickness(law), cells, length, wall_words(wall)));
+}
+
 int layers_that_fit(double length, int cells, const WallLayers& law) {
     if (law.layers <= 0) return 0;
     if (layers_thickness(law) < length && cells - law.layers >= 1) return law.layers;
@@ -53,11 +71,8 @@ std::vector<double> wall_distances(double length, int cells, const WallLayers& w
         throw std::invalid_argument(fmt::format(
             "boundary layer of {} layers ({:.4g} thick) does not fit the wall-normal line of "
             "{} cells and length {:.4g}{}, not even its first layer ({:.4g}) in half of it: use "
-            "a smaller first height or more wall cells",
-            whole_law.layers, layers_thickness(whole_law), cells, length,
-            wall ? fmt::format(" from the wall at ({:.4g}, {:.4g}, {:.4g})", wall->x(), wall->y(),
-                               wall->z())
-                 : std::string(),
+            "a smaller first height",
+            whole_law.layers, layers_thickness(whole_law), cells, length, wall_words(wall),
             law.first_height));
     }
     const double thickness = layers_thickness(law);

@@ -22,6 +22,12 @@ struct WallLayers {
 // layer fits so.
 int layers_that_fit(double length, int cells, const WallLayers& law);
 
+// Throws std::invalid_argument, naming `wall` when given, unless the whole law fits the line
+// (layers_that_fit(length, cells, law) == law.layers): for constructions that lay the same
+// layers on every line.
+void require_whole_layers(double length, int cells, const WallLayers& law,
+                          const Vec3* wall = nullptr);
+
 // Distances from the wall of the cells+1 nodes of a line of the given length:
 // d[0] = 0, d[cells] = length, increasing. The first layers_that_fit(length, cells, law) cells
 // follow the law exactly; the remaining cells continue geometrically from the last layer

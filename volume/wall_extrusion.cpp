@@ -78,13 +78,12 @@ std::vector<bool> extrude_wall_layers(BlockGrid& grid, const ImplicitFunction& b
         const int last = f.depth - 1;
         // Lines left after crossed_lines share nodes only where they coincide (block
         // interfaces), and then they compute the same positions: the parallel writes agree.
-        std::vector<char> laid(f.lines(), 0);
+        std::vector<int> laid(f.lines(), 0);  // nodes laid, the wall node included
         tbb::parallel_for(Id(0), f.lines(), [&](Id l) {
             const int p = int(l % f.np), q = int(l / f.np);
             for (int m = 1; m < last; ++m)
                 if (crossed[f.node(p, q, m)]) return;
-            const int layers =
-                std::min(layers_that_fit(line_length(grid, f, p, q), last, law), last - 1);
+            const int layers = layers_that_fit(line_length(grid, f, p, q), last, law);
             if (layers <= 0) return;
             const Vec3 x0 = grid.points[f.node(p, q, 0)];
             const std::optional<Vec3> n = unit_offset(body, x0, side, 1e-3 * law.first_height);
@@ -94,7 +93,7 @@ std::vector<bool> extrude_wall_layers(BlockGrid& grid, const ImplicitFunction& b
             const int end = blend > 0 ? std::min(last, layers + blend + 1) : last;  // shift 0 there
             for (int m = layers + 1; m < end; ++m)
                 grid.points[f.node(p, q, m)] += shift * (double(end - m) / (end - layers));
-            laid[l] = char(layers + 1);
+            laid[l] = layers + 1;
         });
         for (Id l = 0; l < f.lines(); ++l)
             for (int m = 0; m < laid[l]; ++m)

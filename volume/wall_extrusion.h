@@ -35,7 +35,7 @@ ThinWallLines thin_wall_lines(const BlockGrid& grid, const WallLayers& law);
 // staying put), so the line stays smooth where the layers end. Wall nodes and far ends do not
 // move. Lines at knife edges (faces meeting at less than about 30 degrees) are left as they
 // are. Returns, per node, whether it is a wall or a layer node (the ones the law now fixes).
-// Lines shorter than M + 1 edges keep their last node. Lines that would move a node another
+// M is below the line's edge count, so its far end stays. Lines that would move a node another
 // line (from a different wall node) moves too, or another line's wall node, are left as they
 // are: in a single block walled on all sides that is every line, and its layers stay as the
 // grid was built. law.layers == 0 leaves the grid as it is.

@@ -205,7 +205,9 @@ void build_blocks(Job& job) {
         if (!route.radial()) throw InputError(fmt::format("{}: {}", c.path, e.what()));
         throw;
     }
-    log_thin_wall_lines(job.grid(), wall_layers(c), job.log);
+    // A single block's lines run from wall to wall, each half cut on its own: not logged.
+    if (c.domain == Domain::exterior || c.grid.topology != Topology::single_block)
+        log_thin_wall_lines(job.grid(), wall_layers(c), job.log);
     job.timer.done("grid",
                    fmt::format("({}, {} blocks, {} cells)",
                                c.domain == Domain::exterior ? "o-grid" : name_of(c.grid.topology),
