@@ -36,20 +36,24 @@ std::vector<double> uniform_distances(double length, int cells) {
 
 namespace {
 
-std::string wall_words(const Vec3* wall) {
-    return wall ? fmt::format(" from the wall at ({:.4g}, {:.4g}, {:.4g})", wall->x(), wall->y(),
-                              wall->z())
-                : std::string();
+// "boundary layer of N layers (T thick) does not fit the wall-normal line of C cells and length
+// L[ from the wall at (x, y, z)]": the head of both refusals.
+std::string misfit(const WallLayers& law, int cells, double length, const Vec3* wall) {
+    return fmt::format(
+        "boundary layer of {} layers ({:.4g} thick) does not fit the wall-normal line of {} "
+        "cells and length {:.4g}{}",
+        law.layers, layers_thickness(law), cells, length,
+        wall ? fmt::format(" from the wall at ({:.4g}, {:.4g}, {:.4g})", wall->x(), wall->y(),
+                           wall->z())
+             : std::string());
 }
 
 }  // namespace
 
 void require_whole_layers(double length, int cells, const WallLayers& law, const Vec3* wall) {
     if (law.layers <= 0 || layers_that_fit(length, cells, law) == law.layers) return;
-    throw std::invalid_argument(fmt::format(
-        "boundary layer of {} layers ({:.4g} thick) does not fit the wall-normal line of {} "
-        "cells and length {:.4g}{}: use fewer layers, a smaller first height or growth ratio",
-        law.layers, layers_thickness(law), cells, length, wall_words(wall)));
+    throw std::invalid_argument(misfit(law, cells, length, wall) +
+                                ": use fewer layers, a smaller first height or growth ratio");
 }
 
 int layers_that_fit(double length, int cells, const WallLayers& law) {
@@ -68,12 +72,11 @@ std::vector<double> wall_distances(double length, int cells, const WallLayers& w
     const WallLayers law{whole_law.first_height, whole_law.growth_ratio,
                          layers_that_fit(length, cells, whole_law)};
     if (law.layers == 0) {
-        throw std::invalid_argument(fmt::format(
-            "boundary layer of {} layers ({:.4g} thick) does not fit the wall-normal line of "
-            "{} cells and length {:.4g}{}, not even its first layer ({:.4g}) in half of it: use "
-            "a smaller first height",
-            whole_law.layers, layers_thickness(whole_law), cells, length, wall_words(wall),
-            law.first_height));
+        throw std::invalid_argument(
+            misfit(whole_law, cells, length, wall) +
+            fmt::format(", not even its first layer ({:.4g}) in half of it: use a smaller first "
+                        "height",
+                        law.first_height));
     }
     const double thickness = layers_thickness(law);
     const int rest = cells - law.layers;
