@@ -26,8 +26,10 @@ ReportPage grid_report_page(const std::string& title, const GridReport& report,
         q.solver_valid()
             ? "valid"
             : fmt::format("not valid for a solver ({} inverted cells, {} face pyramids "
-                          "of negative volume, {} faces at 90 degrees or more)",
-                          q.inverted_cells, q.negative_pyramids, q.faces_over_90_deg),
+                          "of negative volume, {} faces at 90 degrees or more, {} faces of "
+                          "skewness over 4)",
+                          q.inverted_cells, q.negative_pyramids, q.faces_over_90_deg,
+                          q.highly_skewed_faces),
         q.min_scaled_jacobian, q.mean_scaled_jacobian);
     if (const std::string missed = body_missed(report); !missed.empty())
         page.summary += fmt::format(" <span class=\"bad\">Not the body's grid: {}.</span>", missed);

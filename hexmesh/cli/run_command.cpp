@@ -56,6 +56,7 @@ void add_run_command(CLI::App& app, int& exit_code) {
             follows = follows && warning.empty();
             std::cout << warning;
         }
+        std::cout << aspect_ratio_note(result.report.quality);
         exit_code = result.report.quality.solver_valid() && follows ? 0 : 3;
     });
 }

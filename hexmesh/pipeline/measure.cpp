@@ -24,6 +24,8 @@ std::string invalid_cells(const QualityReport& q) {
                                    q.faces_over_90_deg));
     if (q.nonpositive_volumes > 0)
         what.push_back(fmt::format("{} cells of volume <= 0", q.nonpositive_volumes));
+    if (q.highly_skewed_faces > 0)
+        what.push_back(fmt::format("{} faces of skewness over 4", q.highly_skewed_faces));
     return fmt::format("cells that a finite-volume solver refuses: {}", fmt::join(what, ", "));
 }
 

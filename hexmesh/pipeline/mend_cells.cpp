@@ -14,10 +14,12 @@
 namespace hexmesh {
 namespace {
 
-// The cells of each node (CSR: cells[offset[v] .. offset[v + 1])).
-struct NodeCells {
-    std::vector<Id> offset, cells;
-    NodeCells(const HexMesh& mesh) : offset(mesh.points.size() + 1, 0) {
+// The cells of each node (CSR: cells[offset[v] .. offset[v + 1])) and the cell across each
+// face (face_neighbours).
+struct Adjacency {
+    std::vector<Id> offset, cells, across;
+    Adjacency(const HexMesh& mesh)
+        : offset(mesh.points.size() + 1, 0), across(face_neighbours(mesh)) {
         for (Id v : mesh.hexes) ++offset[v + 1];
         for (size_t v = 0; v < mesh.points.size(); ++v) offset[v + 1] += offset[v];
         cells.resize(mesh.hexes.size());
@@ -29,27 +31,42 @@ struct NodeCells {
     }
 };
 
-// The cells around a node as a move is judged: how many the solver refuses (margin <= 0), then
-// the smallest margin. A move may not trade a refused cell for an accepted one that falls.
+// The cells around a node as a move is judged: how many cells the solver refuses (margin <= 0),
+// then how many of their faces it refuses (skewness over max_solver_skewness), then the smallest
+// margin, a refused face's being (max - skewness) / max. A move may not trade a refused cell for
+// an accepted one that falls, nor a skewed face for a refused cell.
 struct Score {
-    int refused = 0;
+    int refused = 0, skewed = 0;
     double lowest = std::numeric_limits<double>::infinity();
     bool better_than(const Score& s) const {
-        return refused < s.refused || (refused == s.refused && lowest > s.lowest + 1e-12);
+        if (refused != s.refused) return refused < s.refused;
+        if (skewed != s.skewed) return skewed < s.skewed;
+        return lowest > s.lowest + 1e-12;
     }
 };
 
-Score score_at(const HexMesh& mesh, const NodeCells& around, Id v) {
+Score score_at(const HexMesh& mesh, const Adjacency& around, Id v) {
     Score s;
     for (auto [c, end] = around.of(v); c != end; ++c) {
-        const double m = solver_margin(mesh.corners(*c));
+        const std::array<Vec3, 8> p = mesh.corners(*c);
+        const double m = solver_margin(p);
         s.refused += !(m > 0);
         s.lowest = std::min(s.lowest, m);
+        const Vec3 centre = hex_centre(p);
+        for (int f = 0; f < 6; ++f) {
+            const Id n = around.across[6 * *c + f];
+            const Vec3 other = n >= 0 ? hex_centre(mesh.corners(n)) : Vec3::Zero();
+            const double skew = hex_face_skewness(p, f, centre, n >= 0 ? &other : nullptr);
+            if (skew > max_solver_skewness) {
+                ++s.skewed;
+                s.lowest = std::min(s.lowest, (max_solver_skewness - skew) / max_solver_skewness);
+            }
+        }
     }
     return s;
 }
 
-double mean_edge_at(const HexMesh& mesh, const NodeCells& around, Id v) {
+double mean_edge_at(const HexMesh& mesh, const Adjacency& around, Id v) {
     double sum = 0;
     int count = 0;
     for (auto [c, end] = around.of(v); c != end; ++c)
@@ -61,7 +78,7 @@ double mean_edge_at(const HexMesh& mesh, const NodeCells& around, Id v) {
 }
 
 // The lowest margin (Score::lowest) over `nodes`.
-double lowest(const HexMesh& mesh, const NodeCells& around, const std::vector<Id>& nodes) {
+double lowest(const HexMesh& mesh, const Adjacency& around, const std::vector<Id>& nodes) {
     double m = std::numeric_limits<double>::infinity();
     for (Id v : nodes) m = std::min(m, score_at(mesh, around, v).lowest);
     return m;
@@ -75,7 +92,7 @@ struct RoundResult {
 // One round over `nodes`: each movable node whose margin is not yet `o.enough` tries a step of
 // step[i] along the six axis directions (a slip node's trial projected onto u = 0) and takes
 // the best if it is better; a node that finds none halves its step, down to o.last_step edges.
-RoundResult mend_round(HexMesh& mesh, const NodeCells& around, const std::vector<VertexKind>& kinds,
+RoundResult mend_round(HexMesh& mesh, const Adjacency& around, const std::vector<VertexKind>& kinds,
                        const ImplicitFunction& body, const std::vector<Id>& nodes,
                        const std::function<bool(Id)>& movable, const MendOptions& o,
                        std::vector<double>& step) {
@@ -117,7 +134,7 @@ MendResult mend_refused_cells(BlockGrid& grid, const ImplicitFunction& body, con
     std::vector<Id> refused = find_refused_cells(mesh);
     result.refused_before = result.refused_after = Id(refused.size());
     if (refused.empty()) return result;
-    const NodeCells around(mesh);
+    const Adjacency around(mesh);
     const auto movable = [&](Id v) {
         const VertexKind k = grid.kinds[v];
         return (k == VertexKind::interior || k == VertexKind::slip) &&

@@ -1,5 +1,5 @@
 // Cells a finite-volume solver refuses though every corner tet is positive (a face warped past
-// its cell's centre), mended by moving their own nodes one at a time.
+// its cell's centre, a face too skewed), mended by moving their own nodes one at a time.
 #pragma once
 
 #include <vector>
@@ -26,12 +26,14 @@ struct MendResult {
 
 // The cells find_refused_cells names (hexmesh/quality/mesh_quality.h), mended: each node of theirs
 // (interior or slip; slip nodes projected back onto u = 0 of `body`) tries six moves along the axes
-// and keeps the best for the cells around it: fewer refused (solver_margin <= 0), then a higher
-// smallest margin (so a cell the solver accepts is never traded away, and with as many refused the
-// smallest margin there never falls), the step halved when none helps. When
-// that leaves refused cells, the nodes of the cells sharing a node with them join in. The
-// functional's corner tets do not see a face pyramid on the cell's centre; this sees exactly
-// what the solver checks. Deterministic; the grid's points are changed in place.
+// and keeps the best for the cells around it: fewer refused cells (solver_margin <= 0), then fewer
+// of their faces of skewness over max_solver_skewness, then a higher smallest margin (a skewed
+// face's being its relative excess, negative), so a cell the solver accepts is never traded away
+// (not even for a skewed face) and with as many refused the smallest margin there never falls; the
+// step halved when none helps. When that leaves refused cells, the nodes of the cells sharing a
+// node with them join in. The functional's corner tets do not see a face pyramid on the cell's
+// centre; this sees exactly what the solver checks. Deterministic; the grid's points are changed
+// in place.
 MendResult mend_refused_cells(BlockGrid& grid, const ImplicitFunction& body,
                               const MendOptions& options = {});
 

@@ -53,8 +53,7 @@ struct PolishRank {
     // `sj`: the grid's scaled Jacobians (scaled_jacobians).
     PolishRank(const BlockGrid& grid, const std::vector<double>& sj, double threshold) {
         const QualityReport q = measure_quality(grid);
-        refused =
-            q.inverted_cells + q.negative_pyramids + q.faces_over_90_deg + q.nonpositive_volumes;
+        refused = q.refused_count();
         min_sj = q.min_scaled_jacobian;
         below =
             Id(std::count_if(sj.begin(), sj.end(), [&](double v) { return !(v >= threshold); }));

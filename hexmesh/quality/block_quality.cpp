@@ -284,8 +284,7 @@ QualityReport BlockQuality::report() const {
     if (st.cells == 0) return QualityReport{};
     FaceStats per_face = st.per_face;
     for (const auto& [key, face] : st.open)  // never paired: boundary faces
-        per_face.max_skew = std::max(
-            per_face.max_skew,
+        per_face.add_skewness(
             detail::boundary_face_skewness(face.p, detail::quad_geometry(face.p), face.centre));
     return make_report(st.cells, st.per_cell, per_face);
 }
@@ -303,6 +302,7 @@ void put(ByteWriter& out, const CellStats& c) {
     out.put(c.min_sj), out.put(c.worst), out.put(c.worst_centre), out.put(c.sum_sj);
     out.put(c.max_aspect), out.put(c.min_volume), out.put(c.inverted_tets);
     out.put(c.inverted_cells), out.put(c.negative_pyramids), out.put(c.nonpositive_volumes);
+    out.put(c.high_aspect);
     out.put(c.sj_histogram);
     out.put(c.lowest.size());
     for (const RankedCell& r : c.lowest) put(out, r);
@@ -312,6 +312,7 @@ void get(ByteReader& in, CellStats& c) {
     in.get(c.min_sj), in.get(c.worst), in.get(c.worst_centre), in.get(c.sum_sj);
     in.get(c.max_aspect), in.get(c.min_volume), in.get(c.inverted_tets);
     in.get(c.inverted_cells), in.get(c.negative_pyramids), in.get(c.nonpositive_volumes);
+    in.get(c.high_aspect);
     in.get(c.sj_histogram);
     c.lowest.resize(in.next<size_t>());
     for (RankedCell& r : c.lowest) get(in, r);
@@ -319,12 +320,12 @@ void get(ByteReader& in, CellStats& c) {
 
 void put(ByteWriter& out, const FaceStats& f) {
     out.put(f.min_ortho), out.put(f.max_skew), out.put(f.max_volume_ratio);
-    out.put(f.over_90_deg), out.put(f.non_orthogonality);
+    out.put(f.over_90_deg), out.put(f.over_skew), out.put(f.non_orthogonality);
 }
 
 void get(ByteReader& in, FaceStats& f) {
     in.get(f.min_ortho), in.get(f.max_skew), in.get(f.max_volume_ratio);
-    in.get(f.over_90_deg), in.get(f.non_orthogonality);
+    in.get(f.over_90_deg), in.get(f.over_skew), in.get(f.non_orthogonality);
 }
 
 }  // namespace

@@ -114,6 +114,15 @@ std::string body_missed(const GridReport& r) {
         at.x(), at.y(), at.z());
 }
 
+std::string aspect_ratio_note(const QualityReport& q) {
+    if (q.high_aspect_ratio_cells == 0) return {};
+    return fmt::format(
+        "\nnote: {} cells have an aspect ratio over {} (max {:.4g}): OpenFOAM's checkMesh fails "
+        "its aspect-ratio check for them (\"High aspect ratio cells found\"), solvers run on "
+        "them; a larger first height or more cells along the wall lowers it\n",
+        q.high_aspect_ratio_cells, checkmesh_max_aspect_ratio, q.max_aspect_ratio);
+}
+
 std::string body_missed_warning(const GridReport& r, const std::string& prefix) {
     const std::string missed = body_missed(r);
     if (missed.empty()) return {};
@@ -131,6 +140,7 @@ std::string format_quality_table(const GridReport& r) {
     row("negative face pyramids", fmt::format("{}", q.negative_pyramids));
     row("faces at 90 deg or more", fmt::format("{}", q.faces_over_90_deg));
     row("cells of volume <= 0", fmt::format("{}", q.nonpositive_volumes));
+    row("faces of skewness over 4", fmt::format("{}", q.highly_skewed_faces));
     row("min scaled Jacobian", fmt::format("{:.4f}", q.min_scaled_jacobian));
     row("mean scaled Jacobian", fmt::format("{:.4f}", q.mean_scaled_jacobian));
     if (q.worst_cell >= 0) {
@@ -146,6 +156,7 @@ std::string format_quality_table(const GridReport& r) {
     row("max skewness", fmt::format("{:.4f}", q.max_skewness));
     row("max non-orthogonality (deg)", fmt::format("{:.2f}", q.max_non_orthogonality_deg));
     row("max aspect ratio", fmt::format("{:.4g}", q.max_aspect_ratio));
+    row("  cells over 1000", fmt::format("{}", q.high_aspect_ratio_cells));
     row("max volume ratio", fmt::format("{:.4g}", q.max_volume_ratio));
     row("min cell volume", fmt::format("{:.4g}", q.min_volume));
     if (r.max_surface_distance)
@@ -175,6 +186,7 @@ std::string quality_json(const GridReport& r) {
     j["negative_face_pyramids"] = q.negative_pyramids;
     j["faces_over_90_deg"] = q.faces_over_90_deg;
     j["nonpositive_volume_cells"] = q.nonpositive_volumes;
+    j["highly_skewed_faces"] = q.highly_skewed_faces;
     j["internal_faces"] = q.internal_faces;
     j["min_scaled_jacobian"] = q.min_scaled_jacobian;
     j["mean_scaled_jacobian"] = q.mean_scaled_jacobian;
@@ -192,6 +204,7 @@ std::string quality_json(const GridReport& r) {
     j["max_skewness"] = q.max_skewness;
     j["max_non_orthogonality_deg"] = q.max_non_orthogonality_deg;
     j["max_aspect_ratio"] = q.max_aspect_ratio;
+    j["high_aspect_ratio_cells"] = q.high_aspect_ratio_cells;
     j["max_volume_ratio"] = q.max_volume_ratio;
     j["min_volume"] = q.min_volume;
     if (r.max_surface_distance) j["max_surface_distance_over_h"] = *r.max_surface_distance;

@@ -54,6 +54,10 @@ std::string body_missed(const GridReport& report);
 // ("\nwarning: " + prefix + body_missed + ..., ending in a newline); empty when it follows it.
 std::string body_missed_warning(const GridReport& report, const std::string& prefix = "");
 
+// A note ("\nnote: ...", ending in a newline) when cells of `q` are over checkMesh's aspect-ratio
+// limit, which fails checkMesh but not a solver; empty otherwise.
+std::string aspect_ratio_note(const QualityReport& q);
+
 // Aligned "name  value" lines, one per metric, ending in a newline: every first value ends
 // in the same column; rows with several values (min/mean/max) continue to its right. The
 // wall rows appear when `wall` is set, the "time per phase" block when phase_seconds is not

@@ -210,8 +210,7 @@ QualityReport measure(const Cells& cells) {
                     const std::array<Vec3, 4> p = points_of(points, v.nodes, hex_faces[f]);
                     const FaceGeometry g = detail::quad_geometry(p);
                     if (other == no_partner) {
-                        acc.max_skew = std::max(acc.max_skew,
-                                                detail::boundary_face_skewness(p, g, centres[c]));
+                        acc.add_skewness(detail::boundary_face_skewness(p, g, centres[c]));
                         continue;
                     }
                     const Id n = other / 6;
@@ -229,8 +228,9 @@ QualityReport measure(const Cells& cells) {
 }
 
 // The cells of `cells` failing a check of QualityReport::solver_valid, ascending: a corner tet
-// inverted, a face pyramid of negative volume against its own centre, volume <= 0, or a face
-// at 90 degrees or more with a neighbour (then both cells).
+// inverted, a face pyramid of negative volume against its own centre, volume <= 0, a face at
+// 90 degrees or more with a neighbour (then both cells) or a face of skewness over 4 (its
+// cells).
 template <class Cells>
 std::vector<Id> refused(const Cells& cells) {
     const Id n = cells.num_cells();
@@ -245,14 +245,22 @@ std::vector<Id> refused(const Cells& cells) {
                 bad[c] = one.inverted_tets + one.negative_pyramids + one.nonpositive_volumes > 0;
             }
         });
-    for (Id c = 0; c < n; ++c) {  // 90 degrees: each internal face once, from its owner
+    for (Id c = 0; c < n; ++c) {  // each face once, from its owner
         const CellView v = cells.cell(c);
         for (int f = 0; f < 6; ++f) {
             const Id other = v.partner[f];
-            if (other == no_partner || !is_owner_side(6 * c + f, other)) continue;
-            const FaceGeometry g = detail::quad_geometry(points_of(points, v.nodes, hex_faces[f]));
-            if (at_90_deg_or_more(
-                    detail::face_orthogonality(centres[c], centres[other / 6], g.area)))
+            if (!is_owner_side(6 * c + f, other)) continue;
+            const std::array<Vec3, 4> p = points_of(points, v.nodes, hex_faces[f]);
+            const FaceGeometry g = detail::quad_geometry(p);
+            if (other == no_partner) {
+                if (detail::boundary_face_skewness(p, g, centres[c]) > max_solver_skewness)
+                    bad[c] = 1;
+                continue;
+            }
+            const Vec3& own = centres[c];
+            const Vec3& nei = centres[other / 6];
+            if (at_90_deg_or_more(detail::face_orthogonality(own, nei, g.area)) ||
+                detail::face_skewness(p, g, own, nei) > max_solver_skewness)
                 bad[c] = bad[other / 6] = 1;
         }
     }
@@ -278,6 +286,32 @@ std::vector<Id> find_refused_cells(const HexMesh& mesh) {
 
 QualityReport measure_quality(const HexMesh& mesh) {
     return with_mesh_cells(mesh, [](const auto& cells) { return measure(cells); });
+}
+
+Vec3 hex_centre(const std::array<Vec3, 8>& p) {
+    std::array<FaceGeometry, 6> faces;
+    for (int f = 0; f < 6; ++f) faces[f] = detail::quad_geometry(face_of(p, hex_faces[f]));
+    return detail::cell_geometry(faces).centre;
+}
+
+double hex_face_skewness(const std::array<Vec3, 8>& p, int f, const Vec3& centre,
+                         const Vec3* across) {
+    const std::array<Vec3, 4> face = face_of(p, hex_faces[f]);
+    const FaceGeometry g = detail::quad_geometry(face);
+    return across ? detail::face_skewness(face, g, centre, *across)
+                  : detail::boundary_face_skewness(face, g, centre);
+}
+
+std::vector<Id> face_neighbours(const HexMesh& mesh) {
+    return with_mesh_cells(mesh, [](const auto& cells) {
+        std::vector<Id> across(static_cast<size_t>(6 * cells.num_cells()), -1);
+        for (Id c = 0; c < cells.num_cells(); ++c) {
+            const CellView v = cells.cell(c);
+            for (int f = 0; f < 6; ++f)
+                if (v.partner[f] != no_partner) across[6 * c + f] = v.partner[f] / 6;
+        }
+        return across;
+    });
 }
 
 double solver_margin(const std::array<Vec3, 8>& p) {

@@ -19,6 +19,12 @@ struct RankedCell {
 };
 inline constexpr std::size_t worst_cells_listed = 20;
 
+// checkMesh fails a mesh with a face of skewness over this (primitiveMesh::skewThreshold_).
+inline constexpr double max_solver_skewness = 4;
+// checkMesh fails a mesh with a cell of aspect ratio over this (primitiveMesh::aspectThreshold_),
+// though solvers run on such cells: a boundary layer resolved to the wall has them.
+inline constexpr double checkmesh_max_aspect_ratio = 1000;
+
 // The bins the report counts its cells and faces in.
 inline Histogram scaled_jacobian_bins() {
     return Histogram(-1, 1, 20);
@@ -49,10 +55,14 @@ struct QualityReport {
     // turned inside out at its centre, a face warped past its cell's centre), counted as
     // OpenFOAM's checkMesh counts it: face pyramids (each face against the centre of each of
     // its cells) of negative volume, internal faces whose non-orthogonality is 90 degrees or
-    // more, cells of zero or negative volume.
+    // more, cells of zero or negative volume, faces (internal or boundary) of skewness over 4.
     Id negative_pyramids = 0;
     Id faces_over_90_deg = 0;
     Id nonpositive_volumes = 0;
+    Id highly_skewed_faces = 0;
+    // Cells of aspect ratio over checkmesh_max_aspect_ratio: counted (checkMesh fails the mesh
+    // for them), not refused (solvers run on them).
+    Id high_aspect_ratio_cells = 0;
     // The worst_cells_listed cells of lowest scaled Jacobian, ascending (the lower id first
     // among equals); the first is worst_cell.
     std::vector<RankedCell> worst_cells;
@@ -63,10 +73,12 @@ struct QualityReport {
     Histogram non_orthogonality_histogram = non_orthogonality_bins();
     Id internal_faces = 0;
     // No inverted corner tet and none of the above: a grid that checkMesh does not fail for
-    // its cells' shapes (it may still warn about skewness or aspect ratio).
-    bool solver_valid() const {
-        return inverted_corner_tets == 0 && negative_pyramids == 0 && faces_over_90_deg == 0 &&
-               nonpositive_volumes == 0;
+    // its cells' shapes (it may still warn about non-orthogonality over 70 degrees).
+    bool solver_valid() const { return refused_count() == 0 && inverted_corner_tets == 0; }
+    // How many cells and faces fail the checks above (a cell or face may count twice).
+    Id refused_count() const {
+        return inverted_cells + negative_pyramids + faces_over_90_deg + nonpositive_volumes +
+               highly_skewed_faces;
     }
 };
 
@@ -79,9 +91,22 @@ struct QualityReport {
 // <= 0 (a sum of positive pyramids).
 double solver_margin(const std::array<Vec3, 8>& p);
 
+// OpenFOAM's centre of one hex (VTK order): the volume-weighted centre of its face pyramids.
+Vec3 hex_centre(const std::array<Vec3, 8>& p);
+
+// checkMesh's skewness of local face f (hex_faces order) of the hex p (VTK order) of centre
+// `centre` (hex_centre) against the centre of the cell across it, or as a boundary face when
+// `across` is null (the same from either side). Over max_solver_skewness fails the mesh.
+double hex_face_skewness(const std::array<Vec3, 8>& p, int f, const Vec3& centre,
+                         const Vec3* across);
+
+// For each face 6 c + f of the mesh (local face f of cell c, hex_faces order), the cell across
+// it, or -1 on the boundary. Faces are matched by their node ids, as in measure_quality.
+std::vector<Id> face_neighbours(const HexMesh& mesh);
+
 // The cells that fail a check of QualityReport::solver_valid (an inverted corner tet, a face
-// pyramid of negative volume, volume <= 0, a face at 90 degrees or more: both its cells),
-// ascending.
+// pyramid of negative volume, volume <= 0; a face at 90 degrees or more or of skewness over 4:
+// its cells), ascending.
 std::vector<Id> find_refused_cells(const HexMesh& mesh);
 
 // Every metric above over all cells. Faces are matched between cells by their node ids; the

@@ -31,6 +31,8 @@ QualityReport make_report(Id cells, const CellStats& per_cell, const FaceStats& 
     report.max_volume_ratio = per_face.max_volume_ratio;
     report.negative_pyramids = per_cell.negative_pyramids;
     report.faces_over_90_deg = per_face.over_90_deg;
+    report.highly_skewed_faces = per_face.over_skew;
+    report.high_aspect_ratio_cells = per_cell.high_aspect;
     report.nonpositive_volumes = per_cell.nonpositive_volumes;
     report.worst_cells = per_cell.lowest;
     report.scaled_jacobian_histogram = per_cell.sj_histogram;
@@ -42,7 +44,9 @@ QualityReport make_report(Id cells, const CellStats& per_cell, const FaceStats& 
 // The per-cell part of the first pass: aspect ratio, volume, scaled Jacobian, validity.
 void add_cell(CellStats& acc, Id cell, const std::array<FaceGeometry, 6>& faces,
               const CellGeometry& g, const std::array<Vec3, 8>& p) {
-    acc.max_aspect = std::max(acc.max_aspect, detail::cell_aspect_ratio(faces, g.volume));
+    const double aspect = detail::cell_aspect_ratio(faces, g.volume);
+    acc.max_aspect = std::max(acc.max_aspect, aspect);
+    acc.high_aspect += aspect > checkmesh_max_aspect_ratio;
     acc.min_volume = std::min(acc.min_volume, g.volume);
     acc.nonpositive_volumes += !(g.volume >= detail::foam_vsmall);
     // checkMesh's face pyramids: each face (outward area vector, centre) against this cell's
@@ -75,7 +79,7 @@ void add_internal_face(FaceStats& acc, const std::array<Vec3, 4>& p, const FaceG
     const double deg = std::acos(std::clamp(ortho, -1.0, 1.0)) * 180.0 / pi;
     acc.non_orthogonality.add(at_90_deg_or_more(ortho) ? std::max(deg, 90.0)
                                                        : std::min(deg, 89.999));
-    acc.max_skew = std::max(acc.max_skew, detail::face_skewness(p, g, own_cc, nei_cc));
+    acc.add_skewness(detail::face_skewness(p, g, own_cc, nei_cc));
     const double vo = std::abs(own_volume), vn = std::abs(nei_volume);
     const double ratio = std::max(vo, vn) / std::max(std::min(vo, vn), detail::foam_rootvsmall);
     acc.max_volume_ratio = std::max(acc.max_volume_ratio, ratio);

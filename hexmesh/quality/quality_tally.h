@@ -24,6 +24,7 @@ struct CellStats {
     double min_volume = std::numeric_limits<double>::infinity();
     Id inverted_tets = 0, inverted_cells = 0;
     Id negative_pyramids = 0, nonpositive_volumes = 0;
+    Id high_aspect = 0;  // cells over checkmesh_max_aspect_ratio
     Histogram sj_histogram = scaled_jacobian_bins();
     std::vector<RankedCell>
         lowest;  // ascending by (scaled Jacobian, id), at most worst_cells_listed
@@ -57,6 +58,7 @@ struct CellStats {
         inverted_cells += o.inverted_cells;
         negative_pyramids += o.negative_pyramids;
         nonpositive_volumes += o.nonpositive_volumes;
+        high_aspect += o.high_aspect;
     }
 };
 
@@ -66,10 +68,17 @@ struct FaceStats {
     double max_skew = 0;
     double max_volume_ratio = 1;
     Id over_90_deg = 0;  // internal faces whose cosine is at most OpenFOAM's SMALL
+    Id over_skew = 0;    // faces, internal or boundary, over max_solver_skewness
     Histogram non_orthogonality = non_orthogonality_bins();
 
+    // A face's skewness (face_skewness or boundary_face_skewness).
+    void add_skewness(double skew) {
+        max_skew = std::max(max_skew, skew);
+        over_skew += skew > max_solver_skewness;
+    }
     void join(const FaceStats& o) {
         over_90_deg += o.over_90_deg;
+        over_skew += o.over_skew;
         non_orthogonality.join(o.non_orthogonality);
         min_ortho = std::min(min_ortho, o.min_ortho);
         max_skew = std::max(max_skew, o.max_skew);

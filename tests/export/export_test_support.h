@@ -4,7 +4,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 
@@ -66,6 +68,25 @@ inline ToolRun run_tool(const std::string& command) {
 
 inline bool have_tool(const std::string& name) {
     return run_tool("command -v " + name).exit_code == 0;
+}
+
+// The number after `label` in checkMesh's output, or NaN.
+inline double number_after(const std::string& text, const std::string& label) {
+    const auto at = text.find(label);
+    if (at == std::string::npos) return std::nan("");
+    return std::strtod(text.c_str() + at + label.size(), nullptr);
+}
+
+// An OpenFOAM command line, with WM_PROJECT_DIR pointing at Debian's OpenFOAM etc/ folder when
+// the environment has not set it (the package's binaries need it and nothing else).
+inline std::string openfoam_command(const std::string& command) {
+    if (!std::getenv("WM_PROJECT_DIR") && fs::exists("/usr/share/openfoam/etc/controlDict"))
+        return "WM_PROJECT_DIR=/usr/share/openfoam " + command;
+    return command;
+}
+
+inline std::string check_mesh_command(const fs::path& case_dir) {
+    return openfoam_command("checkMesh -case '" + case_dir.string() + "'");
 }
 
 }  // namespace hexmesh::test_export

@@ -6,6 +6,7 @@
 #include "hexmesh/pipeline/mend_cells.h"
 #include "hexmesh/quality/mesh_quality.h"
 #include "surface/analytic.h"
+#include "tests/hand_grids.h"
 
 namespace hexmesh {
 namespace {
@@ -60,6 +61,24 @@ TEST(MendRefusedCells, RefusedCellsOfJitteredBlocksAreMended) {
     }
     EXPECT_GE(grids, 10);
     EXPECT_EQ(mended, grids) << before << " refused cells before, " << after << " after";
+}
+
+// Two cells whose shared face and end faces are skewed past checkMesh's limit (5), every corner
+// positive: the four nodes of the shared face, free, are moved until no face is over 4; the
+// others stay.
+TEST(MendRefusedCells, FacesOfSkewnessOverFourAreMended) {
+    const Sphere body(Vec3(0, 0, 0), 10);  // unused: no node slides
+    BlockGrid grid = test::leaning_cells(2.0);
+    for (Id v = 4; v < 8; ++v) grid.kinds[v] = VertexKind::interior;  // the layer k = 1
+    const MendResult r = mend_refused_cells(grid, body);
+    EXPECT_EQ(r.refused_before, 2);
+    EXPECT_EQ(r.refused_after, 0);
+    const QualityReport q = measure_quality(to_hex_mesh(grid));
+    EXPECT_EQ(q.highly_skewed_faces, 0);
+    EXPECT_LE(q.max_skewness, max_solver_skewness);
+    EXPECT_TRUE(q.solver_valid());
+    const BlockGrid start = test::leaning_cells(2.0);
+    for (Id v : {0, 1, 2, 3, 8, 9, 10, 11}) EXPECT_EQ(grid.points[v], start.points[v]);
 }
 
 }  // namespace

@@ -78,12 +78,19 @@ TEST(QualityReport, WithoutWallTheTableAndJsonAreAsBefore) {
     EXPECT_EQ(table.find("time per phase"), std::string::npos);
     EXPECT_NE(table.find("  negative face pyramids                     0\n"), std::string::npos)
         << table;
-    EXPECT_EQ(lines_of(table).size(), 15u);
+    EXPECT_NE(table.find("  faces of skewness over 4                   0\n"), std::string::npos)
+        << table;
+    EXPECT_NE(table.find("    cells over 1000                          0\n"), std::string::npos)
+        << table;
+    EXPECT_EQ(lines_of(table).size(), 17u);
 
     const auto j = nlohmann::json::parse(quality_json(r));
     EXPECT_EQ(j.at("cells").get<long>(), 4056);
     EXPECT_TRUE(j.at("valid").get<bool>());
     EXPECT_EQ(j.at("faces_over_90_deg").get<long>(), 0);
+    EXPECT_EQ(j.at("highly_skewed_faces").get<long>(), 0);
+    EXPECT_EQ(j.at("high_aspect_ratio_cells").get<long>(), 0);
+    EXPECT_EQ(aspect_ratio_note(r.quality), "");
     EXPECT_DOUBLE_EQ(j.at("length_scale_h").get<double>(), 0.0962);
     EXPECT_FALSE(j.contains("wall"));
     EXPECT_FALSE(j.contains("phases"));

@@ -11,8 +11,10 @@
 #include "hexmesh/core/reference_hex.h"
 #include "hexmesh/quality/block_quality.h"
 #include "hexmesh/quality/cell_quality.h"
+#include "hexmesh/quality/grid_report.h"
 #include "hexmesh/quality/mesh_quality.h"
 #include "hexmesh/quality/validity.h"
+#include "tests/hand_grids.h"
 
 namespace hexmesh {
 namespace {
@@ -290,6 +292,42 @@ TEST(SolverValidity, ACellInsideOutAtItsCentreIsRefusedThoughItsCornersArePositi
         measure_quality(tensor_grid(uniform(2, 1.0), uniform(1, 1.0), uniform(1, 1.0)));
     EXPECT_TRUE(cubes.solver_valid());
     EXPECT_EQ(cubes.negative_pyramids + cubes.faces_over_90_deg + cubes.nonpositive_volumes, 0);
+}
+
+// A face of skewness over 4 (checkMesh fails it) with every cell check passed: the block pass and
+// the unstructured pass count the same faces (the shared one and the two ends, each (2 / 2) / 0.2
+// = 5 skewed), call the grid not valid and refuse both cells; upright, nothing is refused.
+TEST(SolverValidity, FacesOfSkewnessOverFourAreRefusedWithTheirCells) {
+    const BlockGrid grid = test::leaning_cells(2.0);
+    const HexMesh mesh = to_hex_mesh(grid);
+    for (const QualityReport& q : {measure_quality(grid), measure_quality(mesh)}) {
+        EXPECT_EQ(q.inverted_corner_tets + q.negative_pyramids + q.nonpositive_volumes, 0);
+        EXPECT_EQ(q.highly_skewed_faces, 3);
+        EXPECT_NEAR(q.max_skewness, 5.0, 1e-9);
+        EXPECT_FALSE(q.solver_valid());
+    }
+    EXPECT_EQ(find_refused_cells(mesh), (std::vector<Id>{0, 1}));
+    const QualityReport upright = measure_quality(to_hex_mesh(test::leaning_cells(0.0)));
+    EXPECT_EQ(upright.highly_skewed_faces, 0);
+    EXPECT_TRUE(upright.solver_valid());
+    EXPECT_TRUE(find_refused_cells(to_hex_mesh(test::leaning_cells(0.0))).empty());
+}
+
+// A cell 2000 times wider than it is thick: over checkMesh's aspect-ratio limit (1000), counted
+// and noted, but valid for a solver; at 500 it is not counted.
+TEST(SolverValidity, CellsOverTheAspectRatioLimitAreCountedNotRefused) {
+    for (const double thickness : {0.0005, 0.002}) {
+        std::array<Vec3, 8> p = unit_cube();
+        for (Vec3& x : p) x.z() *= thickness;
+        const HexMesh mesh = single_hex(p);
+        const QualityReport q = measure_quality(mesh);
+        const Id over = thickness < 0.001 ? 1 : 0;
+        EXPECT_NEAR(q.max_aspect_ratio, 1 / thickness, 1e-6 / thickness);
+        EXPECT_EQ(q.high_aspect_ratio_cells, over);
+        EXPECT_EQ(aspect_ratio_note(q).empty(), over == 0);
+        EXPECT_TRUE(q.solver_valid());
+        EXPECT_TRUE(find_refused_cells(mesh).empty());
+    }
 }
 
 // solver_margin is positive exactly when the cell alone passes the solver's checks, on random
