@@ -32,9 +32,10 @@ struct Adjacency {
 };
 
 // The cells around a node as a move is judged: how many cells the solver refuses (margin <= 0),
-// then how many of their faces it refuses (skewness over max_solver_skewness), then the smallest
-// margin, a refused face's being (max - skewness) / max. A move may not trade a refused cell for
-// an accepted one that falls, nor a skewed face for a refused cell.
+// then how many of their faces it refuses (skewness over max_solver_skewness; a face between two
+// of these cells counts twice), then the smallest margin, a refused face's being
+// (max - skewness) / max. A move may not trade a refused cell for an accepted one that falls,
+// nor a skewed face for a refused cell.
 struct Score {
     int refused = 0, skewed = 0;
     double lowest = std::numeric_limits<double>::infinity();

@@ -43,9 +43,10 @@ untangle::UntangleResult joint_pass(BlockGrid& grid, const ImplicitFunction& bod
     return r;
 }
 
-// How a grid ranks in the polish: fewer cells a solver refuses (inverted, or failing
-// checkMesh's cell checks), then a higher worst scaled Jacobian, then fewer cells under the
-// polish threshold (the worst cell may be one the polish holds).
+// How a grid ranks in the polish: fewer cells and faces a solver refuses (inverted, or failing
+// checkMesh's cell and face checks: QualityReport::refused_count), then a higher worst scaled
+// Jacobian, then fewer cells under the polish threshold (the worst cell may be one the polish
+// holds).
 struct PolishRank {
     Id refused = 0;
     double min_sj = 0;

@@ -72,8 +72,10 @@ struct QualityReport {
     Histogram scaled_jacobian_histogram = scaled_jacobian_bins();
     Histogram non_orthogonality_histogram = non_orthogonality_bins();
     Id internal_faces = 0;
-    // No inverted corner tet and none of the above: a grid that checkMesh does not fail for
-    // its cells' shapes (it may still warn about non-orthogonality over 70 degrees).
+    // No inverted corner tet and none of the refused checks above: a grid that checkMesh does
+    // not fail for its cells' and faces' shapes, but for cells over its aspect-ratio limit
+    // (high_aspect_ratio_cells, which solvers run on); it may still warn about
+    // non-orthogonality over 70 degrees.
     bool solver_valid() const { return refused_count() == 0 && inverted_corner_tets == 0; }
     // How many cells and faces fail the checks above (a cell or face may count twice).
     Id refused_count() const {
@@ -82,10 +84,11 @@ struct QualityReport {
     }
 };
 
-// How far one hex (VTK order) is from what QualityReport::solver_valid refuses: the smallest
-// of its 8 corner scaled Jacobians and, for each face, the distance of the cell's OpenFOAM
-// centre inside the face's plane (its area vector against face centre - cell centre) over the
-// cell's mean edge length. Positive for every cell of a mesh exactly when no corner tet is
+// How far one hex (VTK order) is from what QualityReport::solver_valid refuses of it alone (not
+// the skewness of its faces, which needs the cells across them): the smallest of its 8 corner
+// scaled Jacobians and, for each face, the distance of the cell's OpenFOAM centre inside the
+// face's plane (its area vector against face centre - cell centre) over the cell's mean edge
+// length. Positive for every cell of a mesh exactly when no corner tet is
 // flat or inverted and no face pyramid has a negative volume, and then no internal face is at
 // 90 degrees or more (the two centres lie on either side of its plane) and no cell's volume is
 // <= 0 (a sum of positive pyramids).
