@@ -48,15 +48,23 @@ struct Score {
 
 Score score_at(const HexMesh& mesh, const Adjacency& around, Id v) {
     Score s;
-    for (auto [c, end] = around.of(v); c != end; ++c) {
+    const auto [first, end] = around.of(v);
+    // The centres of the cells around v, each computed once: a face between two of them
+    // needs both.
+    std::vector<Vec3> centres;
+    for (const Id* c = first; c != end; ++c) centres.push_back(hex_centre(mesh.corners(*c)));
+    for (const Id* c = first; c != end; ++c) {
         const std::array<Vec3, 8> p = mesh.corners(*c);
         const double m = solver_margin(p);
         s.refused += !(m > 0);
         s.lowest = std::min(s.lowest, m);
-        const Vec3 centre = hex_centre(p);
+        const Vec3& centre = centres[size_t(c - first)];
         for (int f = 0; f < 6; ++f) {
             const Id n = around.across[6 * *c + f];
-            const Vec3 other = n >= 0 ? hex_centre(mesh.corners(n)) : Vec3::Zero();
+            const Id* beside = std::find(first, end, n);
+            const Vec3 other = n < 0           ? Vec3::Zero()
+                               : beside != end ? centres[size_t(beside - first)]
+                                               : hex_centre(mesh.corners(n));
             const double skew = hex_face_skewness(p, f, centre, n >= 0 ? &other : nullptr);
             if (skew > max_solver_skewness) {
                 ++s.skewed;

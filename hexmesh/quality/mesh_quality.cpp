@@ -288,10 +288,19 @@ QualityReport measure_quality(const HexMesh& mesh) {
     return with_mesh_cells(mesh, [](const auto& cells) { return measure(cells); });
 }
 
-Vec3 hex_centre(const std::array<Vec3, 8>& p) {
+namespace {
+
+// The 6 faces of the hex p (VTK order) as it sees them: hex_faces order, outward areas.
+std::array<FaceGeometry, 6> hex_face_geometries(const std::array<Vec3, 8>& p) {
     std::array<FaceGeometry, 6> faces;
     for (int f = 0; f < 6; ++f) faces[f] = detail::quad_geometry(face_of(p, hex_faces[f]));
-    return detail::cell_geometry(faces).centre;
+    return faces;
+}
+
+}  // namespace
+
+Vec3 hex_centre(const std::array<Vec3, 8>& p) {
+    return detail::cell_geometry(hex_face_geometries(p)).centre;
 }
 
 double hex_face_skewness(const std::array<Vec3, 8>& p, int f, const Vec3& centre,
@@ -324,8 +333,7 @@ double solver_margin(const std::array<Vec3, 8>& p) {
         const double lengths = a.norm() * b.norm() * d.norm();
         margin = std::min(margin, lengths > 0 ? a.cross(b).dot(d) / lengths : -1.0);
     }
-    std::array<FaceGeometry, 6> faces;
-    for (int f = 0; f < 6; ++f) faces[f] = detail::quad_geometry(face_of(p, hex_faces[f]));
+    const std::array<FaceGeometry, 6> faces = hex_face_geometries(p);
     const CellGeometry cell = detail::cell_geometry(faces);
     for (const FaceGeometry& f : faces) {
         const double area = f.area.norm();
