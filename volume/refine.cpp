@@ -65,13 +65,21 @@ struct WallEnds {
 // Fills the odd entries of a wall-normal line (see refine.h) whose even entries are set: first
 // as interpolate_line does, then each new node is moved along the chord of its coarse cell
 // m (from sample m to m + 1, length L_m) to the fraction the refined law gives, keeping its
-// offset across the chord (the line's curvature). Cell m is split into two cells of ratio
-// rho_m = sqrt(L_m / L_w), L_w the cell next to it on the wall side (for the wall cell,
+// offset across the chord (the line's curvature) up to max_sag L_m. Cell m is split into two cells
+// of ratio rho_m = sqrt(L_m / L_w), L_w the cell next to it on the wall side (for the wall cell,
 // sqrt(L_o / L_m), L_o the cell beyond it): each coarse step from one cell to the next becomes
 // two fine steps of its square root, and the fine cell on the wall side is L_m / (1 + rho_m)
 // long. The ratios do not stop at kinks as the stencils do: a line that turns sharply keeps
 // its spacing, and a ratio that changed there would jump between neighbouring lines. With
 // walls at both ends a cell takes the nearer one (the middle cell of an odd count is halved).
+// The largest offset of a new node from its coarse cell's chord, in chord lengths: that of an
+// arc turning by 45 degrees over the cell, (1/2) tan(45 / 4 degrees) (a line that turns more at
+// a sample is kinked, and its stencils stop there). A stencil in the index across cells of
+// very different lengths overshoots by a share of the long ones: on a line whose boundary
+// layer is a thousand times thinner than the cells beyond (a first height of 1e-7 under a
+// coarse wall), across every thin cell, which crossed its neighbours.
+constexpr double max_sag = 0.09946;
+
 template <class At>
 void interpolate_wall_line(int coarse_count, WallEnds wall, At&& at) {
     const int n = coarse_count;
@@ -97,7 +105,10 @@ void interpolate_wall_line(int coarse_count, WallEnds wall, At&& at) {
         const double chord2 = chord.squaredNorm();
         if (!(chord2 > 0)) continue;
         Vec3& mid = at(2 * m + 1);
-        mid += (f - (mid - sample(m)).dot(chord) / chord2) * chord;
+        Vec3 offset = mid - sample(m) - (mid - sample(m)).dot(chord) / chord2 * chord;
+        const double most = max_sag * std::sqrt(chord2);
+        if (offset.norm() > most) offset *= most / offset.norm();
+        mid = sample(m) + f * chord + offset;
     }
 }
 

@@ -152,6 +152,32 @@ TEST(CliRefine, MissingGridIsOneErrorLine) {
     EXPECT_FALSE(fs::exists(scratch("nothing")));
 }
 
+// Cells over checkMesh's aspect-ratio limit (a first layer far thinner than the wall cells):
+// `run` and `refine` both write the grid (solvers run on it) and say so in one note.
+TEST(CliRefine, NotesCellsOverCheckMeshsAspectRatioLimitAsRunDoes) {
+    const fs::path dir = scratch("thin_layer"), refined = scratch("thin_layer_refined");
+    fs::remove_all(dir);
+    fs::remove_all(refined);
+    std::ofstream(scratch("thin_layer_case.json")) << R"({
+      "geometry": {"sphere": {"center": [0, 0, 0], "radius": 1.0}},
+      "grid": {"cells_per_edge": 8, "wall_cells": 6},
+      "boundary_layer": {"first_height": 1e-7, "growth_ratio": 1.2, "layers": 3},
+      "solver": {"optimize_iterations": 5}
+    })";
+    const CommandResult r = run_hexmesh("run '" + scratch("thin_layer_case.json").string() +
+                                        "' -o '" + dir.string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    const CommandResult f =
+        run_hexmesh("refine '" + (dir / "grid.vtm").string() + "' -o '" + refined.string() + "'");
+    ASSERT_EQ(f.exit_code, 0) << f.out << f.err;
+    for (const CommandResult* c : {&r, &f})
+        EXPECT_NE(c->out.find("cells have an aspect ratio over 1000"), std::string::npos) << c->out;
+    EXPECT_TRUE(fs::exists(refined / "grid.vtm"));
+    fs::remove_all(dir);
+    fs::remove_all(refined);
+    fs::remove(scratch("thin_layer_case.json"));
+}
+
 TEST(CliGci, ReproducesCelikTable1) {
     // Celik et al., J. Fluids Eng. 130 (2008) 078001, Table 1: phi = 6.063, 5.972, 5.863 on
     // N = 18000, 8000, 4500 cells (2D: r21 = 1.5, r32 = 4/3); p = 1.53, phi_ext = 6.1685,

@@ -235,6 +235,28 @@ TEST(RefineGrid, WallNormalLinesKeepTheirCurvature) {
     }
 }
 
+TEST(RefineGrid, ThinLayersUnderLongCellsStayNearTheirChords) {
+    // 3 layers from 1e-7 (ratio 1.2) under cells growing 100-fold (a thin first layer under a
+    // coarse wall), the line an arc of radius 0.2 (it turns by 42 degrees, less than a kink):
+    // each new node within (1/2) tan(45 / 4 degrees) of its coarse cell's chord length from
+    // the chord, at the refined law's fraction of it. The cubic stencil in the index put a new
+    // node a share of the long cells beyond off its chord (3.1e-3 off a chord of 1.4e-3): a
+    // refined sphere with a first height of 1e-7 came out with 1512 inverted cells.
+    const std::vector<double> d = two_ratio_distances(1e-7, 1.2, 3, 100, 3);
+    std::vector<Vec3> line;
+    for (double t : d) line.emplace_back(0.2 * std::cos(t / 0.2), 0.2 * std::sin(t / 0.2), 0);
+    const BlockGrid fine = refine_grid(wall_line_block(line, imin));
+    const Block& f = fine.blocks[0];
+    for (int i = 1; i < f.nodes.ni; i += 2) {
+        const Vec3 a = line[i / 2], chord = line[i / 2 + 1] - a;
+        const Vec3 x = fine.points[f.node(i, 0, 0)] - a;
+        const Vec3 offset = x - x.dot(chord) / chord.squaredNorm() * chord;
+        EXPECT_LE(offset.norm(), 0.0995 * chord.norm()) << i;
+        EXPECT_GT(x.dot(chord), 0) << i;
+        EXPECT_LT(x.dot(chord), chord.squaredNorm()) << i;
+    }
+}
+
 TEST(RefineGrid, LinesTurningAtACreaseStayOnTheirSideOfIt) {
     // A block whose i lines turn by 90 degrees at i = 3 (along x, then along y), like the
     // lines over a box's edge: the new nodes lie on the two straight legs, none overshoots the
