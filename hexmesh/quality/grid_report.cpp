@@ -115,7 +115,7 @@ std::string body_missed(const GridReport& r) {
 }
 
 std::string aspect_ratio_note(const QualityReport& q) {
-    if (q.high_aspect_ratio_cells == 0) return {};
+    if (q.high_aspect_ratio_cells == 0 || !q.solver_valid()) return {};
     return fmt::format(
         "\nnote: {} cells have an aspect ratio over {} (max {:.4g}): OpenFOAM's checkMesh fails "
         "its aspect-ratio check for them (\"High aspect ratio cells found\"), solvers run on "

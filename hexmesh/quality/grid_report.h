@@ -55,7 +55,9 @@ std::string body_missed(const GridReport& report);
 std::string body_missed_warning(const GridReport& report, const std::string& prefix = "");
 
 // A note ("\nnote: ...", ending in a newline) when cells of `q` are over checkMesh's aspect-ratio
-// limit, which fails checkMesh but not a solver; empty otherwise.
+// limit, which fails checkMesh but not a solver; empty otherwise, and for a grid a solver
+// refuses (a cell of volume <= 0 counts as over the limit, as in checkMesh, and the note would
+// say that solvers run on it).
 std::string aspect_ratio_note(const QualityReport& q);
 
 // Aligned "name  value" lines, one per metric, ending in a newline: every first value ends

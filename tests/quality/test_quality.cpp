@@ -328,6 +328,14 @@ TEST(SolverValidity, CellsOverTheAspectRatioLimitAreCountedNotRefused) {
         EXPECT_TRUE(q.solver_valid());
         EXPECT_TRUE(find_refused_cells(mesh).empty());
     }
+    // A flat cell (volume 0) is over the limit too, as in checkMesh, but refused: no note that
+    // solvers run on it.
+    std::array<Vec3, 8> flat = unit_cube();
+    for (Vec3& x : flat) x.z() = 0;
+    const QualityReport q = measure_quality(single_hex(flat));
+    EXPECT_GE(q.high_aspect_ratio_cells, 1);
+    EXPECT_FALSE(q.solver_valid());
+    EXPECT_EQ(aspect_ratio_note(q), "");
 }
 
 // solver_margin is positive exactly when the cell alone passes the solver's checks, on random
