@@ -12,6 +12,7 @@
 #include "hexmesh/core/bytes.h"
 #include "hexmesh/core/memory_limit.h"
 #include "hexmesh/pipeline/make_body.h"
+#include "hexmesh/pipeline/measure.h"
 #include "hexmesh/pipeline/phase_timer.h"
 #include "hexmesh/pipeline/ranks.h"
 #include "hexmesh/pipeline/refine.h"
@@ -149,7 +150,7 @@ void refuse_idle_processors(const std::vector<std::string>& formats, int process
 }
 
 // At rank 0, every measure merged: the level's report, its log line and table; throws when
-// the level has inverted cells (nothing is written then).
+// the level has cells a solver refuses (QualityReport::solver_valid; nothing is written then).
 GridReport report_level(const GridMeter& meter, const LastLevel& level,
                         const std::string& grid_path, PhaseTimer& timer, std::ostream& log) {
     GridReport report = meter.report();
@@ -160,11 +161,9 @@ GridReport report_level(const GridMeter& meter, const LastLevel& level,
                            report.quality.cells, level.stats.projected, level.stats.max_projection,
                            seconds[0], seconds[1], seconds[2]));
     log << "\n" << format_quality_table(report) << "\n";
-    if (report.quality.inverted_cells > 0)
-        throw std::runtime_error(
-            fmt::format("{}: the refined grid has {} inverted cells; "
-                        "nothing written",
-                        grid_path, report.quality.inverted_cells));
+    if (!report.quality.solver_valid())
+        throw std::runtime_error(fmt::format("{}: the refined grid has {}; nothing written",
+                                             grid_path, invalid_cells(report.quality)));
     return report;
 }
 
@@ -245,8 +244,8 @@ RefineFileResult refine_grid_file(const std::string& grid_path, const Case& c,
                                   rank == 0 ? log : rank_lines);
     });
     gather_measures(*meter, pictures, level, rank_lines.str(), log);
-    // Rank 0 has every measure now: the report, and the refusal of an inverted level before
-    // any other format is written.
+    // Rank 0 has every measure now: the report, and the refusal of a level a solver refuses
+    // before any other format is written.
     RefineFileResult result;
     ranks::together([&] {
         if (rank == 0) result.report = report_level(*meter, level, grid_path, timer, log);
