@@ -48,6 +48,18 @@ bool add_shaped_hex(untangle::Problem& p, const std::vector<Vec3>& target_points
 
 }  // namespace
 
+bool GridProblem::inverted_all_touch(const std::vector<Vec3>& x,
+                                     const std::vector<bool>& marked) const {
+    for (Id e = 0; e < problem.num_elements(); ++e) {
+        if (problem.det(x, e) > 0) continue;
+        const auto element = problem.element(e);
+        if (std::none_of(element.begin(), element.end(),
+                         [&](Id v) { return bool(marked[grid_id(v)]); }))
+            return false;
+    }
+    return true;
+}
+
 GridProblem corner_tet_problem(const BlockGrid& grid, const std::vector<Vec3>& target_points,
                                const ImplicitFunction& body, const std::vector<bool>& held,
                                const std::vector<bool>& shaped) {

@@ -29,6 +29,9 @@ struct GridProblem {
         else
             for (size_t i = 0; i < nodes.size(); ++i) points[nodes[i]] = problem.points[i];
     }
+    // Whether every element inverted at `x` (the problem's points) has a node `marked` (by
+    // grid id): e.g. all at the wall and its layers, which a later pass can free.
+    bool inverted_all_touch(const std::vector<Vec3>& x, const std::vector<bool>& marked) const;
 };
 
 // The problem of the cells that have a node not `held` (empty: every cell), each cell's 8

@@ -23,9 +23,10 @@ bool inverted_away_from_layers(const BlockGrid& grid, int layers);
 // around both optimized again towards the targets of `initial` (the grid as given; `shaped`
 // as in corner_tet_problem), the rest held. Lines whose laid cells cross are given back to the
 // joint result first; when the pass still leaves inverted cells, or cells under half the
-// joint result's worst scaled Jacobian, the lines through them are given back too and it runs
-// once more; then the better valid result is kept, else the joint one. Fills result's
-// layers_held, layers_laid, layers_blocked, lines_given_back and laid_nodes.
+// joint result's worst scaled Jacobian (the first run ending at its untangling's first stall
+// when every element still inverted has a laid node), the lines through them are given back
+// too and it runs once more; then the better valid result is kept, else the joint one. Fills
+// result's layers_held, layers_laid, layers_blocked, lines_given_back and laid_nodes.
 void lay_boundary_layer(BlockGrid& grid, const ImplicitFunction& body,
                         const GridOptimizationOptions& options, const std::vector<Vec3>& initial,
                         const std::vector<bool>& shaped, GridOptimizationResult& result);

@@ -27,15 +27,7 @@ untangle::UntangleResult joint_pass(BlockGrid& grid, const ImplicitFunction& bod
     if (options.wall_layers.layers > 0) {
         joint.leave_to_next_pass = [&g, near = wall_layer_nodes(grid, options.wall_layers.layers)](
                                        const std::vector<Vec3>& x) {
-            const untangle::Problem& p = g.problem;
-            for (Id e = 0; e < p.num_elements(); ++e) {
-                if (p.det(x, e) > 0) continue;
-                const auto nodes = p.element(e);
-                if (std::none_of(nodes.begin(), nodes.end(),
-                                 [&](Id v) { return bool(near[g.grid_id(v)]); }))
-                    return false;
-            }
-            return true;
+            return g.inverted_all_touch(x, near);
         };
     }
     const untangle::UntangleResult r = untangle::untangle_and_optimize(g.problem, joint);
