@@ -32,8 +32,8 @@ struct Adjacency {
 };
 
 // The cells around a node as a move is judged: how many cells the solver refuses (margin <= 0),
-// then how many of their faces it refuses (skewness over max_solver_skewness; a face between two
-// of these cells counts twice), then the smallest margin, a refused face's being
+// then how many of their faces it refuses (skewness over max_solver_skewness; each face once,
+// also between two of these cells), then the smallest margin, a refused face's being
 // (max - skewness) / max. A move may not trade a refused cell for an accepted one that falls,
 // nor a skewed face for a refused cell.
 struct Score {
@@ -62,6 +62,7 @@ Score score_at(const HexMesh& mesh, const Adjacency& around, Id v) {
         for (int f = 0; f < 6; ++f) {
             const Id n = around.across[6 * *c + f];
             const Id* beside = std::find(first, end, n);
+            if (beside != end && n < *c) continue;  // a face between two of them: counted once
             const Vec3 other = n < 0           ? Vec3::Zero()
                                : beside != end ? centres[size_t(beside - first)]
                                                : hex_centre(mesh.corners(n));
