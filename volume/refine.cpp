@@ -62,6 +62,15 @@ struct WallEnds {
     bool first = false, last = false;
 };
 
+// The largest offset of a new node from its coarse cell's chord, in chord lengths: that of an
+// arc turning by 45 degrees over the cell, (1/2) tan(45 / 4 degrees), the turn at which a line
+// is kinked at a sample and its stencils stop (a cell turning more than that between samples
+// that are not kinked, a long cell beside short ones, is flattened to it). A stencil in the
+// index across cells of very different lengths overshoots by a share of the long ones: next
+// to a boundary layer 10^5 times thinner than the cells beyond (a first height of 1e-7 under
+// a coarse wall), up to 3e-3 off a chord of 1.4e-3, and the refined cells crossed.
+constexpr double max_sag = 0.09946;
+
 // Fills the odd entries of a wall-normal line (see refine.h) whose even entries are set: first
 // as interpolate_line does, then each new node is moved along the chord of its coarse cell
 // m (from sample m to m + 1, length L_m) to the fraction the refined law gives, keeping its
@@ -72,14 +81,6 @@ struct WallEnds {
 // long. The ratios do not stop at kinks as the stencils do: a line that turns sharply keeps
 // its spacing, and a ratio that changed there would jump between neighbouring lines. With
 // walls at both ends a cell takes the nearer one (the middle cell of an odd count is halved).
-// The largest offset of a new node from its coarse cell's chord, in chord lengths: that of an
-// arc turning by 45 degrees over the cell, (1/2) tan(45 / 4 degrees) (a line that turns more at
-// a sample is kinked, and its stencils stop there). A stencil in the index across cells of
-// very different lengths overshoots by a share of the long ones: on a line whose boundary
-// layer is a thousand times thinner than the cells beyond (a first height of 1e-7 under a
-// coarse wall), across every thin cell, which crossed its neighbours.
-constexpr double max_sag = 0.09946;
-
 template <class At>
 void interpolate_wall_line(int coarse_count, WallEnds wall, At&& at) {
     const int n = coarse_count;
@@ -103,8 +104,11 @@ void interpolate_wall_line(int coarse_count, WallEnds wall, At&& at) {
         const double f = from_last ? rho / (1 + rho) : 1 / (1 + rho);  // of the chord from m
         const Vec3 chord = sample(m + 1) - sample(m);
         const double chord2 = chord.squaredNorm();
-        if (!(chord2 > 0)) continue;
         Vec3& mid = at(2 * m + 1);
+        if (!(chord2 > 0)) {  // a cell of zero length: its new node with its two samples
+            mid = sample(m);
+            continue;
+        }
         Vec3 offset = mid - sample(m) - (mid - sample(m)).dot(chord) / chord2 * chord;
         const double most = max_sag * std::sqrt(chord2);
         if (offset.norm() > most) offset *= most / offset.norm();

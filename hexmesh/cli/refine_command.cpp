@@ -85,7 +85,7 @@ void add_refine_command(CLI::App& app, int& exit_code) {
         // As in run: a refined grid whose wall misses part of the body is written with a
         // warning, and cells over checkMesh's aspect-ratio limit get a note.
         const std::string warning = ranks::rank() == 0 ? body_missed_warning(result.report) : "";
-        out << warning << aspect_ratio_note(result.report.quality);
+        out << warning << (ranks::rank() == 0 ? aspect_ratio_note(result.report.quality) : "");
         exit_code = warning.empty() ? 0 : 3;
     });
 }

@@ -247,13 +247,18 @@ TEST(RefineGrid, ThinLayersUnderLongCellsStayNearTheirChords) {
     for (double t : d) line.emplace_back(0.2 * std::cos(t / 0.2), 0.2 * std::sin(t / 0.2), 0);
     const BlockGrid fine = refine_grid(wall_line_block(line, imin));
     const Block& f = fine.blocks[0];
+    const auto length = [&](size_t m) { return (line[m + 1] - line[m]).norm(); };
     for (int i = 1; i < f.nodes.ni; i += 2) {
-        const Vec3 a = line[i / 2], chord = line[i / 2 + 1] - a;
+        const size_t m = size_t(i / 2);
+        const Vec3 a = line[m], chord = line[m + 1] - a;
         const Vec3 x = fine.points[f.node(i, 0, 0)] - a;
         const Vec3 offset = x - x.dot(chord) / chord.squaredNorm() * chord;
         EXPECT_LE(offset.norm(), 0.0995 * chord.norm()) << i;
-        EXPECT_GT(x.dot(chord), 0) << i;
-        EXPECT_LT(x.dot(chord), chord.squaredNorm()) << i;
+        // The law's fraction 1 / (1 + rho), rho = sqrt(L_m / L_(m-1)) (sqrt(L_1 / L_0) at the
+        // wall).
+        const double rho =
+            m > 0 ? std::sqrt(length(m) / length(m - 1)) : std::sqrt(length(1) / length(0));
+        EXPECT_NEAR(x.dot(chord) / chord.squaredNorm(), 1 / (1 + rho), 1e-9) << i;
     }
 }
 
