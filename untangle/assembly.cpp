@@ -36,6 +36,18 @@ constexpr std::array<std::array<int, 8>, 8> hex_pair_index = [] {
     return index;
 }();
 
+// The factor that turns a volume element's energy (and its derivatives) of weight w into that
+// of weight `unit` when p.equal_weights; 1 otherwise. Surface triangles keep their weights.
+double weight_factor(double w, double unit, const EnergyParams& p) {
+    return p.equal_weights && w > 0 ? unit / w : 1.0;
+}
+constexpr double tet_unit = 1.0 / 6;
+
+// The factor for a hex's 8 corner tets together: each weighs edges.prod() / 6.
+double hex_weight_factor(const Vec3& edges, const EnergyParams& p) {
+    return weight_factor(edges.prod(), 1.0, p);
+}
+
 }  // namespace
 
 Assembly::Assembly(const Problem& problem, Id chunk_elements) : problem_(problem) {
@@ -170,10 +182,15 @@ double Assembly::energy(const std::vector<Vec3>& x, const EnergyParams& p) const
     const std::vector<Vec3> normals = triangle_normals(x);
     return deterministic_sum(
         size_t(hexes + tets) + problem_.triangles.size(), grain, [&](size_t u) {
-            if (Id(u) < hexes) return hex_energy(hex_corners(x, Id(u)), problem_.hex_edges[u], p);
-            if (Id(u) < hexes + tets)
-                return tet_energy(Problem::corners(x, problem_.tets[u - hexes]),
-                                  problem_.targets[u - hexes], p);
+            if (Id(u) < hexes) {
+                const Vec3& edges = problem_.hex_edges[u];
+                return hex_weight_factor(edges, p) * hex_energy(hex_corners(x, Id(u)), edges, p);
+            }
+            if (Id(u) < hexes + tets) {
+                const TetTarget& t = problem_.targets[u - hexes];
+                return weight_factor(t.weight, tet_unit, p) *
+                       tet_energy(Problem::corners(x, problem_.tets[u - hexes]), t, p);
+            }
             const Id r = Id(u) - hexes - tets;
             return triangle_energy(Problem::corners(x, problem_.triangles[r]), normals[r],
                                    problem_.triangle_targets[r], p);
@@ -225,9 +242,13 @@ double Assembly::assemble_hessian(const std::vector<Vec3>& x, const EnergyParams
         [&](Id h) {
             Mat38 gh;
             HexHessian hh;
-            const double value =
-                hex_energy_hessian(hex_corners(x, h), problem_.hex_edges[h], p, gh, hh);
+            const Vec3& edges = problem_.hex_edges[h];
+            double value = hex_energy_hessian(hex_corners(x, h), edges, p, gh, hh);
             if (!std::isfinite(value)) return value;
+            if (const double f = hex_weight_factor(edges, p); f != 1) {
+                value *= f, gh *= f;
+                for (const auto& [a, b] : hex_hessian_pairs) hh.block[a][b] *= f;
+            }
             for (int a = 0; a < 8; ++a) g[problem_.hexes[h][a]] += gh.col(a);
             scatter_hex(h, hh);
             return value;
@@ -236,9 +257,11 @@ double Assembly::assemble_hessian(const std::vector<Vec3>& x, const EnergyParams
             const std::array<Id, 4> t = problem_.element(e).id;
             Mat34 ge;
             Mat12 he;
-            const double value =
-                tet_energy_hessian(Problem::corners(x, t), problem_.target(e), p, ge, he);
+            const TetTarget target = problem_.target(e);
+            double value = tet_energy_hessian(Problem::corners(x, t), target, p, ge, he);
             if (!std::isfinite(value)) return value;
+            if (const double f = weight_factor(target.weight, tet_unit, p); f != 1)
+                value *= f, ge *= f, he *= f;
             for (int a = 0; a < 4; ++a) g[t[a]] += ge.col(a);
             scatter_tet(e, t, he);
             return value;
@@ -306,19 +329,22 @@ double Assembly::gradient(const std::vector<Vec3>& x, const EnergyParams& p,
     return sum_by_colour_elements(
         [&](Id h) {
             Mat38 gh;
-            const double value = hex_energy(hex_corners(x, h), problem_.hex_edges[h], p, &gh);
-            if (std::isfinite(value))
-                for (int a = 0; a < 8; ++a) g[problem_.hexes[h][a]] += gh.col(a);
-            return value;
+            const Vec3& edges = problem_.hex_edges[h];
+            const double value = hex_energy(hex_corners(x, h), edges, p, &gh);
+            if (!std::isfinite(value)) return value;
+            const double f = hex_weight_factor(edges, p);
+            for (int a = 0; a < 8; ++a) g[problem_.hexes[h][a]] += f * gh.col(a);
+            return f * value;
         },
         [&](Id e) {
             const std::array<Id, 4> t = problem_.element(e).id;
             Mat34 ge;
-            const double value =
-                tet_energy_gradient(Problem::corners(x, t), problem_.target(e), p, ge);
-            if (std::isfinite(value))
-                for (int a = 0; a < 4; ++a) g[t[a]] += ge.col(a);
-            return value;
+            const TetTarget target = problem_.target(e);
+            const double value = tet_energy_gradient(Problem::corners(x, t), target, p, ge);
+            if (!std::isfinite(value)) return value;
+            const double f = weight_factor(target.weight, tet_unit, p);
+            for (int a = 0; a < 4; ++a) g[t[a]] += f * ge.col(a);
+            return f * value;
         },
         [&](Id r) {
             const std::array<Id, 3>& t = problem_.triangles[r];

@@ -30,6 +30,8 @@ class Assembly {
     explicit Assembly(const Problem& problem, Id chunk_elements = 256);
 
     ElementStats stats(const std::vector<Vec3>& x) const;
+    // Every sum below weighs each element by its target's volume (area), or each tet by a
+    // unit target's when p.equal_weights.
     // F(x); +infinity when eps = 0 and an element is inverted.
     double energy(const std::vector<Vec3>& x, const EnergyParams& p) const;
     // F(x) and its gradient (#V vectors).

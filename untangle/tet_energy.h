@@ -33,6 +33,10 @@ inline constexpr double default_theta = 0.8;
 struct EnergyParams {
     double theta = default_theta;
     double eps = 0;
+    // Every tet (plain or a hex's corner) weighs as a unit target, w = 1/6, instead of its
+    // target's volume; surface triangles keep their area. Applied by Assembly, not by the
+    // kernels below, which always return w phi with the target's own w.
+    bool equal_weights = false;
 };
 
 // det S of the element with vertices y (columns), S = Q H^-1.

@@ -95,7 +95,7 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
     FirstIteration once;
     bool back_to_start = false;
     for (int it = first; it < first + options.max_untangle_iterations && !done(stats); ++it) {
-        const EnergyParams p{options.untangle_theta, eps};
+        const EnergyParams p{options.untangle_theta, eps, options.equal_weights};
         const bool take = options.reuse_repeats && back_to_start && once.kept();
         if (take)
             log_note(options.log,

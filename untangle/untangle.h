@@ -27,6 +27,11 @@ struct UntangleOptions {
     SolverOptions optimize_solver = loose_solve();
     double theta = default_theta;  // volume weight while optimizing (untangle/tet_energy.h)
     double untangle_theta = 0.1;   // volume weight while untangling: shape first is more robust
+    // While untangling (eps > 0), every tet weighs the same (EnergyParams::equal_weights)
+    // instead of its target's volume. The barrier optimization always weighs by volume (the
+    // functional as published). `run` sets it for exterior grids
+    // (docs/architecture.md#the-functional).
+    bool equal_weights = false;
     int max_untangle_iterations = 200;  // outer iterations (eps updates)
     int stall_iterations = 40;          // stop untangling after this many without progress
     // Untangling also stops when the inverted count has not fallen for longer than this share

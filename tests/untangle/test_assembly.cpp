@@ -37,10 +37,11 @@ namespace {
 // The assembled energy, gradient and Hessian against serial sums over the elements: the
 // Hessian holds exactly the blocks (a, b), a <= b, of the summed element Hessians; its
 // products (whole, one coordinate, and without a matrix) are those of the whole matrix.
-void expect_assembly_matches_serial_sums(const Problem& p, const Assembly& a) {
+// With params.equal_weights each tet's terms are scaled to those of a unit weight (1/6).
+void expect_assembly_matches_serial_sums(const Problem& p, const Assembly& a,
+                                         const EnergyParams params = {0.8, 0.1}) {
     BlockMatrix h = a.empty_hessian();
     std::vector<Vec3> g;
-    const EnergyParams params{0.8, 0.1};
     const double f = a.hessian(p.points, params, g, h);
     // Chunks of one colour share no vertex: no update is lost, the sums are the serial ones.
     double serial_f = 0;
@@ -61,9 +62,10 @@ void expect_assembly_matches_serial_sums(const Problem& p, const Assembly& a) {
         } else {
             Mat34 gt;
             Mat12 ht;
-            serial_f +=
-                tet_energy_hessian(Problem::corners(p.points, t.id), p.target(e), params, gt, ht);
-            ge = gt, he = ht;
+            const double scale = params.equal_weights ? (1.0 / 6) / p.target(e).weight : 1.0;
+            serial_f += scale * tet_energy_hessian(Problem::corners(p.points, t.id), p.target(e),
+                                                   params, gt, ht);
+            ge = scale * gt, he = scale * ht;
         }
         for (int c = 0; c < t.size; ++c) serial_g[t[c]] += ge.col(c);
         for (int c = 0; c < t.size; ++c)
@@ -97,12 +99,17 @@ void expect_assembly_matches_serial_sums(const Problem& p, const Assembly& a) {
     EXPECT_EQ(size_t(2 * stored - h.rows()), serial_h.size());
     std::vector<Vec3> v(p.points.size()), hv, hv_free, want(p.points.size(), Vec3::Zero());
     for (size_t i = 0; i < v.size(); ++i) v[i] = Vec3(std::sin(i), std::cos(3.0 * i), 0.5);
-    for (const auto& [ab, block] : serial_h) want[ab.first] += block * v[ab.second];
+    // Rounding is relative to the size of the terms summed (which may cancel), not of the sum.
+    std::vector<double> terms(p.points.size(), 0.0);
+    for (const auto& [ab, block] : serial_h) {
+        want[ab.first] += block * v[ab.second];
+        terms[ab.first] += magnitude.at(ab) * v[ab.second].norm();
+    }
     h.multiply(v, hv);
     a.hessian_product(p.points, params, v, hv_free);
     for (size_t i = 0; i < v.size(); ++i) {
         EXPECT_LT((hv[i] - want[i]).norm(), 1e-5 * (1 + want[i].norm()));
-        EXPECT_LT((hv_free[i] - want[i]).norm(), 1e-9 * (1 + want[i].norm()));
+        EXPECT_LT((hv_free[i] - want[i]).norm(), 1e-9 * (1 + want[i].norm() + terms[i]));
     }
     std::vector<Vec3> hv_y, want_y(p.points.size(), Vec3::Zero());
     for (const auto& [ab, block] : serial_h) want_y[ab.first][1] += block(1, 1) * v[ab.second][1];
@@ -147,6 +154,39 @@ TEST(Assembly, HexesSplitBetweenChunksPlainTetsAndCoincidingNodesAssembleAlike) 
     }
     const Assembly a(q, 12);
     expect_assembly_matches_serial_sums(q, a);
+}
+
+TEST(Assembly, EqualWeightsScaleEveryTetToAUnitTarget) {
+    // Hexes of box targets from 0.01 to 2.4 across (split between chunks or not) and plain
+    // tets: with equal weights every sum is that of the tets weighed 1/6 each.
+    Problem p = test_support::displaced_grid_problem(4, 0.3, 5);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> size(0.01, 2.4);
+    for (Vec3& e : p.hex_edges) e = Vec3(size(rng), size(rng), size(rng));
+    for (size_t h = 0; h < 20; h += 3) {
+        const auto& n = p.hexes[h];
+        p.tets.push_back({n[0], n[1], n[3], n[4]});
+        p.targets.push_back(regular_tet_target(0.05 * double(h + 1)));
+    }
+    const EnergyParams equal{0.8, 0.1, true};
+    expect_assembly_matches_serial_sums(p, Assembly(p, 12), equal);
+    expect_assembly_matches_serial_sums(p, Assembly(p), equal);
+    // A hex and the same hex 1000 times smaller (target and nodes): the same energy with equal
+    // weights, 1e9 times less by volume.
+    Problem big, small;
+    big.points = test_support::displaced_grid_problem(1, 0, 1).points;
+    big.kinds.assign(big.points.size(), VertexKind::interior);
+    big.points[6] += Vec3(-0.9, -0.8, -1.3);  // inverted corners
+    big.add_hex({0, 1, 3, 2, 4, 5, 7, 6}, Vec3(1, 1, 1));
+    small = big;
+    for (Vec3& x : small.points) x *= 1e-3;
+    small.hex_edges[0] *= 1e-3;
+    const double e_big = Assembly(big).energy(big.points, equal);
+    EXPECT_NEAR(Assembly(small).energy(small.points, equal), e_big, 1e-9 * e_big);
+    const EnergyParams by_volume{0.8, 0.1};
+    EXPECT_NEAR(Assembly(small).energy(small.points, by_volume),
+                1e-9 * Assembly(big).energy(big.points, by_volume), 1e-18 * e_big);
+    EXPECT_GT(Assembly(big).stats(big.points).inverted, 0);
 }
 
 TEST(Assembly, SurfaceTrianglesAssembleLikeTheSerialSumsAndCountInTheStats) {
