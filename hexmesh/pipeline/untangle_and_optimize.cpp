@@ -18,7 +18,7 @@ namespace {
 // The joint untangling and optimization of the whole grid (see optimize_grid). With layers,
 // inverted elements all at the wall or its layers are left to the layer pass, which lays the
 // layers again and frees them in seconds where the continuation's restarts and last resorts
-// took minutes (the tripod outside: 1 element, 110 s).
+// took minutes (the bull outside: 2 elements, freed by the layer pass).
 untangle::UntangleResult joint_pass(BlockGrid& grid, const ImplicitFunction& body,
                                     const GridOptimizationOptions& options,
                                     const std::vector<bool>& shaped) {
@@ -166,7 +166,7 @@ GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& bo
     result.solve = joint_pass(grid, body, options, shaped);
     // Laying the layers again moves the wall's layer nodes and optimizes the cells around them
     // and around the poor ones: it can free inverted elements the joint pass left at the wall
-    // (the tripod outside). On every run measured it freed none that the joint pass left away
+    // (the bull outside). On every run measured it freed none that the joint pass left away
     // from the wall and its layers, and took up to minutes there (bench/RESULTS.md): skipped.
     result.layers_skipped =
         layers > 0 && result.solve.inverted_after > 0 && inverted_away_from_layers(grid, layers);
@@ -237,6 +237,9 @@ void untangle_and_optimize(Job& job) {
     o.untangle = job.solver_options();
     o.wall_layers = wall_layers(c);
     o.keep_crease_shapes = c.domain == Domain::exterior;  // its lines leave creases mitred
+    // Outside, the far field's cells are up to 1e7 times the first layer's: weighed by volume,
+    // the wall's inversions would hardly count while untangling (joint pass and layer pass).
+    o.untangle.equal_weights = c.domain == Domain::exterior;
     const GridOptimizationResult r = optimize_grid(job.grid(), *job.body, o);
     job.log << untangle::format_untangle_summary(r.solve);
     log_layer_pass(r, o.wall_layers.layers, job.log);

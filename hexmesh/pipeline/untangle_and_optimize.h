@@ -19,7 +19,7 @@ struct GridOptimizationOptions {
     // and the grid around them (relax_rings) is optimized once more, wall and layers held (kept
     // only if every cell is then valid). Also when the joint optimization left inverted
     // elements, all at the wall or its layers: the layers laid along the normals can free them
-    // (the tripod outside: 1 left by the joint pass, none after this one), so the joint pass
+    // (the bull outside: 2 left by the joint pass, none after this one), so the joint pass
     // leaves such elements to it when its untangling first stalls, instead of going on by the
     // safe rule and trying its last resorts (UntangleOptions::leave_to_next_pass). Not when one
     // lies away from them (GridOptimizationResult::layers_skipped): on every run measured that pass

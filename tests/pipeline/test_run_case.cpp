@@ -208,7 +208,7 @@ GridOptimizationOptions short_options(const Case& c) {
 // neighbour) is not followed by the pass that lays the boundary layer again: that pass holds
 // more, and the run is refused all the same. The same grid without the fold gets its layers
 // laid. (Inverted elements at the wall, which the laid layers can free, are tried: the
-// tripod outside, tests/e2e.)
+// bull outside, tests/e2e.)
 TEST(RunCase, LayersAreNotLaidAgainOnAGridTheJointOptimizationLeftInvertedAwayFromThem) {
     const Case c = layered_ellipsoid();
     const Body body = make_body(c.geometry);
