@@ -36,16 +36,15 @@ constexpr std::array<std::array<int, 8>, 8> hex_pair_index = [] {
     return index;
 }();
 
-// The factor that turns a volume element's energy (and its derivatives) of weight w into that
-// of weight `unit` when p.equal_weights; 1 otherwise. Surface triangles keep their weights.
-double weight_factor(double w, double unit, const EnergyParams& p) {
-    return p.equal_weights && w > 0 ? unit / w : 1.0;
+// The factor that turns the energy (and its derivatives) of a tet of weight w into that of a
+// unit target's, 1/6, when p.equal_weights; 1 otherwise. A hex's 8 corner tets each weigh
+// edges.prod() / 6. Surface triangles keep their weights.
+double weight_factor(double w, const EnergyParams& p) {
+    return p.equal_weights && w > 0 ? (1.0 / 6) / w : 1.0;
 }
-constexpr double tet_unit = 1.0 / 6;
-
-// The factor for a hex's 8 corner tets together: each weighs edges.prod() / 6.
 double hex_weight_factor(const Vec3& edges, const EnergyParams& p) {
-    return weight_factor(edges.prod(), 1.0, p);
+    const double volume = edges.prod();  // (1/6) / (volume / 6)
+    return p.equal_weights && volume > 0 ? 1.0 / volume : 1.0;
 }
 
 }  // namespace
@@ -188,7 +187,7 @@ double Assembly::energy(const std::vector<Vec3>& x, const EnergyParams& p) const
             }
             if (Id(u) < hexes + tets) {
                 const TetTarget& t = problem_.targets[u - hexes];
-                return weight_factor(t.weight, tet_unit, p) *
+                return weight_factor(t.weight, p) *
                        tet_energy(Problem::corners(x, problem_.tets[u - hexes]), t, p);
             }
             const Id r = Id(u) - hexes - tets;
@@ -260,7 +259,7 @@ double Assembly::assemble_hessian(const std::vector<Vec3>& x, const EnergyParams
             const TetTarget target = problem_.target(e);
             double value = tet_energy_hessian(Problem::corners(x, t), target, p, ge, he);
             if (!std::isfinite(value)) return value;
-            if (const double f = weight_factor(target.weight, tet_unit, p); f != 1)
+            if (const double f = weight_factor(target.weight, p); f != 1)
                 value *= f, ge *= f, he *= f;
             for (int a = 0; a < 4; ++a) g[t[a]] += ge.col(a);
             scatter_tet(e, t, he);
@@ -342,7 +341,7 @@ double Assembly::gradient(const std::vector<Vec3>& x, const EnergyParams& p,
             const TetTarget target = problem_.target(e);
             const double value = tet_energy_gradient(Problem::corners(x, t), target, p, ge);
             if (!std::isfinite(value)) return value;
-            const double f = weight_factor(target.weight, tet_unit, p);
+            const double f = weight_factor(target.weight, p);
             for (int a = 0; a < 4; ++a) g[t[a]] += f * ge.col(a);
             return f * value;
         },
