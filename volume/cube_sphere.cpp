@@ -27,6 +27,20 @@ CubeSurfaceLattice make_cube_surface_lattice(int n) {
     return s;
 }
 
+std::vector<std::array<Id, 4>> cube_surface_quads(const CubeSurfaceLattice& lattice) {
+    const int n = lattice.n;
+    std::vector<std::array<Id, 4>> quads;
+    quads.reserve(6 * size_t(n) * n);
+    for (const CubePatch& patch : cube_patches)
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i)
+                quads.push_back({lattice.number_of(lattice.patch_point(patch, i, j)),
+                                 lattice.number_of(lattice.patch_point(patch, i + 1, j)),
+                                 lattice.number_of(lattice.patch_point(patch, i + 1, j + 1)),
+                                 lattice.number_of(lattice.patch_point(patch, i, j + 1))});
+    return quads;
+}
+
 Vec3 equiangular(const LatticePoint& p, int n) {
     constexpr double pi = 3.14159265358979323846;
     Vec3 t;

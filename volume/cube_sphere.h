@@ -46,6 +46,10 @@ struct CubeSurfaceLattice {
 
 CubeSurfaceLattice make_cube_surface_lattice(int n);
 
+// The lattice's 6 n^2 quads by surface number, patch by patch, j then i: nodes (i, j),
+// (i + 1, j), (i + 1, j + 1), (i, j + 1), counter-clockwise seen from outside the cube.
+std::vector<std::array<Id, 4>> cube_surface_quads(const CubeSurfaceLattice& lattice);
+
 // The cube coordinates t in [-1, 1]^3 of a lattice point, equiangular: t[d] = tan(pi/4
 // (2 p[d]/n - 1)). Rays through the points of one patch are evenly spread in angle.
 Vec3 equiangular(const LatticePoint& p, int n);

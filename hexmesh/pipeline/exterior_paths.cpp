@@ -19,33 +19,23 @@ namespace {
 // of each quad's own mean edge lengths: folds untangled, the rest barely moved.
 void untangle_on_sphere(std::vector<Vec3>& directions, int n,
                         const untangle::UntangleOptions& solver) {
-    const CubeSurfaceLattice lattice = make_cube_surface_lattice(n);
     untangle::Problem p;
     p.points = directions;
     p.kinds.assign(p.points.size(), VertexKind::slip);
     double total = 0;
-    for (const CubePatch& patch : cube_patches)
-        for (int j = 0; j < n; ++j)
-            for (int i = 0; i < n; ++i) {
-                const std::array<Id, 4> q{
-                    lattice.number_of(lattice.patch_point(patch, i, j)),
-                    lattice.number_of(lattice.patch_point(patch, i + 1, j)),
-                    lattice.number_of(lattice.patch_point(patch, i + 1, j + 1)),
-                    lattice.number_of(lattice.patch_point(patch, i, j + 1))};
-                const auto length = [&](int a, int b) {
-                    return (p.points[q[a]] - p.points[q[b]]).norm();
-                };
-                // Mean lengths of the two pairs of opposite edges: (0-1, 3-2) and (0-3, 1-2).
-                const double first = std::max(0.5 * (length(0, 1) + length(3, 2)), 1e-9);
-                const double second = std::max(0.5 * (length(0, 3) + length(1, 2)), 1e-9);
-                total += first + second;
-                for (int c = 0; c < 4; ++c) {
-                    p.triangles.push_back({q[c], q[(c + 1) % 4], q[(c + 3) % 4]});
-                    p.triangle_targets.push_back(
-                        c % 2 == 0 ? untangle::rectangle_corner_target(first, second)
-                                   : untangle::rectangle_corner_target(second, first));
-                }
-            }
+    for (const std::array<Id, 4>& q : cube_surface_quads(make_cube_surface_lattice(n))) {
+        const auto length = [&](int a, int b) { return (p.points[q[a]] - p.points[q[b]]).norm(); };
+        // Mean lengths of the two pairs of opposite edges: (0-1, 3-2) and (0-3, 1-2).
+        const double first = std::max(0.5 * (length(0, 1) + length(3, 2)), 1e-9);
+        const double second = std::max(0.5 * (length(0, 3) + length(1, 2)), 1e-9);
+        total += first + second;
+        for (int c = 0; c < 4; ++c) {
+            p.triangles.push_back({q[c], q[(c + 1) % 4], q[(c + 3) % 4]});
+            p.triangle_targets.push_back(c % 2 == 0
+                                             ? untangle::rectangle_corner_target(first, second)
+                                             : untangle::rectangle_corner_target(second, first));
+        }
+    }
     p.length_scale = total / (2.0 * 6 * n * n);
     p.surface_normal = [](Id, const Vec3& x) { return x; };
     p.project_to_surface = [](Id, const Vec3& x) { return Vec3(x.normalized()); };
@@ -181,7 +171,7 @@ WallPaths interior_paths(const ImplicitFunction& potential, const std::vector<Ve
 
 WallPaths exterior_paths(const ImplicitFunction& potential, const std::vector<Vec3>& wall,
                          double c0, int n, const Vec3& centre,
-                         const untangle::UntangleOptions& solver) {
+                         const untangle::UntangleOptions& solver, LevelSpreading* spread) {
     WallPaths paths = trace_paths(potential, wall, c0, n, centre);
     std::vector<Vec3> directions(wall.size());
     for (size_t s = 0; s < wall.size(); ++s) {
@@ -193,6 +183,9 @@ WallPaths exterior_paths(const ImplicitFunction& potential, const std::vector<Ve
                 "{:.4g}) stops at level {:.3g} short of the far level {:.3g} (no higher point "
                 "near its end)",
                 wall[s].x(), wall[s].y(), wall[s].z(), paths.levels[s].back(), c0));
+    }
+    if (spread) *spread = spread_on_levels(potential, paths, solver);
+    for (size_t s = 0; s < wall.size(); ++s) {
         const Vec3 d = paths.outer(s) - centre;
         if (!d.allFinite() || !(d.norm() > 0))
             throw std::runtime_error("the gradient line of a wall node left no finite point");

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "hexmesh/core/implicit_function.h"
+#include "hexmesh/pipeline/spread_on_levels.h"
 #include "untangle/untangle.h"
 #include "volume/wall_paths.h"
 
@@ -37,10 +38,12 @@ std::vector<Vec3> gradient_line_up(const ImplicitFunction& potential, Vec3 p, do
 // where gradient lines pass a saddle of the potential, as between the legs of an animal) is not
 // fixed in the far field. Throws std::invalid_argument, naming the wall point, when a line
 // stops short of c0 even so (no higher point near where it stops), std::runtime_error when a
-// line leaves no finite point.
+// line leaves no finite point. With `spread`, the lines are first carried out level by level
+// and repaired where they part or fold (hexmesh/pipeline/spread_on_levels.h), what was done
+// stored there.
 WallPaths exterior_paths(const ImplicitFunction& potential, const std::vector<Vec3>& wall,
                          double c0, int cells_per_edge, const Vec3& centre,
-                         const untangle::UntangleOptions& solver);
+                         const untangle::UntangleOptions& solver, LevelSpreading* spread = nullptr);
 
 // The paths of an interior grid's lines (volume/wall_paths.h) from the wall lattice `wall` up
 // the body's interior potential (0 on the body, rising in to 1 on a ball round `centre`:

@@ -1,11 +1,14 @@
 // Lines of an exterior grid along the gradient lines of a potential (exterior_paths).
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
 #include "hexmesh/pipeline/exterior_paths.h"
+#include "hexmesh/pipeline/spread_on_levels.h"
 #include "volume/cube_sphere.h"
 
 using namespace hexmesh;
@@ -172,4 +175,70 @@ TEST(InteriorPaths, ALineThatStopsShortOfTheLevelIsLeftAsItsWallPoint) {
         ASSERT_EQ(paths.lines[s].size(), 1u) << s;
         EXPECT_EQ(paths.lines[s][0], wall[s]) << s;
     }
+}
+
+namespace {
+
+// The smallest sine of a corner angle of the lattice's quads at these points, seen from
+// outside the unit ball (negative: a quad folded over).
+double smallest_corner_sine(const std::vector<Vec3>& x, int n) {
+    double smallest = 1;
+    for (const auto& q : cube_surface_quads(make_cube_surface_lattice(n)))
+        for (int c = 0; c < 4; ++c) {
+            const Vec3 a = x[q[(c + 1) % 4]] - x[q[c]], b = x[q[(c + 3) % 4]] - x[q[c]];
+            smallest =
+                std::min(smallest, a.cross(b).dot(x[q[c]].normalized()) / (a.norm() * b.norm()));
+        }
+    return smallest;
+}
+
+std::vector<Vec3> ends(const WallPaths& paths) {
+    std::vector<Vec3> x;
+    for (const auto& line : paths.lines) x.push_back(line.back());
+    return x;
+}
+
+}  // namespace
+
+TEST(SpreadOnLevels, SoundLinesAreLeftAsTheyAre) {
+    const int n = 8;
+    const std::vector<Vec3> wall = unit_sphere_wall(n);
+    WallPaths paths = exterior_paths(BallPotential(), wall, 0.5, n, Vec3::Zero(), {});
+    const WallPaths plain = paths;
+    const LevelSpreading done = spread_on_levels(BallPotential(), paths, {});
+    EXPECT_GT(done.levels, 3);
+    EXPECT_EQ(done.levels_spread + done.levels_left, 0);
+    EXPECT_EQ(done.lines_moved, 0);
+    EXPECT_EQ(paths.lines, plain.lines);
+}
+
+TEST(SpreadOnLevels, AFoldTheWallCarriesOutIsSpreadOutOnTheFirstLevel) {
+    // Two neighbouring wall nodes swapped: the quads between them are folded on every level
+    // the radial gradient lines reach. Spread on the first level, the nodes go on up unfolded;
+    // the lines of nodes far from the fold are the gradient lines, point for point.
+    const int n = 8;
+    const CubeSurfaceLattice lattice = make_cube_surface_lattice(n);
+    std::vector<Vec3> wall = unit_sphere_wall(n);
+    const Id a = lattice.number_of(lattice.patch_point(cube_patches[0], 3, 3));
+    const Id b = lattice.number_of(lattice.patch_point(cube_patches[0], 4, 3));
+    std::swap(wall[a], wall[b]);
+    const BallPotential potential;
+    WallPaths paths = exterior_paths(potential, wall, 0.5, n, Vec3::Zero(), {});
+    const WallPaths plain = paths;
+    ASSERT_LT(smallest_corner_sine(ends(plain), n), 0);
+    const LevelSpreading done = spread_on_levels(potential, paths, {});
+    EXPECT_GE(done.levels_spread, 1);
+    EXPECT_EQ(done.levels_left, 0);
+    EXPECT_GT(done.lines_moved, 0);
+    EXPECT_GT(smallest_corner_sine(ends(paths), n), 0.1);
+    Id unchanged = 0;
+    for (size_t s = 0; s < wall.size(); ++s) {
+        EXPECT_EQ(paths.lines[s].front(), wall[s]) << s;
+        EXPECT_TRUE(std::is_sorted(paths.levels[s].begin(), paths.levels[s].end())) << s;
+        EXPECT_NEAR(paths.levels[s].back(), 0.5, 1e-9) << s;
+        EXPECT_NEAR(potential.value(paths.lines[s].back()), 0.5, 1e-3) << s;
+        unchanged += paths.lines[s] == plain.lines[s];
+    }
+    EXPECT_EQ(Id(wall.size()) - unchanged, done.lines_moved);
+    EXPECT_GT(unchanged, Id(wall.size()) / 2);
 }
