@@ -7,6 +7,7 @@
 #include "hexmesh/pipeline/refine.h"
 #include "hexmesh/pipeline/surface_grid.h"
 #include "hexmesh/pipeline/untangle_and_optimize.h"
+#include "hexmesh/pipeline/wall_route.h"
 #include "hexmesh/pipeline/write.h"
 #include "hexmesh/quality/block_quality.h"
 #include "io/staged_output.h"
@@ -47,6 +48,51 @@ void retry_with_straight_lines(Job& job) {
     route = std::move(kept_route);
 }
 
+// The exterior grid of a body that is not star-shaped, its lines out along the exterior
+// potential's gradient lines, keeps inverted cells where neighbouring lines part round a limb
+// or fold onto one another (the optimizer cannot open a cell that was built with no width). Then
+// the grid is made again with its lines carried out level by level, repaired on the levels where
+// they part or fold (spread_on_levels), and the better of the two kept. A grid that was valid is
+// not made again: the repairs move lines that were sound as well.
+void retry_with_spread_levels(Job& job) {
+    const Case& c = job.settings;
+    WallRoute& route = job.route;
+    if (c.domain != Domain::exterior || route.radial() || route.spread_on_levels) return;
+    const QualityReport along = measure_quality(job.grid());
+    if (along.solver_valid()) return;
+    job.log << fmt::format(
+        "  the gradient lines left {}: their nodes carried out level by level and spread out "
+        "where they part or fold\n",
+        invalid_cells(along));
+    route.spread_on_levels = true;
+    LevelSpreading done;
+    exterior_paths(route, *route.wall, o_h_grid_options(c, *job.body).cells_per_edge, &done);
+    job.log << fmt::format("  {} levels, spread out on {} ({} of {} lines moved){}\n", done.levels,
+                           done.levels_spread, done.lines_moved, route.wall->size(),
+                           done.levels_left > 0
+                               ? fmt::format("; on {} no repair left the folded or squeezed "
+                                             "quads sound: left as they were",
+                                             done.levels_left)
+                               : "");
+    if (done.lines_moved == 0) {
+        job.log << "  no line moved: the grid along the gradient lines stands\n";
+        route.spread_on_levels = false;
+        return;
+    }
+    BlockGrid kept = std::move(job.grid());
+    job.grid() = build_grid(c, *job.body, nullptr, &route);
+    job.timer.done("grid", "(lines spread on levels)");
+    make_surface_grid(job);
+    untangle_and_optimize(job);
+    const QualityReport spread = measure_quality(job.grid());
+    if (spread.solver_valid() || spread.inverted_cells < along.inverted_cells) return;
+    job.log << fmt::format(
+        "  the lines spread on levels left {}: the grid along the gradient lines is kept\n",
+        invalid_cells(spread));
+    job.grid() = std::move(kept);
+    route.spread_on_levels = false;
+}
+
 }  // namespace
 
 RunResult run_case(const Case& c, const std::string& outdir, const RunOptions& options,
@@ -58,6 +104,7 @@ RunResult run_case(const Case& c, const std::string& outdir, const RunOptions& o
         make_surface_grid(job);
         untangle_and_optimize(job);
         retry_with_straight_lines(job);
+        retry_with_spread_levels(job);
     }
     measure(job);
     refine_levels(job);

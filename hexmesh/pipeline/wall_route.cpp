@@ -178,10 +178,12 @@ WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
     return route;
 }
 
-WallPaths exterior_paths(const WallRoute& route, const std::vector<Vec3>& wall,
-                         int cells_per_edge) {
+WallPaths exterior_paths(const WallRoute& route, const std::vector<Vec3>& wall, int cells_per_edge,
+                         LevelSpreading* spread) {
+    LevelSpreading done;
     return exterior_paths(*route.potential, wall, route.far_level, cells_per_edge, route.centre,
-                          route.solver);
+                          route.solver,
+                          route.spread_on_levels ? (spread ? spread : &done) : nullptr);
 }
 
 bool add_interior_potential(const ImplicitFunction& body, double depth, WallRoute& route,

@@ -9,6 +9,7 @@
 
 #include "hexmesh/core/implicit_function.h"
 #include "hexmesh/core/triangle_surface.h"
+#include "hexmesh/pipeline/spread_on_levels.h"
 #include "io/case_file.h"
 #include "untangle/untangle.h"
 #include "volume/wall_paths.h"
@@ -33,7 +34,10 @@ struct WallRoute {
     // Radial all the same for a body that is not star-shaped (no surface file to map): why,
     // for the message of a construction that then fails.
     std::string not_star_shaped;
-    untangle::UntangleOptions solver;  // of the 2D solves on the far-field sphere
+    untangle::UntangleOptions solver;  // of the 2D solves on the far-field sphere and levels
+    // Exterior: the lines carried out level by level, repaired where neighbouring gradient
+    // lines part or fold (exterior_paths, spread_on_levels); else the gradient lines as they are.
+    bool spread_on_levels = false;
 
     bool radial() const { return !wall; }
 };
@@ -67,8 +71,11 @@ WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
 
 // The paths of an exterior grid's lines (volume/wall_paths.h) from these wall nodes (the
 // route's, or the same moved on u = 0) up the route's potential; their far-field directions
-// untangled on the unit sphere. The route must not be radial.
-WallPaths exterior_paths(const WallRoute& route, const std::vector<Vec3>& wall, int cells_per_edge);
+// untangled on the unit sphere; spread out on the potential's levels where they part or fold
+// when the route says so (WallRoute::spread_on_levels; what was done to `spread`, if given).
+// The route must not be radial.
+WallPaths exterior_paths(const WallRoute& route, const std::vector<Vec3>& wall, int cells_per_edge,
+                         LevelSpreading* spread = nullptr);
 
 // For an interior route that is not radial (choose_wall_route calls it): the body's interior
 // potential, 1 on the ball of 0.9 `depth` (the centre's distance to the surface) round
