@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <string>
+
 #include "hexmesh/pipeline/build_blocks.h"
 #include "hexmesh/pipeline/measure.h"
 #include "hexmesh/pipeline/refine.h"
@@ -15,15 +17,33 @@
 namespace hexmesh {
 namespace {
 
+// Makes the grid again along job.route as it now is (blocks, surface pass, optimization; the
+// timer's "grid" phase noted `phase`) and keeps it when it is valid for a solver or left with
+// fewer inverted cells than the grid it replaces, measured `before`. Else that grid and
+// `before_route` are put back, and the log says "<made> left <cells>: <kept> is kept".
+void make_again_and_keep_better(Job& job, const QualityReport& before, WallRoute before_route,
+                                const std::string& phase, const std::string& made,
+                                const std::string& kept_grid) {
+    BlockGrid kept = std::move(job.grid());
+    job.grid() = build_grid(job.settings, *job.body, nullptr, &job.route);
+    job.timer.done("grid", phase);
+    make_surface_grid(job);
+    untangle_and_optimize(job);
+    const QualityReport after = measure_quality(job.grid());
+    if (after.solver_valid() || after.inverted_cells < before.inverted_cells) return;
+    job.log << fmt::format("  {} left {}: {} is kept\n", made, invalid_cells(after), kept_grid);
+    job.grid() = std::move(kept);
+    job.route = std::move(before_route);
+}
+
 // Untangled and optimized, the interior grid of a body that is not star-shaped, its lines in
 // along the interior potential's gradient lines, may keep cells a solver refuses where the
 // straight lines from the wall to the core would not (which of the two a body takes is not
 // known beforehand). Then the grid is made again with its lines straight to the core, and the
 // better of the two kept: the valid one, or the one with fewer inverted cells.
 void retry_with_straight_lines(Job& job) {
-    const Case& c = job.settings;
     WallRoute& route = job.route;
-    if (c.domain == Domain::exterior || route.radial() || !route.potential) return;
+    if (job.settings.domain == Domain::exterior || route.radial() || !route.potential) return;
     const QualityReport along = measure_quality(job.grid());
     if (along.solver_valid()) return;
     job.log << fmt::format(
@@ -31,21 +51,11 @@ void retry_with_straight_lines(Job& job) {
         "to the core\n",
         invalid_cells(along));
     WallRoute kept_route = route;
-    BlockGrid kept = std::move(job.grid());
     route.potential.reset();
     route.far_level = 0;
-    job.grid() = build_grid(c, *job.body, nullptr, &route);
-    job.timer.done("grid", "(lines straight to the core)");
-    make_surface_grid(job);
-    untangle_and_optimize(job);
-    const QualityReport straight = measure_quality(job.grid());
-    if (straight.solver_valid() || straight.inverted_cells < along.inverted_cells) return;
-    job.log << fmt::format(
-        "  the lines straight to the core left {}: the grid with lines along the interior "
-        "potential is kept\n",
-        invalid_cells(straight));
-    job.grid() = std::move(kept);
-    route = std::move(kept_route);
+    make_again_and_keep_better(job, along, std::move(kept_route), "(lines straight to the core)",
+                               "the lines straight to the core",
+                               "the grid with lines along the interior potential");
 }
 
 // The exterior grid of a body that is not star-shaped, its lines out along the exterior
@@ -64,6 +74,7 @@ void retry_with_spread_levels(Job& job) {
         "  the gradient lines left {}: their nodes carried out level by level and spread out "
         "where they part or fold\n",
         invalid_cells(along));
+    WallRoute kept_route = route;
     route.spread_on_levels = true;
     LevelSpreading done;
     exterior_paths(route, *route.wall, o_h_grid_options(c, *job.body).cells_per_edge, &done);
@@ -76,21 +87,11 @@ void retry_with_spread_levels(Job& job) {
                                : "");
     if (done.lines_moved == 0) {
         job.log << "  no line moved: the grid along the gradient lines stands\n";
-        route.spread_on_levels = false;
+        route = std::move(kept_route);
         return;
     }
-    BlockGrid kept = std::move(job.grid());
-    job.grid() = build_grid(c, *job.body, nullptr, &route);
-    job.timer.done("grid", "(lines spread on levels)");
-    make_surface_grid(job);
-    untangle_and_optimize(job);
-    const QualityReport spread = measure_quality(job.grid());
-    if (spread.solver_valid() || spread.inverted_cells < along.inverted_cells) return;
-    job.log << fmt::format(
-        "  the lines spread on levels left {}: the grid along the gradient lines is kept\n",
-        invalid_cells(spread));
-    job.grid() = std::move(kept);
-    route.spread_on_levels = false;
+    make_again_and_keep_better(job, along, std::move(kept_route), "(lines spread on levels)",
+                               "the lines spread on levels", "the grid along the gradient lines");
 }
 
 }  // namespace
