@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <limits>
 #include <unordered_map>
 
 #include "hexmesh/core/array_hash.h"
@@ -53,6 +52,15 @@ double max_placed_distance(const TetMesh& mesh, const std::vector<std::int8_t>& 
     double d = 0;
     for (size_t v = 0; v < mesh.points.size(); ++v)
         if (dimension[v] < 3) d = std::max(d, boundary.surface_distance(mesh.points[v]));
+    return d;
+}
+
+// The largest distance of a crease or corner vertex (dimension 1 or 0) to the creases.
+double max_crease_distance(const TetMesh& mesh, const std::vector<std::int8_t>& dimension,
+                           const BoundaryGeometry& boundary) {
+    double d = 0;
+    for (size_t v = 0; v < mesh.points.size(); ++v)
+        if (dimension[v] < 2) d = std::max(d, boundary.crease_distance(mesh.points[v]));
     return d;
 }
 
@@ -208,7 +216,7 @@ void keep_cgal_mesh(const BoundaryGeometry& boundary, const SizingFunction& size
     const TetQualityReport merged_quality = measure_tet_quality(merged.mesh);
     Improved& k = kept.improved;
     k.caps_removed = k.flips_23 = k.edge_removals = 0;
-    k.optimization.max_crease_distance = std::numeric_limits<double>::quiet_NaN();  // not measured
+    k.optimization.max_crease_distance = 0;
     const Id vertices = Id(cgal.mesh.points.size());
     log << fmt::format(
         "CGAL's mesh optimized, {} of its {} vertices held at their places: smallest angle "
@@ -225,11 +233,13 @@ void keep_cgal_mesh(const BoundaryGeometry& boundary, const SizingFunction& size
         k.mesh = std::move(merged.mesh);
         k.optimization.solve = std::move(merged.optimization.solve);
         k.optimization.max_surface_distance = merged_distance;
+        k.optimization.max_crease_distance = max_crease_distance(k.mesh, cgal.dimension, boundary);
         kept.quality = merged_quality;
     } else {
         r.start = "CGAL's";
         k.mesh = cgal.mesh;
         k.optimization.max_surface_distance = r.cgal_surface_distance;
+        k.optimization.max_crease_distance = max_crease_distance(k.mesh, cgal.dimension, boundary);
         kept.quality = *r.cgal;
     }
 }

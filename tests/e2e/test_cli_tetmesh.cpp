@@ -227,6 +227,8 @@ TEST_P(TetmeshAgainstCgal, SmallestAngleAtLeastCgalsAndNoSliver) {
     ASSERT_EQ(slivers.size(), 3u) << r.out;
     EXPECT_GE(angle[2], angle[1]) << r.out;
     EXPECT_EQ(slivers[2], 0) << r.out;
+    // Every distance measured, also when CGAL's mesh is kept (it once printed "nan").
+    EXPECT_EQ(r.out.find("nan"), std::string::npos) << r.out;
     for (const auto& f : {case_file, out}) fs::remove(f);
 }
 
