@@ -54,6 +54,9 @@ struct Job {
     std::optional<TriangleSurface> surface;  // the surface file's triangles, if any
     Body body;                               // the implicit body u
     WallRoute route;                         // how the wall grid is placed on it
+    // Every corner tet weighs the same while the volume grid is untangled, instead of its
+    // target's volume: always outside (untangle_and_optimize), inside on a retry.
+    bool equal_weights = false;
     // The nested family: levels[0] is the grid the stages build and optimize, each next one
     // refine_on_body of the one before (settings.refinement.levels in all); reports[l] measures
     // levels[l].

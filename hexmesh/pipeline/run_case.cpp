@@ -94,6 +94,25 @@ void retry_with_spread_levels(Job& job) {
                                "the lines spread on levels", "the grid along the gradient lines");
 }
 
+// Inside, the corner tets weigh their targets' volumes while untangling, so that the small
+// cells of the boundary layer keep their shapes; an interior grid of a body with narrow parts
+// can then keep a few inverted cells that the grid untangled with every tet weighing the same
+// would free (and the other way round on other bodies). Then the grid is made again, untangled
+// with equal weights, and the better of the two kept.
+void retry_with_equal_weights(Job& job) {
+    if (job.settings.domain == Domain::exterior || job.equal_weights) return;
+    const QualityReport weighed = measure_quality(job.grid());
+    if (weighed.solver_valid()) return;
+    job.log << fmt::format(
+        "  the grid untangled with tets weighed by volume left {}: the grid again, every tet "
+        "weighing the same\n",
+        invalid_cells(weighed));
+    job.equal_weights = true;
+    make_again_and_keep_better(job, weighed, job.route, "(equal weights)",
+                               "untangled with equal weights",
+                               "the grid untangled with tets weighed by volume");
+}
+
 }  // namespace
 
 RunResult run_case(const Case& c, const std::string& outdir, const RunOptions& options,
@@ -106,6 +125,7 @@ RunResult run_case(const Case& c, const std::string& outdir, const RunOptions& o
         untangle_and_optimize(job);
         retry_with_straight_lines(job);
         retry_with_spread_levels(job);
+        retry_with_equal_weights(job);
     }
     measure(job);
     refine_levels(job);

@@ -239,7 +239,7 @@ void untangle_and_optimize(Job& job) {
     o.keep_crease_shapes = c.domain == Domain::exterior;  // its lines leave creases mitred
     // Outside, the far field's cells are up to 1e7 times the first layer's: weighed by volume,
     // the wall's inversions would hardly count while untangling (joint pass and layer pass).
-    o.untangle.equal_weights = c.domain == Domain::exterior;
+    o.untangle.equal_weights = c.domain == Domain::exterior || job.equal_weights;
     const GridOptimizationResult r = optimize_grid(job.grid(), *job.body, o);
     job.log << untangle::format_untangle_summary(r.solve);
     log_layer_pass(r, o.wall_layers.layers, job.log);
