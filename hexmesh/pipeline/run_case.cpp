@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "hexmesh/core/memory_limit.h"
 #include "hexmesh/pipeline/build_blocks.h"
 #include "hexmesh/pipeline/measure.h"
 #include "hexmesh/pipeline/refine.h"
@@ -134,6 +135,7 @@ RunResult run_case(const Case& c, const std::string& outdir, const RunOptions& o
     if (job.levels.size() > 1) result.level_reports = job.reports;
     result.report = job.reports.back();
     if (job.levels.size() == 1) result.report.phase_seconds = job.timer.phases();
+    result.report.peak_memory_bytes = peak_memory();
     result.grid = std::move(job.levels.back());
     return result;
 }

@@ -32,6 +32,7 @@ void write_level(Job& job, const BlockGrid& grid, GridReport report, const std::
     const std::string level = dir.empty() ? "" : " " + dir.substr(0, dir.size() - 1);
     job.timer.done("write" + level);
     report.phase_seconds = job.timer.phases();
+    report.peak_memory_bytes = peak_memory();
     out.write_text(dir + "quality.json", quality_json(report));
     out.write_text(dir + "grid.case.json", case_to_json(c));
     if (!job.options.report) return;

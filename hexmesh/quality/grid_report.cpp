@@ -21,6 +21,21 @@ std::string table_row(const std::string& name, std::initializer_list<std::string
     return line + "\n";
 }
 
+// Each phase once, in the order it first ran, the seconds of its runs summed.
+std::vector<std::pair<std::string, double>> summed_phases(
+    const std::vector<std::pair<std::string, double>>& phases) {
+    std::vector<std::pair<std::string, double>> summed;
+    for (const auto& [name, seconds] : phases) {
+        const auto same = std::find_if(summed.begin(), summed.end(),
+                                       [&](const auto& p) { return p.first == name; });
+        if (same == summed.end())
+            summed.emplace_back(name, seconds);
+        else
+            same->second += seconds;
+    }
+    return summed;
+}
+
 std::string number(double x) {
     return fmt::format("{:.4g}", x);
 }
@@ -165,9 +180,15 @@ std::string format_quality_table(const GridReport& r) {
     if (r.wall) out += wall_rows(*r.wall);
     if (!r.phase_seconds.empty()) {
         out += "  time per phase (s)\n";
-        for (const auto& [name, seconds] : r.phase_seconds)
+        double total = 0;
+        for (const auto& [name, seconds] : summed_phases(r.phase_seconds)) {
             out += table_row("  " + name, {fmt::format("{:.2f}", seconds)});
+            total += seconds;
+        }
+        out += table_row("  total", {fmt::format("{:.2f}", total)});
     }
+    if (r.peak_memory_bytes)
+        row("peak memory (MB)", fmt::format("{:.0f}", *r.peak_memory_bytes / 1e6));
     return out;
 }
 
@@ -212,9 +233,15 @@ std::string quality_json(const GridReport& r) {
     if (r.wall) j["wall"] = wall_json(*r.wall);
     if (!r.phase_seconds.empty()) {
         nlohmann::ordered_json phases = nlohmann::ordered_json::object();
-        for (const auto& [name, seconds] : r.phase_seconds) phases[name] = seconds;
+        double total = 0;
+        for (const auto& [name, seconds] : summed_phases(r.phase_seconds)) {
+            phases[name] = seconds;
+            total += seconds;
+        }
         j["phases"] = phases;
+        j["seconds_total"] = total;
     }
+    if (r.peak_memory_bytes) j["peak_memory_mb"] = *r.peak_memory_bytes / 1e6;
     return j.dump(2) + "\n";
 }
 

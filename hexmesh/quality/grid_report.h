@@ -32,8 +32,11 @@ struct GridReport {
     std::optional<double> length_scale;
     // Boundary-layer metrics and, for grids of a surface file, the Hausdorff distance.
     std::optional<WallQuality> wall;
-    // Wall-clock seconds per pipeline phase, in the order they ran.
+    // Wall-clock seconds per pipeline phase, in the order they ran (a phase run again, as a
+    // retry's "grid" or "optimization", once more).
     std::vector<std::pair<std::string, double>> phase_seconds;
+    // The run's peak resident memory, bytes, when measured.
+    std::optional<double> peak_memory_bytes;
 };
 
 // A grid of a surface file follows the body when every vertex of the surface lies within this
@@ -62,8 +65,8 @@ std::string aspect_ratio_note(const QualityReport& q);
 
 // Aligned "name  value" lines, one per metric, ending in a newline: every first value ends
 // in the same column; rows with several values (min/mean/max) continue to its right. The
-// wall rows appear when `wall` is set, the "time per phase" block when phase_seconds is not
-// empty.
+// wall rows appear when `wall` is set, the "time per phase" block (each phase once, its runs
+// summed, and the total) when phase_seconds is not empty, the peak memory when measured.
 std::string format_quality_table(const GridReport& report);
 
 // The same numbers as a JSON object: keys as in QualityReport, plus "valid" (for the solver),

@@ -126,6 +126,40 @@ TEST(QualityReport, WallRowsAreAlignedWithTheOthers) {
     EXPECT_NE(table.find("\n  time per phase (s)\n    geometry"), std::string::npos) << table;
 }
 
+TEST(QualityReport, PhasesRunAgainAreSummedWithTheTotalAndPeakMemory) {
+    // A run whose grid is made again (a retry) runs "grid" and "optimization" twice: the table
+    // and quality.json show each phase once, its runs summed, then the total.
+    GridReport r = plain_report();
+    r.phase_seconds = {{"geometry", 0.5},
+                       {"grid", 1.0},
+                       {"optimization", 10.0},
+                       {"grid", 2.0},
+                       {"optimization", 20.0}};
+    r.peak_memory_bytes = 123.4e6;
+    const std::string table = format_quality_table(r);
+    EXPECT_NE(table.find("\n  time per phase (s)\n    geometry"), std::string::npos) << table;
+    for (const auto& [name, value] :
+         std::vector<std::pair<std::string, std::string>>{{"  grid", "3.00"},
+                                                          {"  optimization", "30.00"},
+                                                          {"  total", "33.50"},
+                                                          {"peak memory (MB)", "123"}}) {
+        const std::string line = line_named(table, name);
+        ASSERT_FALSE(line.empty()) << name << "\n" << table;
+        EXPECT_EQ(line.substr(line.size() - value.size()), value) << line;
+    }
+    EXPECT_EQ(table.find("grid", table.find("  grid") + 8), std::string::npos) << table;
+    const auto j = nlohmann::json::parse(quality_json(r));
+    EXPECT_DOUBLE_EQ(j["phases"]["grid"].get<double>(), 3.0);
+    EXPECT_DOUBLE_EQ(j["phases"]["optimization"].get<double>(), 30.0);
+    EXPECT_EQ(j["phases"].size(), 3u);
+    EXPECT_DOUBLE_EQ(j["seconds_total"].get<double>(), 33.5);
+    EXPECT_DOUBLE_EQ(j["peak_memory_mb"].get<double>(), 123.4);
+    // Not measured: no row, no key.
+    const GridReport plain = plain_report();
+    EXPECT_EQ(format_quality_table(plain).find("peak memory"), std::string::npos);
+    EXPECT_FALSE(nlohmann::json::parse(quality_json(plain)).contains("peak_memory_mb"));
+}
+
 TEST(QualityReport, UnknownTargetsShowAsDashAndNull) {
     GridReport r = plain_report();
     WallQuality w = wall_quality();
