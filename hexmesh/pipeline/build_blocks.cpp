@@ -104,7 +104,7 @@ void resolve_case(Job& job) {
         job.route = choose_wall_route(c, body, job.surface, cells_per_edge(c, body),
                                       job.solver_options(), job.log);
         c.grid.center = job.route.centre;
-        if (!job.route.radial()) job.timer.done("wall (sphere map)");
+        if (!job.route.radial()) job.timer.done("wall", "(sphere map)");
     }
     if (!job.route.radial() && c.domain != Domain::exterior)
         c.grid.axis = GridAxis::none;  // one core block

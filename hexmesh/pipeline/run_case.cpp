@@ -79,6 +79,7 @@ void retry_with_spread_levels(Job& job) {
     route.spread_on_levels = true;
     LevelSpreading done;
     exterior_paths(route, *route.wall, o_h_grid_options(c, *job.body).cells_per_edge, &done);
+    job.timer.done("levels", "(lines spread out)");
     job.log << fmt::format("  {} levels, spread out on {} ({} of {} lines moved){}\n", done.levels,
                            done.levels_spread, done.lines_moved, route.wall->size(),
                            done.levels_left > 0
