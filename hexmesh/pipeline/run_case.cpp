@@ -21,8 +21,9 @@ namespace {
 // Makes the grid again along job.route as it now is (blocks, surface pass, optimization; the
 // timer's "grid" phase noted `phase`) and keeps it when it is valid for a solver or left with
 // fewer inverted cells than the grid it replaces, measured `before`. Else that grid and
-// `before_route` are put back, and the log says "<made> left <cells>: <kept> is kept".
-void make_again_and_keep_better(Job& job, const QualityReport& before, WallRoute before_route,
+// `before_route` are put back, the log says "<made> left <cells>: <kept> is kept", and false is
+// returned.
+bool make_again_and_keep_better(Job& job, const QualityReport& before, WallRoute before_route,
                                 const std::string& phase, const std::string& made,
                                 const std::string& kept_grid) {
     BlockGrid kept = std::move(job.grid());
@@ -31,10 +32,11 @@ void make_again_and_keep_better(Job& job, const QualityReport& before, WallRoute
     make_surface_grid(job);
     untangle_and_optimize(job);
     const QualityReport after = measure_quality(job.grid());
-    if (after.solver_valid() || after.inverted_cells < before.inverted_cells) return;
+    if (after.solver_valid() || after.inverted_cells < before.inverted_cells) return true;
     job.log << fmt::format("  {} left {}: {} is kept\n", made, invalid_cells(after), kept_grid);
     job.grid() = std::move(kept);
     job.route = std::move(before_route);
+    return false;
 }
 
 // Untangled and optimized, the interior grid of a body that is not star-shaped, its lines in
@@ -110,9 +112,9 @@ void retry_with_equal_weights(Job& job) {
         "weighing the same\n",
         invalid_cells(weighed));
     job.equal_weights = true;
-    make_again_and_keep_better(job, weighed, job.route, "(equal weights)",
-                               "untangled with equal weights",
-                               "the grid untangled with tets weighed by volume");
+    job.equal_weights = make_again_and_keep_better(
+        job, weighed, job.route, "(equal weights)", "untangled with equal weights",
+        "the grid untangled with tets weighed by volume");
 }
 
 }  // namespace

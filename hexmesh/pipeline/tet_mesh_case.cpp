@@ -60,7 +60,8 @@ double max_crease_distance(const TetMesh& mesh, const std::vector<std::int8_t>& 
                            const BoundaryGeometry& boundary) {
     double d = 0;
     for (size_t v = 0; v < mesh.points.size(); ++v)
-        if (dimension[v] < 2) d = std::max(d, boundary.crease_distance(mesh.points[v]));
+        if (dimension[v] == 0 || dimension[v] == 1)
+            d = std::max(d, boundary.crease_distance(mesh.points[v]));
     return d;
 }
 
