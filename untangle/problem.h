@@ -143,6 +143,16 @@ struct Problem {
         hexes.push_back(nodes);
         hex_edges.push_back(edges);
     }
+    // Adds a quad (nodes in order round it) as its 4 corner triangles (c, c + 1, c + 3), each
+    // with the target of a rectangle's corner: edges 0-1 and 3-2 of length `first`, 0-3 and
+    // 1-2 of length `second`.
+    void add_quad(const std::array<Id, 4>& q, double first, double second) {
+        for (int c = 0; c < 4; ++c) {
+            triangles.push_back({q[c], q[(c + 1) % 4], q[(c + 3) % 4]});
+            triangle_targets.push_back(c % 2 == 0 ? rectangle_corner_target(first, second)
+                                                  : rectangle_corner_target(second, first));
+        }
+    }
 };
 
 }  // namespace hexmesh::untangle

@@ -29,12 +29,7 @@ void untangle_on_sphere(std::vector<Vec3>& directions, int n,
         const double first = std::max(0.5 * (length(0, 1) + length(3, 2)), 1e-9);
         const double second = std::max(0.5 * (length(0, 3) + length(1, 2)), 1e-9);
         total += first + second;
-        for (int c = 0; c < 4; ++c) {
-            p.triangles.push_back({q[c], q[(c + 1) % 4], q[(c + 3) % 4]});
-            p.triangle_targets.push_back(c % 2 == 0
-                                             ? untangle::rectangle_corner_target(first, second)
-                                             : untangle::rectangle_corner_target(second, first));
-        }
+        p.add_quad(q, first, second);
     }
     p.length_scale = total / (2.0 * 6 * n * n);
     p.surface_normal = [](Id, const Vec3& x) { return x; };

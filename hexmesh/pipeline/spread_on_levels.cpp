@@ -171,10 +171,9 @@ Id spread_region(const ImplicitFunction& potential, double c, const Vec3& centre
     for (size_t q = 0; q < region.size(); ++q) {
         if (!region[q]) continue;
         const auto& quad = lattice.quads[q];
-        for (int k = 0; k < 4; ++k) {
-            p.triangles.push_back({id(quad[k]), id(quad[(k + 1) % 4]), id(quad[(k + 3) % 4])});
-            p.triangle_targets.push_back(untangle::rectangle_corner_target(size[q], size[q]));
-        }
+        // Local ids in the order the quad's corner triangles first meet its nodes.
+        const Id n0 = id(quad[0]), n1 = id(quad[1]), n3 = id(quad[3]), n2 = id(quad[2]);
+        p.add_quad({n0, n1, n2, n3}, size[q], size[q]);
         total += size[q], ++count;
     }
     const Level level(potential, c);

@@ -65,15 +65,10 @@ SurfaceProblem make_surface_problem(const BlockGrid& grid, const std::vector<Wal
                 const double first = (length(0, 1) + length(3, 2)) / 2,
                              second = (length(0, 3) + length(1, 2)) / 2;
                 total += first + second;
-                for (int c = 0; c < 4; ++c) {
-                    const bool along_first =
-                        c % 2 == 0;  // corner c's edge to c + 1 is a "first" edge
-                    p.triangles.push_back(
-                        {local_id(q[c]), local_id(q[(c + 1) % 4]), local_id(q[(c + 3) % 4])});
-                    p.triangle_targets.push_back(
-                        along_first ? untangle::rectangle_corner_target(first, second)
-                                    : untangle::rectangle_corner_target(second, first));
-                }
+                // Local ids in the order the quad's corner triangles first meet its nodes.
+                const Id n0 = local_id(q[0]), n1 = local_id(q[1]), n3 = local_id(q[3]),
+                         n2 = local_id(q[2]);
+                p.add_quad({n0, n1, n2, n3}, first, second);
             }
     }
     const size_t quads = p.triangles.size() / 4;
