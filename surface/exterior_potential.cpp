@@ -91,12 +91,12 @@ void assemble_operator(const std::vector<NodeKind>& kind, const std::vector<doub
     });
 }
 
-// A x = rhs on the free nodes by preconditioned conjugate gradients (Jacobi), from
-// F = min(1, u / margin), to the relative residual o.tolerance; x is 0 on the other nodes.
+// A x = rhs on the free nodes by preconditioned conjugate gradients (Jacobi), from x (0 on the
+// other nodes), to the relative residual o.tolerance.
 // Throws std::runtime_error when o.max_iterations do not reach it.
-std::vector<double> solve_potential(const std::vector<NodeKind>& kind, const std::vector<double>& u,
+std::vector<double> solve_potential(const std::vector<NodeKind>& kind, std::vector<double> x,
                                     const std::vector<double>& diag, const std::vector<double>& rhs,
-                                    const std::array<long long, 6>& step, double margin,
+                                    const std::array<long long, 6>& step,
                                     const ExteriorPotentialOptions& o, int& iterations) {
     const size_t count = kind.size();
     const auto apply = [&](const std::vector<double>& x, std::vector<double>& y) {
@@ -107,10 +107,7 @@ std::vector<double> solve_potential(const std::vector<NodeKind>& kind, const std
             y[id] = sum;
         });
     };
-    std::vector<double> x(count, 0), r(count), z(count), p(count), q(count);
-    parallel_each(count, [&](size_t id) {
-        if (kind[id] == NodeKind::free) x[id] = std::min(1.0, u[id] / margin);
-    });
+    std::vector<double> r(count), z(count), p(count), q(count);
     apply(x, q);
     parallel_each(count,
                   [&](size_t id) { r[id] = kind[id] == NodeKind::free ? rhs[id] - q[id] : 0; });
@@ -182,10 +179,20 @@ std::vector<double> extend_into_body(const std::vector<NodeKind>& kind,
     return values;
 }
 
-}  // namespace
+// The potential's lattice round the body: its box, spacing and node counts. Throws
+// std::invalid_argument for bad options or bounds.
+struct Lattice {
+    Box3 box;
+    double h = 0;
+    std::array<int, 3> n{};
 
-ExteriorPotential::ExteriorPotential(const ImplicitFunction& body,
-                                     const ExteriorPotentialOptions& o) {
+    Vec3 node(size_t id) const {
+        return box.lo + h * Vec3(double(id % n[0]), double((id / n[0]) % n[1]),
+                                 double(id / (size_t(n[0]) * n[1])));
+    }
+};
+
+Lattice make_lattice(const ImplicitFunction& body, const ExteriorPotentialOptions& o) {
     if (!(o.margin > 0) || o.resolution < 8 || !(o.tolerance > 0) || o.max_iterations < 1)
         throw std::invalid_argument(
             "ExteriorPotential: margin, resolution (>= 8), tolerance and "
@@ -194,11 +201,36 @@ ExteriorPotential::ExteriorPotential(const ImplicitFunction& body,
     const double longest = b.size().maxCoeff();
     if (!(longest > 0 && std::isfinite(longest) && b.lo.allFinite()))
         throw std::invalid_argument("ExteriorPotential: the body's bounds are empty or not finite");
-    h_ = longest / o.resolution;
+    Lattice l;
+    l.h = longest / o.resolution;
     const Vec3 lo = b.lo - Vec3::Constant(o.margin * longest);
     for (int a = 0; a < 3; ++a)
-        n_[a] = int(std::ceil((b.size()[a] + 2 * o.margin * longest) / h_)) + 1;
-    box_ = {lo, lo + h_ * Vec3(n_[0] - 1, n_[1] - 1, n_[2] - 1)};
+        l.n[a] = int(std::ceil((b.size()[a] + 2 * o.margin * longest) / l.h)) + 1;
+    l.box = {lo, lo + l.h * Vec3(l.n[0] - 1, l.n[1] - 1, l.n[2] - 1)};
+    return l;
+}
+
+// The cell of the lattice holding p (inside the box): its lowest node and p's place in it,
+// [0, 1]^3.
+std::pair<std::array<int, 3>, Vec3> lattice_cell(const Box3& box, double h,
+                                                 const std::array<int, 3>& n, const Vec3& p) {
+    const Vec3 q = (p - box.lo) / h;
+    const std::array<int, 3> c = {std::clamp(int(q.x()), 0, n[0] - 2),
+                                  std::clamp(int(q.y()), 0, n[1] - 2),
+                                  std::clamp(int(q.z()), 0, n[2] - 2)};
+    return {c, q - Vec3(c[0], c[1], c[2])};
+}
+
+}  // namespace
+
+ExteriorPotential::ExteriorPotential(const ImplicitFunction& body,
+                                     const ExteriorPotentialOptions& o) {
+    const Lattice lattice = make_lattice(body, o);
+    h_ = lattice.h;
+    n_ = lattice.n;
+    box_ = lattice.box;
+    const Vec3 lo = box_.lo;
+    const double longest = body.bounds().size().maxCoeff();
 
     std::vector<double> u, source, diag, rhs;
     std::vector<NodeKind> kind;
@@ -211,7 +243,12 @@ ExteriorPotential::ExteriorPotential(const ImplicitFunction& body,
     assemble_operator(kind, u, source, step, diag, rhs);
     unknowns_ = (long long)std::count(kind.begin(), kind.end(), NodeKind::free);
     const double margin = o.margin * longest;
-    const std::vector<double> x = solve_potential(kind, u, diag, rhs, step, margin, o, iterations_);
+    std::vector<double> start(kind.size(), 0.0);
+    parallel_each(kind.size(), [&](size_t id) {
+        if (kind[id] == NodeKind::free) start[id] = std::min(1.0, u[id] / margin);
+    });
+    const std::vector<double> x =
+        solve_potential(kind, std::move(start), diag, rhs, step, o, iterations_);
     values_ = extend_into_body(kind, u, x, step, margin);
 }
 
@@ -253,6 +290,108 @@ Vec3 ExteriorPotential::gradient(const Vec3& p) const {
              Vec3(dw.x() * w.y() * w.z(), w.x() * dw.y() * w.z(), w.x() * w.y() * dw.z());
     }
     return g / h_;
+}
+
+HarmonicDirections::HarmonicDirections(const ImplicitFunction& body,
+                                       const std::function<Vec3(const Vec3&)>& on_body,
+                                       const Vec3& centre, const ExteriorPotentialOptions& o)
+    : centre_(centre) {
+    if (o.source_radius > 0)
+        throw std::invalid_argument("HarmonicDirections: exterior only (source_radius must be 0)");
+    const Lattice lattice = make_lattice(body, o);
+    h_ = lattice.h;
+    n_ = lattice.n;
+    box_ = lattice.box;
+    std::vector<double> u, source, diag, unit;
+    std::vector<NodeKind> kind;
+    sample_nodes(body, box_.lo, h_, n_, o, u, source, kind);
+    const std::array<long long, 6> step = neighbour_offsets(n_);
+    assemble_operator(kind, u, source, step, diag, unit);
+    const size_t count = kind.size();
+    const auto radial = [&](const Vec3& x) -> Vec3 {
+        const Vec3 d = x - centre;
+        return d.norm() > 0 ? Vec3(d.normalized()) : Vec3(Vec3::UnitX());
+    };
+    // Each free node's right side: its neighbours' data across the wall (at the crossing, by
+    // the same rule as the coupling) and on the box.
+    std::vector<Vec3> rhs(count, Vec3::Zero());
+    parallel_each(count, [&](size_t id) {
+        if (kind[id] != NodeKind::free) return;
+        const Vec3 x = lattice.node(id);
+        for (long long s : step) {
+            const size_t m = size_t((long long)id + s);
+            if (kind[m] == NodeKind::body) {
+                const double t = u[id] / (u[id] - u[m]);
+                rhs[id] += on_body(x + std::clamp(t, 0.0, 1.0) * (lattice.node(m) - x)) /
+                           std::max(min_theta, t);
+            } else if (kind[m] == NodeKind::box) {
+                rhs[id] += radial(lattice.node(m));
+            }
+        }
+    });
+    values_.assign(count, Vec3::Zero());
+    for (int c = 0; c < 3; ++c) {
+        std::vector<double> b(count, 0.0), start(count, 0.0);
+        parallel_each(count, [&](size_t id) {
+            if (kind[id] != NodeKind::free) return;
+            b[id] = rhs[id][c];
+            start[id] = radial(lattice.node(id))[c];
+        });
+        int iterations = 0;
+        const std::vector<double> x =
+            solve_potential(kind, std::move(start), diag, b, step, o, iterations);
+        iterations_ = std::max(iterations_, iterations);
+        parallel_each(count, [&](size_t id) {
+            if (kind[id] == NodeKind::free) values_[id][c] = x[id];
+        });
+    }
+    // The box's nodes, and the body's nodes next to free ones (the only ones interpolation
+    // outside the body reaches).
+    parallel_each(count, [&](size_t id) {
+        if (kind[id] == NodeKind::box) values_[id] = radial(lattice.node(id));
+        if (kind[id] != NodeKind::body) return;
+        const int i = int(id % n_[0]), j = int((id / n_[0]) % n_[1]),
+                  k = int(id / (size_t(n_[0]) * n_[1]));
+        for (int dk = -1; dk <= 1; ++dk)
+            for (int dj = -1; dj <= 1; ++dj)
+                for (int di = -1; di <= 1; ++di) {
+                    const int a = i + di, b = j + dj, e = k + dk;
+                    if (a < 0 || b < 0 || e < 0 || a >= n_[0] || b >= n_[1] || e >= n_[2]) continue;
+                    if (kind[a + n_[0] * (size_t(b) + size_t(n_[1]) * e)] != NodeKind::free)
+                        continue;
+                    values_[id] = on_body(lattice.node(id));
+                    return;
+                }
+    });
+}
+
+Vec3 HarmonicDirections::value(const Vec3& p) const {
+    const Vec3 outside = (box_.lo - p).cwiseMax(p - box_.hi).cwiseMax(0.0);
+    if (outside.squaredNorm() > 0) return (p - centre_).normalized();
+    const auto [c, t] = lattice_cell(box_, h_, n_, p);
+    Vec3 v = Vec3::Zero();
+    for (int corner = 0; corner < 8; ++corner) {
+        const int a = corner & 1, b = (corner >> 1) & 1, d = corner >> 2;
+        v += (a ? t.x() : 1 - t.x()) * (b ? t.y() : 1 - t.y()) * (d ? t.z() : 1 - t.z()) *
+             values_[c[0] + a + n_[0] * (size_t(c[1] + b) + size_t(n_[1]) * (c[2] + d))];
+    }
+    return v;
+}
+
+Mat3 HarmonicDirections::jacobian(const Vec3& p) const {
+    const Vec3 outside = (box_.lo - p).cwiseMax(p - box_.hi).cwiseMax(0.0);
+    if (outside.squaredNorm() > 0) return Mat3::Zero();
+    const auto [c, t] = lattice_cell(box_, h_, n_, p);
+    Mat3 J = Mat3::Zero();
+    for (int corner = 0; corner < 8; ++corner) {
+        const int a = corner & 1, b = (corner >> 1) & 1, d = corner >> 2;
+        const Vec3 w(a ? t.x() : 1 - t.x(), b ? t.y() : 1 - t.y(), d ? t.z() : 1 - t.z());
+        const Vec3 dw(a ? 1 : -1, b ? 1 : -1, d ? 1 : -1);
+        const Vec3 g(dw.x() * w.y() * w.z(), w.x() * dw.y() * w.z(), w.x() * w.y() * dw.z());
+        J += values_[c[0] + a + n_[0] * (size_t(c[1] + b) + size_t(n_[1]) * (c[2] + d))] *
+             g.transpose();
+    }
+    return J / h_;
 }
 
 }  // namespace hexmesh

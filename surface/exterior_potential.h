@@ -2,6 +2,7 @@
 // interior: 0 on the body, 1 on a ball inside it.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "hexmesh/core/implicit_function.h"
@@ -73,6 +74,35 @@ class ExteriorPotential : public ImplicitFunction {
     int iterations_ = 0;
     long long unknowns_ = 0;
     bool interior_ = false;  // options.source_radius > 0
+};
+
+// theta(x), the harmonic extension of a field of unit vectors into a body's exterior in a box:
+// on the body (u = 0) the given `on_body` (e.g. each surface point's image under a map onto the
+// sphere), on the box's faces the direction from `centre`; each of its three components solved
+// as ExteriorPotential is, on the same lattice, with these Dirichlet data instead of 0 and 1.
+// Its fibres {theta / |theta| = d} run from the body's point with image d out to the box's
+// point in direction d from the centre and, being fibres of one map, never meet; unlike the
+// gradient lines of the potential they do not part at its saddles. Inside the body the nodes
+// next to it take on_body at themselves. Thread safe for concurrent calls.
+class HarmonicDirections {
+  public:
+    // `on_body` is called concurrently. Throws as ExteriorPotential does.
+    HarmonicDirections(const ImplicitFunction& body,
+                       const std::function<Vec3(const Vec3&)>& on_body, const Vec3& centre,
+                       const ExteriorPotentialOptions& options = {});
+
+    Vec3 value(const Vec3& p) const;
+    // Row c: the gradient of component c (trilinear, piecewise exact); zero outside the box.
+    Mat3 jacobian(const Vec3& p) const;
+    int iterations() const { return iterations_; }
+
+  private:
+    Box3 box_;
+    double h_ = 0;
+    Vec3 centre_;
+    std::array<int, 3> n_{};
+    std::vector<Vec3> values_;
+    int iterations_ = 0;
 };
 
 }  // namespace hexmesh

@@ -22,6 +22,9 @@ struct WallPaths {
     // Unit directions from the centre of the lines' far-field nodes (empty: towards each
     // line's end).
     std::vector<Vec3> far_directions;
+    // How many lines follow a fibre of the directions' harmonic extension (the rest, the
+    // potential's gradient: hexmesh/pipeline/exterior_paths.h).
+    Id fibres = 0;
 
     const Vec3& wall(size_t s) const { return lines[s].front(); }
     const Vec3& outer(size_t s) const { return lines[s].back(); }

@@ -3,7 +3,10 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
+#include <Eigen/Geometry>
+#include <Eigen/LU>
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <optional>
 #include <stdexcept>
@@ -125,6 +128,83 @@ std::vector<Vec3> gradient_line_up(const ImplicitFunction& potential, Vec3 p, do
     return line;
 }
 
+std::vector<Vec3> direction_line_up(const ImplicitFunction& potential,
+                                    const HarmonicDirections& theta, Vec3 p, double c0, double step,
+                                    double along_gradient, std::vector<double>& levels) {
+    const double longest = 4 * potential.bounds().diagonal();
+    const auto up = [&](const Vec3& x) {
+        const Vec3 g = potential.gradient(x);
+        const double norm = g.norm();
+        return norm > 0 && std::isfinite(norm) ? Vec3(g / norm) : Vec3(Vec3::Zero());
+    };
+    std::vector<Vec3> line = {p};
+    double f = potential.value(p);
+    levels = {std::max(f, 0.0)};
+    const auto add = [&](Vec3 q) {
+        double fq = potential.value(q);
+        if (fq >= c0 && fq > f) {
+            q = line.back() + (q - line.back()) * ((c0 - f) / (fq - f));
+            fq = c0;
+        }
+        line.push_back(q);
+        f = std::min(fq, c0);
+        levels.push_back(std::max(f, levels.back()));
+    };
+    double travelled = 0;
+    // First along the gradient: the boundary layer's lines leave the wall at right angles.
+    for (; travelled < along_gradient && f < c0; travelled += step) {
+        const Vec3 v = up(line.back());
+        if (v.squaredNorm() == 0) break;
+        const Vec3 w = up(line.back() + 0.5 * step * v);
+        add(line.back() + step * (w.squaredNorm() > 0 ? w : v));
+    }
+    const Vec3 start = theta.value(line.back());
+    if (!(start.norm() > 1e-9)) return line;
+    const Vec3 d = start.normalized();
+    const Vec3 e1 = d.unitOrthogonal(), e2 = d.cross(e1);
+    // The fibre's constraints a = theta . e1 = 0, b = theta . e2 = 0: their gradients.
+    const auto constraints = [&](const Vec3& x) {
+        const Mat3 J = theta.jacobian(x);
+        Eigen::Matrix<double, 2, 3> A;
+        A.row(0) = (J.transpose() * e1).transpose();
+        A.row(1) = (J.transpose() * e2).transpose();
+        return A;
+    };
+    const auto tangent = [&](const Vec3& x, const Vec3& previous) -> Vec3 {
+        const Eigen::Matrix<double, 2, 3> A = constraints(x);
+        Vec3 t = Vec3(A.row(0).transpose()).cross(Vec3(A.row(1).transpose()));
+        if (!(t.norm() > 0) || !t.allFinite()) return Vec3::Zero();
+        t.normalize();
+        return t.dot(previous) < 0 ? Vec3(-t) : t;
+    };
+    // Back onto the fibre (Gauss-Newton, the least-norm correction, at most a step long).
+    const auto onto_fibre = [&](Vec3 x) {
+        for (int it = 0; it < 3; ++it) {
+            const Vec3 th = theta.value(x);
+            const Eigen::Vector2d r(th.dot(e1), th.dot(e2));
+            const Eigen::Matrix<double, 2, 3> A = constraints(x);
+            const Eigen::Matrix2d AAt = A * A.transpose();
+            if (!(std::abs(AAt.determinant()) > 1e-300)) break;
+            Vec3 dx = -A.transpose() * AAt.inverse() * r;
+            if (dx.norm() > step) dx *= step / dx.norm();
+            x += dx;
+        }
+        return x;
+    };
+    Vec3 previous = up(line.back());
+    if (previous.squaredNorm() == 0) previous = d;
+    for (; travelled < longest && f < c0; travelled += step) {
+        const Vec3 t = tangent(line.back(), previous);
+        if (t.squaredNorm() == 0) break;
+        const Vec3 m = tangent(line.back() + 0.5 * step * t, t);
+        const Vec3 q = onto_fibre(line.back() + step * (m.squaredNorm() > 0 ? m : t));
+        if (!(theta.value(q).dot(d) > 0)) break;  // the fibre of -d
+        previous = (q - line.back()).normalized();
+        add(q);
+    }
+    return line;
+}
+
 namespace {
 
 // Whether path s ends below the level c0.
@@ -135,7 +215,7 @@ bool short_of_level(const WallPaths& paths, size_t s) {
 // The gradient lines of the wall nodes up to c0, each traced again climbing out of pockets
 // when it stops short (see exterior_paths); far_directions left empty.
 WallPaths trace_paths(const ImplicitFunction& potential, const std::vector<Vec3>& wall, double c0,
-                      int n, const Vec3& centre) {
+                      int n, const Vec3& centre, const HarmonicDirections* directions = nullptr) {
     WallPaths paths;
     paths.cells_per_edge = n;
     paths.centre = centre;
@@ -143,11 +223,22 @@ WallPaths trace_paths(const ImplicitFunction& potential, const std::vector<Vec3>
     paths.lines.resize(wall.size());
     paths.levels.resize(wall.size());
     const double step = 0.25 * grid_length_scale(potential, n);
+    std::atomic<Id> fibres{0};
     tbb::parallel_for(size_t(0), wall.size(), [&](size_t s) {
+        if (directions) {
+            // A wall edge up the gradient first, for the boundary layer.
+            paths.lines[s] = direction_line_up(potential, *directions, wall[s], c0, step, 4 * step,
+                                               paths.levels[s]);
+            if (!short_of_level(paths, s)) {
+                ++fibres;
+                return;
+            }
+        }
         paths.lines[s] = gradient_line_up(potential, wall[s], c0, step, paths.levels[s]);
         if (short_of_level(paths, s))
             paths.lines[s] = gradient_line_up(potential, wall[s], c0, step, paths.levels[s], true);
     });
+    paths.fibres = fibres;
     return paths;
 }
 
@@ -166,8 +257,9 @@ WallPaths interior_paths(const ImplicitFunction& potential, const std::vector<Ve
 
 WallPaths exterior_paths(const ImplicitFunction& potential, const std::vector<Vec3>& wall,
                          double c0, int n, const Vec3& centre,
-                         const untangle::UntangleOptions& solver, LevelSpreading* spread) {
-    WallPaths paths = trace_paths(potential, wall, c0, n, centre);
+                         const untangle::UntangleOptions& solver, LevelSpreading* spread,
+                         const HarmonicDirections* theta) {
+    WallPaths paths = trace_paths(potential, wall, c0, n, centre, theta);
     std::vector<Vec3> directions(wall.size());
     for (size_t s = 0; s < wall.size(); ++s) {
         // A line that stopped short of the far level (no higher point near its end, or it

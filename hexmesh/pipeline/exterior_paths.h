@@ -1,11 +1,13 @@
-// The lines of an exterior grid round a body that is not star-shaped: from its wall nodes up
-// the gradient lines of its exterior potential to a level that is star-shaped.
+// The lines of an exterior grid round a body that is not star-shaped: from its wall nodes out
+// through the levels of its exterior potential (along its gradient, or along the fibres of a
+// field of directions) to a level that is star-shaped.
 #pragma once
 
 #include <vector>
 
 #include "hexmesh/core/implicit_function.h"
 #include "hexmesh/pipeline/spread_on_levels.h"
+#include "surface/exterior_potential.h"
 #include "untangle/untangle.h"
 #include "volume/wall_paths.h"
 
@@ -40,10 +42,21 @@ std::vector<Vec3> gradient_line_up(const ImplicitFunction& potential, Vec3 p, do
 // stops short of c0 even so (no higher point near where it stops), std::runtime_error when a
 // line leaves no finite point. With `spread`, the lines are first carried out level by level
 // and repaired where they part or fold (hexmesh/pipeline/spread_on_levels.h), what was done
-// stored there.
+// stored there. With `theta`, each line instead runs a wall edge up the gradient and then
+// along its fibre of theta (direction_line_up; up the gradient as above where the fibre stops
+// short of c0): fibres do not part at the potential's saddles.
 WallPaths exterior_paths(const ImplicitFunction& potential, const std::vector<Vec3>& wall,
                          double c0, int cells_per_edge, const Vec3& centre,
-                         const untangle::UntangleOptions& solver, LevelSpreading* spread = nullptr);
+                         const untangle::UntangleOptions& solver, LevelSpreading* spread = nullptr,
+                         const HarmonicDirections* theta = nullptr);
+
+// The fibre {theta / |theta| = d} of `theta` (d its direction at the line's start) from p up to
+// the level F = c0 of `potential`, after a first stretch of length `along_gradient` up its
+// gradient; points `step` apart (predictor-corrector), F at them in `levels` (its running
+// maximum). Ends early where the fibre's tangent vanishes or it meets the fibre of -d.
+std::vector<Vec3> direction_line_up(const ImplicitFunction& potential,
+                                    const HarmonicDirections& theta, Vec3 p, double c0, double step,
+                                    double along_gradient, std::vector<double>& levels);
 
 // The paths of an interior grid's lines (volume/wall_paths.h) from the wall lattice `wall` up
 // the body's interior potential (0 on the body, rising in to 1 on a ball round `centre`:

@@ -385,6 +385,23 @@ SphereMap aligned_with_body(const SphereMap& map, const Vec3& centre) {
     return SphereMap(s, std::move(sphere));
 }
 
+Vec3 image_of_nearest(const SphereMap& map, const ExactDistance& nearest, const Vec3& x) {
+    const std::array<int, 3>& t = map.surface().triangles[nearest.closest_triangle(x)];
+    const Vec3 q = nearest.closest_point(x);
+    const Vec3 &a = map.surface().points[t[0]], &b = map.surface().points[t[1]],
+               &c = map.surface().points[t[2]];
+    const Vec3 n = (b - a).cross(c - a);
+    Vec3 w = Vec3::Constant(1.0 / 3);
+    if (n.squaredNorm() > 0) {
+        w[0] = (c - b).cross(q - b).dot(n) / n.squaredNorm();
+        w[1] = (a - c).cross(q - c).dot(n) / n.squaredNorm();
+        w[2] = 1 - w[0] - w[1];
+    }
+    const Vec3 image =
+        w[0] * map.sphere()[t[0]] + w[1] * map.sphere()[t[1]] + w[2] * map.sphere()[t[2]];
+    return image.norm() > 0 ? Vec3(image.normalized()) : map.sphere()[t[0]];
+}
+
 std::vector<Vec3> wall_from_sphere_map(const SphereMap& map, int n, const ImplicitFunction& body) {
     const CubeSurfaceLattice lattice = make_cube_surface_lattice(n);
     const double h = grid_length_scale(body, n);

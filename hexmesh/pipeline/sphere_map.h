@@ -7,6 +7,7 @@
 
 #include "hexmesh/core/implicit_function.h"
 #include "hexmesh/core/triangle_surface.h"
+#include "surface/exact_distance.h"
 #include "untangle/untangle.h"
 
 namespace hexmesh {
@@ -72,6 +73,11 @@ SphereMap map_to_sphere(const TriangleSurface& surface, const SphereMapOptions& 
 // the lattice's patches, numbered as the cube's, then face the sides of the body they are named
 // after, so that lines from an interior core box run to the side facing it.
 SphereMap aligned_with_body(const SphereMap& map, const Vec3& centre);
+
+// The image under the map of the surface point nearest x (barycentric in the triangle holding
+// it; `nearest` built on map.surface()), made unit: the map spread off the surface, for points
+// on or near it.
+Vec3 image_of_nearest(const SphereMap& map, const ExactDistance& nearest, const Vec3& x);
 
 // The cube-sphere wall lattice (CubeSurfaceLattice numbering, volume/cube_sphere.h) with n
 // cells per patch edge on the body: the equiangular cube-sphere directions of the unit cube,

@@ -135,8 +135,9 @@ void map_wall(const Case& c, const TriangleSurface& surface, const ImplicitFunct
                               route.far_level, route.core_half->x())
                 : fmt::format("; lines straight to a core cube of half-size {:.4g}\n",
                               route.core_half->x()));
-    route.wall = std::make_shared<std::vector<Vec3>>(
-        wall_from_sphere_map(aligned_with_body(map, route.centre), cells_per_edge, body));
+    route.map = std::make_shared<SphereMap>(aligned_with_body(map, route.centre));
+    route.wall =
+        std::make_shared<std::vector<Vec3>>(wall_from_sphere_map(*route.map, cells_per_edge, body));
 }
 
 }  // namespace
@@ -181,9 +182,27 @@ WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
 WallPaths exterior_paths(const WallRoute& route, const std::vector<Vec3>& wall, int cells_per_edge,
                          LevelSpreading* spread) {
     LevelSpreading done;
-    return exterior_paths(*route.potential, wall, route.far_level, cells_per_edge, route.centre,
-                          route.solver,
-                          route.spread_on_levels ? (spread ? spread : &done) : nullptr);
+    return exterior_paths(
+        *route.potential, wall, route.far_level, cells_per_edge, route.centre, route.solver,
+        route.spread_on_levels ? (spread ? spread : &done) : nullptr, route.directions.get());
+}
+
+bool add_directions(const ImplicitFunction& body, WallRoute& route, std::ostream& log) {
+    Lap lap;
+    const SphereMap& map = *route.map;
+    const ExactDistance nearest(map.surface());
+    try {
+        route.directions = std::make_shared<HarmonicDirections>(
+            body, [&](const Vec3& x) { return image_of_nearest(map, nearest, x); }, route.centre);
+    } catch (const std::exception& e) {
+        log << "  no harmonic extension of the sphere map's directions (" << e.what() << ")\n";
+        return false;
+    }
+    log << fmt::format(
+        "  the sphere map's directions extended harmonically outside the body ({} iterations, "
+        "{:.2f} s)\n",
+        route.directions->iterations(), lap());
+    return true;
 }
 
 bool add_interior_potential(const ImplicitFunction& body, double depth, WallRoute& route,

@@ -11,10 +11,13 @@
 #include "hexmesh/core/triangle_surface.h"
 #include "hexmesh/pipeline/spread_on_levels.h"
 #include "io/case_file.h"
+#include "surface/exterior_potential.h"
 #include "untangle/untangle.h"
 #include "volume/wall_paths.h"
 
 namespace hexmesh {
+
+class SphereMap;
 
 struct WallRoute {
     Vec3 centre = Vec3::Zero();
@@ -26,6 +29,12 @@ struct WallRoute {
     // `centre`.
     std::shared_ptr<const std::vector<Vec3>> wall;
     std::shared_ptr<const ImplicitFunction> potential;
+    // Not radial: the map of the body's surface onto the sphere that placed `wall`, turned to
+    // face the body (hexmesh/pipeline/sphere_map.h: aligned_with_body).
+    std::shared_ptr<const SphereMap> map;
+    // Exterior, made by add_directions: the harmonic extension of the map's directions, whose
+    // fibres the lines then follow (none: the potential's gradient lines).
+    std::shared_ptr<const HarmonicDirections> directions;
     double far_level = 0;
     // Interior: the core box's half extents, around `centre`, inside the body. With
     // `potential` (add_interior_potential), the lines run in along its gradient lines to its
@@ -58,7 +67,7 @@ struct WallRoute {
 //   lines out along the gradient lines of the body's exterior potential
 //   (surface/exterior_potential.h) to its lowest level in 0.1, 0.2, ... 0.9 that is star-shaped
 //   around the centre of the bounds (or grid.center), rays meeting it within 80 degrees of its
-//   normal; surface files only (see below).
+//   normal (along fibres instead once add_directions has run); surface files only (see below).
 // The choice, why, and the time of each step (potential, sphere map) go to `log`;
 // `cells_per_edge` and `solver` are those of its wall lattice and 2D solves. Throws InputError
 // naming the case when grid.center is outside the body (interior, or a formula outside) or when
@@ -70,12 +79,21 @@ WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
                             const untangle::UntangleOptions& solver, std::ostream& log);
 
 // The paths of an exterior grid's lines (volume/wall_paths.h) from these wall nodes (the
-// route's, or the same moved on u = 0) up the route's potential; their far-field directions
+// route's, or the same moved on u = 0) up the route's potential, along the fibres of its
+// directions; their far-field directions
 // untangled on the unit sphere; spread out on the potential's levels where they part or fold
 // when the route says so (WallRoute::spread_on_levels; what was done to `spread`, if given).
 // The route must not be radial.
 WallPaths exterior_paths(const WallRoute& route, const std::vector<Vec3>& wall, int cells_per_edge,
                          LevelSpreading* spread = nullptr);
+
+// For an exterior route that is not radial: the harmonic extension outside the body of the
+// directions of route.map (its images on the body, the directions from route.centre on the
+// potential's box: surface/exterior_potential.h, HarmonicDirections) into route.directions, so
+// that exterior_paths runs the lines along its fibres, which do not part where the
+// potential's gradient lines do, at its saddles. Logs the solve; false (the route as it was)
+// when the solve fails.
+bool add_directions(const ImplicitFunction& body, WallRoute& route, std::ostream& log);
 
 // For an interior route that is not radial (choose_wall_route calls it): the body's interior
 // potential, 1 on the ball of 0.9 `depth` (the centre's distance to the surface) round

@@ -326,6 +326,10 @@ TEST_P(FromTheFileAlone, IsValidForTheSolverAndKeepsItsFirstLayer) {
               follows)
         << r.out;
     EXPECT_TRUE(q.at("valid").get<bool>());
+    // The sphere map's directions are extended only for a grid the gradient lines left invalid.
+    EXPECT_EQ(r.out.find("extended harmonically outside the body") == std::string::npos,
+              r.out.find("the gradient lines left") == std::string::npos)
+        << r.out;
     EXPECT_EQ(r.out.find("boundary layer not laid again"), std::string::npos) << r.out;
     EXPECT_EQ(std::regex_search(r.out, std::regex("[1-9][0-9]* inverted elements left to the next "
                                                   "pass")),

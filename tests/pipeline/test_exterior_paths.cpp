@@ -9,6 +9,7 @@
 
 #include "hexmesh/pipeline/exterior_paths.h"
 #include "hexmesh/pipeline/spread_on_levels.h"
+#include "surface/analytic.h"
 #include "volume/cube_sphere.h"
 
 using namespace hexmesh;
@@ -71,6 +72,30 @@ TEST(ExteriorPaths, LinesOfABallsPotentialAreItsRaysUpToTheLevel) {
         EXPECT_NEAR(paths.levels[s].back(), 0.5, 1e-9) << s;
         EXPECT_NEAR(paths.far_directions[s].dot(wall[s].normalized()), 1, 1e-3) << s;
     }
+}
+
+TEST(ExteriorPaths, WithDirectionsEveryLineIsAFibreAndRoundABallARay) {
+    // The unit ball's lattice potential and radial directions: every line follows its fibre,
+    // which is the ray through its wall node (within 2 degrees on a lattice of 24), up to the
+    // level.
+    const int n = 4;
+    const Sphere body(Vec3::Zero(), 1);
+    ExteriorPotentialOptions o;
+    o.resolution = 24;
+    o.margin = 0.6;
+    const ExteriorPotential potential(body, o);
+    const HarmonicDirections theta(
+        body, [](const Vec3& x) { return Vec3(x.normalized()); }, Vec3::Zero(), o);
+    const std::vector<Vec3> wall = unit_sphere_wall(n);
+    const WallPaths paths =
+        exterior_paths(potential, wall, 0.5, n, Vec3::Zero(), {}, nullptr, &theta);
+    EXPECT_EQ(paths.fibres, Id(wall.size()));
+    for (size_t s = 0; s < wall.size(); ++s) {
+        EXPECT_NEAR(paths.levels[s].back(), 0.5, 1e-9) << s;
+        for (const Vec3& x : paths.lines[s])
+            EXPECT_GT(x.normalized().dot(wall[s].normalized()), std::cos(2 * M_PI / 180)) << s;
+    }
+    EXPECT_EQ(exterior_paths(potential, wall, 0.5, n, Vec3::Zero(), {}).fibres, 0);
 }
 
 TEST(ExteriorPaths, ALineThatStopsShortOfTheLevelIsRefusedWithItsPoint) {
@@ -241,4 +266,36 @@ TEST(SpreadOnLevels, AFoldTheWallCarriesOutIsSpreadOutOnTheFirstLevel) {
     }
     EXPECT_EQ(Id(wall.size()) - unchanged, done.lines_moved);
     EXPECT_GT(unchanged, Id(wall.size()) / 2);
+}
+
+TEST(ExteriorPaths, AFibreOfTheDirectionsRunsFromTheWallPointOfImageDToTheBoxInDirectionD) {
+    // Round a sphere, directions that are the radial ones turned by 60 degrees about z on the
+    // body and radial on the box: the fibre from the wall point whose image is d turns with
+    // the field on its way out and ends near the box in the direction d.
+    const Sphere body(Vec3::Zero(), 0.5);
+    ExteriorPotentialOptions o;
+    o.resolution = 32;
+    o.margin = 0.6;
+    const ExteriorPotential potential(body, o);
+    const Mat3 turn = Eigen::AngleAxisd(M_PI / 3, Vec3::UnitZ()).toRotationMatrix();
+    const HarmonicDirections theta(
+        body, [&](const Vec3& x) { return Vec3(turn * x.normalized()); }, Vec3::Zero(), o);
+    for (const Vec3& wall : {Vec3(0.5, 0, 0), Vec3(0, -0.3, 0.4), Vec3(0.3, 0.3, 0.3)}) {
+        const Vec3 p = 0.5 * wall.normalized();
+        std::vector<double> levels;
+        const std::vector<Vec3> line =
+            direction_line_up(potential, theta, p, 0.97, 0.01, 0.0, levels);
+        ASSERT_GE(line.size(), 2u);
+        EXPECT_NEAR(levels.back(), 0.97, 1e-9);
+        EXPECT_TRUE(std::is_sorted(levels.begin(), levels.end()));
+        const Vec3 d = theta.value(p).normalized();
+        EXPECT_LT(d.dot(turn * p.normalized()), 1.0 + 1e-9);
+        EXPECT_GT(d.dot(turn * p.normalized()), std::cos(3 * M_PI / 180));
+        // Every point of the line on the fibre of d; its end within 5 degrees of d seen from
+        // the centre.
+        for (const Vec3& x : line)
+            EXPECT_GT(theta.value(x).normalized().dot(d), std::cos(1 * M_PI / 180));
+        EXPECT_GT(line.back().normalized().dot(d), std::cos(5 * M_PI / 180))
+            << "ends at " << line.back().transpose() << ", d " << d.transpose();
+    }
 }

@@ -108,3 +108,23 @@ TEST(ExteriorPotential, ASourceBallWithNoNodeInsideTheBodyIsRefused) {
     o.source_radius = 0.1;
     EXPECT_THROW(ExteriorPotential(body, o), std::invalid_argument);
 }
+
+TEST(HarmonicDirections, RoundASphereWithRadialDataTheyAreRadial) {
+    // Radial on the sphere and on the box: by symmetry radial in between (up to the box's
+    // corners), of length at most 1 (the maximum principle, component by component).
+    const Sphere body(Vec3::Zero(), 0.5);
+    ExteriorPotentialOptions o;
+    o.resolution = 32;
+    o.margin = 0.6;
+    const HarmonicDirections theta(
+        body, [](const Vec3& x) { return Vec3(x.normalized()); }, Vec3::Zero(), o);
+    EXPECT_GT(theta.iterations(), 0);
+    for (const Vec3& d : sphere_directions(100))
+        for (double r = 0.55; r < 1.0; r += 0.1) {
+            const Vec3 t = theta.value(r * d);
+            EXPECT_LT(std::acos(std::min(1.0, t.normalized().dot(d))), 2 * M_PI / 180)
+                << "at " << (r * d).transpose();
+            EXPECT_LT(t.norm(), 1 + 1e-6);
+        }
+    EXPECT_NEAR(theta.value(Vec3(5, 0, 0)).x(), 1, 1e-12);  // beyond the box: radial
+}
