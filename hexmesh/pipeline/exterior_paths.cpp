@@ -79,16 +79,19 @@ Vec3 on_level(const ImplicitFunction& potential, Vec3 p, Vec3 q, double c0) {
     return 0.5 * (p + q);
 }
 
+// The unit gradient of `potential` at x (zero where it vanishes or is not finite).
+Vec3 uphill(const ImplicitFunction& potential, const Vec3& x) {
+    const Vec3 g = potential.gradient(x);
+    const double norm = g.norm();
+    return norm > 0 && std::isfinite(norm) ? Vec3(g / norm) : Vec3(Vec3::Zero());
+}
+
 }  // namespace
 
 std::vector<Vec3> gradient_line_up(const ImplicitFunction& potential, Vec3 p, double c0,
                                    double step, std::vector<double>& levels, bool climb_pockets) {
     const double longest = 4 * potential.bounds().diagonal();
-    const auto up = [&](const Vec3& x) {
-        const Vec3 g = potential.gradient(x);
-        const double norm = g.norm();
-        return norm > 0 && std::isfinite(norm) ? Vec3(g / norm) : Vec3(Vec3::Zero());
-    };
+    const auto up = [&](const Vec3& x) { return uphill(potential, x); };
     std::vector<Vec3> line = {p};
     double f = potential.value(p);
     levels = {std::max(f, 0.0)};
@@ -132,11 +135,7 @@ std::vector<Vec3> direction_line_up(const ImplicitFunction& potential,
                                     const HarmonicDirections& theta, Vec3 p, double c0, double step,
                                     double along_gradient, std::vector<double>& levels) {
     const double longest = 4 * potential.bounds().diagonal();
-    const auto up = [&](const Vec3& x) {
-        const Vec3 g = potential.gradient(x);
-        const double norm = g.norm();
-        return norm > 0 && std::isfinite(norm) ? Vec3(g / norm) : Vec3(Vec3::Zero());
-    };
+    const auto up = [&](const Vec3& x) { return uphill(potential, x); };
     std::vector<Vec3> line = {p};
     double f = potential.value(p);
     levels = {std::max(f, 0.0)};
