@@ -221,6 +221,22 @@ std::pair<std::array<int, 3>, Vec3> lattice_cell(const Box3& box, double h,
     return {c, q - Vec3(c[0], c[1], c[2])};
 }
 
+// Calls f(id, weight, gradient) for each of the 8 nodes of the lattice cell whose lowest node
+// is c (n nodes along each axis), at the place t in it: the node's trilinear weight and that
+// weight's gradient in cell units (exact for the interpolant).
+template <class F>
+void for_cell_nodes(const std::array<int, 3>& n, const std::array<int, 3>& c, const Vec3& t,
+                    F&& f) {
+    for (int corner = 0; corner < 8; ++corner) {
+        const int a = corner & 1, b = (corner >> 1) & 1, d = corner >> 2;
+        const Vec3 w(a ? t.x() : 1 - t.x(), b ? t.y() : 1 - t.y(), d ? t.z() : 1 - t.z());
+        const Vec3 dw(a ? 1 : -1, b ? 1 : -1, d ? 1 : -1);
+        f(size_t(c[0] + a) + size_t(n[0]) * (size_t(c[1] + b) + size_t(n[1]) * size_t(c[2] + d)),
+          w.x() * w.y() * w.z(),
+          Vec3(dw.x() * w.y() * w.z(), w.x() * dw.y() * w.z(), w.x() * w.y() * dw.z()));
+    }
+}
+
 }  // namespace
 
 ExteriorPotential::ExteriorPotential(const ImplicitFunction& body,
@@ -252,25 +268,14 @@ ExteriorPotential::ExteriorPotential(const ImplicitFunction& body,
     values_ = extend_into_body(kind, u, x, step, margin);
 }
 
-ExteriorPotential::Cell ExteriorPotential::cell_at(const Vec3& p) const {
-    const Vec3 q = (p - box_.lo) / h_;
-    const int i = std::min(int(q.x()), n_[0] - 2), j = std::min(int(q.y()), n_[1] - 2),
-              k = std::min(int(q.z()), n_[2] - 2);
-    return {i, j, k, q - Vec3(i, j, k)};
-}
-
 double ExteriorPotential::value(const Vec3& p) const {
     const Vec3 outside = (box_.lo - p).cwiseMax(p - box_.hi).cwiseMax(0.0);
     if (outside.squaredNorm() > 0)
         return interior_ ? value(p.cwiseMax(box_.lo).cwiseMin(box_.hi)) - outside.norm()
                          : 1 + outside.norm();
-    const auto [i, j, k, t] = cell_at(p);
+    const auto [c, t] = lattice_cell(box_, h_, n_, p);
     double v = 0;
-    for (int c = 0; c < 8; ++c) {
-        const int a = c & 1, b = (c >> 1) & 1, d = c >> 2;
-        v += (a ? t.x() : 1 - t.x()) * (b ? t.y() : 1 - t.y()) * (d ? t.z() : 1 - t.z()) *
-             node(i + a, j + b, k + d);
-    }
+    for_cell_nodes(n_, c, t, [&](size_t id, double w, const Vec3&) { v += w * values_[id]; });
     return v;
 }
 
@@ -280,15 +285,9 @@ Vec3 ExteriorPotential::gradient(const Vec3& p) const {
         const Vec3 away = p - p.cwiseMax(box_.lo).cwiseMin(box_.hi);
         return interior_ ? Vec3(-away.normalized()) : away.normalized();
     }
-    const auto [i, j, k, t] = cell_at(p);
+    const auto [c, t] = lattice_cell(box_, h_, n_, p);
     Vec3 g = Vec3::Zero();
-    for (int c = 0; c < 8; ++c) {
-        const int a = c & 1, b = (c >> 1) & 1, d = c >> 2;
-        const Vec3 w(a ? t.x() : 1 - t.x(), b ? t.y() : 1 - t.y(), d ? t.z() : 1 - t.z());
-        const Vec3 dw(a ? 1 : -1, b ? 1 : -1, d ? 1 : -1);
-        g += node(i + a, j + b, k + d) *
-             Vec3(dw.x() * w.y() * w.z(), w.x() * dw.y() * w.z(), w.x() * w.y() * dw.z());
-    }
+    for_cell_nodes(n_, c, t, [&](size_t id, double, const Vec3& dw) { g += values_[id] * dw; });
     return g / h_;
 }
 
@@ -370,11 +369,7 @@ Vec3 HarmonicDirections::value(const Vec3& p) const {
     if (outside.squaredNorm() > 0) return (p - centre_).normalized();
     const auto [c, t] = lattice_cell(box_, h_, n_, p);
     Vec3 v = Vec3::Zero();
-    for (int corner = 0; corner < 8; ++corner) {
-        const int a = corner & 1, b = (corner >> 1) & 1, d = corner >> 2;
-        v += (a ? t.x() : 1 - t.x()) * (b ? t.y() : 1 - t.y()) * (d ? t.z() : 1 - t.z()) *
-             values_[c[0] + a + n_[0] * (size_t(c[1] + b) + size_t(n_[1]) * (c[2] + d))];
-    }
+    for_cell_nodes(n_, c, t, [&](size_t id, double w, const Vec3&) { v += w * values_[id]; });
     return v;
 }
 
@@ -383,14 +378,8 @@ Mat3 HarmonicDirections::jacobian(const Vec3& p) const {
     if (outside.squaredNorm() > 0) return Mat3::Zero();
     const auto [c, t] = lattice_cell(box_, h_, n_, p);
     Mat3 J = Mat3::Zero();
-    for (int corner = 0; corner < 8; ++corner) {
-        const int a = corner & 1, b = (corner >> 1) & 1, d = corner >> 2;
-        const Vec3 w(a ? t.x() : 1 - t.x(), b ? t.y() : 1 - t.y(), d ? t.z() : 1 - t.z());
-        const Vec3 dw(a ? 1 : -1, b ? 1 : -1, d ? 1 : -1);
-        const Vec3 g(dw.x() * w.y() * w.z(), w.x() * dw.y() * w.z(), w.x() * w.y() * dw.z());
-        J += values_[c[0] + a + n_[0] * (size_t(c[1] + b) + size_t(n_[1]) * (c[2] + d))] *
-             g.transpose();
-    }
+    for_cell_nodes(n_, c, t,
+                   [&](size_t id, double, const Vec3& dw) { J += values_[id] * dw.transpose(); });
     return J / h_;
 }
 

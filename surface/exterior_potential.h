@@ -57,16 +57,6 @@ class ExteriorPotential : public ImplicitFunction {
     long long unknowns() const { return unknowns_; }
 
   private:
-    double node(int i, int j, int k) const {
-        return values_[i + n_[0] * (size_t(j) + size_t(n_[1]) * k)];
-    }
-    // The lattice cell holding p (inside the box): its lowest node and p's place in it, [0, 1]^3.
-    struct Cell {
-        int i, j, k;
-        Vec3 t;
-    };
-    Cell cell_at(const Vec3& p) const;
-
     Box3 box_;
     double h_ = 0;
     std::array<int, 3> n_{};
