@@ -1,5 +1,9 @@
 #include "surface/sharp_features.h"
 
+#include <CGAL/AABB_segment_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/Simple_cartesian.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 
@@ -9,6 +13,7 @@
 #include <cstdint>
 #include <limits>
 #include <stdexcept>
+#include <tuple>
 
 #include "surface/surface_diagnostics.h"
 
@@ -123,6 +128,54 @@ FeatureProjection project_to_features(const TriangleSurface& s, const FeatureCur
             if (d < best.distance) best = {q, c, k, d};
         }
     return best;
+}
+
+namespace {
+using SegmentKernel = CGAL::Simple_cartesian<double>;
+using Segments = std::vector<SegmentKernel::Segment_3>;
+using SegmentPrimitive = CGAL::AABB_segment_primitive<SegmentKernel, Segments::const_iterator>;
+using SegmentTree = CGAL::AABB_tree<CGAL::AABB_traits<SegmentKernel, SegmentPrimitive>>;
+}  // namespace
+
+struct FeatureIndex::Tree {
+    Segments segments;  // must outlive the tree, which holds iterators into it
+    SegmentTree tree;
+};
+
+FeatureIndex::FeatureIndex(const TriangleSurface& surface, const FeatureCurves& features)
+    : tree_(std::make_unique<Tree>()) {
+    auto point = [&](int id) {
+        const Vec3& p = surface.points[id];
+        return SegmentKernel::Point_3(p.x(), p.y(), p.z());
+    };
+    for (int c = 0; c < int(features.chains.size()); ++c)
+        for (int k = 0; k + 1 < int(features.chains[c].size()); ++k) {
+            const SegmentKernel::Segment_3 segment(point(features.chains[c][k]),
+                                                   point(features.chains[c][k + 1]));
+            if (segment.is_degenerate()) continue;
+            tree_->segments.push_back(segment);
+            segments_.push_back({c, k});
+        }
+    if (segments_.empty()) return;
+    tree_->tree.insert(tree_->segments.begin(), tree_->segments.end());
+    tree_->tree.build();
+    tree_->tree.accelerate_distance_queries();
+    tree_->tree.closest_point(tree_->segments[0].source());  // builds the search structure now
+}
+
+FeatureIndex::~FeatureIndex() = default;
+
+FeatureProjection FeatureIndex::project(const Vec3& p) const {
+    FeatureProjection r;
+    r.point = p;
+    r.distance = std::numeric_limits<double>::infinity();
+    if (segments_.empty()) return r;
+    const auto hit =
+        tree_->tree.closest_point_and_primitive(SegmentKernel::Point_3(p.x(), p.y(), p.z()));
+    r.point = Vec3(hit.first.x(), hit.first.y(), hit.first.z());
+    std::tie(r.chain, r.segment) = segments_[size_t(hit.second - tree_->segments.begin())];
+    r.distance = (r.point - p).norm();
+    return r;
 }
 
 }  // namespace hexmesh

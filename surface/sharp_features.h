@@ -2,6 +2,8 @@
 // creases meet, and projection of a point onto the nearest crease.
 #pragma once
 
+#include <memory>
+#include <utility>
 #include <vector>
 
 #include "hexmesh/core/triangle_surface.h"
@@ -42,5 +44,25 @@ struct FeatureProjection {
 // Nearest point of the crease polylines to p (brute force: O(#feature edges) per call).
 FeatureProjection project_to_features(const TriangleSurface& surface, const FeatureCurves& features,
                                       const Vec3& p);
+
+// The crease polylines indexed for nearest-point queries (a CGAL AABB tree of their
+// segments): project_to_features's answer in logarithmic time, for the optimizer's many
+// projections. Where two segments are equally near (a chain's joint) either may be named.
+// Copies what it needs; queries are const and may run in parallel.
+class FeatureIndex {
+  public:
+    FeatureIndex(const TriangleSurface& surface, const FeatureCurves& features);
+    ~FeatureIndex();
+    FeatureIndex(const FeatureIndex&) = delete;
+    FeatureIndex& operator=(const FeatureIndex&) = delete;
+
+    bool empty() const { return segments_.empty(); }
+    FeatureProjection project(const Vec3& p) const;  // chain -1 when empty()
+
+  private:
+    struct Tree;
+    std::vector<std::pair<int, int>> segments_;  // (chain, segment) of each indexed segment
+    std::unique_ptr<Tree> tree_;
+};
 
 }  // namespace hexmesh

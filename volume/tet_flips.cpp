@@ -45,6 +45,7 @@ class Topology {
     }
 
     const std::vector<Vec3>& points() const { return points_; }
+    void add_point(const Vec3& p) { points_.push_back(p); }
     const Tet& tet(Id t) const { return tets_[t]; }
     bool alive(Id t) const { return alive_[t]; }
     Id size() const { return Id(tets_.size()); }
@@ -249,7 +250,148 @@ bool flip_23(Topology& topo, Id a, Id b, Id c) {
     return try_replace(topo, old, fresh);
 }
 
+// The cavity of `levels` rings of tets around tet t across inner faces (level 1: t and its face
+// neighbours), its boundary faces each with the tet it belongs to and the slot of the point
+// opposite it.
+struct Cavity {
+    std::vector<Id> tets;
+    std::vector<std::pair<Id, int>> faces;  // (tet, slot of the point the new point replaces)
+};
+
+Cavity grow_cavity(const Topology& topo, Id t, int levels) {
+    Cavity c{{t}, {}};
+    for (int level = 0; level < levels; ++level) {
+        const size_t end = c.tets.size();
+        for (size_t i = 0; i < end; ++i) {
+            const Tet& tet = topo.tet(c.tets[i]);
+            for (int f = 0; f < 4; ++f)
+                for (Id n : topo.around_face(
+                         face_key(tet[(f + 1) % 4], tet[(f + 2) % 4], tet[(f + 3) % 4])))
+                    if (std::find(c.tets.begin(), c.tets.end(), n) == c.tets.end())
+                        c.tets.push_back(n);
+        }
+    }
+    std::unordered_map<Face, int, ArrayHash<Id, 3>> count;
+    for (Id id : c.tets) {
+        const Tet& tet = topo.tet(id);
+        for (int f = 0; f < 4; ++f)
+            ++count[face_key(tet[(f + 1) % 4], tet[(f + 2) % 4], tet[(f + 3) % 4])];
+    }
+    for (Id id : c.tets) {
+        const Tet& tet = topo.tet(id);
+        for (int f = 0; f < 4; ++f)
+            if (count[face_key(tet[(f + 1) % 4], tet[(f + 2) % 4], tet[(f + 3) % 4])] == 1)
+                c.faces.push_back({id, f});
+    }
+    return c;
+}
+
+// The tets joining each boundary face of the cavity to point q (index `q` in `x`).
+std::vector<Tet> cone(const Topology& topo, const Cavity& c, Id q) {
+    std::vector<Tet> fresh;
+    for (const auto& [id, slot] : c.faces) {
+        Tet t = topo.tet(id);
+        t[slot] = q;
+        fresh.push_back(t);
+    }
+    return fresh;
+}
+
+// The smallest dihedral angle of the cone of `c` from the point x.back(), or -1 when a tet of
+// it is not positively oriented (exact predicate). When all are, the cone fills the cavity
+// exactly: the signed tets of a cone over a closed surface cover each point as often as the
+// surface winds around it, once inside the cavity.
+double cone_quality(const Topology& topo, const Cavity& c, const std::vector<Vec3>& x) {
+    const Id q = Id(x.size()) - 1;
+    double angle = 180;
+    for (const Tet& t : cone(topo, c, q)) {
+        if (exact_orientation(x[t[0]], x[t[1]], x[t[2]], x[t[3]]) <= 0) return -1;
+        angle = std::min(angle, smallest_angle(x, t));
+    }
+    return angle;
+}
+
 }  // namespace
+
+Id insert_in_slivers(TetMesh& mesh, double below_degrees, const std::vector<bool>& on_boundary) {
+    for (Id t = 0; t < mesh.num_cells(); ++t)
+        if (exact_orientation(mesh.points[mesh.node(t, 0)], mesh.points[mesh.node(t, 1)],
+                              mesh.points[mesh.node(t, 2)], mesh.points[mesh.node(t, 3)]) <= 0)
+            return 0;
+    Topology topo(mesh);
+    std::vector<std::pair<double, Id>> poor;
+    for (Id t : topo.alive_tets()) {
+        const Tet& tet = topo.tet(t);
+        const bool pinned =
+            std::all_of(tet.begin(), tet.end(), [&](Id v) { return on_boundary[v]; });
+        const double angle = smallest_angle(topo.points(), tet);
+        if (pinned && angle < below_degrees) poor.push_back({angle, t});
+    }
+    std::sort(poor.begin(), poor.end());
+    std::vector<Vec3> x = topo.points();
+    Id inserted = 0;
+    for (const auto& [angle, t] : poor) {
+        if (!topo.alive(t)) continue;
+        for (int levels = 1; levels <= 2; ++levels) {
+            const Cavity c = grow_cavity(topo, t, levels);
+            // Every point of the cavity must stay on its boundary: none is removed.
+            std::vector<Id> kept_points;
+            for (const auto& [id, slot] : c.faces)
+                for (int k = 0; k < 4; ++k)
+                    if (k != slot) kept_points.push_back(topo.tet(id)[k]);
+            bool encloses = false;
+            double old_angle = 180;
+            for (Id id : c.tets) {
+                const Tet& tet = topo.tet(id);
+                old_angle = std::min(old_angle, smallest_angle(x, tet));
+                for (Id v : tet)
+                    encloses |=
+                        std::find(kept_points.begin(), kept_points.end(), v) == kept_points.end();
+            }
+            if (encloses) continue;
+            // The new point: from the sliver's centroid, a compass search on the cone's
+            // smallest angle.
+            const Tet& s = topo.tet(t);
+            Vec3 best_point = (x[s[0]] + x[s[1]] + x[s[2]] + x[s[3]]) / 4;
+            double reach = 0;
+            for (int k = 0; k < 4; ++k) reach = std::max(reach, (x[s[k]] - best_point).norm());
+            double step = 0.25 * reach;
+            x.push_back(best_point);
+            double best = cone_quality(topo, c, x);
+            for (int iteration = 0; iteration < 60 && step > 1e-3 * reach; ++iteration) {
+                bool moved = false;
+                for (int axis = 0; axis < 3 && !moved; ++axis)
+                    for (double sign : {1.0, -1.0}) {
+                        x.back() = best_point + sign * step * Vec3::Unit(axis);
+                        const double q = cone_quality(topo, c, x);
+                        if (q > best) {
+                            best = q, best_point = x.back(), moved = true;
+                            break;
+                        }
+                    }
+                if (!moved) step *= 0.5;
+            }
+            x.back() = best_point;
+            if (!(best > old_angle + min_gain_degrees)) {
+                x.pop_back();
+                continue;
+            }
+            // The point joins the topology's copy of the points through a rebuilt cone.
+            const Id q = Id(x.size()) - 1;
+            const std::vector<Tet> fresh = cone(topo, c, q);
+            topo.add_point(best_point);
+            for (Id id : c.tets) topo.remove(id);
+            for (const Tet& tet : fresh) topo.add(tet);
+            ++inserted;
+            break;
+        }
+    }
+    mesh.points = topo.points();
+    mesh.tets.clear();
+    for (Id t : topo.alive_tets())
+        mesh.tets.insert(mesh.tets.end(), topo.tet(t).begin(), topo.tet(t).end());
+    return inserted;
+}
 
 FlipResult improve_by_flips(TetMesh& mesh, double below_degrees, int passes) {
     FlipResult result;

@@ -1,7 +1,10 @@
 // Local reconnection of a tet mesh: edge removals (3-2 flips and their generalization) and
-// 2-3 flips that raise the smallest dihedral angle of the tets they replace. Points do not
-// move and the boundary faces stay as they are.
+// 2-3 flips that raise the smallest dihedral angle of the tets they replace, and points
+// inserted in slivers of boundary points. Existing points do not move and the boundary faces
+// stay as they are.
 #pragma once
+
+#include <vector>
 
 #include "hexmesh/core/hex_mesh.h"
 
@@ -21,5 +24,16 @@ struct FlipResult {
 // predicate): a mesh with an inverted or flat tet is left as it is (nothing flipped), since
 // a region around it has no well-defined re-triangulation. Tets stay positively oriented.
 FlipResult improve_by_flips(TetMesh& mesh, double below_degrees, int passes = 8);
+
+// A point inserted in each tet below `below_degrees` whose four points are all on the
+// boundary (on_boundary, per point): such a tet keeps its shape whatever its points do on the
+// surface and its creases. The tet and its neighbours across faces (then one more ring, if
+// that is not enough) are replaced by the cone of their union's boundary faces from the new
+// point, placed by a compass search from the tet's centroid on the cone's smallest dihedral
+// angle; only when every tet of the cone is positive (then it fills the union) and its
+// smallest angle is above the union's. No point of the union may be left inside it. New points are
+// appended to mesh.points (inside the body). Returns their count; a mesh with an inverted
+// or flat tet is left as it is.
+Id insert_in_slivers(TetMesh& mesh, double below_degrees, const std::vector<bool>& on_boundary);
 
 }  // namespace hexmesh

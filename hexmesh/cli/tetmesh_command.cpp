@@ -21,6 +21,7 @@ struct Args {
     int optimize_iterations = 20;
     Reweighting reweighting;
     double cap_degrees = 20, cgal_sliver_bound = 0, cgal_time_limit = 0, flip_degrees = 30;
+    double raise_degrees = 15;
     int flip_cycles = 3;
 };
 
@@ -55,6 +56,11 @@ void add_optimizer_options(CLI::App* cmd, Args& args) {
                     "flip around the tets below this dihedral angle (degrees)")
         ->check(CLI::Range(0.0, 70.0))
         ->capture_default_str();
+    cmd->add_option("--raise-angle", args.raise_degrees,
+                    "last, move the points of the tets below this dihedral angle to raise it, and "
+                    "insert points in those with four boundary points (degrees, 0: none)")
+        ->check(CLI::Range(0.0, 30.0))
+        ->capture_default_str();
 }
 
 // The comparison with CGAL's sliver removal on the command line.
@@ -84,6 +90,7 @@ TetCaseOptions tet_case_options(const Args& args, const Case& c) {
     options.cgal_sliver_bound = args.cgal_sliver_bound;
     options.flip_cycles = args.flip_cycles;
     options.flip_degrees = args.flip_degrees;
+    options.raise_degrees = args.raise_degrees;
     options.cgal_time_limit = args.cgal_time_limit;
     options.untangle = case_solver_options(c.solver, &std::cout);
     options.untangle.theta = args.theta;

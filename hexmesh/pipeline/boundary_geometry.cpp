@@ -31,6 +31,7 @@ BoundaryGeometry BoundaryGeometry::triangles(const TriangleSurface& triangles, d
     auto exact = std::make_shared<const ExactDistance>(*surface);
     auto features = std::make_shared<const FeatureCurves>(
         detect_sharp_features(*surface, {feature_angle, true}));
+    auto creases = std::make_shared<const FeatureIndex>(*surface, *features);
     BoundaryGeometry g;
     auto nearest_corner = [surface, features](const Vec3& x) {
         int best = -1;
@@ -39,25 +40,23 @@ BoundaryGeometry BoundaryGeometry::triangles(const TriangleSurface& triangles, d
                 best = c;
         return best;
     };
-    g.kind_at_ = [surface, features, nearest_corner](const Vec3& x, double reach) {
-        if (features->chains.empty()) return VertexKind::slip;
+    g.kind_at_ = [surface, creases, nearest_corner](const Vec3& x, double reach) {
+        if (creases->empty()) return VertexKind::slip;
         const int c = nearest_corner(x);
         if (c >= 0 && (surface->points[c] - x).norm() < reach) return VertexKind::corner;
-        return project_to_features(*surface, *features, x).distance < reach
-                   ? VertexKind::feature_edge
-                   : VertexKind::slip;
+        return creases->project(x).distance < reach ? VertexKind::feature_edge : VertexKind::slip;
     };
     g.normal_ = [exact](const Vec3& x) { return exact->closest_normal(x); };
     g.to_surface_ = [exact](const Vec3& x) { return exact->closest_point(x); };
-    g.tangent_ = [surface, features](const Vec3& x) {
-        if (features->chains.empty()) return Vec3(Vec3::Zero());
-        const FeatureProjection f = project_to_features(*surface, *features, x);
+    g.tangent_ = [surface, features, creases](const Vec3& x) {
+        if (creases->empty()) return Vec3(Vec3::Zero());
+        const FeatureProjection f = creases->project(x);
         const auto& chain = features->chains[f.chain];
         return Vec3(surface->points[chain[f.segment + 1]] - surface->points[chain[f.segment]]);
     };
-    g.to_crease_ = [surface, features, exact](const Vec3& x) {
-        if (features->chains.empty()) return exact->closest_point(x);
-        return project_to_features(*surface, *features, x).point;
+    g.to_crease_ = [creases, exact](const Vec3& x) {
+        if (creases->empty()) return exact->closest_point(x);
+        return creases->project(x).point;
     };
     g.to_corner_ = [surface, nearest_corner, g_to_crease = g.to_crease_](const Vec3& x) {
         const int c = nearest_corner(x);

@@ -29,6 +29,9 @@ class BoundaryGeometry {
     // x moved onto the part the kind names: the surface, its nearby crease or corner; other
     // kinds unchanged.
     Vec3 place(const Vec3& x, VertexKind kind) const;
+    // The surface's normal near x (any length) and the nearest crease's direction at x.
+    Vec3 surface_normal(const Vec3& x) const { return normal_(x); }
+    Vec3 crease_direction(const Vec3& x) const { return tangent_(x); }
     double surface_distance(const Vec3& x) const { return (to_surface_(x) - x).norm(); }
     double crease_distance(const Vec3& x) const { return (to_crease_(x) - x).norm(); }
     // The four geometry callbacks of the untangler.

@@ -7,6 +7,7 @@
 #include "hexmesh/core/array_hash.h"
 #include "hexmesh/pipeline/make_body.h"
 #include "hexmesh/quality/tet_quality.h"
+#include "hexmesh/quality/validity.h"
 #include "untangle/tet_energy.h"
 
 namespace hexmesh {
@@ -241,6 +242,109 @@ Id keep_fallback_where_worse(const TetMesh& fallback, TetMesh& optimized, double
         }
     }
     return count;
+}
+
+Id raise_smallest_angles(TetMesh& mesh, const std::vector<VertexKind>& kinds,
+                         const BoundaryGeometry& boundary, double below_degrees, int passes) {
+    std::vector<std::vector<Id>> star(mesh.points.size());
+    for (Id t = 0; t < mesh.num_cells(); ++t)
+        for (int k = 0; k < 4; ++k) star[mesh.node(t, k)].push_back(t);
+    // The smallest angle of the tets around v with v at y, or -1 if one is not positive.
+    auto star_angle = [&](Id v, const Vec3& y) {
+        const Vec3 old = mesh.points[v];
+        mesh.points[v] = y;
+        double angle = 180;
+        for (Id t : star[v]) {
+            const std::array<Vec3, 4> p = tet_corners(mesh, t);
+            if (exact_orientation(p[0], p[1], p[2], p[3]) <= 0) {
+                angle = -1;
+                break;
+            }
+            angle = std::min(angle, smallest_dihedral_angle(p));
+        }
+        mesh.points[v] = old;
+        return angle;
+    };
+    std::vector<Vec3> space;  // the 6 axes and 8 diagonals, for interior points
+    for (int i = -1; i <= 1; ++i)
+        for (int j = -1; j <= 1; ++j)
+            for (int k = -1; k <= 1; ++k)
+                if ((i || j || k) && std::abs(i) + std::abs(j) + std::abs(k) != 2)
+                    space.push_back(Vec3(i, j, k).normalized());
+    // The directions a point of kind `kind` at x tries: in space, in the surface's tangent
+    // plane (8), or along its crease (2).
+    auto directions = [&](VertexKind kind, const Vec3& x) {
+        if (kind == VertexKind::feature_edge) {
+            const Vec3 t = boundary.crease_direction(x).normalized();
+            return std::vector<Vec3>{t, -t};
+        }
+        if (kind != VertexKind::slip) return space;
+        const Vec3 n = boundary.surface_normal(x).normalized();
+        const Vec3 u = n.unitOrthogonal(), w = n.cross(u);
+        const double eighth = std::acos(-1.0) / 4;
+        std::vector<Vec3> plane;
+        for (int k = 0; k < 8; ++k)
+            plane.push_back(std::cos(k * eighth) * u + std::sin(k * eighth) * w);
+        return plane;
+    };
+    Id moves = 0;
+    // A point whose search found nothing is searched again only after a point of a tet around
+    // it has moved.
+    std::vector<char> stuck(mesh.points.size(), 0);
+    for (int pass = 0; pass < passes; ++pass) {
+        std::vector<std::pair<double, Id>> poor;
+        for (Id t = 0; t < mesh.num_cells(); ++t) {
+            const double angle = smallest_dihedral_angle(tet_corners(mesh, t));
+            if (angle < below_degrees) poor.push_back({angle, t});
+        }
+        std::sort(poor.begin(), poor.end());
+        Id moved_in_pass = 0;
+        for (const auto& [angle, t] : poor)
+            for (int k = 0; k < 4; ++k) {
+                const Id v = mesh.node(t, k);
+                if (kinds[v] == VertexKind::fixed || kinds[v] == VertexKind::corner || stuck[v])
+                    continue;
+                double shortest = INFINITY;
+                for (Id s : star[v])
+                    for (int m = 0; m < 4; ++m)
+                        if (mesh.node(s, m) != v)
+                            shortest = std::min(
+                                shortest, (mesh.points[mesh.node(s, m)] - mesh.points[v]).norm());
+                double best = star_angle(v, mesh.points[v]);
+                Vec3 best_point = mesh.points[v];
+                std::vector<Vec3> tried = directions(kinds[v], best_point);
+                bool moved = false;
+                // Until the tets around v reach the bound: beyond it, a move would only
+                // change tets that need nothing. A step is judged in the tangent plane or
+                // line first, then again once placed back on the boundary.
+                for (double step = 0.2 * shortest;
+                     step > 1e-2 * shortest && best < below_degrees;) {
+                    bool better = false;
+                    for (const Vec3& d : tried) {
+                        if (!(star_angle(v, best_point + step * d) > best + 1e-9)) continue;
+                        const Vec3 y = boundary.place(best_point + step * d, kinds[v]);
+                        const double q = star_angle(v, y);
+                        if (q > best + 1e-9) {
+                            best = q, best_point = y, better = true;
+                            break;
+                        }
+                    }
+                    if (better && kinds[v] != VertexKind::interior)
+                        tried = directions(kinds[v], best_point);
+                    if (!better) step *= 0.5;
+                    moved |= better;
+                }
+                stuck[v] = !moved;
+                if (!moved) continue;
+                mesh.points[v] = best_point, ++moved_in_pass;
+                for (Id s : star[v])
+                    for (int m = 0; m < 4; ++m)
+                        if (mesh.node(s, m) != v) stuck[mesh.node(s, m)] = 0;
+            }
+        moves += moved_in_pass;
+        if (moved_in_pass == 0) break;
+    }
+    return moves;
 }
 
 }  // namespace hexmesh

@@ -87,4 +87,16 @@ TetOptimization optimize_tet_mesh(TetMesh& mesh, const std::vector<VertexKind>& 
 // moved back.
 Id keep_fallback_where_worse(const TetMesh& fallback, TetMesh& optimized, double bound);
 
+// The worst tets' points moved to raise the smallest dihedral angle directly, where the
+// functional's sum does not aim: the tets under `below_degrees`, worst first, each of their
+// points (but fixed ones and corners) by a compass search on the smallest angle of the tets
+// around it, until that reaches `below_degrees` (interior points in 14 directions, surface
+// points in 8 of the tangent plane, crease points along the crease, each step placed back on
+// its part of the boundary and judged there). A move is kept when it raises that angle and
+// every tet around the point stays positively oriented (exact predicate), so the mesh's
+// smallest angle never falls. Up to `passes` passes, until one moves nothing. Returns the
+// number of moves.
+Id raise_smallest_angles(TetMesh& mesh, const std::vector<VertexKind>& kinds,
+                         const BoundaryGeometry& boundary, double below_degrees, int passes = 8);
+
 }  // namespace hexmesh

@@ -111,11 +111,51 @@ HeldOptimization optimize_where_better(const PlacedTetMesh& cgal, double bound,
 struct Improved {
     TetMesh mesh;
     TetOptimization optimization;
-    Id caps_removed = 0, flips_23 = 0, edge_removals = 0;
+    Id caps_removed = 0, flips_23 = 0, edge_removals = 0, points_inserted = 0;
 };
 
+// The last step of improve_tet_mesh when a tet is still under options.raise_degrees: the
+// worst tets' points moved to raise the smallest angle (raise_smallest_angles); then, where
+// tets of four boundary points are still under it, a point inserted in each
+// (insert_in_slivers), the flips and the moves again, kept if the smallest angle rises.
+void raise_worst_angles(Improved& r, std::vector<VertexKind>& kinds,
+                        const BoundaryGeometry& boundary, const TetCaseOptions& options,
+                        std::ostream& log) {
+    const double target = options.raise_degrees;
+    if (target <= 0 || r.optimization.solve.inverted_after > 0 ||
+        measure_tet_quality(r.mesh).min_dihedral >= target)
+        return;
+    const double before = measure_tet_quality(r.mesh).min_dihedral;
+    raise_smallest_angles(r.mesh, kinds, boundary, target);
+    const double raised = measure_tet_quality(r.mesh).min_dihedral;
+    log << fmt::format("smallest angle raised: {:.2f} -> {:.2f} degrees\n", before, raised)
+        << std::flush;
+    if (raised >= target) return;
+
+    std::vector<bool> on_boundary(kinds.size());
+    for (size_t v = 0; v < kinds.size(); ++v) on_boundary[v] = kinds[v] != VertexKind::interior;
+    TetMesh inserted = r.mesh;
+    r.points_inserted = insert_in_slivers(inserted, target, on_boundary);
+    if (r.points_inserted == 0) return;
+    std::vector<VertexKind> inserted_kinds = kinds;
+    inserted_kinds.resize(inserted.points.size(), VertexKind::interior);
+    improve_by_flips(inserted, options.flip_degrees);
+    raise_smallest_angles(inserted, inserted_kinds, boundary, target);
+    const double with_points = measure_tet_quality(inserted).min_dihedral;
+    log << fmt::format("points inserted in {} tets of four boundary points: {:.2f} degrees{}\n",
+                       r.points_inserted, with_points, with_points > raised ? ", kept" : "")
+        << std::flush;
+    if (with_points <= raised) {
+        r.points_inserted = 0;
+        return;
+    }
+    r.mesh = std::move(inserted);
+    kinds = std::move(inserted_kinds);
+}
+
 // `start` with its boundary caps removed, optimized (optimize_tet_mesh), then cycles of flips
-// and the optimization again, each kept while it raises the smallest dihedral angle.
+// and the optimization again, each kept while it raises the smallest dihedral angle, then its
+// worst angles raised (raise_worst_angles).
 Improved improve_tet_mesh(const PlacedTetMesh& start, const BoundaryGeometry& boundary,
                           const SizingFunction& size, const TetCaseOptions& options,
                           std::ostream& log) {
@@ -124,7 +164,7 @@ Improved improve_tet_mesh(const PlacedTetMesh& start, const BoundaryGeometry& bo
     r.caps_removed = options.cap_degrees > 0 ? remove_boundary_caps(work, options.cap_degrees) : 0;
     log << fmt::format("boundary caps removed: {}\n", r.caps_removed) << std::flush;
     r.mesh = std::move(work.mesh);
-    const std::vector<VertexKind> kinds = kinds_from_dimensions(work.dimension);
+    std::vector<VertexKind> kinds = kinds_from_dimensions(work.dimension);
     r.optimization =
         optimize_tet_mesh(r.mesh, kinds, boundary, size, options.untangle, options.reweighting);
     // Flips where moving points is not enough, then the points again; kept while it helps.
@@ -153,6 +193,7 @@ Improved improve_tet_mesh(const PlacedTetMesh& start, const BoundaryGeometry& bo
         log << fmt::format("flips: {} edge removals, {} 2-3\n", f.edge_removals, f.flips_23)
             << std::flush;
     }
+    raise_worst_angles(r, kinds, boundary, options, log);
     return r;
 }
 
@@ -216,7 +257,7 @@ void keep_cgal_mesh(const BoundaryGeometry& boundary, const SizingFunction& size
     const double merged_distance = max_placed_distance(merged.mesh, cgal.dimension, boundary);
     const TetQualityReport merged_quality = measure_tet_quality(merged.mesh);
     Improved& k = kept.improved;
-    k.caps_removed = k.flips_23 = k.edge_removals = 0;
+    k.caps_removed = k.flips_23 = k.edge_removals = k.points_inserted = 0;
     k.optimization.max_crease_distance = 0;
     const Id vertices = Id(cgal.mesh.points.size());
     log << fmt::format(
@@ -315,6 +356,7 @@ TetCaseResult run_tet_case(const Case& c, const TetCaseOptions& options, std::os
     r.caps_removed = kept.improved.caps_removed;
     r.flips_23 = kept.improved.flips_23;
     r.edge_removals = kept.improved.edge_removals;
+    r.points_inserted = kept.improved.points_inserted;
     r.seconds_optimize = lap();
     r.optimized = kept.quality;
     return r;

@@ -1,6 +1,7 @@
 // The `tetmesh` job: a tetrahedral mesh of a case's body by CGAL's Delaunay refinement, made
-// sliver-free by the variational optimizer (boundary vertices sliding on the body) and flips,
-// and compared with CGAL's own sliver removal on the same mesh.
+// sliver-free by the variational optimizer (boundary vertices sliding on the body), flips, and
+// last moves and point insertions on the worst tets, and compared with CGAL's own sliver removal on
+// the same mesh.
 #pragma once
 
 #include <optional>
@@ -25,6 +26,9 @@ struct TetCaseOptions {
     // undone and ends them.
     int flip_cycles = 3;
     double flip_degrees = 30;
+    // Last, the points of the tets below raise_degrees moved to raise their smallest dihedral
+    // angle, and points inserted in those whose four points are on the boundary (0: none).
+    double raise_degrees = 15;
     double cgal_sliver_bound = 0;  // compare_cgal: TetMeshOptions::cgal_sliver_bound
     double cgal_time_limit = 0;
     untangle::UntangleOptions untangle = tet_untangle_options();
@@ -35,6 +39,7 @@ struct TetCaseResult {
     TetMeshGeneration generation;
     TetMesh mesh;  // the optimized mesh
     Id crease_polylines = 0, corners = 0, caps_removed = 0, edge_removals = 0, flips_23 = 0;
+    Id points_inserted = 0;  // in tets of four boundary points (raise_degrees)
     TetQualityReport refined, optimized;
     std::optional<TetQualityReport> cgal;
     double refined_surface_distance = 0, cgal_surface_distance = 0;  // max over boundary vertices

@@ -59,6 +59,26 @@ std::array<double, 6> dihedral_angles(const std::array<Vec3, 4>& p) {
     return angles;
 }
 
+double smallest_dihedral_angle(const std::array<Vec3, 4>& p) {
+    // Unit normals of the faces opposite each point, pointing away from it (outwards).
+    std::array<Vec3, 4> n;
+    for (int i = 0; i < 4; ++i) {
+        const Vec3& a = p[(i + 1) % 4];
+        const Vec3& b = p[(i + 2) % 4];
+        const Vec3& c = p[(i + 3) % 4];
+        n[i] = (b - a).cross(c - a);
+        const double length = n[i].norm();
+        if (!(length > 0)) return 0;
+        n[i] /= length;
+        if (n[i].dot(p[i] - a) > 0) n[i] = -n[i];
+    }
+    // The dihedral angle at the edge where faces i and j meet: cos = -n_i . n_j.
+    double largest_cos = -1;
+    for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j) largest_cos = std::max(largest_cos, -n[i].dot(n[j]));
+    return std::acos(std::min(1.0, largest_cos)) * 180 / std::acos(-1.0);
+}
+
 double signed_volume(const std::array<Vec3, 4>& p) {
     return (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0])) / 6;
 }

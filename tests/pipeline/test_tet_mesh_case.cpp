@@ -13,6 +13,7 @@
 #include "hexmesh/pipeline/make_body.h"
 #include "hexmesh/pipeline/tet_mesh_case.h"
 #include "hexmesh/quality/tet_quality.h"
+#include "surface/analytic.h"
 #include "surface/implicit_features.h"
 
 namespace hexmesh {
@@ -195,6 +196,37 @@ TEST(TetMeshCase, FallbackPositionsComeBackOnlyAroundTetsTheOptimizationMadeWors
     TetMesh all_good = fallback;
     all_good.points[b + 2] += Vec3(0.05, -0.05, 0.02);
     EXPECT_EQ(keep_fallback_where_worse(fallback, all_good, 30), 0);
+}
+
+// CGAL's refined mesh of a ball, its points moved to raise the smallest angle (no functional):
+// every tet positive, the slivers gone, the surface points still on the sphere, a fixed point
+// where it was.
+TEST(TetMeshCase, WorstAnglesRaisedByMovingPointsOnTheSurfaceAndInside) {
+    auto ball = std::make_shared<Sphere>(Vec3::Zero(), 1.0);
+    TetMeshOptions o;
+    o.size = [](const Vec3&) { return 0.25; };
+    const PlacedTetMesh placed = generate_tet_mesh(*ball, o).refined;
+    TetMesh mesh = placed.mesh;
+    const TetQualityReport before = measure_tet_quality(mesh);
+    ASSERT_GT(before.slivers, 0);
+    std::vector<VertexKind> kinds = kinds_from_dimensions(placed.dimension);
+    Id fixed = -1;
+    for (size_t v = 0; v < kinds.size() && fixed < 0; ++v)
+        if (kinds[v] == VertexKind::interior) fixed = Id(v), kinds[v] = VertexKind::fixed;
+    const BoundaryGeometry boundary = BoundaryGeometry::implicit(ball, 1);
+
+    EXPECT_GT(raise_smallest_angles(mesh, kinds, boundary, 15), 0);
+    const TetQualityReport after = measure_tet_quality(mesh);
+    EXPECT_EQ(after.inverted, 0);
+    EXPECT_EQ(after.slivers, 0);
+    EXPECT_GT(after.min_dihedral, 12) << "from " << before.min_dihedral;
+    for (size_t v = 0; v < kinds.size(); ++v) {
+        if (kinds[v] == VertexKind::slip) {
+            EXPECT_NEAR(mesh.points[v].norm(), 1, 1e-6) << v;
+        }
+    }
+    EXPECT_EQ(mesh.points[fixed], placed.mesh.points[fixed]);
+    EXPECT_EQ(mesh.tets, placed.mesh.tets);
 }
 
 TEST(TetMeshCase, ExteriorDomainIsRefused) {

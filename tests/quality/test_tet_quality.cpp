@@ -100,6 +100,7 @@ TEST(TetQuality, AgreesWithNormalsAndVerdictOnRandomTets) {
         const auto reference = dihedrals_from_normals(p);
         for (int e = 0; e < 6; ++e) EXPECT_NEAR(a[e], reference[e], 1e-7);
         EXPECT_NEAR(radius_ratio(p), 1 / vtk_radius_ratio(p), 1e-9);
+        EXPECT_NEAR(smallest_dihedral_angle(p), *std::min_element(a.begin(), a.end()), 1e-7);
     }
 }
 

@@ -107,5 +107,27 @@ TEST(SharpFeatures, ProjectionLandsAndStaysOnTheCrease) {
     }
 }
 
+// The indexed projection gives the brute force's nearest point, and its segment holds it.
+TEST(SharpFeatures, IndexedProjectionIsTheBruteForceOne) {
+    const Vec3 size(2, 1, 3);
+    const TriangleSurface box = test::box_surface(Vec3::Zero(), size, 3);
+    const FeatureCurves f = detect_sharp_features(box);
+    const FeatureIndex index(box, f);
+    ASSERT_FALSE(index.empty());
+    std::mt19937 rng(8);
+    for (int n = 0; n < 500; ++n) {
+        const Vec3 p = test::random_in_box(rng, Vec3::Constant(-0.5), size + Vec3::Constant(0.5));
+        const FeatureProjection brute = project_to_features(box, f, p);
+        const FeatureProjection fast = index.project(p);
+        EXPECT_NEAR(fast.distance, brute.distance, 1e-12);
+        ASSERT_GE(fast.chain, 0);
+        const Vec3& a = box.points[f.chains[fast.chain][fast.segment]];
+        const Vec3& b = box.points[f.chains[fast.chain][fast.segment + 1]];
+        EXPECT_NEAR((fast.point - a).norm() + (b - fast.point).norm(), (b - a).norm(), 1e-12);
+    }
+    EXPECT_TRUE(FeatureIndex(box, FeatureCurves{}).empty());
+    EXPECT_EQ(FeatureIndex(box, FeatureCurves{}).project(Vec3(1, 2, 3)).chain, -1);
+}
+
 }  // namespace
 }  // namespace hexmesh

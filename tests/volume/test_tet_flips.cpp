@@ -184,5 +184,77 @@ TEST(TetFlips, BoundaryFacesAreNeverFlipped) {
     EXPECT_EQ(mesh.tets, (std::vector<Id>{0, 1, 2, 3}));
 }
 
+// The smallest dihedral angle over the tets whose four points are all on the boundary.
+double smallest_on_boundary(const TetMesh& m, const std::vector<bool>& on_boundary) {
+    double angle = 180;
+    for (Id t = 0; t < m.num_cells(); ++t) {
+        bool pinned = true;
+        for (int k = 0; k < 4; ++k) pinned = pinned && on_boundary[m.node(t, k)];
+        if (pinned)
+            angle = std::min(angle, smallest(m.points, {m.node(t, 0), m.node(t, 1), m.node(t, 2),
+                                                        m.node(t, 3)}));
+    }
+    return angle;
+}
+
+// A slab thinner than the tets: most tets have their four points on its faces.
+TEST(TetFlips, PointsInsertedInSliversOfBoundaryPointsRaiseTheirAngle) {
+    const Box slab(Vec3::Zero(), Vec3(1, 1, 0.1));
+    TetMeshOptions o;
+    o.size = [](const Vec3&) { return 0.3; };
+    const PlacedTetMesh placed = generate_tet_mesh(slab, o).refined;
+    TetMesh mesh = placed.mesh;
+    std::vector<bool> on_boundary(mesh.points.size());
+    for (size_t v = 0; v < on_boundary.size(); ++v) on_boundary[v] = placed.dimension[v] < 3;
+    const double before = smallest_on_boundary(mesh, on_boundary);
+    ASSERT_LT(before, 10);  // four points on the sphere: a sliver no point of it can undo
+    const double volume = signed_volume(mesh);
+    const auto boundary = boundary_faces(mesh);
+
+    const Id inserted = insert_in_slivers(mesh, 15, on_boundary);
+    EXPECT_GT(inserted, 0);
+    ASSERT_EQ(mesh.points.size(), on_boundary.size() + size_t(inserted));
+    EXPECT_NEAR(signed_volume(mesh), volume, 1e-9 * volume);
+    EXPECT_EQ(boundary_faces(mesh), boundary);  // the new points are inside
+    EXPECT_EQ(measure_tet_quality(mesh).inverted, 0);
+    on_boundary.resize(mesh.points.size(), false);
+    EXPECT_GT(smallest_on_boundary(mesh, on_boundary), before);
+    for (size_t v = placed.mesh.points.size(); v < mesh.points.size(); ++v)
+        EXPECT_LT(slab.value(mesh.points[v]), 0);
+}
+
+// A flat sliver of four boundary points (a square's corners, two 0.05 above its plane, two
+// 0.05 below) with one tet on each face, its apex 0.5 out from the face's centroid. Each
+// diagonal is a reflex edge of their union, so the points that see every face lie within
+// 0.05 of both diagonals: every cone from them has a tet as flat as the sliver. Nothing is
+// inserted and no flip applies.
+TEST(TetFlips, NoPointInsertedWhereNoConeBeatsTheSliver) {
+    TetMesh mesh;
+    mesh.points = {Vec3(1, 0, 0.05), Vec3(0, 1, -0.05), Vec3(-1, 0, 0.05), Vec3(0, -1, -0.05)};
+    auto add = [&](std::array<Id, 4> t) {
+        if (signed_volume(
+                {mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]], mesh.points[t[3]]}) < 0)
+            std::swap(t[2], t[3]);
+        mesh.tets.insert(mesh.tets.end(), t.begin(), t.end());
+    };
+    add({0, 1, 2, 3});
+    for (Id i = 0; i < 4; ++i) {
+        const Id a = (i + 1) % 4, b = (i + 2) % 4, c = (i + 3) % 4;
+        const Vec3& pa = mesh.points[a];
+        Vec3 n = (mesh.points[b] - pa).cross(mesh.points[c] - pa).normalized();
+        if (n.dot(mesh.points[i] - pa) > 0) n = -n;
+        mesh.points.push_back((pa + mesh.points[b] + mesh.points[c]) / 3 + 0.5 * n);
+        add({a, b, c, Id(mesh.points.size()) - 1});
+    }
+    ASSERT_EQ(measure_tet_quality(mesh).inverted, 0);
+    ASSERT_LT(measure_tet_quality(mesh).min_dihedral, 10);
+    const TetMesh before = mesh;
+    const FlipResult flips = improve_by_flips(mesh, 30);
+    EXPECT_EQ(flips.edge_removals + flips.flips_23, 0);
+    EXPECT_EQ(insert_in_slivers(mesh, 15, std::vector<bool>(8, true)), 0);
+    EXPECT_EQ(mesh.points, before.points);
+    EXPECT_EQ(mesh.tets, before.tets);
+}
+
 }  // namespace
 }  // namespace hexmesh
