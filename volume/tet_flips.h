@@ -26,8 +26,8 @@ struct FlipResult {
 FlipResult improve_by_flips(TetMesh& mesh, double below_degrees, int passes = 8);
 
 // A point inserted in each tet below `below_degrees` whose four points are all on the
-// boundary (on_boundary, per point): such a tet keeps its shape whatever its points do on the
-// surface and its creases. The tet and its neighbours across faces (then one more ring, if
+// boundary (on_boundary, per point): its points can only slide on the surface and its creases,
+// which seldom opens it. The tet and its neighbours across faces (then one more ring, if
 // that is not enough) are replaced by the cone of their union's boundary faces from the new
 // point, placed by a compass search from the tet's centroid on the cone's smallest dihedral
 // angle; only when every tet of the cone is positive (then it fills the union) and its

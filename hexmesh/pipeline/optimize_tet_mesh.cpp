@@ -209,6 +209,13 @@ TetOptimization optimize_tet_mesh(TetMesh& mesh, const std::vector<VertexKind>& 
     result.solve = untangle_then_optimize(p, mesh.tets, options);
     reweight(p, options, reweighting, result.solve);
     mesh.points = p.points;
+    measure_boundary_distances(mesh, kinds, boundary, result);
+    return result;
+}
+
+void measure_boundary_distances(const TetMesh& mesh, const std::vector<VertexKind>& kinds,
+                                const BoundaryGeometry& boundary, TetOptimization& result) {
+    result.max_surface_distance = result.max_crease_distance = 0;
     for (size_t v = 0; v < kinds.size(); ++v) {
         if (kinds[v] == VertexKind::interior || kinds[v] == VertexKind::fixed) continue;
         result.max_surface_distance =
@@ -217,7 +224,6 @@ TetOptimization optimize_tet_mesh(TetMesh& mesh, const std::vector<VertexKind>& 
             result.max_crease_distance =
                 std::max(result.max_crease_distance, boundary.crease_distance(mesh.points[v]));
     }
-    return result;
 }
 
 Id keep_fallback_where_worse(const TetMesh& fallback, TetMesh& optimized, double bound) {
@@ -280,6 +286,7 @@ Id raise_smallest_angles(TetMesh& mesh, const std::vector<VertexKind>& kinds,
         }
         if (kind != VertexKind::slip) return space;
         const Vec3 n = boundary.surface_normal(x).normalized();
+        if (!(n.norm() > 0.5)) return std::vector<Vec3>{};  // no normal there: the point stays
         const Vec3 u = n.unitOrthogonal(), w = n.cross(u);
         const double eighth = std::acos(-1.0) / 4;
         std::vector<Vec3> plane;

@@ -79,6 +79,11 @@ TetOptimization optimize_tet_mesh(TetMesh& mesh, const std::vector<VertexKind>& 
                                   const untangle::UntangleOptions& options,
                                   const Reweighting& reweighting = {});
 
+// result.max_surface_distance and max_crease_distance of `mesh`'s slip, crease and corner
+// points (kinds: one per point).
+void measure_boundary_distances(const TetMesh& mesh, const std::vector<VertexKind>& kinds,
+                                const BoundaryGeometry& boundary, TetOptimization& result);
+
 // Moves back to `fallback`'s positions the vertices of `optimized` (a mesh of the same tets
 // as `fallback`, its vertices moved) wherever it is worse: the four vertices of every tet whose
 // smallest dihedral angle is under `bound` degrees, or whose orientation differs from

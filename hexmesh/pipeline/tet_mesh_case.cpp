@@ -122,10 +122,9 @@ void raise_worst_angles(Improved& r, std::vector<VertexKind>& kinds,
                         const BoundaryGeometry& boundary, const TetCaseOptions& options,
                         std::ostream& log) {
     const double target = options.raise_degrees;
-    if (target <= 0 || r.optimization.solve.inverted_after > 0 ||
-        measure_tet_quality(r.mesh).min_dihedral >= target)
-        return;
-    const double before = measure_tet_quality(r.mesh).min_dihedral;
+    const TetQualityReport start = measure_tet_quality(r.mesh);
+    if (target <= 0 || start.inverted > 0 || start.min_dihedral >= target) return;
+    const double before = start.min_dihedral;
     raise_smallest_angles(r.mesh, kinds, boundary, target);
     const double raised = measure_tet_quality(r.mesh).min_dihedral;
     log << fmt::format("smallest angle raised: {:.2f} -> {:.2f} degrees\n", before, raised)
@@ -139,7 +138,7 @@ void raise_worst_angles(Improved& r, std::vector<VertexKind>& kinds,
     if (r.points_inserted == 0) return;
     std::vector<VertexKind> inserted_kinds = kinds;
     inserted_kinds.resize(inserted.points.size(), VertexKind::interior);
-    improve_by_flips(inserted, options.flip_degrees);
+    const FlipResult flips = improve_by_flips(inserted, options.flip_degrees);
     raise_smallest_angles(inserted, inserted_kinds, boundary, target);
     const double with_points = measure_tet_quality(inserted).min_dihedral;
     log << fmt::format("points inserted in {} tets of four boundary points: {:.2f} degrees{}\n",
@@ -151,6 +150,8 @@ void raise_worst_angles(Improved& r, std::vector<VertexKind>& kinds,
     }
     r.mesh = std::move(inserted);
     kinds = std::move(inserted_kinds);
+    r.flips_23 += flips.flips_23;
+    r.edge_removals += flips.edge_removals;
 }
 
 // `start` with its boundary caps removed, optimized (optimize_tet_mesh), then cycles of flips
@@ -194,6 +195,7 @@ Improved improve_tet_mesh(const PlacedTetMesh& start, const BoundaryGeometry& bo
             << std::flush;
     }
     raise_worst_angles(r, kinds, boundary, options, log);
+    measure_boundary_distances(r.mesh, kinds, boundary, r.optimization);
     return r;
 }
 

@@ -60,17 +60,18 @@ std::array<double, 6> dihedral_angles(const std::array<Vec3, 4>& p) {
 }
 
 double smallest_dihedral_angle(const std::array<Vec3, 4>& p) {
-    // Unit normals of the faces opposite each point, pointing away from it (outwards).
+    const double volume = (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0]));
+    if (!(volume != 0)) return 0;  // flat
+    // Unit normals of the faces opposite each point, pointing away from it (outwards): the
+    // normal of the face (p[i+1], p[i+2], p[i+3]) points towards p[i] for odd i when the
+    // volume is positive, for even i when it is negative.
     std::array<Vec3, 4> n;
     for (int i = 0; i < 4; ++i) {
         const Vec3& a = p[(i + 1) % 4];
-        const Vec3& b = p[(i + 2) % 4];
-        const Vec3& c = p[(i + 3) % 4];
-        n[i] = (b - a).cross(c - a);
+        n[i] = (p[(i + 2) % 4] - a).cross(p[(i + 3) % 4] - a);
         const double length = n[i].norm();
         if (!(length > 0)) return 0;
-        n[i] /= length;
-        if (n[i].dot(p[i] - a) > 0) n[i] = -n[i];
+        n[i] /= (i % 2 == 1) == (volume > 0) ? -length : length;
     }
     // The dihedral angle at the edge where faces i and j meet: cos = -n_i . n_j.
     double largest_cos = -1;

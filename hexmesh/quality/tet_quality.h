@@ -16,7 +16,8 @@ std::array<Vec3, 4> tet_corners(const TetMesh& mesh, Id cell);
 std::array<double, 6> dihedral_angles(const std::array<Vec3, 4>& p);
 
 // The smallest of dihedral_angles(p), from the faces' normals with one arc cosine: the cheap
-// form for searches that evaluate it many times. 0 for a tet with a degenerate face.
+// form for searches that evaluate it many times. 0 for a flat tet or one with a degenerate
+// face; an inverted tet has its mirror image's angles.
 double smallest_dihedral_angle(const std::array<Vec3, 4>& p);
 
 // det[p1 - p0, p2 - p0, p3 - p0] / 6: the volume, negative for an inverted tet.

@@ -82,11 +82,19 @@ TEST(TetQuality, FlatAndInvertedTetsScoreZero) {
     const auto a = dihedral_angles(flat);
     EXPECT_NEAR(*std::min_element(a.begin(), a.end()), 0, 1e-12);
     EXPECT_EQ(radius_ratio(flat), 0);
+    std::array<int, 4> order = {0, 1, 2, 3};  // every order of its points: 0, never 180
+    do {
+        EXPECT_EQ(smallest_dihedral_angle(
+                      {flat[order[0]], flat[order[1]], flat[order[2]], flat[order[3]]}),
+                  0);
+    } while (std::next_permutation(order.begin(), order.end()));
     std::array<Vec3, 4> inverted = regular_tet();
     if ((inverted[1] - inverted[0])
             .dot((inverted[2] - inverted[0]).cross(inverted[3] - inverted[0])) > 0)
         std::swap(inverted[2], inverted[3]);
     EXPECT_EQ(radius_ratio(inverted), 0);
+    EXPECT_NEAR(smallest_dihedral_angle(inverted), std::acos(1.0 / 3) * 180 / std::acos(-1.0),
+                1e-9);  // the mirror image's
 }
 
 TEST(TetQuality, AgreesWithNormalsAndVerdictOnRandomTets) {
@@ -100,6 +108,8 @@ TEST(TetQuality, AgreesWithNormalsAndVerdictOnRandomTets) {
         const auto reference = dihedrals_from_normals(p);
         for (int e = 0; e < 6; ++e) EXPECT_NEAR(a[e], reference[e], 1e-7);
         EXPECT_NEAR(radius_ratio(p), 1 / vtk_radius_ratio(p), 1e-9);
+        EXPECT_NEAR(smallest_dihedral_angle(p), *std::min_element(a.begin(), a.end()), 1e-7);
+        std::swap(p[0], p[1]);  // inverted: the same angles
         EXPECT_NEAR(smallest_dihedral_angle(p), *std::min_element(a.begin(), a.end()), 1e-7);
     }
 }

@@ -207,7 +207,7 @@ TEST(TetFlips, PointsInsertedInSliversOfBoundaryPointsRaiseTheirAngle) {
     std::vector<bool> on_boundary(mesh.points.size());
     for (size_t v = 0; v < on_boundary.size(); ++v) on_boundary[v] = placed.dimension[v] < 3;
     const double before = smallest_on_boundary(mesh, on_boundary);
-    ASSERT_LT(before, 10);  // four points on the sphere: a sliver no point of it can undo
+    ASSERT_LT(before, 10);  // four points on the faces: a sliver no move of them undoes
     const double volume = signed_volume(mesh);
     const auto boundary = boundary_faces(mesh);
 
