@@ -87,6 +87,13 @@ class Topology {
         }
     }
 
+    // mesh.tets: the living tets, in the order they were made.
+    void write_tets(TetMesh& mesh) const {
+        mesh.tets.clear();
+        for (Id t : alive_tets())
+            mesh.tets.insert(mesh.tets.end(), tets_[t].begin(), tets_[t].end());
+    }
+
     std::vector<Id> alive_tets() const {
         std::vector<Id> out;
         for (Id t = 0; t < size(); ++t)
@@ -101,6 +108,15 @@ class Topology {
     std::unordered_map<Face, std::vector<Id>, ArrayHash<Id, 3>> faces_;
     std::unordered_map<Edge, std::vector<Id>, ArrayHash<Id, 2>> edges_;
 };
+
+// Every tet positively oriented (exact predicate): what flips and insertion require.
+bool all_positive(const TetMesh& mesh) {
+    for (Id t = 0; t < mesh.num_cells(); ++t)
+        if (exact_orientation(mesh.points[mesh.node(t, 0)], mesh.points[mesh.node(t, 1)],
+                              mesh.points[mesh.node(t, 2)], mesh.points[mesh.node(t, 3)]) <= 0)
+            return false;
+    return true;
+}
 
 double smallest_angle(const std::vector<Vec3>& x, const Tet& t) {
     const auto a = dihedral_angles({x[t[0]], x[t[1]], x[t[2]], x[t[3]]});
@@ -314,10 +330,7 @@ double cone_quality(const Topology& topo, const Cavity& c, const std::vector<Vec
 }  // namespace
 
 Id insert_in_slivers(TetMesh& mesh, double below_degrees, const std::vector<bool>& on_boundary) {
-    for (Id t = 0; t < mesh.num_cells(); ++t)
-        if (exact_orientation(mesh.points[mesh.node(t, 0)], mesh.points[mesh.node(t, 1)],
-                              mesh.points[mesh.node(t, 2)], mesh.points[mesh.node(t, 3)]) <= 0)
-            return 0;
+    if (!all_positive(mesh)) return 0;
     Topology topo(mesh);
     std::vector<std::pair<double, Id>> poor;
     for (Id t : topo.alive_tets()) {
@@ -387,18 +400,13 @@ Id insert_in_slivers(TetMesh& mesh, double below_degrees, const std::vector<bool
         }
     }
     mesh.points = topo.points();
-    mesh.tets.clear();
-    for (Id t : topo.alive_tets())
-        mesh.tets.insert(mesh.tets.end(), topo.tet(t).begin(), topo.tet(t).end());
+    topo.write_tets(mesh);
     return inserted;
 }
 
 FlipResult improve_by_flips(TetMesh& mesh, double below_degrees, int passes) {
     FlipResult result;
-    for (Id t = 0; t < mesh.num_cells(); ++t)
-        if (exact_orientation(mesh.points[mesh.node(t, 0)], mesh.points[mesh.node(t, 1)],
-                              mesh.points[mesh.node(t, 2)], mesh.points[mesh.node(t, 3)]) <= 0)
-            return result;
+    if (!all_positive(mesh)) return result;
     Topology topo(mesh);
     for (int pass = 0; pass < passes; ++pass) {
         std::vector<std::pair<double, Id>> poor;
@@ -426,9 +434,7 @@ FlipResult improve_by_flips(TetMesh& mesh, double below_degrees, int passes) {
         }
         if (flipped == 0) break;
     }
-    mesh.tets.clear();
-    for (Id t : topo.alive_tets())
-        mesh.tets.insert(mesh.tets.end(), topo.tet(t).begin(), topo.tet(t).end());
+    topo.write_tets(mesh);
     return result;
 }
 
