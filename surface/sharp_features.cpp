@@ -31,9 +31,15 @@ struct EdgeUse {
     }
 };
 
+struct FeatureEdges {
+    std::vector<std::pair<int, int>> creases;       // edges of two triangles turning past the angle
+    std::vector<std::pair<int, int>> boundary;      // of one or three triangles (include_boundary)
+    std::vector<std::pair<int, int>> half_turning;  // of two turning by half the angle to it
+};
+
 // The uses of every edge, sorted so that those of one edge are adjacent (a parallel sort:
 // faster than hashing for the million-triangle surfaces this runs on).
-std::vector<std::pair<int, int>> feature_edges(const TriangleSurface& s, const FeatureOptions& o) {
+FeatureEdges feature_edges(const TriangleSurface& s, const FeatureOptions& o) {
     const int nt = int(s.triangles.size());
     std::vector<Vec3> normals(nt, Vec3::Zero());
     std::vector<EdgeUse> uses(3 * size_t(nt));
@@ -51,29 +57,29 @@ std::vector<std::pair<int, int>> feature_edges(const TriangleSurface& s, const F
         }
     });
     tbb::parallel_sort(uses.begin(), uses.end());
-    const double cos_limit = std::cos(o.angle_degrees * 3.14159265358979323846 / 180);
-    std::vector<std::pair<int, int>> edges;
+    const double radians = o.angle_degrees * 3.14159265358979323846 / 180;
+    const double cos_limit = std::cos(radians), cos_half = std::cos(0.5 * radians);
+    FeatureEdges edges;
     for (size_t i = 0, j; i < uses.size() && uses[i].key != ~std::uint64_t(0); i = j) {
         for (j = i + 1; j < uses.size() && uses[j].key == uses[i].key;) ++j;
-        bool feature = false;
+        const std::pair<int, int> edge(int(uses[i].key >> 32), int(uses[i].key & 0xffffffffu));
         if (j - i == 2) {
             const double flip = uses[i].forward == uses[i + 1].forward ? -1 : 1;
-            feature =
-                flip * normals[uses[i].triangle].dot(normals[uses[i + 1].triangle]) < cos_limit;
-        } else {
-            feature = o.include_boundary;
+            const double c = flip * normals[uses[i].triangle].dot(normals[uses[i + 1].triangle]);
+            if (c < cos_limit)
+                edges.creases.push_back(edge);
+            else if (c < cos_half)
+                edges.half_turning.push_back(edge);
+        } else if (o.include_boundary) {
+            edges.boundary.push_back(edge);
         }
-        if (feature) edges.emplace_back(int(uses[i].key >> 32), int(uses[i].key & 0xffffffffu));
     }
     return edges;
 }
 
-}  // namespace
-
-FeatureCurves detect_sharp_features(const TriangleSurface& s, const FeatureOptions& o) {
-    if (!(o.angle_degrees >= 0 && o.angle_degrees < 180))
-        throw std::invalid_argument("detect_sharp_features: angle must lie in [0, 180)");
-    const std::vector<std::pair<int, int>> edges = feature_edges(s, o);
+// The chains and corners of a set of feature edges: corners where 1 or at least 3 meet,
+// chains from corner to corner, then the closed loops.
+FeatureCurves chains_of(const TriangleSurface& s, const std::vector<std::pair<int, int>>& edges) {
     // Incident feature edges of every point.
     std::vector<std::vector<int>> incident(s.points.size());
     for (int e = 0; e < (int)edges.size(); ++e) {
@@ -109,6 +115,32 @@ FeatureCurves detect_sharp_features(const TriangleSurface& s, const FeatureOptio
             if (!used[e]) walk(p, e);
     for (int e = 0; e < (int)edges.size(); ++e)  // what is left: closed loops
         if (!used[e]) walk(edges[e].first, e);
+    return f;
+}
+
+}  // namespace
+
+FeatureCurves detect_sharp_features(const TriangleSurface& s, const FeatureOptions& o) {
+    if (!(o.angle_degrees >= 0 && o.angle_degrees < 180))
+        throw std::invalid_argument("detect_sharp_features: angle must lie in [0, 180)");
+    if (!(o.noise_ratio >= 0))
+        throw std::invalid_argument("detect_sharp_features: noise_ratio must be >= 0");
+    FeatureEdges found = feature_edges(s, o);
+    const int turning = int(found.creases.size());
+    // The half-turning edges that touch a crease: the facets around the creases.
+    std::vector<char> on_crease(s.points.size(), 0);
+    for (const auto& [a, b] : found.creases) on_crease[a] = on_crease[b] = 1;
+    int half_turning = 0;
+    for (const auto& [a, b] : found.half_turning) half_turning += on_crease[a] || on_crease[b];
+    const bool noise =
+        o.noise_ratio > 0 && turning > 0 && half_turning >= o.noise_ratio * double(turning);
+    std::vector<std::pair<int, int>> edges = std::move(found.boundary);
+    if (!noise) edges.insert(edges.end(), found.creases.begin(), found.creases.end());
+    std::sort(edges.begin(), edges.end());  // the order of the surface's edges (edge_key)
+    FeatureCurves f = chains_of(s, edges);
+    f.turning_edges = turning;
+    f.half_turning_edges = half_turning;
+    f.noise = noise;
     return f;
 }
 

@@ -25,12 +25,12 @@ BoundaryGeometry BoundaryGeometry::implicit(std::shared_ptr<const ImplicitFuncti
     return g;
 }
 
-BoundaryGeometry BoundaryGeometry::triangles(const TriangleSurface& triangles, double feature_angle,
-                                             double) {
+BoundaryGeometry BoundaryGeometry::triangles(const TriangleSurface& triangles,
+                                             const FeatureOptions& crease_options, double) {
     auto surface = std::make_shared<const TriangleSurface>(triangles);
     auto exact = std::make_shared<const ExactDistance>(*surface);
-    auto features = std::make_shared<const FeatureCurves>(
-        detect_sharp_features(*surface, {feature_angle, true}));
+    auto features =
+        std::make_shared<const FeatureCurves>(detect_sharp_features(*surface, crease_options));
     auto creases = std::make_shared<const FeatureIndex>(*surface, *features);
     BoundaryGeometry g;
     auto nearest_corner = [surface, features](const Vec3& x) {

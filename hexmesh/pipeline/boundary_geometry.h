@@ -10,6 +10,7 @@
 #include "hexmesh/core/implicit_function.h"
 #include "hexmesh/core/triangle_surface.h"
 #include "hexmesh/core/vertex_kind.h"
+#include "surface/sharp_features.h"
 #include "untangle/problem.h"
 
 namespace hexmesh {
@@ -19,8 +20,8 @@ class BoundaryGeometry {
     // u = 0 of `body` (kept alive by the shared pointer); tolerances relative to length_scale.
     static BoundaryGeometry implicit(std::shared_ptr<const ImplicitFunction> body,
                                      double length_scale);
-    // The triangles of `surface`; edges turning more than feature_angle degrees are creases.
-    static BoundaryGeometry triangles(const TriangleSurface& surface, double feature_angle,
+    // The triangles of `surface`, with the creases detect_sharp_features finds by `creases`.
+    static BoundaryGeometry triangles(const TriangleSurface& surface, const FeatureOptions& creases,
                                       double length_scale);
 
     // The constraint of a boundary vertex at x: slip, feature_edge within `reach` of a crease,

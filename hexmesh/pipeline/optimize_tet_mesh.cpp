@@ -144,10 +144,18 @@ SizingFunction tet_sizing(const Case& c, std::shared_ptr<const ImplicitFunction>
     };
 }
 
+FeatureOptions tet_crease_options(const Case& c) {
+    FeatureOptions o;
+    o.angle_degrees = c.tet_mesh.feature_angle;
+    o.include_boundary = true;
+    o.noise_ratio = 0.5;
+    return o;
+}
+
 BoundaryGeometry case_boundary(const Case& c, std::shared_ptr<const ImplicitFunction> body,
                                double h) {
     if (auto surface = reference_surface(c.geometry))
-        return BoundaryGeometry::triangles(*surface, c.tet_mesh.feature_angle, h);
+        return BoundaryGeometry::triangles(*surface, tet_crease_options(c), h);
     return BoundaryGeometry::implicit(std::move(body), h);
 }
 

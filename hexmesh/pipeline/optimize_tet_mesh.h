@@ -29,8 +29,14 @@ struct TetSizes {
 };
 TetSizes tet_sizes(const Case& c, const ImplicitFunction& body);
 
+// The creases of a surface file the tet case protects and slides on: edges turning by more
+// than tet_mesh.feature_angle, and none on a faceted scan, where the edges beside them turning
+// by between half that angle and it are at least half as many (surface/sharp_features.h).
+// CGAL's protection of a scan's thousands of short, crossing "creases" does not end.
+FeatureOptions tet_crease_options(const Case& c);
+
 // Where the boundary vertices of a mesh of the case's body slide: the triangles of a surface
-// file (creases by tet_mesh.feature_angle), else the implicit body.
+// file (creases by tet_crease_options), else the implicit body.
 BoundaryGeometry case_boundary(const Case& c, std::shared_ptr<const ImplicitFunction> body,
                                double length_scale);
 

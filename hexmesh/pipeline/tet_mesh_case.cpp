@@ -24,18 +24,26 @@
 namespace hexmesh {
 namespace {
 
-// Creases and corners for CGAL's feature protection: a surface file's sharp edges, or the
-// creases of the implicit body traced at spacing `step`.
-CreaseCurves body_creases(const Case& c, const ImplicitFunction& body, double step) {
+// Creases and corners for CGAL's feature protection: a surface file's sharp edges as
+// case_boundary finds them (tet_crease_options), or the creases of the implicit body traced at
+// spacing `step`. `noise` (surface files): why a scan's creases were all dropped, else empty.
+CreaseCurves body_creases(const Case& c, const ImplicitFunction& body, double step,
+                          std::string& noise) {
     CreaseCurves curves;
     if (const auto surface = reference_surface(c.geometry)) {
-        const FeatureCurves f = detect_sharp_features(*surface, {c.tet_mesh.feature_angle, true});
+        const FeatureCurves f = detect_sharp_features(*surface, tet_crease_options(c));
         for (const auto& chain : f.chains) {
             std::vector<Vec3> line;
             for (int id : chain) line.push_back(surface->points[id]);
             curves.polylines.push_back(std::move(line));
         }
         for (int id : f.corners) curves.corners.push_back(surface->points[id]);
+        if (f.noise)
+            noise = fmt::format(
+                "{} edges turn by more than {:g} degrees, and {} beside them by {:g} to {:g}: the "
+                "facets of a scan, not sharp edges, and not protected",
+                f.turning_edges, c.tet_mesh.feature_angle, f.half_turning_edges,
+                0.5 * c.tet_mesh.feature_angle, c.tet_mesh.feature_angle);
         return curves;
     }
     try {
@@ -210,7 +218,8 @@ TetMeshOptions generate(const Case& c, const ImplicitFunction& body, const TetSi
     mesh_options.size = size;
     mesh_options.facet_distance =
         c.tet_mesh.facet_distance > 0 ? c.tet_mesh.facet_distance : 0.1 * sizes.wall;
-    CreaseCurves creases = body_creases(c, body, 0.5 * sizes.wall);
+    std::string noise;
+    CreaseCurves creases = body_creases(c, body, 0.5 * sizes.wall, noise);
     r.crease_polylines = Id(creases.polylines.size());
     r.corners = Id(creases.corners.size());
     mesh_options.features = std::move(creases.polylines);
@@ -219,6 +228,7 @@ TetMeshOptions generate(const Case& c, const ImplicitFunction& body, const TetSi
     mesh_options.cgal_sliver_bound = options.cgal_sliver_bound;
     mesh_options.cgal_time_limit = options.cgal_time_limit;
     r.seconds_features = lap();
+    if (!noise.empty()) log << "creases: " << noise << "\n";
     log << fmt::format("creases: {} polylines, {} corners ({:.2f} s)\n", r.crease_polylines,
                        r.corners, r.seconds_features)
         << std::flush;

@@ -122,7 +122,7 @@ std::optional<BoundaryGeometry> constrain_boundary(const VolumeMesh& mesh,
                        ? *options.geometry
                        : BoundaryGeometry::triangles(
                              options.surface ? *options.surface : triangulate(mesh, faces),
-                             options.feature_angle_degrees, p.length_scale);
+                             FeatureOptions{options.feature_angle_degrees, true}, p.length_scale);
         // Boundary vertices on a crease slide along it; at a corner they stay, exactly on it.
         // A given geometry (an implicit body) is sought further: a tet mesher lays crease
         // points on chords of curved creases, some 1e-2 h off them.

@@ -67,6 +67,45 @@ TEST(SharpFeatures, SmoothSphereHasNoCrease) {
     EXPECT_TRUE(f.corners.empty());
 }
 
+// A scan-like surface: a sphere of 24 x 12 facets, each point moved along its radius by up to
+// 8 % (fixed seed), so that its edges turn by every angle from 0 to beyond 30 degrees.
+TriangleSurface bumpy_sphere() {
+    TriangleSurface s = test::uv_sphere(Vec3::Zero(), 1, 24, 12);
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> bump(0.92, 1.08);
+    for (Vec3& p : s.points) p *= bump(random);
+    return s;
+}
+
+TEST(SharpFeatures, FacetsOfAScanAreNoiseNotCreases) {
+    const TriangleSurface scan = bumpy_sphere();
+    FeatureOptions o;  // 30 degrees
+    const FeatureCurves all = detect_sharp_features(scan, o);
+    ASSERT_GT(all.turning_edges, 0);
+    EXPECT_FALSE(all.chains.empty());  // many short "creases" at 30 degrees
+    // ... but at least half as many edges beside them turn by 15-30 degrees: no gap between the
+    // facets and the creases.
+    EXPECT_GE(2 * all.half_turning_edges, all.turning_edges);
+    o.noise_ratio = 0.5;
+    const FeatureCurves noise = detect_sharp_features(scan, o);
+    EXPECT_TRUE(noise.noise);
+    EXPECT_TRUE(noise.chains.empty());
+    EXPECT_TRUE(noise.corners.empty());
+    EXPECT_EQ(noise.turning_edges, all.turning_edges);
+
+    // A box has no edge between flat and 90 degrees: its creases stay, subdivided or not.
+    for (int n : {1, 4}) {
+        const FeatureCurves box =
+            detect_sharp_features(test::box_surface(Vec3::Zero(), Vec3(2, 1, 3), n), o);
+        EXPECT_FALSE(box.noise);
+        EXPECT_EQ(box.half_turning_edges, 0);
+        EXPECT_EQ(box.chains.size(), 12u);
+        EXPECT_EQ(box.corners.size(), 8u);
+    }
+    o.noise_ratio = -1;
+    EXPECT_THROW(detect_sharp_features(scan, o), std::invalid_argument);
+}
+
 TEST(SharpFeatures, OpenSheetRimIsAFeatureUnlessExcluded) {
     TriangleSurface sheet;
     sheet.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)};
