@@ -148,7 +148,7 @@ FeatureOptions tet_crease_options(const Case& c) {
     FeatureOptions o;
     o.angle_degrees = c.tet_mesh.feature_angle;
     o.include_boundary = true;
-    o.noise_ratio = 0.5;
+    o.noise_ratio = facet_noise_ratio;
     return o;
 }
 

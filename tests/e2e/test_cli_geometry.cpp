@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <random>
 #include <regex>
 
 #include "cli.h"
@@ -137,6 +138,31 @@ TEST(CliGeometry, InspectPrintsTheDiagnostics) {
     EXPECT_EQ(row_value(r.out, "open (boundary) edges"), 0) << r.out;
     EXPECT_EQ(row_value(r.out, "self-intersecting pairs"), 0) << r.out;
     EXPECT_NE(r.out.find("watertight: yes"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("faceted scan"), std::string::npos) << r.out;
+}
+
+// A scan-like sphere (24 x 12 facets, points moved along the radius by up to 8 %) is told
+// from a box: its edges turn by every angle, so those over 30 degrees are the facets' noise.
+TEST(CliGeometry, InspectTellsAFacetedScanFromABox) {
+    TriangleSurface scan = test::uv_sphere(Vec3::Zero(), 1, 24, 12);
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> bump(0.92, 1.08);
+    for (Vec3& p : scan.points) p *= bump(random);
+    const fs::path scan_file = scratch("bumpy.stl"), box_file = scratch("box.stl");
+    test::write_stl_binary(scan_file.string(), scan);
+    test::write_stl_binary(box_file.string(), test::box_surface(Vec3::Zero(), Vec3::Ones(), 2));
+    const CommandResult s = run_hexmesh("inspect '" + scan_file.string() + "'");
+    EXPECT_EQ(s.exit_code, 0) << s.err;
+    EXPECT_GT(row_value(s.out, "crease chains (30 deg)"), 0) << s.out;
+    EXPECT_GT(row_value(s.out, "edges beside them turning 15-30 deg"), 0) << s.out;
+    EXPECT_NE(s.out.find("faceted scan: yes"), std::string::npos) << s.out;
+    const CommandResult b = run_hexmesh("inspect '" + box_file.string() + "'");
+    EXPECT_EQ(b.exit_code, 0) << b.err;
+    EXPECT_EQ(row_value(b.out, "crease chains (30 deg)"), 12) << b.out;
+    EXPECT_EQ(row_value(b.out, "edges beside them turning 15-30 deg"), 0) << b.out;
+    EXPECT_EQ(b.out.find("faceted scan"), std::string::npos) << b.out;
+    fs::remove(scan_file);
+    fs::remove(box_file);
 }
 
 TEST(CliGeometry, SdfWritesAVdbFile) {
