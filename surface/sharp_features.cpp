@@ -77,16 +77,16 @@ FeatureEdges feature_edges(const TriangleSurface& s, const FeatureOptions& o) {
     return edges;
 }
 
-// The chains and corners of a set of feature edges: corners where 1 or at least 3 meet,
-// chains from corner to corner, then the closed loops.
-FeatureCurves chains_of(const TriangleSurface& s, const std::vector<std::pair<int, int>>& edges) {
+// The chains and corners of a set of feature edges, into f: corners where 1 or at least 3
+// meet, chains from corner to corner, then the closed loops.
+void add_chains(const TriangleSurface& s, const std::vector<std::pair<int, int>>& edges,
+                FeatureCurves& f) {
     // Incident feature edges of every point.
     std::vector<std::vector<int>> incident(s.points.size());
     for (int e = 0; e < (int)edges.size(); ++e) {
         incident[edges[e].first].push_back(e);
         incident[edges[e].second].push_back(e);
     }
-    FeatureCurves f;
     std::vector<char> is_corner(s.points.size(), 0), used(edges.size(), 0);
     for (int p = 0; p < (int)s.points.size(); ++p)
         if (!incident[p].empty() && incident[p].size() != 2) {
@@ -115,7 +115,6 @@ FeatureCurves chains_of(const TriangleSurface& s, const std::vector<std::pair<in
             if (!used[e]) walk(p, e);
     for (int e = 0; e < (int)edges.size(); ++e)  // what is left: closed loops
         if (!used[e]) walk(edges[e].first, e);
-    return f;
 }
 
 }  // namespace
@@ -126,21 +125,18 @@ FeatureCurves detect_sharp_features(const TriangleSurface& s, const FeatureOptio
     if (!(o.noise_ratio >= 0))
         throw std::invalid_argument("detect_sharp_features: noise_ratio must be >= 0");
     FeatureEdges found = feature_edges(s, o);
-    const int turning = int(found.creases.size());
     // The half-turning edges that touch a crease: the facets around the creases.
     std::vector<char> on_crease(s.points.size(), 0);
     for (const auto& [a, b] : found.creases) on_crease[a] = on_crease[b] = 1;
-    int half_turning = 0;
-    for (const auto& [a, b] : found.half_turning) half_turning += on_crease[a] || on_crease[b];
-    const bool noise =
-        o.noise_ratio > 0 && turning > 0 && half_turning >= o.noise_ratio * double(turning);
+    FeatureCurves f;
+    f.turning_edges = int(found.creases.size());
+    for (const auto& [a, b] : found.half_turning)
+        f.half_turning_edges += on_crease[a] || on_crease[b];
+    f.noise = o.noise_ratio > 0 && f.scan_at(o.noise_ratio);
     std::vector<std::pair<int, int>> edges = std::move(found.boundary);
-    if (!noise) edges.insert(edges.end(), found.creases.begin(), found.creases.end());
+    if (!f.noise) edges.insert(edges.end(), found.creases.begin(), found.creases.end());
     std::sort(edges.begin(), edges.end());  // the order of the surface's edges (edge_key)
-    FeatureCurves f = chains_of(s, edges);
-    f.turning_edges = turning;
-    f.half_turning_edges = half_turning;
-    f.noise = noise;
+    add_chains(s, edges, f);
     return f;
 }
 

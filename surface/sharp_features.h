@@ -43,6 +43,10 @@ struct FeatureCurves {
     // FeatureOptions::noise_ratio.
     int turning_edges = 0, half_turning_edges = 0;
     bool noise = false;
+    // Whether the surface is a faceted scan by FeatureOptions::noise_ratio `ratio` (> 0).
+    bool scan_at(double ratio) const {
+        return turning_edges > 0 && half_turning_edges >= ratio * double(turning_edges);
+    }
 };
 
 // Normals follow the triangles' orientation; a pair of triangles running their common

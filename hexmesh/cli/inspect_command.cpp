@@ -50,8 +50,6 @@ void inspect_surface(const std::string& path, double feature_angle) {
     row("corners", fmt::format("{}", f.corners.size()));
     row(fmt::format("edges beside them turning {:g}-{:g} deg", 0.5 * feature_angle, feature_angle),
         fmt::format("{}", f.half_turning_edges));
-    const bool scan =
-        f.turning_edges > 0 && f.half_turning_edges >= facet_noise_ratio * double(f.turning_edges);
     if (!d.degenerate_ids.empty()) {
         std::string ids;
         for (int t : d.degenerate_ids) ids += fmt::format("{}{}", ids.empty() ? "" : " ", t);
@@ -60,7 +58,7 @@ void inspect_surface(const std::string& path, double feature_angle) {
     std::cout << (d.watertight() ? "  watertight: yes (closed, manifold, oriented)\n"
                                  : "  watertight: no (the SDF will sign it by winding number "
                                    "if it has open edges)\n");
-    if (scan)
+    if (f.scan_at(facet_noise_ratio))
         std::cout
             << "  faceted scan: yes (the edges beside its creases that turn by half the angle "
                "to it are half as many or more: tetmesh protects none of them)\n";

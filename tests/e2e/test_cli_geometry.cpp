@@ -4,7 +4,6 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <random>
 #include <regex>
 
 #include "cli.h"
@@ -144,10 +143,7 @@ TEST(CliGeometry, InspectPrintsTheDiagnostics) {
 // A scan-like sphere (24 x 12 facets, points moved along the radius by up to 8 %) is told
 // from a box: its edges turn by every angle, so those over 30 degrees are the facets' noise.
 TEST(CliGeometry, InspectTellsAFacetedScanFromABox) {
-    TriangleSurface scan = test::uv_sphere(Vec3::Zero(), 1, 24, 12);
-    std::mt19937 random(7);
-    std::uniform_real_distribution<double> bump(0.92, 1.08);
-    for (Vec3& p : scan.points) p *= bump(random);
+    const TriangleSurface scan = test::bumpy_sphere();
     const fs::path scan_file = scratch("bumpy.stl"), box_file = scratch("box.stl");
     test::write_stl_binary(scan_file.string(), scan);
     test::write_stl_binary(box_file.string(), test::box_surface(Vec3::Zero(), Vec3::Ones(), 2));

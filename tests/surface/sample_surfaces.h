@@ -6,6 +6,7 @@
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <random>
 #include <string>
 
 #include "hexmesh/core/triangle_surface.h"
@@ -37,6 +38,16 @@ inline TriangleSurface uv_sphere(const Vec3& center, double radius, int lon, int
         }
         s.triangles.push_back({south, ring(lat - 1, j + 1), ring(lat - 1, j)});
     }
+    return s;
+}
+
+// A scan-like surface: uv_sphere(0, 1, 24, 12) with each point moved along its radius by up
+// to 8 % (fixed seed), so that its edges turn by every angle from 0 to beyond 30 degrees.
+inline TriangleSurface bumpy_sphere() {
+    TriangleSurface s = uv_sphere(Vec3::Zero(), 1, 24, 12);
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> bump(0.92, 1.08);
+    for (Vec3& p : s.points) p *= bump(random);
     return s;
 }
 

@@ -67,18 +67,8 @@ TEST(SharpFeatures, SmoothSphereHasNoCrease) {
     EXPECT_TRUE(f.corners.empty());
 }
 
-// A scan-like surface: a sphere of 24 x 12 facets, each point moved along its radius by up to
-// 8 % (fixed seed), so that its edges turn by every angle from 0 to beyond 30 degrees.
-TriangleSurface bumpy_sphere() {
-    TriangleSurface s = test::uv_sphere(Vec3::Zero(), 1, 24, 12);
-    std::mt19937 random(7);
-    std::uniform_real_distribution<double> bump(0.92, 1.08);
-    for (Vec3& p : s.points) p *= bump(random);
-    return s;
-}
-
 TEST(SharpFeatures, FacetsOfAScanAreNoiseNotCreases) {
-    const TriangleSurface scan = bumpy_sphere();
+    const TriangleSurface scan = test::bumpy_sphere();
     FeatureOptions o;  // 30 degrees
     const FeatureCurves all = detect_sharp_features(scan, o);
     ASSERT_GT(all.turning_edges, 0);
