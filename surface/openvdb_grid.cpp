@@ -4,11 +4,13 @@
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/MeshToVolume.h>
 #include <openvdb/tools/SignedFloodFill.h>
+#include <openvdb/tools/ValueTransformer.h>
 #include <openvdb/tree/LeafManager.h>
 
 #include <algorithm>
 #include <cmath>
 #include <mutex>
+#include <sstream>
 #include <stdexcept>
 
 #include "surface/sdf_grid.h"
@@ -32,8 +34,16 @@ struct IndexSpaceMesh {
     }
 };
 
+// world = origin + voxel * index.
+openvdb::math::Transform::Ptr world_transform(double voxel, const Vec3& origin) {
+    auto transform = openvdb::math::Transform::createLinearTransform(voxel);
+    transform->postTranslate(openvdb::Vec3d(origin.x(), origin.y(), origin.z()));
+    return transform;
+}
+
 // Unsigned distances in the band, then each active voxel signed by the winding number
 // (o.winding) at its centre, then the inactive tiles by a signed flood fill of those signs.
+// `voxel` is the grid's own (transform's) voxel, the unit of its distances.
 openvdb::FloatGrid::Ptr winding_signed_grid(const IndexSpaceMesh& mesh,
                                             const openvdb::math::Transform& transform,
                                             const SdfGridSpec& o, double voxel) {
@@ -62,7 +72,7 @@ openvdb::FloatGrid::Ptr winding_signed_grid(const IndexSpaceMesh& mesh,
             }
             if (sign == 0) {
                 const openvdb::Coord c = leaf.offsetToGlobalCoord(offset);
-                sign = winding(mesh.origin + voxel * Vec3(c.x(), c.y(), c.z())) > 0.5 ? -1 : 1;
+                sign = winding(mesh.origin + o.voxel * Vec3(c.x(), c.y(), c.z())) > 0.5 ? -1 : 1;
             }
             if (sign < 0) leaf.setValueOnly(offset, -udf);
         }
@@ -73,15 +83,33 @@ openvdb::FloatGrid::Ptr winding_signed_grid(const IndexSpaceMesh& mesh,
     return grid;
 }
 
+// The voxel OpenVDB builds a grid with: the true one, or for a voxel so small that OpenVDB
+// refuses its transform (under about 1e-5: the determinant of its scale is compared to zero;
+// a body of a few millimetres given in metres), the true one scaled by a power of two into
+// [1, 2). Scaled back (exactly: by a power of two), its distances are the true ones, but for
+// OpenVDB's absolute tolerances, which are then relative to the voxel as they should be.
+struct ScaledVoxel {
+    double voxel;      // the voxel OpenVDB works with: the true one times 2^exponent
+    int exponent = 0;  // 0: the true voxel
+};
+
+ScaledVoxel scaled_voxel(double voxel) {
+    int e = 0;
+    std::frexp(voxel, &e);  // voxel = m 2^e, m in [0.5, 1)
+    return {std::ldexp(voxel, 1 - e), 1 - e};
+}
+
 class OpenVdbGrid : public SdfGrid {
   public:
-    explicit OpenVdbGrid(openvdb::FloatGrid::Ptr grid) : grid_(std::move(grid)) {}
+    OpenVdbGrid(openvdb::FloatGrid::Ptr grid, const SdfGridSpec& spec, int exponent)
+        : grid_(std::move(grid)), voxel_(spec.voxel), origin_(spec.origin), exponent_(exponent) {}
 
     void corner_values(int i, int j, int k, double (&values)[8]) const override {
         openvdb::tree::ValueAccessor<const openvdb::FloatTree, false> acc(grid_->tree());
         const openvdb::Coord c0(i, j, k);
         for (int corner = 0; corner < 8; ++corner)
-            values[corner] = acc.getValue(c0.offsetBy(corner & 1, (corner >> 1) & 1, corner >> 2));
+            values[corner] = std::ldexp(
+                acc.getValue(c0.offsetBy(corner & 1, (corner >> 1) & 1, corner >> 2)), -exponent_);
     }
     std::array<int, 6> active_box() const override {
         const openvdb::CoordBBox box = grid_->evalActiveVoxelBoundingBox();
@@ -91,14 +119,40 @@ class OpenVdbGrid : public SdfGrid {
     }
     long long active_voxels() const override { return (long long)grid_->activeVoxelCount(); }
     size_t memory_bytes() const override { return grid_->memUsage(); }
+    // The grid in world units: a scaled grid is written with the true voxel's transform and
+    // its values scaled back.
     void write_vdb(const std::string& path) const override {
         openvdb::io::File file(path);
-        file.write({grid_});
+        if (exponent_ == 0) {
+            file.write({grid_});
+            file.close();
+            return;
+        }
+        openvdb::math::Transform::Ptr transform;
+        try {
+            transform = world_transform(voxel_, origin_);
+        } catch (const openvdb::ArithmeticError&) {
+            std::ostringstream message;
+            message << "OpenVDB cannot write a grid of voxel " << voxel_
+                    << " (its smallest is about 1e-5): give the surface in smaller units (e.g. "
+                       "millimetres instead of metres)";
+            throw std::runtime_error(message.str());
+        }
+        openvdb::FloatGrid::Ptr world = grid_->deepCopy();
+        const int exponent = exponent_;
+        openvdb::tools::foreach (world->beginValueAll(), [exponent](const auto& it) {
+            it.setValue(std::ldexp(*it, -exponent));
+        });
+        world->setTransform(transform);
+        file.write({world});
         file.close();
     }
 
   private:
     openvdb::FloatGrid::Ptr grid_;
+    double voxel_;
+    Vec3 origin_;
+    int exponent_;
 };
 
 }  // namespace
@@ -109,13 +163,19 @@ extern "C" hexmesh::SdfGrid* hexmesh_build_sdf_grid(const hexmesh::TriangleSurfa
     using namespace hexmesh;
     static std::once_flag init;
     std::call_once(init, [] { openvdb::initialize(); });
-    auto transform = openvdb::math::Transform::createLinearTransform(spec.voxel);
-    transform->postTranslate(openvdb::Vec3d(spec.origin.x(), spec.origin.y(), spec.origin.z()));
+    ScaledVoxel scaled{spec.voxel};
+    openvdb::math::Transform::Ptr transform;
+    try {
+        transform = world_transform(spec.voxel, spec.origin);
+    } catch (const openvdb::ArithmeticError&) {
+        scaled = scaled_voxel(spec.voxel);
+        transform = world_transform(scaled.voxel, std::ldexp(1.0, scaled.exponent) * spec.origin);
+    }
     const IndexSpaceMesh mesh{surface, spec.origin, 1.0 / spec.voxel};
     openvdb::FloatGrid::Ptr grid =
-        spec.winding ? winding_signed_grid(mesh, *transform, spec, spec.voxel)
+        spec.winding ? winding_signed_grid(mesh, *transform, spec, scaled.voxel)
                      : openvdb::tools::meshToVolume<openvdb::FloatGrid>(
                            mesh, *transform, float(spec.exterior_band), float(spec.interior_band));
     grid->setName("sdf");
-    return new OpenVdbGrid(std::move(grid));
+    return new OpenVdbGrid(std::move(grid), spec, scaled.exponent);
 }

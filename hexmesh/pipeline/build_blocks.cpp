@@ -86,11 +86,50 @@ BlockGrid build_o_grid(const Case& c, const ImplicitFunction& body,
     return make_o_grid(body, o);
 }
 
-// The body of the case, its reference surface refused if the block structure cannot grid it.
+// Throws InputError for a body (its bounds) too small, too large or too far from the origin
+// for the grid's arithmetic, or a first layer too thin for it: under 1e-9 across, the
+// boundary layer's edges come near 1e-15, which the quality measures (Verdict) take for
+// zero-length; beyond 1e36 from the origin, products of lengths overflow (a sphere of radius
+// 1e80 gives faces of negative volume); farther than 1e9 times its size, or a first layer
+// under 1e-12 of it, and its coordinates keep too few digits for its cells.
+void refuse_scale(const Case& c, const Box3& bounds) {
+    const std::string& what = c.geometry.file.empty() ? c.path : c.geometry.file;
+    const double size = bounds.diagonal();
+    const double far = std::max(bounds.lo.cwiseAbs().maxCoeff(), bounds.hi.cwiseAbs().maxCoeff());
+    if (!(far <= 1e36))
+        throw InputError(
+            fmt::format("{}: the body reaches {:.3g} from the origin; hexmesh grids "
+                        "bodies within 1e36 of it: give it in larger units",
+                        what, far));
+    if (!(size >= 1e-9))
+        throw InputError(
+            fmt::format("{}: the body is {:.3g} across; hexmesh grids bodies at "
+                        "least 1e-9 across: give it in smaller units",
+                        what, size));
+    if (!(far <= 1e9 * size))
+        throw InputError(
+            fmt::format("{}: the body, {:.3g} across, lies {:.3g} from the origin, "
+                        "more than 1e9 times its size: its coordinates keep too few "
+                        "digits for its cells; move it nearer the origin",
+                        what, size, far));
+    if (c.boundary_layer && !(c.boundary_layer->first_height >= 1e-12 * size))
+        throw InputError(fmt::format(
+            "{}: boundary_layer.first_height {:.3g}{} is under 1e-12 of the body's size ({:.3g}): "
+            "its coordinates keep too few digits for such a layer",
+            c.path, c.boundary_layer->first_height,
+            c.boundary_layer->y_plus > 0 ? " (from y_plus)" : "", size));
+}
+
+// The body of the case, its reference surface refused if the block structure cannot grid it
+// or the arithmetic cannot hold it.
 void read_body(Job& job) {
     job.surface = reference_surface(job.settings.geometry);
-    if (job.surface) refuse_topology(job.settings, *job.surface, job.log);
+    if (job.surface) {
+        refuse_scale(job.settings, bounds_of(job.surface->points));
+        refuse_topology(job.settings, *job.surface, job.log);
+    }
     job.body = make_body(job.settings.geometry);
+    if (!job.surface) refuse_scale(job.settings, job.body->bounds());
     job.timer.done("geometry");
 }
 

@@ -73,6 +73,27 @@ TEST(CliErrors, FirstLayerThickerThanTheBody) {
         expect_refused("thin", thin, message);
 }
 
+// Bodies the grid's arithmetic cannot hold, and a first layer too thin for its digits:
+// refused at once, each naming its number and the limit.
+TEST(CliErrors, BodiesOfAbsurdSizeOrPlace) {
+    expect_refused("far", R"({"geometry": {"sphere": {"center": [0, 0, 0], "radius": 1e200}}})",
+                   "the body reaches 1e+200 from the origin; hexmesh grids bodies within 1e36 of "
+                   "it: give it in larger units");
+    expect_refused(
+        "small", R"({"geometry": {"sphere": {"center": [0, 0, 0], "radius": 1e-12}}})",
+        "the body is 3.46e-12 across; hexmesh grids bodies at least 1e-9 across: give it "
+        "in smaller units");
+    expect_refused("off", R"({"geometry": {"sphere": {"center": [1e300, 0, 0], "radius": 1}}})",
+                   "the body reaches 1e+300 from the origin");
+    expect_refused("digits", R"({"geometry": {"sphere": {"center": [1e12, 0, 0], "radius": 1}}})",
+                   "the body, 3.46 across, lies 1e+12 from the origin, more than 1e9 times its "
+                   "size: its coordinates keep too few digits for its cells; move it nearer the "
+                   "origin");
+    expect_refused("thin_layer", R"({"geometry": {"sphere": {"center": [0, 0, 0], "radius": 1}},
+        "boundary_layer": {"first_height": 1e-300, "growth_ratio": 1.2, "layers": 3}})",
+                   "boundary_layer.first_height 1e-300 is under 1e-12 of the body's size (3.46)");
+}
+
 TEST(CliErrors, QualityOfAMissingMesh) {
     const CommandResult r = run_hexmesh("quality /nonexistent/grid.vtm");
     EXPECT_EQ(r.exit_code, 1);

@@ -36,6 +36,39 @@ TEST(CliGeometry, RunsTheCapsuleSurfaceCase) {
     fs::remove_all(out);
 }
 
+// A body 2 mm across given in metres (voxels of its distance field under OpenVDB's smallest,
+// about 1e-5) is gridded as the same body 2 m across: the same cells, the same quality.
+TEST(CliGeometry, ABodyOfMillimetresInMetresIsGriddedAsAtUnitSize) {
+    const fs::path dir = scratch("small_body");
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const auto run = [&](const std::string& name, double radius) {
+        const fs::path file = dir / (name + ".stl");
+        test::write_stl_binary(file.string(), test::uv_sphere(Vec3::Zero(), radius, 32, 16));
+        std::ofstream(dir / (name + ".json"))
+            << "{\"geometry\": {\"file\": \"" << file.string()
+            << "\"}, \"domain\": \"exterior\", \"grid\": {\"cells_per_edge\": 8}}";
+        const fs::path out = dir / name;
+        const CommandResult r = run_hexmesh("run '" + (dir / (name + ".json")).string() + "' -o '" +
+                                            out.string() + "'");
+        EXPECT_EQ(r.exit_code, 0) << name << ": " << r.out << r.err;
+        std::ifstream in(out / "quality.json");
+        return nlohmann::json::parse(in, nullptr, false);
+    };
+    const nlohmann::json unit = run("unit", 1), small = run("small", 1e-3);
+    ASSERT_FALSE(unit.is_discarded() || small.is_discarded());
+    EXPECT_TRUE(small.at("valid").get<bool>());
+    EXPECT_EQ(small.at("cells"), unit.at("cells"));
+    for (const char* key : {"min_scaled_jacobian", "mean_scaled_jacobian"})
+        EXPECT_NEAR(small.at(key).get<double>(), unit.at(key).get<double>(), 1e-3) << key;
+    // Its distance field cannot be written as an OpenVDB file: one line saying so, no file.
+    const CommandResult sdf = run_hexmesh("sdf '" + (dir / "small.stl").string() + "' -o '" +
+                                          (dir / "small.vdb").string() + "'");
+    expect_one_error_line(sdf, "OpenVDB cannot write a grid of voxel ");
+    EXPECT_FALSE(fs::exists(dir / "small.vdb"));
+    fs::remove_all(dir);
+}
+
 TEST(CliGeometry, FileInsideCsg) {
     const fs::path dir = scratch("csg_file");
     fs::create_directories(dir);
