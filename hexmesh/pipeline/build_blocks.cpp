@@ -48,6 +48,22 @@ void refuse_topology(const Case& c, const TriangleSurface& surface, std::ostream
             file, s.genus, s.genus, s.genus > 1 ? "s" : "", s.euler,
             s.boundary_loops > 0 ? fmt::format(", {} holes in the surface", s.boundary_loops)
                                  : ""));
+    // The enclosed volume (divergence theorem): about zero for a flat or doubled sheet, which
+    // has no inside to grid (its interior grid would be cells of no volume).
+    // Taken about the centre of the bounds, so that a body far from the origin keeps its digits.
+    const Box3 bounds = bounds_of(surface.points);
+    const Vec3 c0 = bounds.center();
+    double volume = 0;
+    for (const auto& t : surface.triangles)
+        volume += (surface.points[t[0]] - c0)
+                      .dot((surface.points[t[1]] - c0).cross(surface.points[t[2]] - c0)) /
+                  6;
+    const double size = bounds.diagonal();
+    if (s.boundary_edges == 0 && !(std::abs(volume) > 1e-9 * size * size * size))
+        throw InputError(
+            fmt::format("{}: the surface encloses no volume ({:.3g}, the body {:.3g} "
+                        "across): a flat or doubled sheet; hexmesh grids solid bodies",
+                        file, std::abs(volume), size));
     if (s.boundary_edges > 0)
         log << fmt::format(
             "  the surface is open: {} boundary edges around {} holes; inside and "

@@ -116,6 +116,19 @@ TEST(CliBodies, ASurfaceWithAHandleIsRefusedAtOnce) {
             "without holes through them");
 }
 
+// A closed surface with no inside (two triangles back to back): no cell could have volume.
+TEST(CliBodies, ASurfaceThatEnclosesNoVolumeIsRefusedAtOnce) {
+    TriangleSurface sheet;
+    sheet.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+    sheet.triangles = {{0, 1, 2}, {0, 2, 1}};
+    const fs::path file = scratch("sheet.stl");
+    test::write_stl_binary(file.string(), sheet);
+    for (const char* domain : {"interior", "exterior"})
+        expect_refused_at_once(run_file(file, domain),
+                               "the surface encloses no volume (0, the body 1.41 across): a flat "
+                               "or doubled sheet; hexmesh grids solid bodies");
+}
+
 TEST(CliBodies, TwoSolidsInOneFileAreRefusedAtOnce) {
     TriangleSurface two = test::uv_sphere(Vec3::Zero(), 1, 24, 12);
     const TriangleSurface box = test::box_surface(Vec3(2, 2, 2), Vec3(3, 3, 3), 2);
