@@ -4,7 +4,6 @@
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/MeshToVolume.h>
 #include <openvdb/tools/SignedFloodFill.h>
-#include <openvdb/tools/ValueTransformer.h>
 #include <openvdb/tree/LeafManager.h>
 
 #include <algorithm>
@@ -102,14 +101,15 @@ ScaledVoxel scaled_voxel(double voxel) {
 class OpenVdbGrid : public SdfGrid {
   public:
     OpenVdbGrid(openvdb::FloatGrid::Ptr grid, const SdfGridSpec& spec, int exponent)
-        : grid_(std::move(grid)), voxel_(spec.voxel), origin_(spec.origin), exponent_(exponent) {}
+        : grid_(std::move(grid)), voxel_(spec.voxel), exponent_(exponent) {}
 
     void corner_values(int i, int j, int k, double (&values)[8]) const override {
         openvdb::tree::ValueAccessor<const openvdb::FloatTree, false> acc(grid_->tree());
         const openvdb::Coord c0(i, j, k);
         for (int corner = 0; corner < 8; ++corner)
             values[corner] = std::ldexp(
-                acc.getValue(c0.offsetBy(corner & 1, (corner >> 1) & 1, corner >> 2)), -exponent_);
+                double(acc.getValue(c0.offsetBy(corner & 1, (corner >> 1) & 1, corner >> 2))),
+                -exponent_);
     }
     std::array<int, 6> active_box() const override {
         const openvdb::CoordBBox box = grid_->evalActiveVoxelBoundingBox();
@@ -119,39 +119,23 @@ class OpenVdbGrid : public SdfGrid {
     }
     long long active_voxels() const override { return (long long)grid_->activeVoxelCount(); }
     size_t memory_bytes() const override { return grid_->memUsage(); }
-    // The grid in world units: a scaled grid is written with the true voxel's transform and
-    // its values scaled back.
+    // A scaled grid cannot be written: OpenVDB refused its true voxel's transform.
     void write_vdb(const std::string& path) const override {
-        openvdb::io::File file(path);
-        if (exponent_ == 0) {
-            file.write({grid_});
-            file.close();
-            return;
-        }
-        openvdb::math::Transform::Ptr transform;
-        try {
-            transform = world_transform(voxel_, origin_);
-        } catch (const openvdb::ArithmeticError&) {
+        if (exponent_ != 0) {
             std::ostringstream message;
             message << "OpenVDB cannot write a grid of voxel " << voxel_
                     << " (its smallest is about 1e-5): give the surface in smaller units (e.g. "
                        "millimetres instead of metres)";
             throw std::runtime_error(message.str());
         }
-        openvdb::FloatGrid::Ptr world = grid_->deepCopy();
-        const int exponent = exponent_;
-        openvdb::tools::foreach (world->beginValueAll(), [exponent](const auto& it) {
-            it.setValue(std::ldexp(*it, -exponent));
-        });
-        world->setTransform(transform);
-        file.write({world});
+        openvdb::io::File file(path);
+        file.write({grid_});
         file.close();
     }
 
   private:
     openvdb::FloatGrid::Ptr grid_;
     double voxel_;
-    Vec3 origin_;
     int exponent_;
 };
 

@@ -29,10 +29,11 @@ int cells_per_edge(const Case& c, const ImplicitFunction& body) {
     return std::max(2, int(n));
 }
 
-// Throws InputError for a surface the block structure cannot grid: several pieces, or one with
-// handles (its genus from V - E + F, holes capped); logs an open surface (inside and outside
-// then come from the winding number).
-void refuse_topology(const Case& c, const TriangleSurface& surface, std::ostream& log) {
+// Throws InputError for a surface the block structure cannot grid: several pieces, one with
+// handles (its genus from V - E + F, holes capped) or one that encloses no volume; logs an
+// open surface (inside and outside then come from the winding number). Returns the bounds of
+// its triangles' points.
+Box3 refuse_topology(const Case& c, const TriangleSurface& surface, std::ostream& log) {
     const SurfaceTopology t = surface_topology(surface);
     const std::string& file = c.geometry.file;
     if (t.components.size() > 1)
@@ -51,14 +52,13 @@ void refuse_topology(const Case& c, const TriangleSurface& surface, std::ostream
     // The enclosed volume (divergence theorem): about zero for a flat or doubled sheet, which
     // has no inside to grid (its interior grid would be cells of no volume).
     // Taken about the centre of the bounds, so that a body far from the origin keeps its digits.
-    const Box3 bounds = bounds_of(surface.points);
-    const Vec3 c0 = bounds.center();
+    const Vec3 c0 = s.bounds.center();
     double volume = 0;
-    for (const auto& t : surface.triangles)
-        volume += (surface.points[t[0]] - c0)
-                      .dot((surface.points[t[1]] - c0).cross(surface.points[t[2]] - c0)) /
+    for (const auto& tri : surface.triangles)
+        volume += (surface.points[tri[0]] - c0)
+                      .dot((surface.points[tri[1]] - c0).cross(surface.points[tri[2]] - c0)) /
                   6;
-    const double size = bounds.diagonal();
+    const double size = s.bounds.diagonal();
     if (s.boundary_edges == 0 && !(std::abs(volume) > 1e-9 * size * size * size))
         throw InputError(
             fmt::format("{}: the surface encloses no volume ({:.3g}, the body {:.3g} "
@@ -69,6 +69,7 @@ void refuse_topology(const Case& c, const TriangleSurface& surface, std::ostream
             "  the surface is open: {} boundary edges around {} holes; inside and "
             "outside come from the winding number\n",
             s.boundary_edges, s.boundary_loops);
+    return s.bounds;
 }
 
 // The exterior O-grid of the case (see build_grid).
@@ -140,10 +141,8 @@ void refuse_scale(const Case& c, const Box3& bounds) {
 // or the arithmetic cannot hold it.
 void read_body(Job& job) {
     job.surface = reference_surface(job.settings.geometry);
-    if (job.surface) {
-        refuse_scale(job.settings, bounds_of(job.surface->points));
-        refuse_topology(job.settings, *job.surface, job.log);
-    }
+    if (job.surface)
+        refuse_scale(job.settings, refuse_topology(job.settings, *job.surface, job.log));
     job.body = make_body(job.settings.geometry);
     if (!job.surface) refuse_scale(job.settings, job.body->bounds());
     job.timer.done("geometry");
