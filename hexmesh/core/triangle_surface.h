@@ -52,12 +52,13 @@ inline double surface_area(const TriangleSurface& s) {
 }
 
 // The volume the triangles enclose, signed: > 0 when they face outwards (counter-clockwise
-// seen from outside), < 0 when every one faces inwards (the sum of the tetrahedra from the
-// origin to each triangle; exact for a closed surface, whatever the origin).
-inline double signed_volume(const TriangleSurface& s) {
+// seen from outside), < 0 when every one faces inwards (the sum of the tetrahedra from `apex`
+// to each triangle; exact for a closed surface, whatever the apex, and rounded least with an
+// apex near the surface, e.g. the centre of its bounds for a body far from the origin).
+inline double signed_volume(const TriangleSurface& s, const Vec3& apex = Vec3::Zero()) {
     double six_v = 0;
     for (const auto& t : s.triangles)
-        six_v += s.points[t[0]].dot(s.points[t[1]].cross(s.points[t[2]]));
+        six_v += (s.points[t[0]] - apex).dot((s.points[t[1]] - apex).cross(s.points[t[2]] - apex));
     return six_v / 6;
 }
 

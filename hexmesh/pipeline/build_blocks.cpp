@@ -49,15 +49,10 @@ Box3 refuse_topology(const Case& c, const TriangleSurface& surface, std::ostream
             file, s.genus, s.genus, s.genus > 1 ? "s" : "", s.euler,
             s.boundary_loops > 0 ? fmt::format(", {} holes in the surface", s.boundary_loops)
                                  : ""));
-    // The enclosed volume (divergence theorem): about zero for a flat or doubled sheet, which
-    // has no inside to grid (its interior grid would be cells of no volume).
-    // Taken about the centre of the bounds, so that a body far from the origin keeps its digits.
-    const Vec3 c0 = s.bounds.center();
-    double volume = 0;
-    for (const auto& tri : surface.triangles)
-        volume += (surface.points[tri[0]] - c0)
-                      .dot((surface.points[tri[1]] - c0).cross(surface.points[tri[2]] - c0)) /
-                  6;
+    // The enclosed volume is about zero for a flat or doubled sheet, which has no inside to
+    // grid (its interior grid would be cells of no volume). Taken from the centre of the
+    // bounds, so that a body far from the origin keeps its digits.
+    const double volume = signed_volume(surface, s.bounds.center());
     const double size = s.bounds.diagonal();
     if (s.boundary_edges == 0 && !(std::abs(volume) > 1e-9 * size * size * size))
         throw InputError(
