@@ -8,6 +8,7 @@
 
 #include "hexmesh/core/hex_mesh.h"
 #include "hexmesh/core/reference_hex.h"
+#include "hexmesh/quality/cell_quality.h"
 #include "hexmesh/quality/mesh_quality.h"
 #include "surface/projection.h"
 
@@ -46,7 +47,9 @@ struct Score {
     }
 };
 
-Score score_at(const HexMesh& mesh, const Adjacency& around, Id v) {
+// With by_jacobian, `lowest` is the smallest scaled Jacobian of the cells instead (a skewed face
+// still counts, before it).
+Score score_at(const HexMesh& mesh, const Adjacency& around, Id v, bool by_jacobian = false) {
     Score s;
     const auto [first, end] = around.of(v);
     // The centres of the cells around v, each computed once: a face between two of them
@@ -57,7 +60,7 @@ Score score_at(const HexMesh& mesh, const Adjacency& around, Id v) {
         const std::array<Vec3, 8> p = mesh.corners(*c);
         const double m = solver_margin(p);
         s.refused += !(m > 0);
-        s.lowest = std::min(s.lowest, m);
+        s.lowest = std::min(s.lowest, by_jacobian ? hex_scaled_jacobian(p) : m);
         const Vec3& centre = centres[size_t(c - first)];
         for (int f = 0; f < 6; ++f) {
             const Id n = around.across[6 * *c + f];
@@ -69,7 +72,9 @@ Score score_at(const HexMesh& mesh, const Adjacency& around, Id v) {
             const double skew = hex_face_skewness(p, f, centre, n >= 0 ? &other : nullptr);
             if (skew > max_solver_skewness) {
                 ++s.skewed;
-                s.lowest = std::min(s.lowest, (max_solver_skewness - skew) / max_solver_skewness);
+                if (!by_jacobian)
+                    s.lowest =
+                        std::min(s.lowest, (max_solver_skewness - skew) / max_solver_skewness);
             }
         }
     }
@@ -94,41 +99,86 @@ double lowest(const HexMesh& mesh, const Adjacency& around, const std::vector<Id
     return m;
 }
 
+// The trial positions of a node at `x` for a step of `step` (appended to `out`).
+using TrialMoves = std::function<void(Id v, const Vec3& x, double step, std::vector<Vec3>& out)>;
+
 struct RoundResult {
     Id moves = 0;         // nodes moved
     bool trying = false;  // some node still had a step worth trying
 };
 
-// One round over `nodes`: each movable node whose margin is not yet `o.enough` tries a step of
-// step[i] along the six axis directions (a slip node's trial projected onto u = 0) and takes
-// the best if it is better; a node that finds none halves its step, down to o.last_step edges.
-RoundResult mend_round(HexMesh& mesh, const Adjacency& around, const std::vector<VertexKind>& kinds,
-                       const ImplicitFunction& body, const std::vector<Id>& nodes,
-                       const std::function<bool(Id)>& movable, const MendOptions& o,
-                       std::vector<double>& step) {
-    static const std::array<Vec3, 6> directions = {Vec3::UnitX(),  -Vec3::UnitX(), Vec3::UnitY(),
-                                                   -Vec3::UnitY(), Vec3::UnitZ(),  -Vec3::UnitZ()};
-    RoundResult r;
-    for (size_t i = 0; i < nodes.size(); ++i) {
-        const Id v = nodes[i];
-        if (!movable(v) || step[i] <= 0) continue;
-        const Score before = score_at(mesh, around, v);
-        if (before.lowest > o.enough) continue;
-        const double edge = mean_edge_at(mesh, around, v);
-        if (step[i] < o.last_step * edge) continue;
-        r.trying = true;
-        const Vec3 start = mesh.points[v];
-        Vec3 best = start;
-        Score best_score = before;
-        for (const Vec3& d : directions) {
-            Vec3 x = start + step[i] * d;
-            if (kinds[v] == VertexKind::slip) x = project_to_surface(body, x, edge).point;
+const std::array<Vec3, 6> axis_directions = {Vec3::UnitX(),  -Vec3::UnitX(), Vec3::UnitY(),
+                                             -Vec3::UnitY(), Vec3::UnitZ(),  -Vec3::UnitZ()};
+
+// The smallest scaled Jacobian of the cells around v.
+double worst_jacobian_at(const HexMesh& mesh, const Adjacency& around, Id v) {
+    double low = std::numeric_limits<double>::infinity();
+    for (auto [c, end] = around.of(v); c != end; ++c)
+        low = std::min(low, hex_scaled_jacobian(mesh.corners(*c)));
+    return low;
+}
+
+// The move of `tried` that the node v takes, or `start`. By the solver's checks (score_at), the
+// best if better than at `start`. By the scaled Jacobian (by_jacobian), the trials that raise the
+// worst of the node's cells over `low` (its value at `start`) ranked on it alone, and the first
+// whose Score (by_jacobian) is better than at `start`: at most one full score per move kept.
+Vec3 best_move(HexMesh& mesh, const Adjacency& around, Id v, const Vec3& start,
+               const std::vector<Vec3>& tried, bool by_jacobian, double low) {
+    Vec3 best = start;
+    if (!by_jacobian) {
+        Score best_score = score_at(mesh, around, v);
+        for (const Vec3& x : tried) {
             mesh.points[v] = x;
             const Score m = score_at(mesh, around, v);
             if (m.better_than(best_score)) best = x, best_score = m;
         }
-        mesh.points[v] = best;
-        if (best != start)
+    } else {
+        std::vector<std::pair<double, size_t>> ranked;
+        for (size_t t = 0; t < tried.size(); ++t) {
+            mesh.points[v] = tried[t];
+            const double w = worst_jacobian_at(mesh, around, v);
+            if (w > low + 1e-12) ranked.emplace_back(-w, t);
+        }
+        std::sort(ranked.begin(), ranked.end());
+        if (!ranked.empty()) {
+            mesh.points[v] = start;
+            const Score before = score_at(mesh, around, v, true);
+            for (const auto& [w, t] : ranked) {
+                mesh.points[v] = tried[t];
+                if (score_at(mesh, around, v, true).better_than(before)) {
+                    best = tried[t];
+                    break;
+                }
+            }
+        }
+    }
+    mesh.points[v] = best;
+    return best;
+}
+
+// One round over `nodes`: each movable node whose margin (or, by_jacobian, worst scaled
+// Jacobian around it) is not yet `enough` tries the moves `trials` gives for a step of step[i]
+// and takes the best (best_move); a node that finds none halves its step, down to last_step
+// edges.
+RoundResult node_round(HexMesh& mesh, const Adjacency& around, const std::vector<Id>& nodes,
+                       const std::function<bool(Id)>& movable, const TrialMoves& trials,
+                       bool by_jacobian, double enough, double last_step,
+                       std::vector<double>& step) {
+    RoundResult r;
+    std::vector<Vec3> tried;
+    for (size_t i = 0; i < nodes.size(); ++i) {
+        const Id v = nodes[i];
+        if (!movable(v) || step[i] <= 0) continue;
+        const double low =
+            by_jacobian ? worst_jacobian_at(mesh, around, v) : score_at(mesh, around, v).lowest;
+        if (low > enough) continue;
+        const double edge = mean_edge_at(mesh, around, v);
+        if (step[i] < last_step * edge) continue;
+        r.trying = true;
+        const Vec3 start = mesh.points[v];
+        tried.clear();
+        trials(v, start, step[i], tried);
+        if (best_move(mesh, around, v, start, tried, by_jacobian, low) != start)
             ++r.moves;
         else
             step[i] *= 0.5;
@@ -174,9 +224,18 @@ MendResult mend_refused_cells(BlockGrid& grid, const ImplicitFunction& body, con
         std::vector<double> step(nodes.size());
         for (size_t i = 0; i < nodes.size(); ++i)
             step[i] = o.first_step * mean_edge_at(mesh, around, nodes[i]);
+        // Six moves along the axes, a slip node's projected back onto u = 0.
+        const TrialMoves axes = [&](Id v, const Vec3& x, double h, std::vector<Vec3>& out) {
+            for (const Vec3& d : axis_directions) {
+                const Vec3 y = x + h * d;
+                out.push_back(grid.kinds[v] == VertexKind::slip
+                                  ? project_to_surface(body, y, mean_edge_at(mesh, around, v)).point
+                                  : y);
+            }
+        };
         for (int round = 0; round < o.rounds; ++round) {
             const RoundResult r =
-                mend_round(mesh, around, grid.kinds, body, nodes, movable, o, step);
+                node_round(mesh, around, nodes, movable, axes, false, o.enough, o.last_step, step);
             result.moves += r.moves;
             if (!r.trying) break;
             if (r.moves == 0 && round > 0 && lowest(mesh, around, nodes) > 0) break;
@@ -185,6 +244,94 @@ MendResult mend_refused_cells(BlockGrid& grid, const ImplicitFunction& body, con
     }
     result.min_margin_after = lowest(mesh, around, nodes);
     result.refused_after = Id(refused.size());
+    grid.points = std::move(mesh.points);
+    return result;
+}
+
+namespace {
+
+// `x` moved along the level set of `body` through it by `offset` (tangent to it), and back onto
+// the level u = level by steps along grad u.
+Vec3 along_level(const ImplicitFunction& body, const Vec3& x, const Vec3& offset, double level) {
+    Vec3 y = x + offset;
+    for (int i = 0; i < 8; ++i) {
+        const double r = body.value(y) - level;
+        const Vec3 g = body.gradient(y);
+        const double g2 = g.squaredNorm();
+        if (!(g2 > 0) || !std::isfinite(r)) return x;
+        y -= (r / g2) * g;
+        if (std::abs(r) < 1e-9 * offset.norm()) break;
+    }
+    return y;
+}
+
+}  // namespace
+
+LiftResult lift_worst_cells(BlockGrid& grid, const ImplicitFunction& body, const LiftOptions& o) {
+    LiftResult result;
+    HexMesh mesh = to_hex_mesh(grid);
+    std::vector<double> sj = scaled_jacobians(mesh);
+    const auto count_below = [&] {
+        return Id(std::count_if(sj.begin(), sj.end(), [&](double v) { return !(v >= o.below); }));
+    };
+    result.cells_before = result.cells_after = count_below();
+    result.min_sj_before = result.min_sj_after =
+        sj.empty() ? 0 : *std::min_element(sj.begin(), sj.end());
+    if (result.cells_before == 0) return result;
+    const Adjacency around(mesh);
+    // The nodes of the cells under `below`, and `rings` rings of cells around them.
+    std::vector<bool> marked(mesh.points.size(), false);
+    for (size_t c = 0; c < sj.size(); ++c)
+        if (!(sj[c] >= o.below))
+            for (int i = 0; i < 8; ++i) marked[mesh.hexes[8 * c + i]] = true;
+    for (int ring = 0; ring < o.rings; ++ring) {
+        std::vector<bool> wider = marked;
+        for (size_t v = 0; v < marked.size(); ++v)
+            if (marked[v])
+                for (auto [c, end] = around.of(Id(v)); c != end; ++c)
+                    for (int i = 0; i < 8; ++i) wider[mesh.hexes[8 * *c + i]] = true;
+        marked = std::move(wider);
+    }
+    std::vector<Id> nodes;
+    for (size_t v = 0; v < marked.size(); ++v)
+        if (marked[v]) nodes.push_back(Id(v));
+    const auto movable = [&](Id v) {
+        const VertexKind k = grid.kinds[v];
+        return (k == VertexKind::interior || k == VertexKind::slip) &&
+               (o.held.empty() || !o.held[v]);
+    };
+    // The level of u each node keeps: 0 for the wall's slip nodes, its own for o.on_level.
+    std::vector<double> level(nodes.size(), std::numeric_limits<double>::quiet_NaN());
+    for (size_t i = 0; i < nodes.size(); ++i) {
+        const Id v = nodes[i];
+        if (grid.kinds[v] == VertexKind::slip)
+            level[i] = 0;
+        else if (!o.on_level.empty() && o.on_level[v])
+            level[i] = body.value(mesh.points[v]);
+    }
+    std::vector<double> step(nodes.size());
+    for (size_t i = 0; i < nodes.size(); ++i)
+        step[i] = o.first_step * mean_edge_at(mesh, around, nodes[i]);
+    // Along the axes, or along the node's level set (four tangent directions).
+    const TrialMoves moves = [&](Id v, const Vec3& x, double h, std::vector<Vec3>& out) {
+        const size_t i = size_t(std::lower_bound(nodes.begin(), nodes.end(), v) - nodes.begin());
+        if (std::isnan(level[i])) {
+            for (const Vec3& d : axis_directions) out.push_back(x + h * d);
+            return;
+        }
+        const TangentFrame t = tangent_frame(body, x);
+        for (const Vec3& d : {t.t1, Vec3(-t.t1), t.t2, Vec3(-t.t2)})
+            out.push_back(along_level(body, x, h * d, level[i]));
+    };
+    for (int round = 0; round < o.rounds; ++round) {
+        const RoundResult r =
+            node_round(mesh, around, nodes, movable, moves, true, o.below, o.last_step, step);
+        result.moves += r.moves;
+        if (!r.trying || r.moves == 0) break;
+    }
+    sj = scaled_jacobians(mesh);
+    result.cells_after = count_below();
+    result.min_sj_after = sj.empty() ? 0 : *std::min_element(sj.begin(), sj.end());
     grid.points = std::move(mesh.points);
     return result;
 }

@@ -121,14 +121,8 @@ void log_polish_pass(const PolishOptions& o, const PolishResult& r, std::ostream
 // by node (mend); what is left, with 2, 4, then 8 rings around them, layers free (validity
 // before the layers' spacing); then every cell under the threshold, layers free; then mended
 // again. One line per pass.
-void polish(Job& job) {
+void polish_passes(Job& job) {
     BlockGrid& grid = job.grid();
-    // Cells the joint untangling left inverted are not repaired by a local optimization (it
-    // runs the same continuation): the grid goes to its refusal as it is.
-    if (const Id inverted = measure_quality(grid).inverted_cells; inverted > 0) {
-        job.log << fmt::format("  no polish: {} cells are still inverted\n", inverted);
-        return;
-    }
     PolishOptions o;
     o.untangle = job.solver_options();
     o.untangle.log = nullptr;              // a summary line instead
@@ -148,6 +142,28 @@ void polish(Job& job) {
         o.rings = pass < 3 ? 2 << pass : 2;
     }
     mend(grid, *job.body, job.log);
+}
+
+// The polish (polish_passes), then the worst cells lifted node by node (lift_worst_cells), the
+// boundary layer's nodes each on its own level of u. One line per pass.
+void polish(Job& job) {
+    BlockGrid& grid = job.grid();
+    // Cells the joint untangling left inverted are not repaired by a local optimization (it
+    // runs the same continuation): the grid goes to its refusal as it is.
+    if (const Id inverted = measure_quality(grid).inverted_cells; inverted > 0) {
+        job.log << fmt::format("  no polish: {} cells are still inverted\n", inverted);
+        return;
+    }
+    polish_passes(job);
+    LiftOptions o;
+    if (const int layers = wall_layers(job.settings).layers; layers > 0)
+        o.on_level = wall_layer_nodes(grid, layers);
+    const LiftResult r = lift_worst_cells(grid, *job.body, o);
+    if (r.cells_before > 0)
+        job.log << fmt::format(
+            "  worst cells lifted node by node, layers on their levels: {} -> {} cells with a "
+            "scaled Jacobian under {}, min scaled Jacobian {:.3g} -> {:.3g} ({} moves)\n",
+            r.cells_before, r.cells_after, o.below, r.min_sj_before, r.min_sj_after, r.moves);
 }
 
 }  // namespace

@@ -110,8 +110,9 @@ PolishResult polish_worst_cells(BlockGrid& grid, const ImplicitFunction& body,
 // The stage on job.grid(): optimize_grid with the case's solver and boundary-layer law (the
 // exterior's crease cells keep their shapes), then, unless some cell is still inverted,
 // polish_worst_cells with the wall and its layers held, and what a solver still refuses
-// mended node by node (mend_cells.h) and polished again with the layers free. Logs one
-// summary per pass.
+// mended node by node (mend_cells.h) and polished again with the layers free, and last the
+// worst cells lifted node by node (lift_worst_cells), the layers' nodes on their levels of u.
+// Logs one summary per pass.
 void untangle_and_optimize(Job& job);
 
 }  // namespace hexmesh

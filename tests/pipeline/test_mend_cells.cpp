@@ -81,5 +81,73 @@ TEST(MendRefusedCells, FacesOfSkewnessOverFourAreMended) {
     for (Id v : {0, 1, 2, 3, 8, 9, 10, 11}) EXPECT_EQ(grid.points[v], start.points[v]);
 }
 
+// Jittered blocks a solver accepts (the mend's, at a smaller amplitude), every cell under 0.9
+// lifted: the lift raises the worst scaled Jacobian of each by more than 0.05, never moves a
+// fixed node and leaves no cell a solver refuses.
+TEST(LiftWorstCells, TheWorstCellOfJitteredBlocksIsRaised) {
+    const Sphere body(Vec3(2, 2, 2), 10);  // unused: no node slides
+    int grids = 0;
+    for (unsigned seed = 1; seed <= 20; ++seed) {
+        BlockGrid grid = jittered_block(seed, 0.3);
+        const QualityReport before = measure_quality(to_hex_mesh(grid));
+        if (!before.solver_valid()) continue;
+        ++grids;
+        LiftOptions o;
+        o.below = 0.9;  // every cell of the block
+        const LiftResult r = lift_worst_cells(grid, body, o);
+        EXPECT_EQ(r.min_sj_before, before.min_scaled_jacobian) << "seed " << seed;
+        const QualityReport after = measure_quality(to_hex_mesh(grid));
+        EXPECT_EQ(r.min_sj_after, after.min_scaled_jacobian) << "seed " << seed;
+        EXPECT_GT(after.min_scaled_jacobian, before.min_scaled_jacobian + 0.05) << "seed " << seed;
+        EXPECT_TRUE(after.solver_valid()) << "seed " << seed;
+        EXPECT_GT(r.moves, 0);
+        const BlockGrid start = jittered_block(seed, 0.3);
+        for (size_t v = 0; v < grid.points.size(); ++v)
+            if (grid.kinds[v] == VertexKind::fixed) EXPECT_EQ(grid.points[v], start.points[v]);
+    }
+    EXPECT_GE(grids, 10);
+}
+
+// A wall on the plane z = 0 (the top of a large box) under a 4 x 4 x 3 block of unit cells whose
+// wall nodes (slip) and two layers above them (on_level) are pushed sideways: the lift raises
+// the worst scaled Jacobian with every wall node still on z = 0 and every layer node at its own
+// height.
+TEST(LiftWorstCells, WallNodesSlideAndLayerNodesKeepTheirHeights) {
+    const Box body(Vec3(0, 0, -50), Vec3(50, 50, 50));  // u = z above its top face
+    BlockGrid grid;
+    Block block{"block", {5, 5, 4}, {}, {}};
+    std::vector<bool> on_level;
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> shift(-0.3, 0.3);
+    for (int k = 0; k < 4; ++k)
+        for (int j = 0; j < 5; ++j)
+            for (int i = 0; i < 5; ++i) {
+                const bool inner = i > 0 && j > 0 && i < 4 && j < 4 && k < 3;
+                block.node_ids.push_back(Id(grid.points.size()));
+                grid.points.push_back(Vec3(i, j, k) +
+                                      (inner ? Vec3(shift(rng), shift(rng), 0) : Vec3::Zero()));
+                grid.kinds.push_back(!inner   ? VertexKind::fixed
+                                     : k == 0 ? VertexKind::slip
+                                              : VertexKind::interior);
+                on_level.push_back(inner && k > 0);
+            }
+    grid.blocks.push_back(block);
+    const BlockGrid start = grid;
+    LiftOptions o;
+    o.on_level = on_level;
+    o.below = 0.9;
+    const LiftResult r = lift_worst_cells(grid, body, o);
+    EXPECT_GT(r.min_sj_after, r.min_sj_before + 0.05);
+    EXPECT_GT(r.moves, 0);
+    int moved = 0;
+    for (size_t v = 0; v < grid.points.size(); ++v) {
+        EXPECT_NEAR(grid.points[v].z(), start.points[v].z(), 1e-9) << "node " << v;
+        moved += grid.points[v] != start.points[v];
+        if (grid.kinds[v] == VertexKind::fixed) EXPECT_EQ(grid.points[v], start.points[v]);
+    }
+    EXPECT_GT(moved, 10);
+    EXPECT_TRUE(measure_quality(to_hex_mesh(grid)).solver_valid());
+}
+
 }  // namespace
 }  // namespace hexmesh
