@@ -10,6 +10,7 @@
 #include "hexmesh/core/reference_hex.h"
 #include "hexmesh/quality/cell_quality.h"
 #include "hexmesh/quality/mesh_quality.h"
+#include "surface/implicit_features.h"
 #include "surface/projection.h"
 
 namespace hexmesh {
@@ -297,7 +298,8 @@ LiftResult lift_worst_cells(BlockGrid& grid, const ImplicitFunction& body, const
         if (marked[v]) nodes.push_back(Id(v));
     const auto movable = [&](Id v) {
         const VertexKind k = grid.kinds[v];
-        return (k == VertexKind::interior || k == VertexKind::slip) &&
+        return (k == VertexKind::interior || k == VertexKind::slip ||
+                k == VertexKind::feature_edge) &&
                (o.held.empty() || !o.held[v]);
     };
     // The level of u each node keeps: 0 for the wall's slip nodes, its own for o.on_level.
@@ -312,9 +314,18 @@ LiftResult lift_worst_cells(BlockGrid& grid, const ImplicitFunction& body, const
     std::vector<double> step(nodes.size());
     for (size_t i = 0; i < nodes.size(); ++i)
         step[i] = o.first_step * mean_edge_at(mesh, around, nodes[i]);
-    // Along the axes, or along the node's level set (four tangent directions).
+    // Along its crease (two directions), along its level set (four tangent directions) or along
+    // the axes.
     const TrialMoves moves = [&](Id v, const Vec3& x, double h, std::vector<Vec3>& out) {
         const size_t i = size_t(std::lower_bound(nodes.begin(), nodes.end(), v) - nodes.begin());
+        if (grid.kinds[v] == VertexKind::feature_edge) {
+            const double edge = mean_edge_at(mesh, around, v);
+            const Vec3 t = crease_tangent(body, x, 1e-3 * edge);
+            if (t.squaredNorm() > 0)
+                for (const Vec3& d : {t, Vec3(-t)})
+                    out.push_back(project_to_crease(body, x + h * d, edge));
+            return;
+        }
         if (std::isnan(level[i])) {
             for (const Vec3& d : axis_directions) out.push_back(x + h * d);
             return;

@@ -149,5 +149,52 @@ TEST(LiftWorstCells, WallNodesSlideAndLayerNodesKeepTheirHeights) {
     EXPECT_TRUE(measure_quality(to_hex_mesh(grid)).solver_valid());
 }
 
+// The 4 x 4 x 4 unit cells filling a box, their nodes pushed along their free directions (a
+// face's node in its face, an edge's along its edge, an inner node anywhere; the box's corners
+// stay): the lift raises the worst scaled Jacobian and leaves every node on its face or edge.
+TEST(LiftWorstCells, NodesOnTheBoxesEdgesSlideAlongThem) {
+    const Box body(Vec3(2, 2, 2), Vec3(2, 2, 2));
+    BlockGrid grid;
+    Block block{"block", {5, 5, 5}, {}, {}};
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> shift(-0.3, 0.3);
+    for (int k = 0; k < 5; ++k)
+        for (int j = 0; j < 5; ++j)
+            for (int i = 0; i < 5; ++i) {
+                const std::array<int, 3> ijk = {i, j, k};
+                Vec3 x(i, j, k);
+                int on = 0;  // coordinates on the box's faces
+                for (int a = 0; a < 3; ++a) {
+                    if (ijk[a] == 0 || ijk[a] == 4)
+                        ++on;
+                    else
+                        x[a] += shift(rng);
+                }
+                block.node_ids.push_back(Id(grid.points.size()));
+                grid.points.push_back(x);
+                grid.kinds.push_back(on == 0   ? VertexKind::interior
+                                     : on == 1 ? VertexKind::slip
+                                     : on == 2 ? VertexKind::feature_edge
+                                               : VertexKind::corner);
+            }
+    grid.blocks.push_back(block);
+    const BlockGrid start = grid;
+    LiftOptions o;
+    o.below = 0.9;
+    const LiftResult r = lift_worst_cells(grid, body, o);
+    EXPECT_GT(r.min_sj_after, r.min_sj_before + 0.05);
+    int edge_moves = 0;
+    for (size_t v = 0; v < grid.points.size(); ++v) {
+        for (int a = 0; a < 3; ++a) {
+            const double s = start.points[v][a];
+            if (s == 0 || s == 4) EXPECT_NEAR(grid.points[v][a], s, 1e-9) << "node " << v;
+        }
+        edge_moves +=
+            grid.kinds[v] == VertexKind::feature_edge && grid.points[v] != start.points[v];
+    }
+    EXPECT_GT(edge_moves, 5);
+    EXPECT_TRUE(measure_quality(to_hex_mesh(grid)).solver_valid());
+}
+
 }  // namespace
 }  // namespace hexmesh
