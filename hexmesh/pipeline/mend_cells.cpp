@@ -252,18 +252,21 @@ MendResult mend_refused_cells(BlockGrid& grid, const ImplicitFunction& body, con
 namespace {
 
 // `x` moved along the level set of `body` through it by `offset` (tangent to it), and back onto
-// the level u = level by steps along grad u.
+// the level u = level by steps along grad u; `x` itself where that does not land within
+// 1e-6 |offset| of the level (a vanishing gradient: a point of the medial axis).
 Vec3 along_level(const ImplicitFunction& body, const Vec3& x, const Vec3& offset, double level) {
+    const double length = offset.norm();
     Vec3 y = x + offset;
     for (int i = 0; i < 8; ++i) {
         const double r = body.value(y) - level;
+        if (!std::isfinite(r)) return x;
+        if (std::abs(r) <= 1e-9 * length) return y;
         const Vec3 g = body.gradient(y);
         const double g2 = g.squaredNorm();
-        if (!(g2 > 0) || !std::isfinite(r)) return x;
+        if (!(g2 > 1e-2)) return x;  // |grad u| is about 1 near u = 0
         y -= (r / g2) * g;
-        if (std::abs(r) < 1e-9 * offset.norm()) break;
     }
-    return y;
+    return std::abs(body.value(y) - level) <= 1e-6 * length ? y : x;
 }
 
 }  // namespace
@@ -338,7 +341,7 @@ LiftResult lift_worst_cells(BlockGrid& grid, const ImplicitFunction& body, const
         const RoundResult r =
             node_round(mesh, around, nodes, movable, moves, true, o.below, o.last_step, step);
         result.moves += r.moves;
-        if (!r.trying || r.moves == 0) break;
+        if (!r.trying) break;
     }
     sj = scaled_jacobians(mesh);
     result.cells_after = count_below();

@@ -54,17 +54,19 @@ struct LiftResult {
     Id moves = 0;                                // trial moves kept
 };
 
-// The worst scaled Jacobian of a grid raised node by node: each node of the cells under
-// `below` (and of the rings around them) that is interior, slip or on a crease tries small
-// moves (along the level set of u through it: a slip node's u = 0, a node of `on_level` its
-// own value, so a boundary layer keeps its heights above the wall; a crease node's along its
-// crease; any other interior node's along the axes) and keeps the one that raises the
-// smallest scaled Jacobian of its cells most without a cell or face the solver refuses more
-// (Score as in mend_refused_cells); the step halved when none helps. Corner nodes stay. Where
-// the joint optimization's functional weighs every cell, this weighs only the worst one
-// around each node: the shear of a boundary layer bent round a crease, which the polish
-// holds. Deterministic; never lowers the worst scaled Jacobian around a node; the grid's
-// points are changed in place.
+// The worst scaled Jacobian of a grid raised node by node, in sweeps: each node of a cell under
+// `below` that is interior, slip or on a crease tries small moves (along the level set of u
+// through it: a slip node's u = 0, a node of `on_level` its own value, so a boundary layer keeps
+// its heights above the wall where u is a distance; a crease node's along its crease; any other
+// interior node's along the axes) and takes, of those that raise the smallest scaled Jacobian
+// of its cells, the best ranked by it whose Score (mend_refused_cells) is better than before:
+// no more cells a solver refuses around it, then no more faces over the skewness limit. The
+// step is halved when none helps. The nodes of `rings` rings of cells around them join in once
+// a cell of theirs falls under `below` (a move raises the worst cell around its node and may
+// lower another). Corner nodes stay. Where the joint optimization's functional weighs every
+// cell, this weighs only the worst one around each node: the shear of a boundary layer bent
+// round a crease, which the polish holds. Deterministic; the grid's worst scaled Jacobian never
+// falls; the grid's points are changed in place.
 LiftResult lift_worst_cells(BlockGrid& grid, const ImplicitFunction& body,
                             const LiftOptions& options = {});
 

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "hexmesh/core/block_grid.h"
@@ -193,6 +194,49 @@ TEST(LiftWorstCells, NodesOnTheBoxesEdgesSlideAlongThem) {
             grid.kinds[v] == VertexKind::feature_edge && grid.points[v] != start.points[v];
     }
     EXPECT_GT(edge_moves, 5);
+    EXPECT_TRUE(measure_quality(to_hex_mesh(grid)).solver_valid());
+}
+
+// A sector of an O-grid round a cylinder of radius 3 (cells about 0.5 wide, 0.1 high): the wall
+// nodes (slip) and the two layers above them (on_level) pushed round the axis and along it. The
+// lift raises the worst scaled Jacobian with every wall node still on the cylinder and every
+// layer node at its own distance from it, though each move leaves the curved level set first.
+TEST(LiftWorstCells, NodesOfACurvedWallAndItsLayersStayOnTheirLevels) {
+    const Cylinder body(Vec3(0, 0, 0), 3.0, 100.0);
+    BlockGrid grid;
+    Block block{"block", {6, 6, 5}, {}, {}};
+    std::vector<bool> on_level;
+    std::vector<double> distance;
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> shift(-0.2, 0.2);
+    for (int k = 0; k < 5; ++k)
+        for (int j = 0; j < 6; ++j)
+            for (int i = 0; i < 6; ++i) {
+                const bool inner = i > 0 && j > 0 && i < 5 && j < 5 && k < 3;
+                const double radius = 3.0 + 0.1 * k;
+                const double angle = (0.5 * i + (inner ? shift(rng) : 0)) / 3.0;
+                const double z = 0.5 * j + (inner ? shift(rng) : 0);
+                block.node_ids.push_back(Id(grid.points.size()));
+                grid.points.push_back(Vec3(radius * std::cos(angle), radius * std::sin(angle), z));
+                grid.kinds.push_back(!inner   ? VertexKind::fixed
+                                     : k == 0 ? VertexKind::slip
+                                              : VertexKind::interior);
+                on_level.push_back(inner && k > 0);
+                distance.push_back(0.1 * k);
+            }
+    grid.blocks.push_back(block);
+    const BlockGrid start = grid;
+    LiftOptions o;
+    o.on_level = on_level;
+    o.below = 0.95;
+    const LiftResult r = lift_worst_cells(grid, body, o);
+    EXPECT_GT(r.min_sj_after, r.min_sj_before + 0.02);
+    int moved = 0;
+    for (size_t v = 0; v < grid.points.size(); ++v) {
+        EXPECT_NEAR(body.value(grid.points[v]), distance[v], 1e-7) << "node " << v;
+        moved += grid.points[v] != start.points[v];
+    }
+    EXPECT_GT(moved, 10);
     EXPECT_TRUE(measure_quality(to_hex_mesh(grid)).solver_valid());
 }
 
