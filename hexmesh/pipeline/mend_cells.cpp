@@ -337,11 +337,99 @@ LiftResult lift_worst_cells(BlockGrid& grid, const ImplicitFunction& body, const
         for (const Vec3& d : {t.t1, Vec3(-t.t1), t.t2, Vec3(-t.t2)})
             out.push_back(along_level(body, x, h * d, level[i]));
     };
+    // The lines with a marked node whose nodes all move (the wall's slip or on its crease, the
+    // layers' on their levels), each with its nodes' levels and step.
+    struct Line {
+        std::vector<Id> nodes;
+        std::vector<double> levels;
+        double step = 0;
+    };
+    std::vector<Line> lines;
+    for (const std::vector<Id>& l : o.lines) {
+        if (l.size() < 2 || grid.kinds[l[0]] != VertexKind::slip ||
+            std::none_of(l.begin(), l.end(), [&](Id v) { return bool(marked[v]); }) ||
+            !std::all_of(l.begin(), l.end(), movable) ||
+            !std::all_of(l.begin() + 1, l.end(), [&](Id v) {
+                return grid.kinds[v] == VertexKind::interior && !o.on_level.empty() &&
+                       o.on_level[v];
+            }))
+            continue;
+        Line line{l, {0}, o.first_step * mean_edge_at(mesh, around, l[0])};
+        for (size_t t = 1; t < l.size(); ++t) line.levels.push_back(body.value(mesh.points[l[t]]));
+        lines.push_back(std::move(line));
+    }
+    const auto worst_on = [&](const Line& l) {
+        double w = std::numeric_limits<double>::infinity();
+        for (Id v : l.nodes) w = std::min(w, worst_jacobian_at(mesh, around, v));
+        return w;
+    };
+    const auto score_on = [&](const Line& l) {
+        Score s;
+        for (Id v : l.nodes) {
+            const Score n = score_at(mesh, around, v, true);
+            s.refused += n.refused, s.skewed += n.skewed, s.lowest = std::min(s.lowest, n.lowest);
+        }
+        return s;
+    };
+    // A line moved whole (every node by the same offset along its level) or sheared (node t of T
+    // by t / T of it, the wall node staying), along the wall's tangent directions: the lines
+    // that leave the wall leaning, which a node moved alone cannot straighten.
+    const auto line_round = [&] {
+        RoundResult r;
+        std::vector<Vec3> start, x;
+        for (Line& l : lines) {
+            const double low = worst_on(l);
+            if (low > o.below || l.step < o.last_step * mean_edge_at(mesh, around, l.nodes[0]))
+                continue;
+            r.trying = true;
+            start.clear();
+            for (Id v : l.nodes) start.push_back(mesh.points[v]);
+            const TangentFrame f = tangent_frame(body, start[0]);
+            const size_t T = l.nodes.size() - 1;
+            std::vector<std::pair<double, std::vector<Vec3>>> ranked;
+            for (const Vec3& d : {f.t1, Vec3(-f.t1), f.t2, Vec3(-f.t2)})
+                for (int shear = 0; shear < 2; ++shear) {
+                    x.clear();
+                    for (size_t t = 0; t <= T; ++t) {
+                        const double share = shear ? double(t) / double(T) : 1.0;
+                        x.push_back(share == 0 ? start[t]
+                                               : along_level(body, start[t], share * l.step * d,
+                                                             l.levels[t]));
+                        mesh.points[l.nodes[t]] = x.back();
+                    }
+                    const double w = worst_on(l);
+                    if (w > low + 1e-12) ranked.emplace_back(-w, x);
+                }
+            for (size_t t = 0; t <= T; ++t) mesh.points[l.nodes[t]] = start[t];
+            std::sort(ranked.begin(), ranked.end(),
+                      [](const auto& a, const auto& b) { return a.first < b.first; });
+            bool moved = false;
+            if (!ranked.empty()) {
+                const Score before = score_on(l);
+                for (const auto& [w, xs] : ranked) {
+                    for (size_t t = 0; t <= T; ++t) mesh.points[l.nodes[t]] = xs[t];
+                    if (score_on(l).better_than(before)) {
+                        moved = true;
+                        break;
+                    }
+                }
+                if (!moved)
+                    for (size_t t = 0; t <= T; ++t) mesh.points[l.nodes[t]] = start[t];
+            }
+            if (moved)
+                ++r.moves;
+            else
+                l.step *= 0.5;
+        }
+        return r;
+    };
     for (int round = 0; round < o.rounds; ++round) {
         const RoundResult r =
             node_round(mesh, around, nodes, movable, moves, true, o.below, o.last_step, step);
-        result.moves += r.moves;
-        if (!r.trying) break;
+        const RoundResult l = line_round();
+        result.moves += r.moves + l.moves;
+        result.line_moves += l.moves;
+        if (!r.trying && !l.trying) break;
     }
     sj = scaled_jacobians(mesh);
     result.cells_after = count_below();

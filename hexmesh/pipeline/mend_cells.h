@@ -46,12 +46,15 @@ struct LiftOptions {
     double last_step = 1e-3;     // down to this share
     std::vector<bool> on_level;  // interior nodes that keep their value of u (the wall's layers)
     std::vector<bool> held;      // nodes that do not move (sized like grid.points, or empty)
+    // Wall-normal lines (a wall node, then its layers' nodes outwards), also moved whole.
+    std::vector<std::vector<Id>> lines;
 };
 
 struct LiftResult {
     Id cells_before = 0, cells_after = 0;        // cells under `below`, whole grid
     double min_sj_before = 0, min_sj_after = 0;  // worst scaled Jacobian, whole grid
     Id moves = 0;                                // trial moves kept
+    Id line_moves = 0;                           // of which moves of whole lines
 };
 
 // The worst scaled Jacobian of a grid raised node by node, in sweeps: each node of a cell under
@@ -63,10 +66,13 @@ struct LiftResult {
 // no more cells a solver refuses around it, then no more faces over the skewness limit. The
 // step is halved when none helps. The nodes of `rings` rings of cells around them join in once
 // a cell of theirs falls under `below` (a move raises the worst cell around its node and may
-// lower another). Corner nodes stay. Where the joint optimization's functional weighs every
-// cell, this weighs only the worst one around each node: the shear of a boundary layer bent
-// round a crease, which the polish holds. Deterministic; the grid's worst scaled Jacobian never
-// falls; the grid's points are changed in place.
+// lower another). Each line of `lines` with a node there whose wall node is slip and whose other
+// nodes are of `on_level` also tries, in each sweep, to move whole (every node by the same
+// tangent offset, each onto its own level) or sheared (node t of T by t / T of it): a line that
+// leaves the wall leaning, which a node moved alone cannot straighten. Corner nodes stay. Where the
+// joint optimization's functional weighs every cell, this weighs only the worst one around each
+// node: the shear of a boundary layer bent round a crease, which the polish holds. Deterministic;
+// the grid's worst scaled Jacobian never falls; the grid's points are changed in place.
 LiftResult lift_worst_cells(BlockGrid& grid, const ImplicitFunction& body,
                             const LiftOptions& options = {});
 

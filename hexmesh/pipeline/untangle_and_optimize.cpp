@@ -11,6 +11,7 @@
 #include "hexmesh/quality/block_quality.h"
 #include "hexmesh/quality/cell_quality.h"
 #include "hexmesh/quality/mesh_quality.h"
+#include "volume/wall_lines.h"
 
 namespace hexmesh {
 namespace {
@@ -144,8 +145,26 @@ void polish_passes(Job& job) {
     mend(grid, *job.body, job.log);
 }
 
+// Each wall node's line through the boundary layer (nodes 0 .. layers), once, from the wall
+// faces deeper than the layers.
+std::vector<std::vector<Id>> layer_lines(const BlockGrid& grid, int layers) {
+    std::vector<std::vector<Id>> lines;
+    std::vector<bool> seen(grid.points.size(), false);
+    for (const WallFace& f : wall_faces(grid))
+        for (int q = 0; q < f.nq; ++q)
+            for (int p = 0; p < f.np; ++p) {
+                if (f.depth <= layers || seen[f.node(p, q, 0)]) continue;
+                seen[f.node(p, q, 0)] = true;
+                std::vector<Id> line;
+                for (int t = 0; t <= layers; ++t) line.push_back(f.node(p, q, t));
+                lines.push_back(std::move(line));
+            }
+    return lines;
+}
+
 // The polish (polish_passes), then the worst cells lifted node by node (lift_worst_cells), the
-// boundary layer's nodes each on its own level of u. One line per pass.
+// boundary layer's nodes each on its own level of u, and its lines also moved whole. One line
+// per pass.
 void polish(Job& job) {
     BlockGrid& grid = job.grid();
     // Cells the joint untangling left inverted are not repaired by a local optimization (it
@@ -156,14 +175,18 @@ void polish(Job& job) {
     }
     polish_passes(job);
     LiftOptions o;
-    if (const int layers = wall_layers(job.settings).layers; layers > 0)
+    if (const int layers = wall_layers(job.settings).layers; layers > 0) {
         o.on_level = wall_layer_nodes(grid, layers);
+        o.lines = layer_lines(grid, layers);
+    }
     const LiftResult r = lift_worst_cells(grid, *job.body, o);
     if (r.cells_before > 0)
         job.log << fmt::format(
             "  worst cells lifted node by node, layers on their levels: {} -> {} cells with a "
-            "scaled Jacobian under {}, min scaled Jacobian {:.3g} -> {:.3g} ({} moves)\n",
-            r.cells_before, r.cells_after, o.below, r.min_sj_before, r.min_sj_after, r.moves);
+            "scaled Jacobian under {}, min scaled Jacobian {:.3g} -> {:.3g} ({} moves, {} of whole "
+            "lines)\n",
+            r.cells_before, r.cells_after, o.below, r.min_sj_before, r.min_sj_after, r.moves,
+            r.line_moves);
 }
 
 }  // namespace
