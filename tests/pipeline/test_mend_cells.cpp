@@ -33,6 +33,39 @@ BlockGrid jittered_block(unsigned seed, double amplitude) {
     return grid;
 }
 
+// A node of a test block: where it is, its kind, and whether it keeps its level of u.
+struct PlacedNode {
+    Vec3 x;
+    VertexKind kind;
+    bool on_level = false;
+};
+
+// One block of ni x nj x nk nodes (i fastest), node (i, j, k) as place(i, j, k) gives it; the
+// nodes' on_level flags into `on_level`.
+template <class Place>
+BlockGrid placed_block(int ni, int nj, int nk, Place place, std::vector<bool>& on_level) {
+    BlockGrid grid;
+    Block block{"block", {ni, nj, nk}, {}, {}};
+    on_level.clear();
+    for (int k = 0; k < nk; ++k)
+        for (int j = 0; j < nj; ++j)
+            for (int i = 0; i < ni; ++i) {
+                const PlacedNode n = place(i, j, k);
+                block.node_ids.push_back(Id(grid.points.size()));
+                grid.points.push_back(n.x);
+                grid.kinds.push_back(n.kind);
+                on_level.push_back(n.on_level);
+            }
+    grid.blocks.push_back(block);
+    return grid;
+}
+
+// The kind of a node of a wall and its layers: fixed unless `moving`, slip at the wall (k = 0),
+// interior above it.
+VertexKind layer_kind(bool moving, int k) {
+    return !moving ? VertexKind::fixed : k == 0 ? VertexKind::slip : VertexKind::interior;
+}
+
 // Grids with cells the solver refuses (face pyramids, inverted corner tets): the mend never
 // lowers the smallest margin around them, never moves a fixed node, and leaves none refused
 // (39 grids of 40, 144 refused cells).
@@ -104,7 +137,9 @@ TEST(LiftWorstCells, TheWorstCellOfJitteredBlocksIsRaised) {
         EXPECT_GT(r.moves, 0);
         const BlockGrid start = jittered_block(seed, 0.3);
         for (size_t v = 0; v < grid.points.size(); ++v)
-            if (grid.kinds[v] == VertexKind::fixed) EXPECT_EQ(grid.points[v], start.points[v]);
+            if (grid.kinds[v] == VertexKind::fixed) {
+                EXPECT_EQ(grid.points[v], start.points[v]);
+            }
     }
     EXPECT_GE(grids, 10);
 }
@@ -115,24 +150,18 @@ TEST(LiftWorstCells, TheWorstCellOfJitteredBlocksIsRaised) {
 // height.
 TEST(LiftWorstCells, WallNodesSlideAndLayerNodesKeepTheirHeights) {
     const Box body(Vec3(0, 0, -50), Vec3(50, 50, 50));  // u = z above its top face
-    BlockGrid grid;
-    Block block{"block", {5, 5, 4}, {}, {}};
     std::vector<bool> on_level;
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> shift(-0.3, 0.3);
-    for (int k = 0; k < 4; ++k)
-        for (int j = 0; j < 5; ++j)
-            for (int i = 0; i < 5; ++i) {
-                const bool inner = i > 0 && j > 0 && i < 4 && j < 4 && k < 3;
-                block.node_ids.push_back(Id(grid.points.size()));
-                grid.points.push_back(Vec3(i, j, k) +
-                                      (inner ? Vec3(shift(rng), shift(rng), 0) : Vec3::Zero()));
-                grid.kinds.push_back(!inner   ? VertexKind::fixed
-                                     : k == 0 ? VertexKind::slip
-                                              : VertexKind::interior);
-                on_level.push_back(inner && k > 0);
-            }
-    grid.blocks.push_back(block);
+    BlockGrid grid = placed_block(
+        5, 5, 4,
+        [&](int i, int j, int k) {
+            const bool inner = i > 0 && j > 0 && i < 4 && j < 4 && k < 3;
+            return PlacedNode{
+                Vec3(i, j, k) + (inner ? Vec3(shift(rng), shift(rng), 0) : Vec3::Zero()),
+                layer_kind(inner, k), inner && k > 0};
+        },
+        on_level);
     const BlockGrid start = grid;
     LiftOptions o;
     o.on_level = on_level;
@@ -144,7 +173,9 @@ TEST(LiftWorstCells, WallNodesSlideAndLayerNodesKeepTheirHeights) {
     for (size_t v = 0; v < grid.points.size(); ++v) {
         EXPECT_NEAR(grid.points[v].z(), start.points[v].z(), 1e-9) << "node " << v;
         moved += grid.points[v] != start.points[v];
-        if (grid.kinds[v] == VertexKind::fixed) EXPECT_EQ(grid.points[v], start.points[v]);
+        if (grid.kinds[v] == VertexKind::fixed) {
+            EXPECT_EQ(grid.points[v], start.points[v]);
+        }
     }
     EXPECT_GT(moved, 10);
     EXPECT_TRUE(measure_quality(to_hex_mesh(grid)).solver_valid());
@@ -155,30 +186,27 @@ TEST(LiftWorstCells, WallNodesSlideAndLayerNodesKeepTheirHeights) {
 // stay): the lift raises the worst scaled Jacobian and leaves every node on its face or edge.
 TEST(LiftWorstCells, NodesOnTheBoxesEdgesSlideAlongThem) {
     const Box body(Vec3(2, 2, 2), Vec3(2, 2, 2));
-    BlockGrid grid;
-    Block block{"block", {5, 5, 5}, {}, {}};
+    std::vector<bool> on_level;
     std::mt19937 rng(11);
     std::uniform_real_distribution<double> shift(-0.3, 0.3);
-    for (int k = 0; k < 5; ++k)
-        for (int j = 0; j < 5; ++j)
-            for (int i = 0; i < 5; ++i) {
-                const std::array<int, 3> ijk = {i, j, k};
-                Vec3 x(i, j, k);
-                int on = 0;  // coordinates on the box's faces
-                for (int a = 0; a < 3; ++a) {
-                    if (ijk[a] == 0 || ijk[a] == 4)
-                        ++on;
-                    else
-                        x[a] += shift(rng);
-                }
-                block.node_ids.push_back(Id(grid.points.size()));
-                grid.points.push_back(x);
-                grid.kinds.push_back(on == 0   ? VertexKind::interior
-                                     : on == 1 ? VertexKind::slip
-                                     : on == 2 ? VertexKind::feature_edge
-                                               : VertexKind::corner);
+    BlockGrid grid = placed_block(
+        5, 5, 5,
+        [&](int i, int j, int k) {
+            const std::array<int, 3> ijk = {i, j, k};
+            Vec3 x(i, j, k);
+            int on = 0;  // coordinates on the box's faces
+            for (int a = 0; a < 3; ++a) {
+                if (ijk[a] == 0 || ijk[a] == 4)
+                    ++on;
+                else
+                    x[a] += shift(rng);
             }
-    grid.blocks.push_back(block);
+            return PlacedNode{x, on == 0   ? VertexKind::interior
+                                 : on == 1 ? VertexKind::slip
+                                 : on == 2 ? VertexKind::feature_edge
+                                           : VertexKind::corner};
+        },
+        on_level);
     const BlockGrid start = grid;
     LiftOptions o;
     o.below = 0.9;
@@ -188,7 +216,9 @@ TEST(LiftWorstCells, NodesOnTheBoxesEdgesSlideAlongThem) {
     for (size_t v = 0; v < grid.points.size(); ++v) {
         for (int a = 0; a < 3; ++a) {
             const double s = start.points[v][a];
-            if (s == 0 || s == 4) EXPECT_NEAR(grid.points[v][a], s, 1e-9) << "node " << v;
+            if (s == 0 || s == 4) {
+                EXPECT_NEAR(grid.points[v][a], s, 1e-9) << "node " << v;
+            }
         }
         edge_moves +=
             grid.kinds[v] == VertexKind::feature_edge && grid.points[v] != start.points[v];
@@ -203,28 +233,20 @@ TEST(LiftWorstCells, NodesOnTheBoxesEdgesSlideAlongThem) {
 // layer node at its own distance from it, though each move leaves the curved level set first.
 TEST(LiftWorstCells, NodesOfACurvedWallAndItsLayersStayOnTheirLevels) {
     const Cylinder body(Vec3(0, 0, 0), 3.0, 100.0);
-    BlockGrid grid;
-    Block block{"block", {6, 6, 5}, {}, {}};
     std::vector<bool> on_level;
-    std::vector<double> distance;
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> shift(-0.2, 0.2);
-    for (int k = 0; k < 5; ++k)
-        for (int j = 0; j < 6; ++j)
-            for (int i = 0; i < 6; ++i) {
-                const bool inner = i > 0 && j > 0 && i < 5 && j < 5 && k < 3;
-                const double radius = 3.0 + 0.1 * k;
-                const double angle = (0.5 * i + (inner ? shift(rng) : 0)) / 3.0;
-                const double z = 0.5 * j + (inner ? shift(rng) : 0);
-                block.node_ids.push_back(Id(grid.points.size()));
-                grid.points.push_back(Vec3(radius * std::cos(angle), radius * std::sin(angle), z));
-                grid.kinds.push_back(!inner   ? VertexKind::fixed
-                                     : k == 0 ? VertexKind::slip
-                                              : VertexKind::interior);
-                on_level.push_back(inner && k > 0);
-                distance.push_back(0.1 * k);
-            }
-    grid.blocks.push_back(block);
+    BlockGrid grid = placed_block(
+        6, 6, 5,
+        [&](int i, int j, int k) {
+            const bool inner = i > 0 && j > 0 && i < 5 && j < 5 && k < 3;
+            const double radius = 3.0 + 0.1 * k;
+            const double angle = (0.5 * i + (inner ? shift(rng) : 0)) / 3.0;
+            const double z = 0.5 * j + (inner ? shift(rng) : 0);
+            return PlacedNode{Vec3(radius * std::cos(angle), radius * std::sin(angle), z),
+                              layer_kind(inner, k), inner && k > 0};
+        },
+        on_level);
     const BlockGrid start = grid;
     LiftOptions o;
     o.on_level = on_level;
@@ -233,7 +255,7 @@ TEST(LiftWorstCells, NodesOfACurvedWallAndItsLayersStayOnTheirLevels) {
     EXPECT_GT(r.min_sj_after, r.min_sj_before + 0.02);
     int moved = 0;
     for (size_t v = 0; v < grid.points.size(); ++v) {
-        EXPECT_NEAR(body.value(grid.points[v]), distance[v], 1e-7) << "node " << v;
+        EXPECT_NEAR(body.value(grid.points[v]), body.value(start.points[v]), 1e-7) << "node " << v;
         moved += grid.points[v] != start.points[v];
     }
     EXPECT_GT(moved, 10);
@@ -246,24 +268,18 @@ TEST(LiftWorstCells, NodesOfACurvedWallAndItsLayersStayOnTheirLevels) {
 // least as straight as by its nodes alone (0.89), over 0.85, every node still at its height.
 TEST(LiftWorstCells, ALeaningLineIsStraightenedWhole) {
     const Box body(Vec3(0, 0, -50), Vec3(50, 50, 50));  // u = z above its top face
-    BlockGrid grid;
-    Block block{"block", {5, 5, 7}, {}, {}};
     std::vector<bool> on_level;
+    BlockGrid grid = placed_block(
+        5, 5, 7,
+        [&](int i, int j, int k) {
+            const bool inner = i == 2 && j == 2 && k < 4;
+            const double z = k < 4 ? 0.1 * k : 0.3 + 0.5 * (k - 3);
+            return PlacedNode{Vec3(i + (inner ? 0.3 * k : 0), j, z), layer_kind(inner, k),
+                              inner && k > 0};
+        },
+        on_level);
     std::vector<Id> line;
-    for (int k = 0; k < 7; ++k)
-        for (int j = 0; j < 5; ++j)
-            for (int i = 0; i < 5; ++i) {
-                const bool inner = i == 2 && j == 2 && k < 4;
-                const double z = k < 4 ? 0.1 * k : 0.3 + 0.5 * (k - 3);
-                block.node_ids.push_back(Id(grid.points.size()));
-                grid.points.push_back(Vec3(i + (inner ? 0.3 * k : 0), j, z));
-                grid.kinds.push_back(!inner   ? VertexKind::fixed
-                                     : k == 0 ? VertexKind::slip
-                                              : VertexKind::interior);
-                on_level.push_back(inner && k > 0);
-            }
     for (int k = 0; k < 4; ++k) line.push_back(Id(2 + 5 * (2 + 5 * k)));
-    grid.blocks.push_back(block);
     const BlockGrid start = grid;
     LiftOptions o;
     o.on_level = on_level;
