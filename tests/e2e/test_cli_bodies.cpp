@@ -313,10 +313,10 @@ TEST(CliBodies, AGridWhoseWallBridgesAPitIsWrittenWithAWarning) {
 // every corner tet the same (docs/architecture.md#the-functional): the wing outside took 77 s
 // without, the cross 25 s, the tripod 24 s. The worst cells are lifted node by node last (README,
 // step 6 of "How run builds a grid"): each grid's worst scaled Jacobian is at least `min_sj`, a
-// fifth under its figure in the table (0.027-0.31; 0.0002-0.28 before the lift, when only
-// positive was asserted); the log has the lift's line. The surface's vertices lie up to
-// 0.15-3.6 wall cells from the grid's wall (the wing's trailing edge), and the run says so:
-// exit code 3 and a warning beyond 0.5.
+// fifth under its figure with nodes moved alone (bench/RESULTS.md: 0.027-0.31, 0.055-0.31 with
+// the lines too; 0.0002-0.28 before the lift); the log has the lift's line. The surface's
+// vertices lie up to 0.15-3.6 wall cells from the grid's wall (the wing's trailing edge), and the
+// run says so: exit code 3 and a warning beyond 0.5.
 struct BodyRun {
     const char* body;
     const char* domain;
