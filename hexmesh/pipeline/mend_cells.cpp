@@ -8,6 +8,7 @@
 
 #include "hexmesh/core/hex_mesh.h"
 #include "hexmesh/core/reference_hex.h"
+#include "hexmesh/pipeline/corner_tets.h"
 #include "hexmesh/quality/cell_quality.h"
 #include "hexmesh/quality/mesh_quality.h"
 #include "surface/implicit_features.h"
@@ -283,19 +284,11 @@ LiftResult lift_worst_cells(BlockGrid& grid, const ImplicitFunction& body, const
         sj.empty() ? 0 : *std::min_element(sj.begin(), sj.end());
     if (result.cells_before == 0) return result;
     const Adjacency around(mesh);
-    // The nodes of the cells under `below`, and `rings` rings of cells around them.
+    // The nodes of the cells under `below` (`sj` is in to_hex_mesh's cell order, the blocks'
+    // for_each_cell order), and `rings` rings of cells around them.
     std::vector<bool> marked(mesh.points.size(), false);
-    for (size_t c = 0; c < sj.size(); ++c)
-        if (!(sj[c] >= o.below))
-            for (int i = 0; i < 8; ++i) marked[mesh.hexes[8 * c + i]] = true;
-    for (int ring = 0; ring < o.rings; ++ring) {
-        std::vector<bool> wider = marked;
-        for (size_t v = 0; v < marked.size(); ++v)
-            if (marked[v])
-                for (auto [c, end] = around.of(Id(v)); c != end; ++c)
-                    for (int i = 0; i < 8; ++i) wider[mesh.hexes[8 * *c + i]] = true;
-        marked = std::move(wider);
-    }
+    mark_cells_below(grid, sj, o.below, marked);
+    marked = grow_by_cells(grid, std::move(marked), o.rings);
     std::vector<Id> nodes;
     for (size_t v = 0; v < marked.size(); ++v)
         if (marked[v]) nodes.push_back(Id(v));
