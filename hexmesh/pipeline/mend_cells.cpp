@@ -11,6 +11,7 @@
 #include "hexmesh/pipeline/corner_tets.h"
 #include "hexmesh/quality/cell_quality.h"
 #include "hexmesh/quality/mesh_quality.h"
+#include "hexmesh/quality/validity.h"
 #include "surface/implicit_features.h"
 #include "surface/projection.h"
 
@@ -34,15 +35,18 @@ struct Adjacency {
     }
 };
 
-// The cells around a node as a move is judged: how many cells the solver refuses (margin <= 0),
-// then how many of their faces it refuses (skewness over max_solver_skewness; each face once,
-// also between two of these cells), then the smallest margin, a refused face's being
-// (max - skewness) / max. A move may not trade a refused cell for an accepted one that falls,
-// nor a skewed face for a refused cell.
+// The cells around a node as a move is judged: how many cells have an inverted corner tet
+// (exact orientation) and how many such tets, then how many cells the solver refuses (margin
+// <= 0), then how many of their faces it refuses (skewness over max_solver_skewness; each face
+// once, also between two of these cells), then the smallest margin, a refused face's being
+// (max - skewness) / max. A move may not trade a valid cell for fewer refused ones, nor a
+// refused cell for an accepted one that falls, nor a skewed face for a refused cell.
 struct Score {
-    int refused = 0, skewed = 0;
+    int inverted = 0, inverted_tets = 0, refused = 0, skewed = 0;
     double lowest = std::numeric_limits<double>::infinity();
     bool better_than(const Score& s) const {
+        if (inverted != s.inverted) return inverted < s.inverted;
+        if (inverted_tets != s.inverted_tets) return inverted_tets < s.inverted_tets;
         if (refused != s.refused) return refused < s.refused;
         if (skewed != s.skewed) return skewed < s.skewed;
         return lowest > s.lowest + 1e-12;
@@ -61,6 +65,9 @@ Score score_at(const HexMesh& mesh, const Adjacency& around, Id v, bool by_jacob
     for (const Id* c = first; c != end; ++c) {
         const std::array<Vec3, 8> p = mesh.corners(*c);
         const double m = solver_margin(p);
+        const int inverted = count_inverted_corner_tets(p);
+        s.inverted += inverted > 0;
+        s.inverted_tets += inverted;
         s.refused += !(m > 0);
         s.lowest = std::min(s.lowest, by_jacobian ? hex_scaled_jacobian(p) : m);
         const Vec3& centre = centres[size_t(c - first)];
@@ -360,6 +367,7 @@ LiftResult lift_worst_cells(BlockGrid& grid, const ImplicitFunction& body, const
         Score s;
         for (Id v : l.nodes) {
             const Score n = score_at(mesh, around, v, true);
+            s.inverted += n.inverted, s.inverted_tets += n.inverted_tets;
             s.refused += n.refused, s.skewed += n.skewed, s.lowest = std::min(s.lowest, n.lowest);
         }
         return s;

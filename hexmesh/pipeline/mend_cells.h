@@ -27,10 +27,12 @@ struct MendResult {
 
 // The cells find_refused_cells names (hexmesh/quality/mesh_quality.h), mended: each node of theirs
 // (interior or slip; slip nodes projected back onto u = 0 of `body`) tries six moves along the axes
-// and keeps the best for the cells around it: fewer refused cells (solver_margin <= 0), then fewer
-// of their faces of skewness over max_solver_skewness, then a higher smallest margin (a skewed
-// face's being its relative excess, negative), so a cell the solver accepts is never traded away
-// (not even for a skewed face) and with as many refused the smallest margin there never falls; the
+// and keeps the best for the cells around it: fewer inverted cells (a corner tet of exact
+// orientation <= 0) and inverted corner tets, then fewer refused cells (solver_margin <= 0), then
+// fewer of their faces of skewness over max_solver_skewness, then a higher smallest margin (a
+// skewed face's being its relative excess, negative), so a valid cell is never traded for fewer
+// refused ones, a cell the solver accepts is never traded away (not even for a skewed face) and
+// with as many refused the smallest margin there never falls; the
 // step halved when none helps. When that leaves refused cells, the nodes of the cells sharing a
 // node with them join in. The functional's corner tets do not see a face pyramid on the cell's
 // centre; this sees exactly what the solver checks. Deterministic; the grid's points are changed
