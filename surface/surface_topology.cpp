@@ -76,11 +76,21 @@ SurfaceTopology surface_topology(const TriangleSurface& surface) {
         boundary.join(a, b);
         on_boundary[a] = on_boundary[b] = 1;
     }
+    std::unordered_map<int, Box3> holes;  // boundary graph root -> bounds of its points
     for (int p = 0; p < np; ++p) {
         if (!on_boundary[p]) continue;
         SurfaceComponent& c = comps[component_of(p)];
         --c.boundary_loops;                             // - V
         if (boundary.find(p) == p) ++c.boundary_loops;  // + C
+        const auto [hole, added] = holes.try_emplace(boundary.find(p));
+        if (added) hole->second.lo = hole->second.hi = surface.points[p];
+        hole->second.lo = hole->second.lo.cwiseMin(surface.points[p]);
+        hole->second.hi = hole->second.hi.cwiseMax(surface.points[p]);
+    }
+    for (const auto& [root, box] : holes) {
+        SurfaceComponent& c = comps[component_of(root)];
+        if (box.diagonal() > c.widest_hole)
+            c.widest_hole = box.diagonal(), c.widest_hole_at = box.center();
     }
     for (SurfaceComponent& c : comps) {
         c.euler = c.points - c.edges + c.triangles;

@@ -31,9 +31,12 @@ int cells_per_edge(const Case& c, const ImplicitFunction& body) {
 
 // Throws InputError for a surface the block structure cannot grid: several pieces, one with
 // handles (its genus from V - E + F, holes capped) or one that encloses no volume; logs an
-// open surface (inside and outside then come from the winding number). Returns the bounds of
+// open surface (inside and outside then come from the winding number) with its widest hole,
+// and names that hole in `open_hole` when it is wider than a wall cell (the case's cell_size, or
+// the bounds' diagonal over sqrt 3 cells_per_edge). Returns the bounds of
 // its triangles' points.
-Box3 refuse_topology(const Case& c, const TriangleSurface& surface, std::ostream& log) {
+Box3 refuse_topology(const Case& c, const TriangleSurface& surface, std::ostream& log,
+                     std::string& open_hole) {
     const SurfaceTopology t = surface_topology(surface);
     const std::string& file = c.geometry.file;
     if (t.components.size() > 1)
@@ -59,11 +62,25 @@ Box3 refuse_topology(const Case& c, const TriangleSurface& surface, std::ostream
             fmt::format("{}: the surface encloses no volume ({:.3g}, the body {:.3g} "
                         "across): a flat or doubled sheet; hexmesh grids solid bodies",
                         file, std::abs(volume), size));
-    if (s.boundary_edges > 0)
+    if (s.boundary_edges > 0) {
+        // A hole leaves u = 0 open (the distance to the triangles does not vanish across it, and
+        // its sign jumps there): wall nodes there gather on its rim. A crack of a few wall
+        // cells is bridged; a wider hole folds the wall, and a refusal then names it.
+        const double h = c.grid.cell_size > 0
+                             ? c.grid.cell_size
+                             : size / (std::sqrt(3.0) * std::max(2, c.grid.cells_per_edge));
+        const std::string widest = fmt::format(
+            "{:.3g} across ({:.1f} wall cells) around ({:.4g}, {:.4g}, {:.4g})", s.widest_hole,
+            s.widest_hole / h, s.widest_hole_at.x(), s.widest_hole_at.y(), s.widest_hole_at.z());
         log << fmt::format(
-            "  the surface is open: {} boundary edges around {} holes; inside and "
-            "outside come from the winding number\n",
-            s.boundary_edges, s.boundary_loops);
+            "  the surface is open: {} boundary edges around {} hole{}, the widest {}; inside "
+            "and outside come from the winding number\n",
+            s.boundary_edges, s.boundary_loops, s.boundary_loops > 1 ? "s" : "", widest);
+        if (s.widest_hole > h)
+            open_hole = fmt::format(
+                "{} is open: a hole {}; close it (a crack is bridged, a wider hole folds the wall)",
+                file, widest);
+    }
     return s.bounds;
 }
 
@@ -137,7 +154,8 @@ void refuse_scale(const Case& c, const Box3& bounds) {
 void read_body(Job& job) {
     job.surface = reference_surface(job.settings.geometry);
     if (job.surface)
-        refuse_scale(job.settings, refuse_topology(job.settings, *job.surface, job.log));
+        refuse_scale(job.settings,
+                     refuse_topology(job.settings, *job.surface, job.log, job.open_hole));
     job.body = make_body(job.settings.geometry);
     if (!job.surface) refuse_scale(job.settings, job.body->bounds());
     job.timer.done("geometry");

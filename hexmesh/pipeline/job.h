@@ -6,6 +6,7 @@
 
 #include <optional>
 #include <ostream>
+#include <string>
 #include <vector>
 
 #include "hexmesh/core/block_grid.h"
@@ -57,6 +58,9 @@ struct Job {
     // Every corner tet weighs the same while the volume grid is untangled, instead of its
     // target's volume: always outside (untangle_and_optimize), inside on a retry.
     bool equal_weights = false;
+    // A hole of the surface wider than a wall cell, named for a refusal (the wall folds where
+    // u = 0 is open); empty for a closed surface.
+    std::string open_hole;
     // The nested family: levels[0] is the grid the stages build and optimize, each next one
     // refine_on_body of the one before (settings.refinement.levels in all); reports[l] measures
     // levels[l].

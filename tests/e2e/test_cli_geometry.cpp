@@ -194,6 +194,39 @@ TEST(CliGeometry, InspectTellsAFacetedScanFromABox) {
     fs::remove(box_file);
 }
 
+// A crack (a triangle missing, under a wall cell across) is bridged: the grid is made, and the
+// log names the widest hole in wall cells. A hole many wall cells wide (the sphere's cap cut away)
+// is named in the refusal it causes, whatever refuses it.
+TEST(CliGeometry, AnOpenSurfaceNamesItsWidestHole) {
+    const fs::path dir = scratch("open_surfaces");
+    fs::create_directories(dir);
+    TriangleSurface crack = test::uv_sphere(Vec3::Zero(), 0.5, 64, 32);
+    crack.triangles.erase(crack.triangles.begin() + 200);
+    test::write_stl_binary((dir / "crack.stl").string(), crack);
+    test::write_stl_binary((dir / "capless.stl").string(),
+                           test::without_cap(test::uv_sphere(Vec3::Zero(), 0.5, 40, 20), 0.17));
+    for (const std::string name : {"crack", "capless"})
+        std::ofstream(dir / (name + ".json"))
+            << "{\"geometry\": {\"file\": \"" << name
+            << ".stl\"}, \"domain\": \"exterior\", \"grid\": {\"cells_per_edge\": 8}}";
+    const std::string d = dir.string() + "/";
+    const CommandResult r = run_hexmesh("run '" + d + "crack.json' -o '" + d + "crack'");
+    EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+    EXPECT_TRUE(std::regex_search(r.out, std::regex("the surface is open: 3 boundary edges around "
+                                                    "1 hole, the widest [0-9.]+ across \\(0\\.")))
+        << r.out;
+    const CommandResult wide = run_hexmesh("run '" + d + "capless.json' -o '" + d + "capless'");
+    EXPECT_NE(wide.exit_code, 0) << wide.out;
+    EXPECT_EQ(count_lines(wide.err), 1) << wide.err;
+    EXPECT_TRUE(std::regex_search(
+        wide.err,
+        std::regex("capless.stl is open: a hole 1.3[0-9]* across \\([0-9.]+ wall cells\\) "
+                   "around \\(0, 0, 0.1545\\); close it")))
+        << wide.err;
+    EXPECT_FALSE(fs::exists(dir / "capless" / "grid.vtm"));
+    fs::remove_all(dir);
+}
+
 TEST(CliGeometry, SdfWritesAVdbFile) {
     const fs::path vdb = scratch("capsule.vdb");
     fs::remove(vdb);

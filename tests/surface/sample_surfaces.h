@@ -1,6 +1,7 @@
 // Triangle surfaces generated in tests (sphere, box, cylinder) and STL writers for them.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -8,6 +9,7 @@
 #include <map>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "hexmesh/core/triangle_surface.h"
 
@@ -38,6 +40,17 @@ inline TriangleSurface uv_sphere(const Vec3& center, double radius, int lon, int
         }
         s.triangles.push_back({south, ring(lat - 1, j + 1), ring(lat - 1, j)});
     }
+    return s;
+}
+
+// `s` without its triangles whose centroid lies above the plane z = `z`: a surface with a
+// hole there (its points stay, unused).
+inline TriangleSurface without_cap(TriangleSurface s, double z) {
+    std::vector<std::array<int, 3>> kept;
+    for (const auto& t : s.triangles)
+        if ((s.points[t[0]].z() + s.points[t[1]].z() + s.points[t[2]].z()) / 3 <= z)
+            kept.push_back(t);
+    s.triangles = std::move(kept);
     return s;
 }
 

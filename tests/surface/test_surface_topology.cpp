@@ -56,6 +56,21 @@ TEST(SurfaceTopology, HolesAreCountedAndCappedForTheGenus) {
     EXPECT_EQ(t.components[0].genus, 0);
 }
 
+TEST(SurfaceTopology, TheWidestHoleIsMeasured) {
+    EXPECT_EQ(surface_topology(test::uv_sphere(Vec3::Zero(), 1, 32, 16)).components[0].widest_hole,
+              0);
+    // The cap above z = 0.7 cut away: the hole's rim is the ring of latitude 45 degrees (its
+    // points on the unit sphere at z = cos 45), whose bounds are a square 2 r across, r = sin 45.
+    // A triangle cut from the southern half makes a narrower second hole.
+    TriangleSurface s = test::without_cap(test::uv_sphere(Vec3::Zero(), 1, 32, 16), 0.7);
+    s.triangles.erase(s.triangles.end() - 40);
+    const SurfaceComponent c = surface_topology(s).components.at(0);
+    EXPECT_EQ(c.boundary_loops, 2);
+    const double r = std::sin(std::acos(-1.0) / 4);
+    EXPECT_NEAR(c.widest_hole, 2 * std::sqrt(2.0) * r, 1e-12);
+    EXPECT_NEAR((c.widest_hole_at - Vec3(0, 0, r)).norm(), 0, 1e-12);
+}
+
 TEST(SurfaceTopology, PointsAtTheSameCoordinatesAreOne) {
     // Every triangle with its own three points (an STL-like soup): still one closed sphere.
     const TriangleSurface s = test::uv_sphere(Vec3::Zero(), 1, 12, 6);
