@@ -76,7 +76,7 @@ SurfaceTopology surface_topology(const TriangleSurface& surface) {
         boundary.join(a, b);
         on_boundary[a] = on_boundary[b] = 1;
     }
-    std::unordered_map<int, Box3> holes;  // boundary graph root -> bounds of its points
+    std::map<int, Box3> holes;  // boundary graph root -> bounds of its points (ordered)
     for (int p = 0; p < np; ++p) {
         if (!on_boundary[p]) continue;
         SurfaceComponent& c = comps[component_of(p)];

@@ -18,8 +18,10 @@ struct SurfaceComponent {
     // sphere has 0, a torus (or a ring, a knot's tube, a mug) 1.
     long long genus = 0;
     Box3 bounds;
-    // The widest hole: the diagonal of the bounds of its boundary points, and their centre
-    // (0 and the origin when the piece is closed).
+    // The widest hole: the diagonal of the bounds of its boundary points (a set of boundary
+    // edges joined at their points; loops through a common point are one here), and their
+    // centre; the first such set in point order among equally wide ones. 0 and the origin when
+    // the piece is closed.
     double widest_hole = 0;
     Vec3 widest_hole_at = Vec3::Zero();
 };

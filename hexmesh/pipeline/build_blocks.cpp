@@ -64,8 +64,9 @@ Box3 refuse_topology(const Case& c, const TriangleSurface& surface, std::ostream
                         file, std::abs(volume), size));
     if (s.boundary_edges > 0) {
         // A hole leaves u = 0 open (the distance to the triangles does not vanish across it, and
-        // its sign jumps there): wall nodes there gather on its rim. A crack of a few wall
-        // cells is bridged; a wider hole folds the wall, and a refusal then names it.
+        // its sign jumps there): wall nodes there gather on its rim. A crack is bridged; a
+        // wider hole folds the wall, and a refusal of the wall or the grid then names it when
+        // it spans more than a wall cell.
         const double h = c.grid.cell_size > 0
                              ? c.grid.cell_size
                              : size / (std::sqrt(3.0) * std::max(2, c.grid.cells_per_edge));
@@ -267,10 +268,13 @@ void build_blocks(Job& job) {
         job.levels.push_back(build_grid(c, *job.body, nullptr, &route));
     } catch (const std::invalid_argument& e) {
         if (!route.not_star_shaped.empty())
-            throw InputError(fmt::format("{}: {}, and the rays from there do not place a wall: {}",
-                                         c.path, route.not_star_shaped, e.what()));
-        if (!route.radial()) throw InputError(fmt::format("{}: {}", c.path, e.what()));
-        throw;
+            throw InputError(job.naming_hole(
+                fmt::format("{}: {}, and the rays from there do not place a wall: {}", c.path,
+                            route.not_star_shaped, e.what())));
+        if (!route.radial())
+            throw InputError(job.naming_hole(fmt::format("{}: {}", c.path, e.what())));
+        if (job.open_hole.empty()) throw;
+        throw std::invalid_argument(job.naming_hole(e.what()));
     }
     // A single block's lines run from wall to wall, each half cut on its own: not logged.
     if (c.domain == Domain::exterior || c.grid.topology != Topology::single_block)

@@ -58,14 +58,19 @@ struct Job {
     // Every corner tet weighs the same while the volume grid is untangled, instead of its
     // target's volume: always outside (untangle_and_optimize), inside on a retry.
     bool equal_weights = false;
-    // A hole of the surface wider than a wall cell, named for a refusal (the wall folds where
-    // u = 0 is open); empty for a closed surface.
+    // A hole of the surface wider than a wall cell, named at the end of the refusals that its
+    // folds can cause (the wall not placed, the grid invalid); empty for a closed surface.
     std::string open_hole;
     // The nested family: levels[0] is the grid the stages build and optimize, each next one
     // refine_on_body of the one before (settings.refinement.levels in all); reports[l] measures
     // levels[l].
     std::vector<BlockGrid> levels;
     std::vector<GridReport> reports;
+
+    // `message`, with open_hole after it when there is one: a refusal of the wall or the grid.
+    std::string naming_hole(const std::string& message) const {
+        return open_hole.empty() ? message : message + "; " + open_hole;
+    }
 
     BlockGrid& grid() { return levels.front(); }  // level 1, the grid the stages optimize
 

@@ -44,14 +44,14 @@ void refuse_invalid(const Job& job, const GridReport& report, const std::string&
     if (report.quality.solver_valid() || job.options.keep_invalid) return;
     const Vec3& at = report.quality.worst_cell_centre;
     const std::optional<CellPlace>& w = report.worst_cell;
-    throw std::runtime_error(fmt::format(
+    throw std::runtime_error(job.naming_hole(fmt::format(
         "{}: the grid {}has {} (min scaled Jacobian {:.3g} at ({:.4g}, {:.4g}, {:.4g}){}); "
         "nothing written (use --keep-invalid to write it as grid_invalid.*)",
         job.settings.path, dir.empty() ? "" : "of " + dir.substr(0, dir.size() - 1) + " ",
         invalid_cells(report.quality), report.quality.min_scaled_jacobian, at.x(), at.y(), at.z(),
         w ? fmt::format(", block {} cell ({}, {}, {}){}", w->block, w->i, w->j, w->k,
                         w->on_wall ? " on the wall" : "")
-          : ""));
+          : "")));
 }
 
 }  // namespace hexmesh

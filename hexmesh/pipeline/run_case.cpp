@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <stdexcept>
 #include <string>
 
 #include "hexmesh/core/memory_limit.h"
@@ -14,7 +13,6 @@
 #include "hexmesh/pipeline/wall_route.h"
 #include "hexmesh/pipeline/write.h"
 #include "hexmesh/quality/block_quality.h"
-#include "io/input_error.h"
 #include "io/staged_output.h"
 
 namespace hexmesh {
@@ -148,41 +146,25 @@ void retry_with_equal_weights(Job& job) {
         "the grid untangled with tets weighed by volume");
 }
 
-// The error `e` being handled, again; with the surface's hole named after it when it is wider
-// than a wall cell (Job::open_hole): the likely cause of a refusal there.
-template <class Error>
-[[noreturn]] void rethrow_naming_hole(const Job& job, const Error& e) {
-    if (job.open_hole.empty()) throw;
-    throw Error(std::string(e.what()) + "; " + job.open_hole);
-}
-
 }  // namespace
 
 RunResult run_case(const Case& c, const std::string& outdir, const RunOptions& options,
                    std::ostream& log) {
     Job job(c, options, log);
     StagedOutput out(outdir);  // the folder locked from the start: a second run into it is refused
-    RunResult result;
-    try {
-        build_blocks(job);
-        if (c.solver.optimize_iterations > 0 || measure_quality(job.grid()).inverted_cells > 0) {
-            make_surface_grid(job);
-            untangle_and_optimize(job);
-            retry_with_straight_lines(job);
-            retry_with_fibres(job);
-            retry_with_spread_levels(job);
-            retry_with_equal_weights(job);
-        }
-        measure(job);
-        refine_levels(job);
-        result.files = write_grids(job, out);
-    } catch (const InputError& e) {
-        rethrow_naming_hole(job, e);
-    } catch (const std::runtime_error& e) {
-        rethrow_naming_hole(job, e);
-    } catch (const std::invalid_argument& e) {
-        rethrow_naming_hole(job, e);
+    build_blocks(job);
+    if (c.solver.optimize_iterations > 0 || measure_quality(job.grid()).inverted_cells > 0) {
+        make_surface_grid(job);
+        untangle_and_optimize(job);
+        retry_with_straight_lines(job);
+        retry_with_fibres(job);
+        retry_with_spread_levels(job);
+        retry_with_equal_weights(job);
     }
+    measure(job);
+    refine_levels(job);
+    RunResult result;
+    result.files = write_grids(job, out);
     if (job.levels.size() > 1) result.level_reports = job.reports;
     result.report = job.reports.back();
     if (job.levels.size() == 1) result.report.phase_seconds = job.timer.phases();

@@ -196,7 +196,7 @@ TEST(CliGeometry, InspectTellsAFacetedScanFromABox) {
 
 // A crack (a triangle missing, under a wall cell across) is bridged: the grid is made, and the
 // log names the widest hole in wall cells. A hole many wall cells wide (the sphere's cap cut away)
-// is named in the refusal it causes, whatever refuses it.
+// is named at the end of the refusal it causes (here the rays from the centre place no wall).
 TEST(CliGeometry, AnOpenSurfaceNamesItsWidestHole) {
     const fs::path dir = scratch("open_surfaces");
     fs::create_directories(dir);
