@@ -16,25 +16,28 @@
 namespace hexmesh {
 namespace {
 
-// Cells per patch edge: given, or from the target cell size and the body's size.
-int cells_per_edge(const Case& c, const ImplicitFunction& body) {
+// Cells per patch edge: given, or from the target cell size and the size of the body's bounds.
+int cells_per_edge(const Case& c, const Box3& bounds) {
     if (!(c.grid.cell_size > 0)) return c.grid.cells_per_edge;
-    const double n = std::ceil(body.bounds().diagonal() / (std::sqrt(3.0) * c.grid.cell_size));
+    const double n = std::ceil(bounds.diagonal() / (std::sqrt(3.0) * c.grid.cell_size));
     if (!(n <= 4096)) {
         throw InputError(
             fmt::format("{}: grid.cell_size: {} gives {:.0f} cells per edge for a body "
                         "of diagonal {:.4g}; expected at most 4096",
-                        c.path, c.grid.cell_size, n, body.bounds().diagonal()));
+                        c.path, c.grid.cell_size, n, bounds.diagonal()));
     }
     return std::max(2, int(n));
+}
+
+int cells_per_edge(const Case& c, const ImplicitFunction& body) {
+    return cells_per_edge(c, body.bounds());
 }
 
 // Throws InputError for a surface the block structure cannot grid: several pieces, one with
 // handles (its genus from V - E + F, holes capped) or one that encloses no volume; logs an
 // open surface (inside and outside then come from the winding number) with its widest hole,
-// and names that hole in `open_hole` when it is wider than a wall cell (the case's cell_size, or
-// the bounds' diagonal over sqrt 3 cells_per_edge). Returns the bounds of
-// its triangles' points.
+// and names that hole in `open_hole` when it is wider than a wall cell (the bounds' diagonal
+// over sqrt 3 cells_per_edge). Returns the bounds of its triangles' points.
 Box3 refuse_topology(const Case& c, const TriangleSurface& surface, std::ostream& log,
                      std::string& open_hole) {
     const SurfaceTopology t = surface_topology(surface);
@@ -67,9 +70,7 @@ Box3 refuse_topology(const Case& c, const TriangleSurface& surface, std::ostream
         // its sign jumps there): wall nodes there gather on its rim. A crack is bridged; a
         // wider hole folds the wall, and a refusal of the wall or the grid then names it when
         // it spans more than a wall cell.
-        const double h = c.grid.cell_size > 0
-                             ? c.grid.cell_size
-                             : size / (std::sqrt(3.0) * std::max(2, c.grid.cells_per_edge));
+        const double h = size / (std::sqrt(3.0) * cells_per_edge(c, s.bounds));
         const std::string widest = fmt::format(
             "{:.3g} across ({:.1f} wall cells) around ({:.4g}, {:.4g}, {:.4g})", s.widest_hole,
             s.widest_hole / h, s.widest_hole_at.x(), s.widest_hole_at.y(), s.widest_hole_at.z());
@@ -273,7 +274,6 @@ void build_blocks(Job& job) {
                             route.not_star_shaped, e.what())));
         if (!route.radial())
             throw InputError(job.naming_hole(fmt::format("{}: {}", c.path, e.what())));
-        if (job.open_hole.empty()) throw;
         throw std::invalid_argument(job.naming_hole(e.what()));
     }
     // A single block's lines run from wall to wall, each half cut on its own: not logged.
