@@ -204,6 +204,85 @@ std::optional<CubeCorners> corners_near_wall(const ImplicitFunction& body, const
     return body_corners_by_octant(centre, body_corners_near(body, wall, h), h);
 }
 
+double inside_share(const ImplicitFunction& body, const Vec3& x, double r) {
+    constexpr int m = 6;
+    int inside = 0;
+    for (int face = 0; face < 6; ++face)
+        for (int i = 0; i < m; ++i)
+            for (int j = 0; j < m; ++j) {
+                Vec3 d;
+                d[face / 2] = face % 2 ? 1 : -1;
+                d[(face / 2 + 1) % 3] = -1 + (2 * i + 1.0) / m;
+                d[(face / 2 + 2) % 3] = -1 + (2 * j + 1.0) / m;
+                inside += body.value(x + r * d.normalized()) < 0;
+            }
+    return inside / double(6 * m * m);
+}
+
+namespace {
+
+// The smallest of the 8 corner volumes of the hexahedron whose corners are `corners`
+// (CubeCorners order; the determinant of the three edges from a corner): <= 0 when twisted,
+// largest for a large box.
+double smallest_corner_volume(const CubeCorners& corners) {
+    double smallest = std::numeric_limits<double>::infinity();
+    for (int c = 0; c < 8; ++c) {
+        Mat3 edges;
+        for (int a = 0; a < 3; ++a) edges.col(a) = corners[c ^ (1 << a)] - corners[c];
+        const int flips = (c & 1) + ((c >> 1) & 1) + ((c >> 2) & 1);  // edges pointing back
+        smallest = std::min(smallest, (flips % 2 == 0 ? 1 : -1) * edges.determinant());
+    }
+    return smallest;
+}
+
+}  // namespace
+
+std::optional<CubeCorners> convex_corners_by_octant(const ImplicitFunction& body,
+                                                    const Vec3& centre,
+                                                    const std::vector<Vec3>& found, double h) {
+    std::array<std::vector<Vec3>, 8> candidates;  // per octant, relative to the centre
+    for (const Vec3& c : found) {
+        const Vec3 r = c - centre;
+        if ((r.cwiseAbs().array() < 1e-3 * h).any() || !(inside_share(body, c, 0.25 * h) < 0.2))
+            continue;
+        candidates[(r.x() > 0) + 2 * (r.y() > 0) + 4 * (r.z() > 0)].push_back(r);
+    }
+    long long choices = 1;
+    for (const std::vector<Vec3>& in_octant : candidates) {
+        choices *= static_cast<long long>(in_octant.size());
+        if (choices == 0 || choices > 4096) return std::nullopt;
+    }
+    // Whether the segment between two corners lies on the body's surface (15 points along it
+    // within 0.05 h of u = 0, one of them may miss), as the patch edge between them then does.
+    const auto on_surface = [&](const Vec3& a, const Vec3& b) {
+        constexpr int samples = 16;
+        int off = 0;
+        for (int s = 1; s < samples; ++s)
+            off += !(std::abs(body.value(centre + a + (b - a) * (s / double(samples)))) < 0.05 * h);
+        return off <= 1;
+    };
+    std::optional<CubeCorners> best;
+    double largest = 0;  // only untwisted hexahedra
+    for (long long k = 0; k < choices; ++k) {
+        CubeCorners corners;
+        long long rest = k;
+        for (int o = 0; o < 8; ++o) {
+            const long long size = static_cast<long long>(candidates[o].size());
+            corners[o] = candidates[o][rest % size];
+            rest /= size;
+        }
+        const double volume = smallest_corner_volume(corners);
+        if (!(volume > largest)) continue;
+        bool edges_on_surface = true;
+        for (int c = 0; c < 8 && edges_on_surface; ++c)
+            for (int a = 0; a < 3 && edges_on_surface; ++a)
+                if (!(c & (1 << a)))
+                    edges_on_surface = on_surface(corners[c], corners[c | (1 << a)]);
+        if (edges_on_surface) largest = volume, best = corners;
+    }
+    return best;
+}
+
 std::optional<CubeCorners> corners_at_patch_corners(const ImplicitFunction& body,
                                                     const Vec3& centre,
                                                     const std::array<Vec3, 8>& at, double h) {

@@ -47,6 +47,26 @@ std::optional<CubeCorners> body_corners_by_octant(const Vec3& centre,
 std::optional<CubeCorners> corners_near_wall(const ImplicitFunction& body, const Vec3& centre,
                                              const std::vector<Vec3>& wall, double h);
 
+// The share of the ball of radius r round x inside the body (from 216 directions): 1/2 on a
+// smooth wall, 1/4 on a convex edge of 90 degrees, 3/4 on an inner one, 1/8 at a box's corner.
+double inside_share(const ImplicitFunction& body, const Vec3& x, double r);
+
+// For an exterior grid of a body with more corners than octants: of the body's corners
+// `found` (body_corners_near), one convex corner (a box's corner: its ball of 0.25 h at most a
+// fifth inside the body) in each octant around the centre, such that the 12 edges of their
+// hexahedron lie on the body's surface (as the patch edges between them then do), the choice
+// of largest smallest corner volume (the determinant of the three edges from a corner:
+// untwisted, near a box, spanning the body); relative to the centre. A flat cross's 8 patch
+// corners through its bounds' box land on its inner vertical edges, where one of the three
+// wall cells at each folds round the edge (min scaled Jacobian 0.055 at 20 cells per edge); on
+// the 8 ends of one of its bars each cell takes a face at 90 degrees (0.28). Its corners at the
+// arms' ends turning the same way round every quadrant (a box turned about its axis) are not
+// taken: those edges cut across the air between the arms (0.11). nullopt when an octant has no
+// convex corner or no choice qualifies.
+std::optional<CubeCorners> convex_corners_by_octant(const ImplicitFunction& body,
+                                                    const Vec3& centre,
+                                                    const std::vector<Vec3>& found, double h);
+
 // The corners of a grid built with its patch corners on body corners, read back from its wall:
 // `at[c]` is its wall node at cube corner c (CubeCorners order). They are taken as they are
 // (relative to `centre`) when all 8 are corners of `body` (within 1e-6 h) and untwisted, as

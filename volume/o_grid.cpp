@@ -120,7 +120,9 @@ struct LatticeRays {
 };
 
 // The wall nodes: given, or the radial projections of the rays through the bounds' box, then
-// (box-like bodies: body_corners_by_octant) through the body's corners, which `ray` takes.
+// (box-like bodies: body_corners_by_octant; or 8 of the body's convex corners spanning a box
+// whose edges lie on it: convex_corners_by_octant) through the body's corners, which `ray`
+// takes.
 std::vector<Vec3> place_o_wall(const ImplicitFunction& body, const OGridOptions& options,
                                const CubeSurfaceLattice& surface, const Vec3& centre, double h,
                                LatticeRays& ray) {
@@ -139,7 +141,9 @@ std::vector<Vec3> place_o_wall(const ImplicitFunction& body, const OGridOptions&
     if (paths) {
         // The continuation's patches follow no corner of the body.
     } else if (options.patch_corners_on_body_corners && !options.wall_from) {
-        ray.corners = corners_near_wall(body, centre, wall, h);
+        const std::vector<Vec3> found = body_corners_near(body, wall, h);
+        ray.corners = body_corners_by_octant(centre, found, h);
+        if (!ray.corners) ray.corners = convex_corners_by_octant(body, centre, found, h);
         if (ray.corners) place_wall();
     } else if (options.patch_corners_on_body_corners) {
         // A given wall keeps the choice of the grid it came from: its 8 patch-corner nodes sit

@@ -25,9 +25,11 @@ struct OGridOptions {
     // projections, and the lines built from them. nullptr: radial projection.
     const std::vector<Vec3>* wall_from = nullptr;
     // A box-like body (one corner in each octant around the centre, or a box at any angle:
-    // body_corners_by_octant in volume/feature_snapping.h) gets the patch corners on its
-    // corners (cube_sphere_ray with CubeCorners) instead of the bounds' box, so the patch
-    // edges follow its edges, and a far-field sphere turns with them. With wall_from: when
+    // body_corners_by_octant in volume/feature_snapping.h; or 8 convex corners, one per
+    // octant, spanning a box whose 12 edges lie on its surface, such as the ends of one bar
+    // of a cross: convex_corners_by_octant) gets the patch corners on those corners
+    // (cube_sphere_ray with CubeCorners) instead of the bounds' box, so the patch edges follow
+    // its edges, and a far-field sphere turns with them. With wall_from: when
     // the given wall's 8 patch-corner nodes are such corners (as that grid made them).
     // false: always the bounds' box.
     bool patch_corners_on_body_corners = true;

@@ -156,11 +156,10 @@ TEST(CliBodies, TheSharedBodiesWithHandlesOrTwoSolidsAreRefusedAtOnce) {
 // Outside a cross, the boundary layer laid along the wall normals crosses itself in the
 // concave corners between its arms: those wall lines keep the joint optimization's nodes, and
 // every other line keeps its laid layers (all lines used to fall back then, with 9 % of the
-// wall on the first-layer target). The grid is valid by the independent checker too. Cells
-// there fail checkMesh's cell checks (face pyramids) with every corner tet positive, which the
-// functional's corner tets do not see: the polish mends them node by node (3 cells here; 38
-// and 32 at 10 and 13 cells per edge), and at least 70 % of the wall keeps its first layer on
-// target.
+// wall on the first-layer target). The grid is valid by the independent checker too, with no
+// cell a solver refuses. At 16 cells per edge 24 lines are given back and 97 % of the wall
+// keeps its first layer on target (with the patch corners on the cross's inner edges instead
+// of the ends of a bar, 128 lines and 84 %; bench/RESULTS.md).
 TEST(CliBodies, LaidLayersThatWouldCrossAreGivenBackLineByLine) {
     const fs::path cross = bodies / "cross.off";
     if (!fs::exists(cross)) GTEST_SKIP() << "shared bodies not beside the project: " << bodies;
@@ -169,7 +168,7 @@ TEST(CliBodies, LaidLayersThatWouldCrossAreGivenBackLineByLine) {
     const CommandResult r = run_case_in(
         dir, {{"geometry", {{"file", cross.string()}}},
               {"domain", "exterior"},
-              {"grid", {{"cells_per_edge", 12}}},
+              {"grid", {{"cells_per_edge", 16}}},
               {"boundary_layer", {{"first_height", 0.002}, {"growth_ratio", 1.2}, {"layers", 5}}}});
     // Written; exit code 3 when the wall cuts the arms' corners (follows_body false).
     ASSERT_TRUE(r.exit_code == 0 || r.exit_code == 3) << r.out << r.err;
@@ -181,16 +180,12 @@ TEST(CliBodies, LaidLayersThatWouldCrossAreGivenBackLineByLine) {
         std::string::npos)
         << r.out;
     EXPECT_EQ(r.out.find("the joint optimization's grid is kept"), std::string::npos) << r.out;
-    EXPECT_TRUE(std::regex_search(
-        r.out, std::regex("cells a solver refuses mended node by node \\(the solver's own "
-                          "checks\\): [1-9][0-9]* -> 0,")))
-        << r.out;
     const nlohmann::json q = quality_in(dir);
     EXPECT_TRUE(q.at("valid").get<bool>());
     EXPECT_EQ(q.at("negative_face_pyramids").get<long>(), 0);
     EXPECT_GE(
         q.at("wall").at("first_layer_thickness").at("fraction_within_10_percent").get<double>(),
-        0.70);
+        0.90);
     expect_no_inverted_cell_by_the_checker(dir / "out" / "grid.vtm");
     fs::remove_all(dir);
 }
@@ -313,8 +308,9 @@ TEST(CliBodies, AGridWhoseWallBridgesAPitIsWrittenWithAWarning) {
 // every corner tet the same (docs/architecture.md#the-functional): the wing outside took 77 s
 // without, the cross 25 s, the tripod 24 s. The worst cells are lifted node by node last (README,
 // step 6 of "How run builds a grid"): each grid's worst scaled Jacobian is at least `min_sj`, a
-// fifth under its figure with nodes moved alone (bench/RESULTS.md: 0.027-0.31, 0.055-0.31 with
-// the lines too; 0.0002-0.28 before the lift); the log has the lift's line. The surface's
+// fifth under its figure with nodes moved alone (bench/RESULTS.md: 0.027-0.31, 0.099-0.31 with
+// the lines too; 0.0002-0.28 before the lift; the cross outside, its patch corners on the ends
+// of a bar, 0.28); the log has the lift's line. The surface's
 // vertices lie up to 0.15-3.6 wall cells from the grid's wall (the wing's trailing edge), and the
 // run says so: exit code 3 and a warning beyond 0.5.
 struct BodyRun {
@@ -374,7 +370,7 @@ INSTANTIATE_TEST_SUITE_P(SharedBodies, FromTheFileAlone,
                                            BodyRun{"cross.off", "interior", true, 0.099},
                                            BodyRun{"part.off", "exterior", false, 0.079},
                                            BodyRun{"u.off", "exterior", false, 0.09},
-                                           BodyRun{"cross.off", "exterior", false, 0.021},
+                                           BodyRun{"cross.off", "exterior", false, 0.22},
                                            BodyRun{"bull.off", "exterior", false, 0.08, true},
                                            BodyRun{"NACA0012.obj", "exterior", false, 0.079},
                                            BodyRun{"NACA0012.obj", "interior", false, 0.06}),

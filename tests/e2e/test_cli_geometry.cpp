@@ -84,6 +84,32 @@ TEST(CliGeometry, FileInsideCsg) {
     fs::remove_all(dir);
 }
 
+// Outside a cross of two bars of unequal length (CSG), the patch corners go to the 8 ends of
+// one bar (volume/feature_snapping.h, convex_corners_by_octant), every wall cell beside them
+// with a face at 90 degrees: min scaled Jacobian 0.30 and the whole first layer on target at
+// 12 cells per edge (through the bounds' box: 0.061 and 89 %, with 160 inverted cells left at
+// 20 cells per edge).
+TEST(CliGeometry, ACrossGetsItsPatchCornersOnTheEndsOfABar) {
+    const fs::path dir = scratch("csg_cross");
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    std::ofstream(dir / "case.json")
+        << R"({"geometry": {"union": [{"box": {"center": [0, 0, 0], "size": [1.2, 0.2, 0.2]}},)"
+           R"( {"box": {"center": [0, 0, 0], "size": [0.2, 0.8, 0.2]}}]},)"
+           R"( "domain": "exterior", "grid": {"cells_per_edge": 12},)"
+           R"( "boundary_layer": {"first_height": 0.002, "growth_ratio": 1.2, "layers": 5}})";
+    const CommandResult r = run_hexmesh("run '" + (dir / "case.json").string() + "' -o '" +
+                                        (dir / "out").string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    const auto q = nlohmann::json::parse(read_text(dir / "out" / "quality.json"));
+    EXPECT_TRUE(q.at("valid").get<bool>());
+    EXPECT_GE(q.at("min_scaled_jacobian").get<double>(), 0.25);
+    EXPECT_GE(
+        q.at("wall").at("first_layer_thickness").at("fraction_within_10_percent").get<double>(),
+        0.99);
+    fs::remove_all(dir);
+}
+
 // A box STL made here (coordinates exact in single precision): its 12 edges and 8 corners
 // become grid lines and grid nodes, in a single block and in the O-H grid, and the grid's
 // wall lies on the surface up to rounding. With "feature_angle": 180 the same O-H grid has

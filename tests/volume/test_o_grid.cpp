@@ -10,7 +10,9 @@
 #include "hexmesh/quality/mesh_quality.h"
 #include "hexmesh/quality/validity.h"
 #include "surface/analytic.h"
+#include "surface/csg.h"
 #include "surface/transform.h"
+#include "volume/feature_snapping.h"
 #include "volume/o_grid.h"
 #include "volume/o_h_grid.h"
 #include "volume/surface_placement.h"
@@ -403,6 +405,54 @@ TEST(OGrid, TurnedBoxGetsThePatchCornersOnItsCorners) {
                       0);
         }
     }
+}
+
+// A flat cross (two bars 1 x 0.2 x 0.2 crossing at the centre) has 24 corners: in each octant
+// two convex ones at the ends of its arms and the inner one where the arms meet. Through the
+// bounds' box the 8 patch corners land on the 4 inner vertical edges (a ball round each more
+// than 0.6 inside the body), where one of the three wall cells around each folds round the
+// edge. The rays instead span the 8 ends of one bar: every patch corner on a convex corner of
+// the body, and every patch edge on its surface (along the bar's edges), which the 8 corners
+// turning the same way round in every quadrant (a box turned about z) are not: those edges
+// cut across the air between the arms. Built again from its own wall, the grid keeps them.
+TEST(OGrid, CrossGetsThePatchCornersOnConvexCorners) {
+    const Body cross = std::make_shared<Csg>(
+        CsgOp::Union, std::vector<Body>{std::make_shared<Box>(Vec3::Zero(), Vec3(0.5, 0.1, 0.1)),
+                                        std::make_shared<Box>(Vec3::Zero(), Vec3(0.1, 0.5, 0.1))});
+    const OGridOptions o = typical_options();
+    const int n = o.cells_per_edge;
+    const double h = grid_length_scale(*cross, n);
+    const auto patch_corner = [&](const BlockGrid& grid, int c) {
+        // lattice corner c of the wall: block zmin (c < 4) or zmax, node (i, j) at its ends
+        const Block& b = grid.blocks[c & 4 ? 5 : 4];
+        for (int j : {0, n})
+            for (int i : {0, n}) {
+                const Vec3& x = grid.points[b.node(i, j, 0)];
+                if ((x.x() > 0) == bool(c & 1) && (x.y() > 0) == bool(c & 2)) return x;
+            }
+        return Vec3(Vec3::Constant(std::nan("")));
+    };
+    OGridOptions bounds_box = o;
+    bounds_box.patch_corners_on_body_corners = false;
+    const BlockGrid through_bounds = make_o_grid(*cross, bounds_box);
+    const BlockGrid grid = make_o_grid(*cross, o);
+    const bool x_bar = std::abs(patch_corner(grid, 0).x()) > std::abs(patch_corner(grid, 0).y());
+    for (int c = 0; c < 8; ++c) {
+        SCOPED_TRACE(c);
+        EXPECT_GT(inside_share(*cross, patch_corner(through_bounds, c), 0.5 * h), 0.6);
+        const Vec3 x = patch_corner(grid, c);
+        EXPECT_LT((x.cwiseAbs() - (x_bar ? Vec3(0.5, 0.1, 0.1) : Vec3(0.1, 0.5, 0.1))).norm(),
+                  1e-12)
+            << x.transpose();
+        EXPECT_LT(inside_share(*cross, x, 0.25 * h), 0.2);
+    }
+    OGridOptions again = o;
+    again.wall_from = &grid.points;
+    const BlockGrid rebuilt = make_o_grid(*cross, again);
+    double moved = 0;
+    for (size_t v = 0; v < grid.points.size(); ++v)
+        moved = std::max(moved, (rebuilt.points[v] - grid.points[v]).norm());
+    EXPECT_LT(moved, 1e-9 * o.far_field_size);
 }
 
 TEST(OGrid, BoxFarFieldNodesLieOnTheBoxFaces) {
