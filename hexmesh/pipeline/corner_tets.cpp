@@ -11,12 +11,23 @@
 namespace hexmesh {
 namespace {
 
-// Mean length of the 4 edges of the cell along each of i, j, k.
+// Mean length of the 4 edges of the cell along each of i, j, k. A cell flattened along an axis
+// (its 4 edges there of no length, under 1e-9 of its longest: the nodes of a grid line laid on
+// top of each other, such as where a continuation's path ends within the boundary layer beside
+// a sharp tip) takes there the shortest of its other lengths: a target box of no volume would
+// make the functional NaN, and the untangling would stop without a step.
 Vec3 edge_lengths(const std::vector<Vec3>& points, const std::array<Id, 8>& nodes) {
     Vec3 sum = Vec3::Zero();
     for (const auto& e : hex_edges)
         sum[hex_edge_axis(e[0], e[1])] += (points[nodes[e[0]]] - points[nodes[e[1]]]).norm();
-    return sum / 4;
+    Vec3 lengths = sum / 4;
+    const double longest = lengths.maxCoeff();
+    double shortest = longest;
+    for (int a = 0; a < 3; ++a)
+        if (lengths[a] > 1e-9 * longest) shortest = std::min(shortest, lengths[a]);
+    for (int a = 0; a < 3; ++a)
+        if (!(lengths[a] > 1e-9 * longest)) lengths[a] = shortest;
+    return lengths;
 }
 
 // A cell shaped so is a target where each of its corners has a scaled Jacobian of at least
