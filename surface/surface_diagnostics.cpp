@@ -3,6 +3,8 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/repair.h>
+#include <CGAL/Polygon_mesh_processing/repair_degeneracies.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Surface_mesh.h>
 
@@ -95,6 +97,47 @@ SurfaceDiagnostics diagnose_surface(const TriangleSurface& s) {
     }
     if (!kept.empty()) d.self_intersections = count_self_intersections(s, kept);
     return d;
+}
+
+std::optional<TriangleSurface> without_zero_area_triangles(const TriangleSurface& s,
+                                                           long long& removed) {
+    removed = 0;
+    std::vector<int> degenerate;
+    for (int t = 0; t < int(s.triangles.size()); ++t)
+        if (is_degenerate_triangle(s, t)) degenerate.push_back(t);
+    if (degenerate.empty()) return s;
+    std::vector<Kernel::Point_3> points;
+    points.reserve(s.points.size());
+    for (const Vec3& p : s.points) points.emplace_back(p.x(), p.y(), p.z());
+    std::vector<std::vector<std::size_t>> polygons;
+    for (const auto& t : s.triangles)
+        if (t[0] != t[1] && t[1] != t[2] && t[2] != t[0])  // a repeated point: dropped
+            polygons.push_back({std::size_t(t[0]), std::size_t(t[1]), std::size_t(t[2])});
+    if (!PMP::is_polygon_soup_a_polygon_mesh(polygons)) return std::nullopt;
+    Mesh mesh;
+    PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
+    if (!PMP::remove_degenerate_faces(mesh)) return std::nullopt;
+    PMP::remove_isolated_vertices(mesh);
+    mesh.collect_garbage();
+    TriangleSurface out;
+    out.points.reserve(mesh.number_of_vertices());
+    for (Mesh::Vertex_index v : mesh.vertices()) {
+        const Kernel::Point_3& p = mesh.point(v);
+        out.points.emplace_back(p.x(), p.y(), p.z());
+    }
+    for (Mesh::Face_index f : mesh.faces()) {
+        std::array<int, 3> t{};
+        int k = 0;
+        for (Mesh::Vertex_index v : CGAL::vertices_around_face(mesh.halfedge(f), mesh))
+            if (k < 3) t[k++] = int(v.idx());
+        if (k != 3) return std::nullopt;
+        out.triangles.push_back(t);
+    }
+    if (out.triangles.empty()) return std::nullopt;
+    for (int t = 0; t < int(out.triangles.size()); ++t)
+        if (is_degenerate_triangle(out, t)) return std::nullopt;
+    removed = (long long)degenerate.size();
+    return out;
 }
 
 }  // namespace hexmesh

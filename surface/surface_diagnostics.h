@@ -1,6 +1,7 @@
 // Health report of a triangle surface: counts a user needs before trusting its SDF.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "hexmesh/core/triangle_surface.h"
@@ -32,5 +33,15 @@ SurfaceDiagnostics diagnose_surface(const TriangleSurface& surface);
 // Zero area: repeated ids or |(b - a) x (c - a)| <= 1e-12 * (longest edge)^2, the rule the
 // readers apply.
 bool is_degenerate_triangle(const TriangleSurface& surface, int triangle);
+
+// The surface without its zero-area triangles (is_degenerate_triangle), when removing them
+// keeps it a surface: a triangle with a repeated point is dropped, a needle or cap (three
+// points on a line) goes by flipping its longest edge or collapsing its shortest (CGAL Polygon
+// Mesh Processing, remove_degenerate_faces), as marching cubes and some CAD exports leave them.
+// `removed`: how many zero-area triangles it had. nullopt when the triangles do not make an
+// oriented manifold surface, none is left or some zero-area triangle stays; the surface itself when
+// it has none.
+std::optional<TriangleSurface> without_zero_area_triangles(const TriangleSurface& surface,
+                                                           long long& removed);
 
 }  // namespace hexmesh

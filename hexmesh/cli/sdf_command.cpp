@@ -7,7 +7,7 @@
 #include <memory>
 
 #include "hexmesh/cli/commands.h"
-#include "io/surface_reader.h"
+#include "hexmesh/pipeline/make_body.h"
 #include "surface/mesh_sdf.h"
 
 namespace hexmesh::cli {
@@ -39,7 +39,12 @@ void add_sdf_command(CLI::App& app, int& exit_code) {
     cmd->callback([args, &exit_code] {
         if (args->voxel_size < 0) throw InputError("--voxel-size: expected a positive number");
         const auto start = std::chrono::steady_clock::now();
-        const TriangleSurface surface = read_surface(args->input);
+        long long removed = 0;
+        const TriangleSurface surface = read_surface_file(args->input, removed);
+        if (removed > 0)
+            std::cout << fmt::format(
+                "{} zero-area triangle{} of the surface removed (flipped, collapsed or dropped)\n",
+                removed, removed > 1 ? "s" : "");
         MeshSdfOptions options;
         options.voxel_size = args->voxel_size;
         options.resolution = args->resolution;

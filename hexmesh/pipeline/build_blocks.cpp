@@ -154,7 +154,7 @@ void refuse_scale(const Case& c, const Box3& bounds) {
 // The body of the case, its reference surface refused if the block structure cannot grid it
 // or the arithmetic cannot hold it.
 void read_body(Job& job) {
-    job.surface = reference_surface(job.settings.geometry);
+    job.surface = reference_surface(job.settings.geometry, &job.log);
     if (job.surface)
         refuse_scale(job.settings,
                      refuse_topology(job.settings, *job.surface, job.log, job.open_hole));

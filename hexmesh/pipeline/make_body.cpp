@@ -1,6 +1,7 @@
 #include "hexmesh/pipeline/make_body.h"
 
 #include <memory>
+#include <ostream>
 
 #include "io/sample_readers.h"
 #include "io/surface_reader.h"
@@ -9,9 +10,20 @@
 #include "surface/csg.h"
 #include "surface/mesh_sdf.h"
 #include "surface/point_cloud.h"
+#include "surface/surface_diagnostics.h"
 #include "surface/transform.h"
 
 namespace hexmesh {
+
+TriangleSurface read_surface_file(const std::string& file, long long& removed) {
+    SurfaceReadOptions loose;
+    loose.allow_degenerate = true;
+    if (std::optional<TriangleSurface> s =
+            without_zero_area_triangles(read_surface(file, loose), removed))
+        return std::move(*s);
+    return read_surface(file);  // throws, naming the first zero-area triangle
+}
+
 namespace {
 
 Body make_shape(const GeometrySpec& s) {
@@ -28,7 +40,8 @@ Body make_shape(const GeometrySpec& s) {
         MeshSdfOptions options;
         options.voxel_size = s.voxel_size;
         options.feature_angle = s.feature_angle;
-        const TriangleSurface surface = read_surface(s.file);
+        long long removed = 0;
+        const TriangleSurface surface = read_surface_file(s.file, removed);
         return naming_file(s.file, [&] { return std::make_shared<MeshSdf>(surface, options); });
     }
     if (s.kind == BodyKind::points)
@@ -45,9 +58,13 @@ Body make_shape(const GeometrySpec& s) {
 
 }  // namespace
 
-std::optional<TriangleSurface> reference_surface(const GeometrySpec& spec) {
+std::optional<TriangleSurface> reference_surface(const GeometrySpec& spec, std::ostream* log) {
     if (spec.kind != BodyKind::file) return std::nullopt;
-    TriangleSurface surface = read_surface(spec.file);
+    long long removed = 0;
+    TriangleSurface surface = read_surface_file(spec.file, removed);
+    if (removed > 0 && log)
+        *log << "  " << removed << " zero-area triangle" << (removed > 1 ? "s" : "")
+             << " of the surface removed (flipped, collapsed or dropped)\n";
     const Mat3 rotation = rotation_from_axis_angle(spec.rotate_axis, spec.rotate_degrees);
     for (Vec3& p : surface.points) p = spec.translate + spec.scale * (rotation * p);
     // Triangles that all face inwards (some writers' convention, e.g. marching cubes on a

@@ -15,7 +15,6 @@
 #include "hexmesh/quality/tet_quality.h"
 #include "io/case_file.h"
 #include "io/report_page.h"
-#include "io/surface_reader.h"
 #include "io/volume_mesh_io.h"
 
 namespace hexmesh {
@@ -228,7 +227,8 @@ std::string describe_blocked(const std::vector<BlockedElement>& blocked) {
 
 void slip_on_file(const std::string& path, UntangleMeshOptions& options) {
     if (std::filesystem::path(path).extension() != ".json") {
-        options.surface = read_surface(path);
+        long long removed = 0;
+        options.surface = read_surface_file(path, removed);
         return;
     }
     const Case c = read_case(path);

@@ -253,6 +253,42 @@ TEST(CliGeometry, AnOpenSurfaceNamesItsWidestHole) {
     fs::remove_all(dir);
 }
 
+// A closed STL with zero-area triangles (a needle: three points on a line, and a triangle with
+// a repeated corner), as marching cubes and some CAD exports write them: they are flipped or
+// dropped, the log says how many, and the grid is made (such a file was refused, naming the
+// first). The same file through `sdf`.
+TEST(CliGeometry, ZeroAreaTrianglesAreRemoved) {
+    const fs::path dir = scratch("zero_area");
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    TriangleSurface s = test::box_surface(Vec3(-1, -0.5, -0.5), Vec3(1, 0.5, 0.5), 2);
+    const int t = 7;
+    const int a = s.triangles[t][0], c = s.triangles[t][1], d = s.triangles[t][2];
+    s.points.push_back(0.5 * (s.points[a] + s.points[c]));
+    const int b = int(s.points.size()) - 1;
+    s.triangles[t] = {a, b, d};
+    s.triangles.push_back({b, c, d});
+    s.triangles.push_back({a, c, b});  // the needle
+    s.triangles.push_back({d, d, a});  // a repeated corner
+    test::write_stl_binary((dir / "needle.stl").string(), s);
+    std::ofstream(dir / "case.json") << R"({"geometry": {"file": "needle.stl"},)"
+                                        R"( "grid": {"cells_per_edge": 8, "wall_cells": 4}})";
+    const CommandResult r = run_hexmesh("run '" + (dir / "case.json").string() + "' -o '" +
+                                        (dir / "out").string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    EXPECT_NE(r.out.find("2 zero-area triangles of the surface removed (flipped, collapsed or "
+                         "dropped)"),
+              std::string::npos)
+        << r.out;
+    EXPECT_TRUE(
+        nlohmann::json::parse(read_text(dir / "out" / "quality.json")).at("valid").get<bool>());
+    const CommandResult sdf = run_hexmesh("sdf '" + (dir / "needle.stl").string() + "' -o '" +
+                                          (dir / "needle.vdb").string() + "'");
+    EXPECT_EQ(sdf.exit_code, 0) << sdf.out << sdf.err;
+    EXPECT_TRUE(fs::exists(dir / "needle.vdb"));
+    fs::remove_all(dir);
+}
+
 TEST(CliGeometry, SdfWritesAVdbFile) {
     const fs::path vdb = scratch("capsule.vdb");
     fs::remove(vdb);
