@@ -170,17 +170,25 @@ std::optional<Mat3> box_axes(const std::vector<Vec3>& p, double h) {
     return axes;
 }
 
-// Whether corners, as the cube's, make a hexahedron whose 8 corner tets are all positive: cube
-// edges on the body's edges, not across its faces (a cube turned 60 degrees about (1, 1, 1)
-// has one corner in each octant, but octants 0 and 1 hold two ends of a face diagonal).
-bool untwisted(const CubeCorners& corners) {
+// The smallest of the 8 corner volumes of the hexahedron whose corners are `corners`
+// (CubeCorners order; the determinant of the three edges from a corner): <= 0 when twisted,
+// largest for a large box.
+double smallest_corner_volume(const CubeCorners& corners) {
+    double smallest = std::numeric_limits<double>::infinity();
     for (int c = 0; c < 8; ++c) {
         Mat3 edges;
         for (int a = 0; a < 3; ++a) edges.col(a) = corners[c ^ (1 << a)] - corners[c];
         const int flips = (c & 1) + ((c >> 1) & 1) + ((c >> 2) & 1);  // edges pointing back
-        if (!((flips % 2 == 0 ? 1 : -1) * edges.determinant() > 0)) return false;
+        smallest = std::min(smallest, (flips % 2 == 0 ? 1 : -1) * edges.determinant());
     }
-    return true;
+    return smallest;
+}
+
+// Whether corners, as the cube's, make a hexahedron whose 8 corner tets are all positive: cube
+// edges on the body's edges, not across its faces (a cube turned 60 degrees about (1, 1, 1)
+// has one corner in each octant, but octants 0 and 1 hold two ends of a face diagonal).
+bool untwisted(const CubeCorners& corners) {
+    return smallest_corner_volume(corners) > 0;
 }
 
 }  // namespace
@@ -219,24 +227,6 @@ double inside_share(const ImplicitFunction& body, const Vec3& x, double r) {
     return inside / double(6 * m * m);
 }
 
-namespace {
-
-// The smallest of the 8 corner volumes of the hexahedron whose corners are `corners`
-// (CubeCorners order; the determinant of the three edges from a corner): <= 0 when twisted,
-// largest for a large box.
-double smallest_corner_volume(const CubeCorners& corners) {
-    double smallest = std::numeric_limits<double>::infinity();
-    for (int c = 0; c < 8; ++c) {
-        Mat3 edges;
-        for (int a = 0; a < 3; ++a) edges.col(a) = corners[c ^ (1 << a)] - corners[c];
-        const int flips = (c & 1) + ((c >> 1) & 1) + ((c >> 2) & 1);  // edges pointing back
-        smallest = std::min(smallest, (flips % 2 == 0 ? 1 : -1) * edges.determinant());
-    }
-    return smallest;
-}
-
-}  // namespace
-
 std::optional<CubeCorners> convex_corners_by_octant(const ImplicitFunction& body,
                                                     const Vec3& centre,
                                                     const std::vector<Vec3>& found, double h) {
@@ -250,35 +240,50 @@ std::optional<CubeCorners> convex_corners_by_octant(const ImplicitFunction& body
     long long choices = 1;
     for (const std::vector<Vec3>& in_octant : candidates) {
         choices *= static_cast<long long>(in_octant.size());
-        if (choices == 0 || choices > 4096) return std::nullopt;
+        if (choices == 0 || choices > (1 << 20)) return std::nullopt;
     }
-    // Whether the segment between two corners lies on the body's surface (15 points along it
-    // within 0.05 h of u = 0, one of them may miss), as the patch edge between them then does.
-    const auto on_surface = [&](const Vec3& a, const Vec3& b) {
+    // Per cube edge (corner c to c + its bit a), per pair of candidates at its ends: whether
+    // the segment between them lies on the body's surface (15 points along it within 0.05 h,
+    // or 0.002 of the bounds' diagonal, of u = 0: a surface file's distance field is off by a
+    // fraction of its voxel of 1/256 of the extent along an edge, and is cut off 3 voxels out;
+    // one point may miss), as the patch edge then does.
+    const auto on_surface = [&](const Vec3& p, const Vec3& q) {
         constexpr int samples = 16;
+        const double near = std::max(0.05 * h, 2e-3 * body.bounds().diagonal());
         int off = 0;
         for (int s = 1; s < samples; ++s)
-            off += !(std::abs(body.value(centre + a + (b - a) * (s / double(samples)))) < 0.05 * h);
+            off += !(std::abs(body.value(centre + p + (q - p) * (s / double(samples)))) < near);
         return off <= 1;
     };
+    std::array<std::array<std::vector<bool>, 3>, 8> edge_on;  // [c][a]: entry i * size + j
+    for (int c = 0; c < 8; ++c)
+        for (int a = 0; a < 3; ++a) {
+            if (c & (1 << a)) continue;
+            const std::vector<Vec3>&from = candidates[c], &to = candidates[c | (1 << a)];
+            for (const Vec3& p : from)
+                for (const Vec3& q : to) edge_on[c][a].push_back(on_surface(p, q));
+        }
     std::optional<CubeCorners> best;
     double largest = 0;  // only untwisted hexahedra
     for (long long k = 0; k < choices; ++k) {
         CubeCorners corners;
+        std::array<size_t, 8> pick;
         long long rest = k;
         for (int o = 0; o < 8; ++o) {
             const long long size = static_cast<long long>(candidates[o].size());
-            corners[o] = candidates[o][rest % size];
+            pick[o] = size_t(rest % size);
+            corners[o] = candidates[o][pick[o]];
             rest /= size;
         }
-        const double volume = smallest_corner_volume(corners);
-        if (!(volume > largest)) continue;
         bool edges_on_surface = true;
         for (int c = 0; c < 8 && edges_on_surface; ++c)
             for (int a = 0; a < 3 && edges_on_surface; ++a)
                 if (!(c & (1 << a)))
-                    edges_on_surface = on_surface(corners[c], corners[c | (1 << a)]);
-        if (edges_on_surface) largest = volume, best = corners;
+                    edges_on_surface = edge_on[c][a][pick[c] * candidates[c | (1 << a)].size() +
+                                                     pick[c | (1 << a)]];
+        if (!edges_on_surface) continue;
+        const double volume = smallest_corner_volume(corners);
+        if (volume > largest) largest = volume, best = corners;
     }
     return best;
 }

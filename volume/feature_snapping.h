@@ -62,7 +62,8 @@ double inside_share(const ImplicitFunction& body, const Vec3& x, double r);
 // the 8 ends of one of its bars each cell takes a face at 90 degrees (0.28). Its corners at the
 // arms' ends turning the same way round every quadrant (a box turned about its axis) are not
 // taken: those edges cut across the air between the arms (0.11). nullopt when an octant has no
-// convex corner or no choice qualifies.
+// convex corner, no choice qualifies (a cross turned about its axis has both corners of a bar's
+// end in one octant) or there are over 2^20 choices.
 std::optional<CubeCorners> convex_corners_by_octant(const ImplicitFunction& body,
                                                     const Vec3& centre,
                                                     const std::vector<Vec3>& found, double h);

@@ -21,7 +21,15 @@ TriangleSurface read_surface_file(const std::string& file, long long& removed) {
     if (std::optional<TriangleSurface> s =
             without_zero_area_triangles(read_surface(file, loose), removed))
         return std::move(*s);
-    return read_surface(file);  // throws, naming the first zero-area triangle
+    try {
+        read_surface(file);  // throws, naming the first zero-area triangle
+    } catch (const InputError& e) {
+        throw InputError(std::string(e.what()) +
+                         "; it cannot be flipped or collapsed away (the triangles around it do "
+                         "not make a closed, consistently oriented surface, or it is only nearly "
+                         "flat)");
+    }
+    throw InputError(file + ": its zero-area triangles cannot be flipped or collapsed away");
 }
 
 namespace {

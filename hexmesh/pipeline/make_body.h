@@ -14,8 +14,8 @@ namespace hexmesh {
 // The surface in `file` (io/surface_reader.h) without its zero-area triangles (repeated or
 // collinear points, as marching cubes and some CAD exports leave them: removed by
 // without_zero_area_triangles, surface/surface_diagnostics.h), how many in `removed`. A
-// file whose zero-area triangles cannot be removed so is refused by the reader's own message,
-// naming the first one's line and corners.
+// file whose zero-area triangles cannot be removed so is refused by the reader's own message
+// (the first one's line, or triangle in a binary STL, and corners), saying why.
 TriangleSurface read_surface_file(const std::string& file, long long& removed);
 
 // The implicit function of `spec`: primitives, CSG nodes and their transforms; a surface file
