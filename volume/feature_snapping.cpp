@@ -114,6 +114,13 @@ FeatureSnapping snap_to_features(BlockGrid& grid, const ImplicitFunction& body, 
 
 namespace {
 
+// The octant of f (coordinates in a frame around the centre), entry (f.x > 0) + 2 (f.y > 0) +
+// 4 (f.z > 0) as the cube's corners; -1 within 1e-3 h of one of the frame's planes.
+int octant_of(const Vec3& f, double h) {
+    if ((f.cwiseAbs().array() < 1e-3 * h).any()) return -1;
+    return (f.x() > 0) + 2 * (f.y() > 0) + 4 * (f.z() > 0);
+}
+
 // The corners `found` as the cube's, one per octant of the frame `axes` (columns: where the
 // cube's x, y, z go) around the centre, none within 1e-3 h of its planes; nullopt otherwise.
 std::optional<CubeCorners> by_octant(const Vec3& centre, const std::vector<Vec3>& found,
@@ -122,8 +129,8 @@ std::optional<CubeCorners> by_octant(const Vec3& centre, const std::vector<Vec3>
     std::array<bool, 8> taken{};
     for (const Vec3& c : found) {
         const Vec3 r = c - centre, f = axes.transpose() * r;
-        if ((f.cwiseAbs().array() < 1e-3 * h).any()) return std::nullopt;  // on a frame plane
-        const int octant = (f.x() > 0) + 2 * (f.y() > 0) + 4 * (f.z() > 0);
+        const int octant = octant_of(f, h);
+        if (octant < 0) return std::nullopt;  // on a frame plane
         if (taken[octant]) return std::nullopt;
         taken[octant] = true;
         corners[octant] = r;
@@ -233,9 +240,9 @@ std::optional<CubeCorners> convex_corners_by_octant(const ImplicitFunction& body
     std::array<std::vector<Vec3>, 8> candidates;  // per octant, relative to the centre
     for (const Vec3& c : found) {
         const Vec3 r = c - centre;
-        if ((r.cwiseAbs().array() < 1e-3 * h).any() || !(inside_share(body, c, 0.25 * h) < 0.2))
-            continue;
-        candidates[(r.x() > 0) + 2 * (r.y() > 0) + 4 * (r.z() > 0)].push_back(r);
+        const int octant = octant_of(r, h);
+        if (octant < 0 || !(inside_share(body, c, 0.25 * h) < 0.2)) continue;
+        candidates[octant].push_back(r);
     }
     long long choices = 1;
     for (const std::vector<Vec3>& in_octant : candidates) {

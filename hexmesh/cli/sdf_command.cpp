@@ -39,12 +39,9 @@ void add_sdf_command(CLI::App& app, int& exit_code) {
     cmd->callback([args, &exit_code] {
         if (args->voxel_size < 0) throw InputError("--voxel-size: expected a positive number");
         const auto start = std::chrono::steady_clock::now();
-        long long removed = 0;
-        const TriangleSurface surface = read_surface_file(args->input, removed);
-        if (removed > 0)
-            std::cout << fmt::format(
-                "{} zero-area triangle{} of the surface removed (flipped, collapsed or dropped)\n",
-                removed, removed > 1 ? "s" : "");
+        std::string note;
+        const TriangleSurface surface = read_surface_file(args->input, &note);
+        if (!note.empty()) std::cout << note << "\n";
         MeshSdfOptions options;
         options.voxel_size = args->voxel_size;
         options.resolution = args->resolution;

@@ -1,5 +1,7 @@
 #include "hexmesh/pipeline/make_body.h"
 
+#include <fmt/format.h>
+
 #include <memory>
 #include <ostream>
 
@@ -15,12 +17,18 @@
 
 namespace hexmesh {
 
-TriangleSurface read_surface_file(const std::string& file, long long& removed) {
+TriangleSurface read_surface_file(const std::string& file, std::string* note) {
     SurfaceReadOptions loose;
     loose.allow_degenerate = true;
+    long long removed = 0;
     if (std::optional<TriangleSurface> s =
-            without_zero_area_triangles(read_surface(file, loose), removed))
+            without_zero_area_triangles(read_surface(file, loose), removed)) {
+        if (note && removed > 0)
+            *note = fmt::format(
+                "{} zero-area triangle{} of the surface removed (flipped, collapsed or dropped)",
+                removed, removed > 1 ? "s" : "");
         return std::move(*s);
+    }
     try {
         read_surface(file);  // throws, naming the first zero-area triangle
     } catch (const InputError& e) {
@@ -48,8 +56,7 @@ Body make_shape(const GeometrySpec& s) {
         MeshSdfOptions options;
         options.voxel_size = s.voxel_size;
         options.feature_angle = s.feature_angle;
-        long long removed = 0;
-        const TriangleSurface surface = read_surface_file(s.file, removed);
+        const TriangleSurface surface = read_surface_file(s.file);
         return naming_file(s.file, [&] { return std::make_shared<MeshSdf>(surface, options); });
     }
     if (s.kind == BodyKind::points)
@@ -68,11 +75,9 @@ Body make_shape(const GeometrySpec& s) {
 
 std::optional<TriangleSurface> reference_surface(const GeometrySpec& spec, std::ostream* log) {
     if (spec.kind != BodyKind::file) return std::nullopt;
-    long long removed = 0;
-    TriangleSurface surface = read_surface_file(spec.file, removed);
-    if (removed > 0 && log)
-        *log << "  " << removed << " zero-area triangle" << (removed > 1 ? "s" : "")
-             << " of the surface removed (flipped, collapsed or dropped)\n";
+    std::string note;
+    TriangleSurface surface = read_surface_file(spec.file, &note);
+    if (!note.empty() && log) *log << "  " << note << "\n";
     const Mat3 rotation = rotation_from_axis_angle(spec.rotate_axis, spec.rotate_degrees);
     for (Vec3& p : surface.points) p = spec.translate + spec.scale * (rotation * p);
     // Triangles that all face inwards (some writers' convention, e.g. marching cubes on a

@@ -13,10 +13,11 @@ namespace hexmesh {
 
 // The surface in `file` (io/surface_reader.h) without its zero-area triangles (repeated or
 // collinear points, as marching cubes and some CAD exports leave them: removed by
-// without_zero_area_triangles, surface/surface_diagnostics.h), how many in `removed`. A
-// file whose zero-area triangles cannot be removed so is refused by the reader's own message
-// (the first one's line, or triangle in a binary STL, and corners), saying why.
-TriangleSurface read_surface_file(const std::string& file, long long& removed);
+// without_zero_area_triangles, surface/surface_diagnostics.h); when there were some, `note`
+// (if given) says how many, for the log. A file whose zero-area triangles cannot be removed so
+// is refused by the reader's own message (the first one's line, or triangle in a binary STL,
+// and corners), saying why.
+TriangleSurface read_surface_file(const std::string& file, std::string* note = nullptr);
 
 // The implicit function of `spec`: primitives, CSG nodes and their transforms; a surface file
 // is read by read_surface_file.

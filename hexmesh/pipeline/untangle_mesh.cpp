@@ -227,8 +227,7 @@ std::string describe_blocked(const std::vector<BlockedElement>& blocked) {
 
 void slip_on_file(const std::string& path, UntangleMeshOptions& options) {
     if (std::filesystem::path(path).extension() != ".json") {
-        long long removed = 0;
-        options.surface = read_surface_file(path, removed);
+        options.surface = read_surface_file(path);
         return;
     }
     const Case c = read_case(path);

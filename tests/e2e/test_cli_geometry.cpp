@@ -261,15 +261,8 @@ TEST(CliGeometry, ZeroAreaTrianglesAreRemoved) {
     const fs::path dir = scratch("zero_area");
     fs::remove_all(dir);
     fs::create_directories(dir);
-    TriangleSurface s = test::box_surface(Vec3(-1, -0.5, -0.5), Vec3(1, 0.5, 0.5), 2);
-    const int t = 7;
-    const int a = s.triangles[t][0], c = s.triangles[t][1], d = s.triangles[t][2];
-    s.points.push_back(0.5 * (s.points[a] + s.points[c]));
-    const int b = int(s.points.size()) - 1;
-    s.triangles[t] = {a, b, d};
-    s.triangles.push_back({b, c, d});
-    s.triangles.push_back({a, c, b});  // the needle
-    s.triangles.push_back({d, d, a});  // a repeated corner
+    const TriangleSurface s = test::with_zero_area_triangles(
+        test::box_surface(Vec3(-1, -0.5, -0.5), Vec3(1, 0.5, 0.5), 2));
     test::write_stl_binary((dir / "needle.stl").string(), s);
     std::ofstream(dir / "case.json") << R"({"geometry": {"file": "needle.stl"},)"
                                         R"( "grid": {"cells_per_edge": 8, "wall_cells": 4}})";

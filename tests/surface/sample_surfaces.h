@@ -100,6 +100,22 @@ inline TriangleSurface box_surface(const Vec3& lo, const Vec3& hi, int n = 1) {
     return s;
 }
 
+// `s` (closed, at least 8 triangles) with two zero-area triangles, as marching cubes and some
+// CAD exports leave them: the edge (a, c) of triangle 7 = (a, c, d) split at its middle b on
+// that triangle's side only, the gap against the unsplit neighbour (c, a, e) filled by the
+// needle (a, c, b); and (d, d, a), a triangle with a repeated point. Still closed and oriented.
+inline TriangleSurface with_zero_area_triangles(TriangleSurface s) {
+    const int t = 7;
+    const int a = s.triangles[t][0], c = s.triangles[t][1], d = s.triangles[t][2];
+    s.points.push_back(0.5 * (s.points[a] + s.points[c]));
+    const int b = int(s.points.size()) - 1;
+    s.triangles[t] = {a, b, d};
+    s.triangles.push_back({b, c, d});
+    s.triangles.push_back({a, c, b});  // the needle
+    s.triangles.push_back({d, d, a});  // a repeated point
+    return s;
+}
+
 // Capped cylinder about the z axis through the origin, caps as fans from their centres.
 inline TriangleSurface cylinder_surface(double radius, double height, int segments) {
     const double pi = 3.14159265358979323846;

@@ -89,17 +89,9 @@ namespace {
 // removed, the surface closed and oriented as before (every edge used once each way), its
 // volume unchanged. Without a surface to keep (a lone flat triangle) there is no answer.
 TEST(SurfaceDiagnostics, ZeroAreaTrianglesAreRemovedKeepingTheSurfaceClosed) {
-    TriangleSurface s = test::box_surface(Vec3::Zero(), Vec3(2, 1, 1), 2);
-    const double volume = signed_volume(s);
-    // An edge (a, c) of triangle t = (a, c, d): split at b on t's side only.
-    const int t = 7;
-    const int a = s.triangles[t][0], c = s.triangles[t][1], d = s.triangles[t][2];
-    s.points.push_back(0.5 * (s.points[a] + s.points[c]));
-    const int b = int(s.points.size()) - 1;
-    s.triangles[t] = {a, b, d};
-    s.triangles.push_back({b, c, d});
-    s.triangles.push_back({a, c, b});  // the needle, against the unsplit neighbour (c, a, e)
-    s.triangles.push_back({d, d, a});  // a repeated point
+    const TriangleSurface box = test::box_surface(Vec3::Zero(), Vec3(2, 1, 1), 2);
+    const double volume = signed_volume(box);
+    const TriangleSurface s = test::with_zero_area_triangles(box);
     ASSERT_EQ(diagnose_surface(s).degenerate_triangles, 2);
     long long removed = 0;
     const std::optional<TriangleSurface> fixed = without_zero_area_triangles(s, removed);
@@ -110,7 +102,6 @@ TEST(SurfaceDiagnostics, ZeroAreaTrianglesAreRemovedKeepingTheSurfaceClosed) {
     EXPECT_EQ(after.degenerate_triangles, 0);
     EXPECT_NEAR(signed_volume(*fixed), volume, 1e-12);
     // A surface without zero-area triangles comes back as it was.
-    const TriangleSurface box = test::box_surface(Vec3::Zero(), Vec3::Ones());
     ASSERT_TRUE(without_zero_area_triangles(box, removed).has_value());
     EXPECT_EQ(removed, 0);
     TriangleSurface flat;

@@ -118,6 +118,19 @@ OGridOptions typical_options() {
     return o;
 }
 
+// How far any node moves when `grid` (made with `o`) is built again from its own wall, as
+// after the surface pass.
+double moved_when_built_from_its_wall(const ImplicitFunction& body, const OGridOptions& o,
+                                      const BlockGrid& grid) {
+    OGridOptions again = o;
+    again.wall_from = &grid.points;
+    const BlockGrid rebuilt = make_o_grid(body, again);
+    double moved = 0;
+    for (size_t v = 0; v < grid.points.size(); ++v)
+        moved = std::max(moved, (rebuilt.points[v] - grid.points[v]).norm());
+    return moved;
+}
+
 // Runs f and expects std::invalid_argument whose message contains `words`.
 template <class F>
 void expect_invalid_argument(F&& f, const std::string& words) {
@@ -391,13 +404,7 @@ TEST(OGrid, TurnedBoxGetsThePatchCornersOnItsCorners) {
         EXPECT_LT((along.cwiseAbs() - Vec3::Constant(1 / std::sqrt(3.0))).norm(), 1e-9) << along;
         // Built again from its own wall (as after the surface pass), it is the same grid: the
         // patch corners and the far field's turn are read back from the wall's corner nodes.
-        OGridOptions again = o;
-        again.wall_from = &grid.points;
-        const BlockGrid rebuilt = make_o_grid(*box, again);
-        double moved = 0;
-        for (size_t v = 0; v < grid.points.size(); ++v)
-            moved = std::max(moved, (rebuilt.points[v] - grid.points[v]).norm());
-        EXPECT_LT(moved, 1e-9 * o.far_field_size);
+        EXPECT_LT(moved_when_built_from_its_wall(*box, o, grid), 1e-9 * o.far_field_size);
         OGridOptions bounds_box = o;
         bounds_box.patch_corners_on_body_corners = false;
         if (t.degrees != 60) {  // the cube's turned corners lie on its bounds' diagonals
@@ -446,13 +453,7 @@ TEST(OGrid, CrossGetsThePatchCornersOnConvexCorners) {
             << x.transpose();
         EXPECT_LT(inside_share(*cross, x, 0.25 * h), 0.2);
     }
-    OGridOptions again = o;
-    again.wall_from = &grid.points;
-    const BlockGrid rebuilt = make_o_grid(*cross, again);
-    double moved = 0;
-    for (size_t v = 0; v < grid.points.size(); ++v)
-        moved = std::max(moved, (rebuilt.points[v] - grid.points[v]).norm());
-    EXPECT_LT(moved, 1e-9 * o.far_field_size);
+    EXPECT_LT(moved_when_built_from_its_wall(*cross, o, grid), 1e-9 * o.far_field_size);
 }
 
 TEST(OGrid, BoxFarFieldNodesLieOnTheBoxFaces) {
