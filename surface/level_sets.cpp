@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <limits>
@@ -60,6 +61,66 @@ std::optional<Vec3> deepest_point(const ImplicitFunction& body, double step,
     return at.x;
 }
 
+std::vector<Vec3> deepest_candidates(const ImplicitFunction& body, double step, int count,
+                                     const std::function<double(const Vec3&)>& depth) {
+    const Box3 box = body.bounds();
+    const Eigen::Vector3i n = ((box.size() / step).array().ceil().cast<int>() + 1).max(2);
+    const auto at = [&](const Eigen::Vector3i& c) {
+        return Vec3(box.lo + step * c.cast<double>());
+    };
+    const auto index = [&](const Eigen::Vector3i& c) {
+        return (size_t(c.z()) * n.y() + c.y()) * n.x() + c.x();
+    };
+    constexpr double outside = -std::numeric_limits<double>::infinity();
+    std::vector<double> depths(size_t(n.x()) * n.y() * n.z());
+    tbb::parallel_for(0, n.z(), [&](int k) {
+        for (int j = 0; j < n.y(); ++j)
+            for (int i = 0; i < n.x(); ++i) {
+                const Eigen::Vector3i c(i, j, k);
+                const double u = body.value(at(c));
+                depths[index(c)] = !(u < 0) ? outside : depth ? depth(at(c)) : -u;
+            }
+    });
+    const double deepest = *std::max_element(depths.begin(), depths.end());
+    if (deepest == outside) return {};
+    // The plateau's points, each with the share of its ball of radius 2 deepest inside.
+    struct Candidate {
+        double share;
+        Eigen::Vector3i c;
+    };
+    std::vector<Candidate> plateau;
+    const int reach = int(std::ceil(2 * deepest / step));
+    for (int k = 0; k < n.z(); ++k)
+        for (int j = 0; j < n.y(); ++j)
+            for (int i = 0; i < n.x(); ++i) {
+                const Eigen::Vector3i c(i, j, k);
+                if (!(depths[index(c)] >= deepest - 0.5 * step)) continue;
+                long long in = 0, all = 0;
+                for (int dk = -reach; dk <= reach; ++dk)
+                    for (int dj = -reach; dj <= reach; ++dj)
+                        for (int di = -reach; di <= reach; ++di) {
+                            if ((di * di + dj * dj + dk * dk) * step * step > 4 * deepest * deepest)
+                                continue;
+                            const Eigen::Vector3i q = c + Eigen::Vector3i(di, dj, dk);
+                            ++all;
+                            in += (q.array() >= 0).all() && (q.array() < n.array()).all() &&
+                                  depths[index(q)] != outside;
+                        }
+                plateau.push_back({double(in) / double(all), c});
+            }
+    std::stable_sort(plateau.begin(), plateau.end(),
+                     [](const Candidate& a, const Candidate& b) { return a.share > b.share; });
+    std::vector<Vec3> chosen;
+    for (const Candidate& p : plateau) {
+        if (int(chosen.size()) == count) break;
+        const Vec3 x = at(p.c);
+        if (std::all_of(chosen.begin(), chosen.end(),
+                        [&](const Vec3& y) { return (x - y).norm() >= deepest; }))
+            chosen.push_back(x);
+    }
+    return chosen;
+}
+
 std::vector<Vec3> sphere_directions(int count) {
     std::vector<Vec3> d(count);
     const double golden = M_PI * (3 - std::sqrt(5.0));
@@ -72,29 +133,31 @@ std::vector<Vec3> sphere_directions(int count) {
 
 bool star_shaped_level(const ImplicitFunction& f, double c, const Vec3& centre,
                        const std::vector<Vec3>& directions, double step, double reach,
-                       double max_angle_deg) {
+                       double max_angle_deg, std::vector<Vec3>* crossings) {
     const double min_cos = std::cos(max_angle_deg * M_PI / 180);
     std::atomic<bool> star{true};
+    if (crossings) crossings->assign(directions.size(), centre);
     tbb::parallel_for(size_t(0), directions.size(), [&](size_t r) {
         if (!star) return;
         const Vec3& dir = directions[r];
-        int crossings = 0;
+        int times = 0;  // the ray crosses F = c
         double previous = f.value(centre) - c;
         double t_cross = 0;
         for (double t = step; t <= reach; t += step) {
             const double u = f.value(centre + t * dir) - c;
             if ((u > 0) != (previous > 0)) {
-                ++crossings;
+                ++times;
                 t_cross = t - step * u / (u - previous);
             }
             previous = u;
         }
-        if (crossings != 1 || previous <= 0) {
+        if (times != 1 || previous <= 0) {
             star = false;
             return;
         }
         const Vec3 g = f.gradient(centre + t_cross * dir);
         if (!(g.dot(dir) >= min_cos * g.norm())) star = false;
+        if (crossings) (*crossings)[r] = centre + t_cross * dir;
     });
     return star;
 }

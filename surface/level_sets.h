@@ -18,15 +18,22 @@ namespace hexmesh {
 std::optional<Vec3> deepest_point(const ImplicitFunction& body, double step,
                                   const std::function<double(const Vec3&)>& depth = {});
 
+// Points about as deep as the deepest (on the lattice of deepest_point, within half its step of
+// the greatest depth: a plateau, as along bars of one thickness), at most `count`, each at least
+// that depth from those before it, the ones whose ball of twice the depth holds the most of the
+// body first: where bars meet before along one. Empty when no lattice point is inside.
+std::vector<Vec3> deepest_candidates(const ImplicitFunction& body, double step, int count,
+                                     const std::function<double(const Vec3&)>& depth = {});
+
 // Unit directions spread evenly over the sphere (Fibonacci lattice), `count` of them.
 std::vector<Vec3> sphere_directions(int count);
 
 // Whether the level F = c of `f` is star-shaped around `centre`, seen along `directions`: each
 // ray centre + t dir crosses it once (F - c sampled every `step` out to `reach`, the sign
 // changes once, from below to above), and there at an angle of at most max_angle_deg between
-// the ray and grad F.
+// the ray and grad F. With `crossings`, when it is: the point where each ray crosses it.
 bool star_shaped_level(const ImplicitFunction& f, double c, const Vec3& centre,
                        const std::vector<Vec3>& directions, double step, double reach,
-                       double max_angle_deg);
+                       double max_angle_deg, std::vector<Vec3>* crossings = nullptr);
 
 }  // namespace hexmesh

@@ -2,32 +2,49 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <stdexcept>
 
+#include "hexmesh/pipeline/body_surface.h"
 #include "hexmesh/pipeline/exterior_paths.h"
 #include "hexmesh/pipeline/phase_timer.h"
 #include "hexmesh/pipeline/sphere_map.h"
 #include "surface/exact_distance.h"
 #include "surface/exterior_potential.h"
 #include "surface/level_sets.h"
+#include "surface/surface_topology.h"
 
 namespace hexmesh {
 namespace {
 
 constexpr int star_rays = 1000;
+// Lattice cells along the longest side of a formula or CSG body's bounds, for its surface
+// u = 0 (contour_body).
+constexpr int contour_cells = 96;
 
 std::string point(const Vec3& x) {
     return fmt::format("({:.4g}, {:.4g}, {:.4g})", x.x(), x.y(), x.z());
 }
 
 // Whether F = c is star-shaped around `centre` (rays sampled every `step`, angles up to
-// max_angle_deg).
+// max_angle_deg); with `crossings`, where each ray crosses it.
 bool star_shaped(const ImplicitFunction& f, double c, const Vec3& centre, double step,
-                 double max_angle_deg) {
+                 double max_angle_deg, std::vector<Vec3>* crossings = nullptr) {
     static const std::vector<Vec3> directions = sphere_directions(star_rays);
     const double reach = 1.01 * (f.bounds().size().norm() + (f.bounds().center() - centre).norm());
-    return star_shaped_level(f, c, centre, directions, step, reach, max_angle_deg);
+    return star_shaped_level(f, c, centre, directions, step, reach, max_angle_deg, crossings);
+}
+
+// The thickness of the case's boundary layer (0 without one).
+double layer_thickness(const Case& c) {
+    if (!c.boundary_layer) return 0;
+    const BoundaryLayerSpec& b = *c.boundary_layer;
+    return b.growth_ratio == 1
+               ? b.layers * b.first_height
+               : b.first_height * (std::pow(b.growth_ratio, b.layers) - 1) / (b.growth_ratio - 1);
 }
 
 // The centre the wall is placed from, what the log calls it, and whether rays from there
@@ -75,27 +92,69 @@ Centre choose_centre(const Case& c, const ImplicitFunction& body,
             "placed radially\n",
             point(centre.x));
         centre.radial = true;
+        return centre;
     }
+    // Bars of one thickness are as deep all along: the body may be star-shaped around another
+    // point as deep (where the bars meet), which the rays then place best.
+    for (const Vec3& x : deepest_candidates(body, box.diagonal() / 60, 8, depth))
+        if (star_shaped(body, 0, x, step, 90)) {
+            log << fmt::format(
+                "  the body is star-shaped around {}, as deep as its deepest point {}: wall "
+                "placed radially\n",
+                point(x), point(centre.x));
+            centre.x = x;
+            centre.what = "a point as deep as its deepest";
+            centre.radial = true;
+            return centre;
+        }
     return centre;
 }
 
 // The exterior potential of `body` and its first level (in tenths) star-shaped around
 // route.centre, into `route`.
-void exterior_level(const Case& c, const ImplicitFunction& body, const std::string& what,
-                    WallRoute& route, Lap& lap, std::ostream& log) {
+void exterior_level(const Case& c, const ImplicitFunction& body, const TriangleSurface* surface,
+                    const std::string& what, WallRoute& route, Lap& lap, std::ostream& log) {
     auto potential = std::make_shared<ExteriorPotential>(body);
     log << fmt::format(
         "  the body is not star-shaped around {} {}: exterior potential ({} "
         "unknowns, {} iterations, {:.2f} s)\n",
         what, point(route.centre), potential->unknowns(), potential->iterations(), lap());
-    for (int tenth = 1; tenth <= 9 && route.far_level == 0; ++tenth)
-        if (star_shaped(*potential, 0.1 * tenth, route.centre, potential->spacing() / 2, 80))
+    // The lines' boundary layer is laid along them up to their level, then the levels' cells:
+    // a level nearer the body than twice the layer's thickness would end lines inside their
+    // layer (at a convex tip, where the potential rises fast), its nodes pressed together.
+    const double room = 2 * layer_thickness(c);
+    std::optional<ExactDistance> exact;
+    if (surface && room > 0) exact.emplace(*surface);
+    double nearest = 0;  // of the last star-shaped level, to the body
+    std::vector<Vec3> crossings;
+    for (int tenth = 1; tenth <= 9 && route.far_level == 0; ++tenth) {
+        if (!star_shaped(*potential, 0.1 * tenth, route.centre, potential->spacing() / 2, 80,
+                         &crossings))
+            continue;
+        nearest = std::numeric_limits<double>::infinity();
+        if (room > 0)
+            for (const Vec3& x : crossings)
+                nearest = std::min(nearest, exact ? exact->distance(x) : body.value(x));
+        if (nearest >= room)
             route.far_level = 0.1 * tenth;
+        else
+            log << fmt::format(
+                "  its level {:.1f} is star-shaped but passes {:.3g} from the body, nearer than "
+                "twice the boundary layer's thickness ({:.3g}): a higher level is tried\n",
+                0.1 * tenth, nearest, room / 2);
+    }
     if (route.far_level == 0)
         throw InputError(
-            fmt::format("{}: no level of the exterior potential is star-shaped "
-                        "around {}: give grid.center near the middle of the body",
-                        c.path, point(route.centre)));
+            nearest > 0
+                ? fmt::format(
+                      "{}: no level of the exterior potential is star-shaped around {} "
+                      "and at least twice the boundary layer's thickness ({:.3g}) from "
+                      "the body (the highest star-shaped one passes {:.3g} from it): give a "
+                      "thinner boundary layer",
+                      c.path, point(route.centre), room / 2, nearest)
+                : fmt::format("{}: no level of the exterior potential is star-shaped "
+                              "around {}: give grid.center near the middle of the body",
+                              c.path, point(route.centre)));
     route.potential = std::move(potential);
 }
 
@@ -151,17 +210,41 @@ WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
     const Centre centre = choose_centre(c, body, surface, exact, step, log);
     route.centre = centre.x;
     if (centre.radial) return route;
+    // A formula or CSG body: its surface u = 0 contoured, for the map onto the sphere.
+    std::optional<TriangleSurface> contoured;
     if (!surface) {
-        // The map onto the sphere takes a surface file: formulas and CSG are placed radially
-        // all the same (the first point each ray meets), as a body whose rays cross u = 0 once
-        // but a few between the lattice's may be.
-        route.not_star_shaped = fmt::format("the body is not star-shaped around {} {}", centre.what,
-                                            point(route.centre));
-        log << "  " << route.not_star_shaped
-            << " (a surface file's would be mapped onto the sphere): wall placed radially all the "
-               "same\n";
-        return route;
+        Lap contouring;
+        try {
+            contoured = contour_body(body, contour_cells);
+        } catch (const std::invalid_argument& e) {
+            // The first point of u = 0 each ray meets: fine when only rays between the
+            // lattice's cross it again.
+            route.not_star_shaped = fmt::format("the body is not star-shaped around {} {}",
+                                                centre.what, point(route.centre));
+            log << "  " << route.not_star_shaped << " and its surface u = 0 was not contoured ("
+                << e.what() << "): wall placed radially all the same\n";
+            return route;
+        }
+        log << fmt::format(
+            "  its surface u = 0 contoured for the map onto the sphere ({} "
+            "triangles, {:.2f} s)\n",
+            contoured->triangles.size(), contouring());
+        // What the map cannot take, said as for a surface file (parts joined or split within a
+        // lattice cell may count wrong: the lattice is said).
+        const SurfaceTopology t = surface_topology(*contoured);
+        const double cell = body.bounds().size().maxCoeff() / contour_cells;
+        if (t.components.size() > 1)
+            throw InputError(fmt::format(
+                "{}: {} separate bodies (the surface u = 0 contoured on a lattice of {:.3g}): "
+                "hexmesh grids one closed body",
+                c.path, t.components.size(), cell));
+        if (const long long genus = t.components[0].genus; genus > 0)
+            throw InputError(fmt::format(
+                "{}: genus {}: the surface u = 0 (contoured on a lattice of {:.3g}) has {} "
+                "handle{}; hexmesh grids bodies without holes through them",
+                c.path, genus, cell, genus, genus > 1 ? "s" : ""));
     }
+    const TriangleSurface& mapped = surface ? *surface : *contoured;
     Lap lap;
     if (c.domain != Domain::exterior) {
         const double depth = exact ? exact->distance(route.centre) : -body.value(route.centre);
@@ -171,9 +254,9 @@ WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
         add_interior_potential(body, depth, route, log);
         lap();  // the sphere map's time from here
     } else {
-        exterior_level(c, body, centre.what, route, lap, log);
+        exterior_level(c, body, surface ? &*surface : nullptr, centre.what, route, lap, log);
     }
-    map_wall(c, *surface, body, cells_per_edge, route, lap, log);
+    map_wall(c, mapped, body, cells_per_edge, route, lap, log);
     route.solver = solver;
     route.solver.log = nullptr;
     return route;

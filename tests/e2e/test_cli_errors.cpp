@@ -54,9 +54,10 @@ TEST(CliErrors, NegativeSize) {
                    "geometry.sphere.radius: expected a positive number, got number -2");
 }
 
+// A formula's surface is contoured for the map onto the sphere, and its handles counted there.
 TEST(CliErrors, BodyThatCannotBeGridded) {
     expect_refused("torus", R"({"geometry": {"torus": {"major_radius": 1, "minor_radius": 0.3}}})",
-                   "the body is not star-shaped around its deepest point");
+                   "genus 1: the surface u = 0 (contoured on a lattice of");
 }
 
 // A boundary layer whose first cell alone fills more than half of a line: refused at once,

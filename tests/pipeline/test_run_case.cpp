@@ -86,11 +86,12 @@ TEST(RunCase, SurfaceIterationsZeroSkipsTheSurfacePass) {
 }
 
 TEST(RunCase, SurfacePassThatWouldShearTheVolumeIsUndone) {
-    // A sphere with a deep dimple: the surface pass spreads the wall nodes crowded on the
-    // dimple's steep side, so far from their radial lines that straight lines from the core
-    // would cross; the grid as constructed is kept, and the run ends valid.
+    // A sphere with a dimple, star-shaped around its centre: the surface pass spreads the wall
+    // nodes crowded on the dimple's steep side, so far from their radial lines that straight
+    // lines from the core would cross (40 cells); the grid as constructed is kept, and the run
+    // ends valid.
     const Case c = parse_case(R"({"geometry": {"difference": [{"sphere": {"radius": 1}},
-        {"sphere": {"center": [0, 0, 0.85], "radius": 0.6}}]},
+        {"sphere": {"center": [0, 0, 1.2], "radius": 0.7}}]},
         "grid": {"cells_per_edge": 18, "wall_cells": 8, "core_size": 0.15},
         "solver": {"optimize_iterations": 1}})",
                               "dimple.json");

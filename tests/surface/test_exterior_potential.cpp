@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <tuple>
 
 #include "surface/analytic.h"
 #include "surface/csg.h"
@@ -69,7 +70,14 @@ TEST(ExteriorPotential, EntersAGapFromItsOpeningAndItsLevelsAreStarShapedFarOut)
     const std::vector<Vec3> rays = sphere_directions(500);
     const double step = f.spacing() / 2, reach = 2;
     EXPECT_FALSE(star_shaped_level(u, 0, Vec3(0, -0.4, 0), rays, step, reach, 90));
-    EXPECT_TRUE(star_shaped_level(f, 0.9, Vec3::Zero(), rays, step, reach, 80));
+    std::vector<Vec3> crossings;
+    EXPECT_TRUE(star_shaped_level(f, 0.9, Vec3::Zero(), rays, step, reach, 80, &crossings));
+    // Where each ray crosses the level: on it, to the sampling's linear interpolation.
+    ASSERT_EQ(crossings.size(), rays.size());
+    for (size_t r = 0; r < rays.size(); ++r) {
+        EXPECT_NEAR(f.value(crossings[r]), 0.9, 0.01) << r;
+        EXPECT_NEAR(crossings[r].normalized().dot(rays[r]), 1, 1e-9) << r;
+    }
 }
 
 TEST(ExteriorPotential, InsideItFallsFromOneOnTheSourceBallToZeroOnTheWall) {
@@ -127,4 +135,29 @@ TEST(HarmonicDirections, RoundASphereWithRadialDataTheyAreRadial) {
             EXPECT_LT(t.norm(), 1 + 1e-6);
         }
     EXPECT_NEAR(theta.value(Vec3(5, 0, 0)).x(), 1, 1e-12);  // beyond the box: radial
+}
+
+// Bars of one thickness are as deep all along their axes: of the points as deep as the
+// deepest, the first candidate is where the bars meet (its ball of twice the depth holds the
+// most of the body), the others at least the depth apart.
+TEST(DeepestPoint, BarsOfOneThicknessMeetAtTheFirstCandidate) {
+    const Body ell = std::make_shared<Csg>(
+        CsgOp::Union,
+        std::vector<Body>{std::make_shared<Box>(Vec3::Zero(), Vec3(0.5, 0.15, 0.15)),
+                          std::make_shared<Box>(Vec3(-0.35, 0.35, 0), Vec3(0.15, 0.5, 0.15))});
+    const Body cross = std::make_shared<Csg>(
+        CsgOp::Union,
+        std::vector<Body>{std::make_shared<Box>(Vec3::Zero(), Vec3(0.5, 0.1, 0.1)),
+                          std::make_shared<Box>(Vec3(0.15, 0, 0), Vec3(0.1, 0.5, 0.1))});
+    for (const auto& [body, meet, half] :
+         {std::tuple{ell, Vec3(-0.35, 0, 0), 0.15}, std::tuple{cross, Vec3(0.15, 0, 0), 0.1}}) {
+        const double step = body->bounds().diagonal() / 60;
+        const std::vector<Vec3> c = deepest_candidates(*body, step, 8);
+        ASSERT_EQ(c.size(), 8u);
+        // Within the square where the bars meet, and as deep as the deepest to half the step.
+        EXPECT_LT((c[0] - meet).head<2>().cwiseAbs().maxCoeff(), half) << c[0].transpose();
+        for (const Vec3& x : c) EXPECT_NEAR(-body->value(x), half, 0.5 * step) << x.transpose();
+        for (size_t i = 0; i < c.size(); ++i)
+            for (size_t j = 0; j < i; ++j) EXPECT_GE((c[i] - c[j]).norm(), 0.9 * half);
+    }
 }
