@@ -26,7 +26,9 @@ TriangleSurface contour_body(const ImplicitFunction& body, int cells) {
     for (int a = 0; a < 3; ++a) n[a] = int(std::ceil(box.size()[a] / step)) + 5;  // nodes
     auto image = vtkSmartPointer<vtkImageData>::New();
     image->SetDimensions(n[0], n[1], n[2]);
-    image->SetOrigin(origin.x(), origin.y(), origin.z());
+    // VTK keeps the contour's points in single precision: the lattice is placed at the origin
+    // and moved back in double, so a body far from the origin keeps its digits.
+    image->SetOrigin(0, 0, 0);
     image->SetSpacing(step, step, step);
     auto values = vtkSmartPointer<vtkFloatArray>::New();
     values->SetNumberOfValues(vtkIdType(n[0]) * n[1] * n[2]);
@@ -54,7 +56,7 @@ TriangleSurface contour_body(const ImplicitFunction& body, int cells) {
     for (vtkIdType p = 0; p < out->GetNumberOfPoints(); ++p) {
         double x[3];
         out->GetPoint(p, x);
-        s.points.emplace_back(x[0], x[1], x[2]);
+        s.points.push_back(origin + Vec3(x[0], x[1], x[2]));
     }
     vtkCellArray* polys = out->GetPolys();
     polys->InitTraversal();
@@ -69,7 +71,12 @@ TriangleSurface contour_body(const ImplicitFunction& body, int cells) {
             step));
     long long removed = 0;
     std::optional<TriangleSurface> clean = without_zero_area_triangles(s, removed);
-    if (!clean)
+    const auto closed = [](const TriangleSurface& t) {
+        for (const auto& [edge, uses] : edge_uses(t.triangles))
+            if (uses != 2) return false;
+        return true;
+    };
+    if (!clean || !closed(*clean))
         throw std::invalid_argument(
             "its contour u = 0 is not a closed manifold surface (parts of the body touch within "
             "a lattice cell)");

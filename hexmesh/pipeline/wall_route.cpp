@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "hexmesh/pipeline/body_surface.h"
+#include "hexmesh/pipeline/build_blocks.h"
 #include "hexmesh/pipeline/exterior_paths.h"
 #include "hexmesh/pipeline/phase_timer.h"
 #include "hexmesh/pipeline/sphere_map.h"
@@ -16,6 +17,7 @@
 #include "surface/exterior_potential.h"
 #include "surface/level_sets.h"
 #include "surface/surface_topology.h"
+#include "volume/stretching.h"
 
 namespace hexmesh {
 namespace {
@@ -38,15 +40,6 @@ bool star_shaped(const ImplicitFunction& f, double c, const Vec3& centre, double
     return star_shaped_level(f, c, centre, directions, step, reach, max_angle_deg, crossings);
 }
 
-// The thickness of the case's boundary layer (0 without one).
-double layer_thickness(const Case& c) {
-    if (!c.boundary_layer) return 0;
-    const BoundaryLayerSpec& b = *c.boundary_layer;
-    return b.growth_ratio == 1
-               ? b.layers * b.first_height
-               : b.first_height * (std::pow(b.growth_ratio, b.layers) - 1) / (b.growth_ratio - 1);
-}
-
 // The centre the wall is placed from, what the log calls it, and whether rays from there
 // place it (the body is star-shaped around it).
 struct Centre {
@@ -56,16 +49,17 @@ struct Centre {
 };
 
 // grid.center, else the centre of the bounds; for an interior without grid.center, the deepest
-// point when the body is not star-shaped around that (depth: the exact distance to the surface
-// file, made into `exact` once the body is known not to be star-shaped, else -u).
+// point when the body is not star-shaped around that, or another point as deep around which it
+// is (deepest_candidates) (depth: the exact distance to the surface file, made into `exact` once
+// the body is known not to be star-shaped, else -u).
 Centre choose_centre(const Case& c, const ImplicitFunction& body,
                      const std::optional<TriangleSurface>& surface,
                      std::optional<ExactDistance>& exact, double step, std::ostream& log) {
     const Box3 box = body.bounds();
     Centre centre{c.grid.center.value_or(box.center()),
                   c.grid.center ? "grid.center" : "the centre of its bounds"};
-    // Outside a surface file's body the centre only needs to see the potential's far level.
-    if (c.grid.center && (c.domain != Domain::exterior || !surface) && !(body.value(centre.x) < 0))
+    // Outside, the centre only needs to see the potential's far level.
+    if (c.grid.center && c.domain != Domain::exterior && !(body.value(centre.x) < 0))
         throw InputError(
             fmt::format("{}: grid.center {} is not inside the body", c.path, point(centre.x)));
     if (body.value(centre.x) < 0 && star_shaped(body, 0, centre.x, step, 90)) {
@@ -103,7 +97,6 @@ Centre choose_centre(const Case& c, const ImplicitFunction& body,
                 "placed radially\n",
                 point(x), point(centre.x));
             centre.x = x;
-            centre.what = "a point as deep as its deepest";
             centre.radial = true;
             return centre;
         }
@@ -111,8 +104,9 @@ Centre choose_centre(const Case& c, const ImplicitFunction& body,
 }
 
 // The exterior potential of `body` and its first level (in tenths) star-shaped around
-// route.centre, into `route`.
-void exterior_level(const Case& c, const ImplicitFunction& body, const TriangleSurface* surface,
+// route.centre and at least twice the boundary layer's thickness from the body (distances to
+// `surface`, the file's or the contour), into `route`.
+void exterior_level(const Case& c, const ImplicitFunction& body, const TriangleSurface& surface,
                     const std::string& what, WallRoute& route, Lap& lap, std::ostream& log) {
     auto potential = std::make_shared<ExteriorPotential>(body);
     log << fmt::format(
@@ -122,9 +116,9 @@ void exterior_level(const Case& c, const ImplicitFunction& body, const TriangleS
     // The lines' boundary layer is laid along them up to their level, then the levels' cells:
     // a level nearer the body than twice the layer's thickness would end lines inside their
     // layer (at a convex tip, where the potential rises fast), its nodes pressed together.
-    const double room = 2 * layer_thickness(c);
+    const double room = 2 * layers_thickness(wall_layers(c));
     std::optional<ExactDistance> exact;
-    if (surface && room > 0) exact.emplace(*surface);
+    if (room > 0) exact.emplace(surface);
     double nearest = 0;  // of the last star-shaped level, to the body
     std::vector<Vec3> crossings;
     for (int tenth = 1; tenth <= 9 && route.far_level == 0; ++tenth) {
@@ -133,14 +127,13 @@ void exterior_level(const Case& c, const ImplicitFunction& body, const TriangleS
             continue;
         nearest = std::numeric_limits<double>::infinity();
         if (room > 0)
-            for (const Vec3& x : crossings)
-                nearest = std::min(nearest, exact ? exact->distance(x) : body.value(x));
+            for (const Vec3& x : crossings) nearest = std::min(nearest, exact->distance(x));
         if (nearest >= room)
             route.far_level = 0.1 * tenth;
         else
             log << fmt::format(
                 "  its level {:.1f} is star-shaped but passes {:.3g} from the body, nearer than "
-                "twice the boundary layer's thickness ({:.3g}): a higher level is tried\n",
+                "twice the boundary layer's thickness (2 x {:.3g}): a higher level is tried\n",
                 0.1 * tenth, nearest, room / 2);
     }
     if (route.far_level == 0)
@@ -148,7 +141,7 @@ void exterior_level(const Case& c, const ImplicitFunction& body, const TriangleS
             nearest > 0
                 ? fmt::format(
                       "{}: no level of the exterior potential is star-shaped around {} "
-                      "and at least twice the boundary layer's thickness ({:.3g}) from "
+                      "and at least twice the boundary layer's thickness (2 x {:.3g}) from "
                       "the body (the highest star-shaped one passes {:.3g} from it): give a "
                       "thinner boundary layer",
                       c.path, point(route.centre), room / 2, nearest)
@@ -210,12 +203,21 @@ WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
     const Centre centre = choose_centre(c, body, surface, exact, step, log);
     route.centre = centre.x;
     if (centre.radial) return route;
-    // A formula or CSG body: its surface u = 0 contoured, for the map onto the sphere.
+    // A body without a surface file (a formula, CSG, points): its surface u = 0 contoured for
+    // the map onto the sphere, on a finer lattice when parts a lattice cell apart joined or
+    // split on the first.
     std::optional<TriangleSurface> contoured;
     if (!surface) {
         Lap contouring;
+        SurfaceTopology t;
+        int cells = 0;
         try {
-            contoured = contour_body(body, contour_cells);
+            for (cells = contour_cells; cells <= 2 * contour_cells; cells *= 2) {
+                contoured = contour_body(body, cells);
+                t = surface_topology(*contoured);
+                if (t.components.size() == 1 && t.components[0].genus == 0) break;
+            }
+            cells = std::min(cells, 2 * contour_cells);
         } catch (const std::invalid_argument& e) {
             // The first point of u = 0 each ray meets: fine when only rays between the
             // lattice's cross it again.
@@ -225,23 +227,22 @@ WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
                 << e.what() << "): wall placed radially all the same\n";
             return route;
         }
+        const double cell = body.bounds().size().maxCoeff() / cells;
         log << fmt::format(
             "  its surface u = 0 contoured for the map onto the sphere ({} "
-            "triangles, {:.2f} s)\n",
-            contoured->triangles.size(), contouring());
-        // What the map cannot take, said as for a surface file (parts joined or split within a
-        // lattice cell may count wrong: the lattice is said).
-        const SurfaceTopology t = surface_topology(*contoured);
-        const double cell = body.bounds().size().maxCoeff() / contour_cells;
+            "triangles, lattice of {:.3g}, {:.2f} s)\n",
+            contoured->triangles.size(), cell, contouring());
+        // What the map cannot take, said as for a surface file.
         if (t.components.size() > 1)
             throw InputError(fmt::format(
-                "{}: {} separate bodies (the surface u = 0 contoured on a lattice of {:.3g}): "
-                "hexmesh grids one closed body",
+                "{}: {} separate bodies (the surface u = 0 contoured on a lattice of {:.3g}; "
+                "parts nearer than that count as joined): hexmesh grids one closed body",
                 c.path, t.components.size(), cell));
         if (const long long genus = t.components[0].genus; genus > 0)
             throw InputError(fmt::format(
-                "{}: genus {}: the surface u = 0 (contoured on a lattice of {:.3g}) has {} "
-                "handle{}; hexmesh grids bodies without holes through them",
+                "{}: genus {}: the surface u = 0 (contoured on a lattice of {:.3g}; parts nearer "
+                "than that count as joined) has {} handle{}; hexmesh grids bodies without holes "
+                "through them",
                 c.path, genus, cell, genus, genus > 1 ? "s" : ""));
     }
     const TriangleSurface& mapped = surface ? *surface : *contoured;
@@ -254,7 +255,7 @@ WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
         add_interior_potential(body, depth, route, log);
         lap();  // the sphere map's time from here
     } else {
-        exterior_level(c, body, surface ? &*surface : nullptr, centre.what, route, lap, log);
+        exterior_level(c, body, mapped, centre.what, route, lap, log);
     }
     map_wall(c, mapped, body, cells_per_edge, route, lap, log);
     route.solver = solver;

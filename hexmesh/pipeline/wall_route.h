@@ -40,8 +40,8 @@ struct WallRoute {
     // `potential` (add_interior_potential), the lines run in along its gradient lines to its
     // level far_level, then on straight to the core; else straight from the wall to the core.
     std::optional<Vec3> core_half;
-    // Radial all the same for a body that is not star-shaped (no surface file to map): why,
-    // for the message of a construction that then fails.
+    // Radial all the same for a body that is not star-shaped and whose surface u = 0 could not
+    // be contoured for the map: why, for the message of a construction that then fails.
     std::string not_star_shaped;
     untangle::UntangleOptions solver;  // of the 2D solves on the far-field sphere and levels
     // Exterior: the lines carried out level by level, repaired where neighbouring gradient
@@ -56,24 +56,29 @@ struct WallRoute {
 //   body is star-shaped around it (every one of 1000 rays crosses u = 0 once): the analytic and
 //   star-shaped bodies are placed as a ray from one centre places them;
 // - interior: else radial from the body's deepest point (smallest u) when it is star-shaped
-//   around that; else the wall lattice through a map of the surface onto the sphere, around a
+//   around that, or from another point as deep around which it is (deepest_candidates, 8 of
+//   them: where bars of one thickness meet); else the wall lattice through a map of the
+//   surface onto the sphere, around a
 //   core cube at the deepest point inside the largest ball there (half-size 0.45 of its
 //   radius), the lines in along the gradient lines of the body's interior potential
 //   (add_interior_potential) and on straight to the core, or, when its solve fails or it has
 //   no star-shaped level, straight from the wall to the core (the optimizer's untangling bends
-//   them into what sticks out; so are single lines laid, see OHGridOptions::paths); surface
-//   files only (see below);
+//   them into what sticks out; so are single lines laid, see OHGridOptions::paths);
 // - exterior: else the wall lattice through a map of the surface onto the sphere, and the
 //   lines out along the gradient lines of the body's exterior potential
 //   (surface/exterior_potential.h) to its lowest level in 0.1, 0.2, ... 0.9 that is star-shaped
 //   around the centre of the bounds (or grid.center), rays meeting it within 80 degrees of its
-//   normal (along fibres instead once add_directions has run); surface files only (see below).
+//   normal, and passes at least twice the boundary layer's thickness from the body (along
+//   fibres instead once add_directions has run).
+// The surface mapped is the surface file's; a body without one (a formula, CSG, points) has its
+// surface u = 0 contoured (hexmesh/pipeline/body_surface.h), at 96 lattice cells along its
+// longest side, again at 192 when that has handles or pieces, refused when it still has (as a
+// file's is), placed radially all the same when no contour comes out.
 // The choice, why, and the time of each step (potential, sphere map) go to `log`;
 // `cells_per_edge` and `solver` are those of its wall lattice and 2D solves. Throws InputError
-// naming the case when grid.center is outside the body (interior, or a formula outside) or when
-// no point of it is inside. A formula or CSG body that is not star-shaped is placed radially all
-// the same (the first point of u = 0 on each ray: fine when only rays between the lattice's
-// cross it again).
+// naming the case when grid.center is outside the body (interior only: outside, the centre need
+// only see the potential's far level), when no point of it is inside, for handles or several
+// pieces of a contour, or when no far level is star-shaped with room for the boundary layer.
 WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
                             const std::optional<TriangleSurface>& surface, int cells_per_edge,
                             const untangle::UntangleOptions& solver, std::ostream& log);

@@ -175,6 +175,28 @@ TEST(CliGeometry, InsideACrossTheWallIsPlacedFromWhereItsBarsMeet) {
     fs::remove_all(dir);
 }
 
+// An L of two bars: the centre of its bounds, from which the exterior lines are seen, lies
+// outside the body; the grid comes through the contour, and its grid.case.json (that centre
+// as grid.center) runs again to the same grid.
+TEST(CliGeometry, AnLOutsideRunsAgainFromItsOwnCaseFile) {
+    const fs::path dir = scratch("csg_ell");
+    CommandResult r;
+    const nlohmann::json q =
+        run_two_bars(dir, R"({"center": [0, 0, 0], "size": [1, 0.3, 0.3]})",
+                     R"({"center": [-0.35, 0.35, 0], "size": [0.3, 1, 0.3]})", "exterior", 12, r);
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    EXPECT_TRUE(q.at("valid").get<bool>());
+    EXPECT_GE(q.at("min_scaled_jacobian").get<double>(), 0.1);
+    const auto written = nlohmann::json::parse(read_text(dir / "out" / "grid.case.json"));
+    EXPECT_EQ(written.at("grid").at("center"), nlohmann::json::array({0.0, 0.35, 0.0}));
+    const CommandResult again = run_hexmesh("run '" + (dir / "out" / "grid.case.json").string() +
+                                            "' -o '" + (dir / "again").string() + "'");
+    ASSERT_EQ(again.exit_code, 0) << again.out << again.err;
+    const auto q2 = nlohmann::json::parse(read_text(dir / "again" / "quality.json"));
+    EXPECT_EQ(q2.at("min_scaled_jacobian"), q.at("min_scaled_jacobian"));
+    fs::remove_all(dir);
+}
+
 // A box STL made here (coordinates exact in single precision): its 12 edges and 8 corners
 // become grid lines and grid nodes, in a single block and in the O-H grid, and the grid's
 // wall lies on the surface up to rounding. With "feature_angle": 180 the same O-H grid has

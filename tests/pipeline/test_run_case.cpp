@@ -86,10 +86,12 @@ TEST(RunCase, SurfaceIterationsZeroSkipsTheSurfacePass) {
 }
 
 TEST(RunCase, SurfacePassThatWouldShearTheVolumeIsUndone) {
-    // A sphere with a dimple, star-shaped around its centre: the surface pass spreads the wall
-    // nodes crowded on the dimple's steep side, so far from their radial lines that straight
-    // lines from the core would cross (40 cells); the grid as constructed is kept, and the run
-    // ends valid.
+    // A sphere with a dimple whose rim the rays from the centre graze (the dimple's sphere, 1.2
+    // from it, of radius 0.7: only a band 0.03 degrees wide at the rim sees u = 0 twice, which
+    // the star test's 1000 rays miss, so the wall is placed radially): the surface pass spreads
+    // the wall nodes crowded on the dimple's steep side, so far from their radial lines that
+    // straight lines from the core would cross (40 cells); the grid as constructed is kept, and
+    // the run ends valid. With a dimple no ray meets twice (1.25, 0.7) the surface pass is kept.
     const Case c = parse_case(R"({"geometry": {"difference": [{"sphere": {"radius": 1}},
         {"sphere": {"center": [0, 0, 1.2], "radius": 0.7}}]},
         "grid": {"cells_per_edge": 18, "wall_cells": 8, "core_size": 0.15},
@@ -100,6 +102,28 @@ TEST(RunCase, SurfacePassThatWouldShearTheVolumeIsUndone) {
     std::ostringstream log;
     const RunResult result = run_case(c, dir.string(), RunOptions{}, log);
     EXPECT_NE(log.str().find("the grid as constructed is kept"), std::string::npos) << log.str();
+    EXPECT_EQ(result.report.quality.inverted_cells, 0);
+    EXPECT_GT(result.report.quality.min_scaled_jacobian, 0);
+    fs::remove_all(dir);
+}
+
+TEST(RunCase, ADeepDimpleIsMappedThroughItsContour) {
+    // A sphere with a dimple as deep as its radius is star-shaped neither around its centre nor
+    // around its deepest point: its surface u = 0 is contoured and mapped onto the sphere, and
+    // the lines run in along the interior potential.
+    const Case c = parse_case(R"({"geometry": {"difference": [{"sphere": {"radius": 1}},
+        {"sphere": {"center": [0, 0, 0.85], "radius": 0.6}}]},
+        "grid": {"cells_per_edge": 12, "wall_cells": 8},
+        "solver": {"optimize_iterations": 1}})",
+                              "dimple.json");
+    const fs::path dir = fs::temp_directory_path() / "hexmesh_test_run_case_deep_dimple";
+    fs::remove_all(dir);
+    std::ostringstream log;
+    const RunResult result = run_case(c, dir.string(), RunOptions{}, log);
+    EXPECT_NE(log.str().find("its surface u = 0 contoured for the map onto the sphere"),
+              std::string::npos)
+        << log.str();
+    EXPECT_NE(log.str().find("lines in to the potential's level"), std::string::npos) << log.str();
     EXPECT_EQ(result.report.quality.inverted_cells, 0);
     EXPECT_GT(result.report.quality.min_scaled_jacobian, 0);
     fs::remove_all(dir);
