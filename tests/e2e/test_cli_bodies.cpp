@@ -303,7 +303,7 @@ TEST(CliBodies, AGridWhoseWallBridgesAPitIsWrittenWithAWarning) {
 // layer on target. The quicker ones of the table in bench/RESULTS.md (3-41 s each): the part
 // and the U outside are not star-shaped (wall through the sphere map, lines up the exterior
 // potential), the others are around the centre of their bounds. The bull outside's joint pass
-// leaves 2 inverted elements at the wall, which the boundary layer laid again along the
+// leaves an inverted element at the wall, which the boundary layer laid again along the
 // normals frees (the log says so). Outside, the untangling weighs
 // every corner tet the same (docs/architecture.md#the-functional): the wing outside took 77 s
 // without, the cross 25 s, the tripod 24 s. The worst cells are lifted node by node last (README,
