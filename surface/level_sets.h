@@ -10,20 +10,35 @@
 
 namespace hexmesh {
 
-// The deepest point of the body (inside, u < 0, and farthest from its surface: `depth`, or -u
-// when no depth is given) on the lattice of spacing `step` over its bounds, then moved to the
-// best of its neighbours at half, quarter ... the step: where a grid centre sees the most of
-// the body. A surface file's u is a distance only near the surface: its depth must come from
-// elsewhere (surface/exact_distance.h). nullopt when no lattice point is inside.
-std::optional<Vec3> deepest_point(const ImplicitFunction& body, double step,
+// The depths of the body on the lattice of spacing `step` over its bounds (node c at
+// bounds.lo + step c, x fastest): inside (u < 0) `depth` there, or -u when no depth is given;
+// -infinity outside. A surface file's u is a distance only near the surface: its depth must
+// come from elsewhere (surface/exact_distance.h).
+struct DepthLattice {
+    Vec3 lo = Vec3::Zero();
+    double step = 0;
+    Eigen::Vector3i n = Eigen::Vector3i::Zero();  // nodes along x, y, z
+    std::vector<double> depths;
+
+    Vec3 at(const Eigen::Vector3i& c) const { return lo + step * c.cast<double>(); }
+    size_t index(const Eigen::Vector3i& c) const {
+        return (size_t(c.z()) * n.y() + c.y()) * n.x() + c.x();
+    }
+};
+DepthLattice depth_lattice(const ImplicitFunction& body, double step,
+                           const std::function<double(const Vec3&)>& depth = {});
+
+// The deepest node of `lattice` (depth_lattice of `body` with the same `depth`; of equals, the
+// least in x, then y, then z), then moved to the best of its neighbours at half, quarter ...
+// the step: where a grid centre sees the most of the body. nullopt when no node is inside.
+std::optional<Vec3> deepest_point(const ImplicitFunction& body, const DepthLattice& lattice,
                                   const std::function<double(const Vec3&)>& depth = {});
 
-// Points about as deep as the deepest (on the lattice of deepest_point, within half its step of
-// the greatest depth: a plateau, as along bars of one thickness), at most `count`, each at least
-// that depth from those before it, the ones whose ball of twice the depth holds the most of the
-// body first: where bars meet before along one. Empty when no lattice point is inside.
-std::vector<Vec3> deepest_candidates(const ImplicitFunction& body, double step, int count,
-                                     const std::function<double(const Vec3&)>& depth = {});
+// Nodes of `lattice` about as deep as the deepest (within half its step of the greatest depth:
+// a plateau, as along bars of one thickness), at most `count`, each at least that depth from
+// those before it, the ones whose ball of twice the depth holds the most of the body first:
+// where bars meet before along one. Empty when no node is inside.
+std::vector<Vec3> deepest_candidates(const DepthLattice& lattice, int count);
 
 // Unit directions spread evenly over the sphere (Fibonacci lattice), `count` of them.
 std::vector<Vec3> sphere_directions(int count);

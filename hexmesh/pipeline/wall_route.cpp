@@ -72,7 +72,8 @@ Centre choose_centre(const Case& c, const ImplicitFunction& body,
     if (surface && c.domain != Domain::exterior) exact.emplace(*surface);
     if (c.domain == Domain::exterior || c.grid.center) return centre;
     const auto depth = [&](const Vec3& x) { return exact ? exact->distance(x) : -body.value(x); };
-    const std::optional<Vec3> deepest = deepest_point(body, box.diagonal() / 60, depth);
+    const DepthLattice lattice = depth_lattice(body, box.diagonal() / 60, depth);
+    const std::optional<Vec3> deepest = deepest_point(body, lattice, depth);
     if (!deepest)
         throw InputError(
             fmt::format("{}: no point of the body is inside it (u < 0 nowhere "
@@ -90,7 +91,7 @@ Centre choose_centre(const Case& c, const ImplicitFunction& body,
     }
     // Bars of one thickness are as deep all along: the body may be star-shaped around another
     // point as deep (where the bars meet), which the rays then place best.
-    for (const Vec3& x : deepest_candidates(body, box.diagonal() / 60, 8, depth))
+    for (const Vec3& x : deepest_candidates(lattice, 8))
         if (star_shaped(body, 0, x, step, 90)) {
             log << fmt::format(
                 "  the body is star-shaped around {}, as deep as its deepest point {}: wall "
@@ -212,12 +213,12 @@ WallRoute choose_wall_route(const Case& c, const ImplicitFunction& body,
         SurfaceTopology t;
         int cells = 0;
         try {
-            for (cells = contour_cells; cells <= 2 * contour_cells; cells *= 2) {
+            for (const int lattice : {contour_cells, 2 * contour_cells}) {
+                cells = lattice;
                 contoured = contour_body(body, cells);
                 t = surface_topology(*contoured);
                 if (t.components.size() == 1 && t.components[0].genus == 0) break;
             }
-            cells = std::min(cells, 2 * contour_cells);
         } catch (const std::invalid_argument& e) {
             // The first point of u = 0 each ray meets: fine when only rays between the
             // lattice's cross it again.

@@ -149,7 +149,7 @@ TEST(DeepestPoint, BarsOfOneThicknessMeetAtTheFirstCandidate) {
     for (const auto& [body, meet, half] :
          {std::tuple{ell, Vec3(-0.35, 0, 0), 0.15}, std::tuple{cross, Vec3(0.15, 0, 0), 0.1}}) {
         const double step = body->bounds().diagonal() / 60;
-        const std::vector<Vec3> c = deepest_candidates(*body, step, 8);
+        const std::vector<Vec3> c = deepest_candidates(depth_lattice(*body, step), 8);
         ASSERT_EQ(c.size(), 8u);
         // Within the square where the bars meet, and as deep as the deepest to half the step.
         EXPECT_LT((c[0] - meet).head<2>().cwiseAbs().maxCoeff(), half) << c[0].transpose();
