@@ -108,10 +108,10 @@ TriangleSurface resampled(const TriangleSurface& s, size_t triangles) {
     return out;
 }
 
-// The highest point whose neighbours, the boundary of Tutte's disk, are joined by no edge
-// but those around it: an edge across the disk's boundary (a chord) would hold a triangle of
-// three boundary points, flat or turned over in the embedding.
-int chord_free_pole(const TriangleSurface& s) {
+// The point farthest along `up` whose neighbours, the boundary of Tutte's disk, are joined
+// by no edge but those around it: an edge across the disk's boundary (a chord) would hold a
+// triangle of three boundary points, flat or turned over in the embedding.
+int chord_free_pole(const TriangleSurface& s, const Vec3& up) {
     const std::unordered_map<std::uint64_t, int> edges = edge_uses(s.triangles);
     std::vector<std::vector<int>> around(s.points.size());
     for (const auto& t : s.triangles)
@@ -122,7 +122,7 @@ int chord_free_pole(const TriangleSurface& s) {
     std::vector<int> order(s.points.size());
     std::iota(order.begin(), order.end(), 0);
     std::sort(order.begin(), order.end(),
-              [&](int a, int b) { return s.points[a].z() > s.points[b].z(); });
+              [&](int a, int b) { return s.points[a].dot(up) > s.points[b].dot(up); });
     for (int p : order) {
         std::vector<int>& ring = around[p];
         std::sort(ring.begin(), ring.end());
@@ -237,6 +237,34 @@ std::vector<Vec3> tutte_on_sphere(const TriangleSurface& s, int pole) {
     return sphere;
 }
 
+// The functional of the map on the sphere, from the first map `sphere`: each triangle's
+// target its own shape on the surface `s`, scaled so the targets cover the sphere; points
+// slide on the sphere.
+untangle::Problem sphere_problem(const TriangleSurface& s, std::vector<Vec3> sphere) {
+    // Targets: each triangle's own shape, scaled so their areas add up to the sphere's.
+    const double scale = std::sqrt(4 * M_PI / surface_area(s));
+    untangle::Problem p;
+    p.kinds.assign(sphere.size(), VertexKind::slip);
+    p.points = std::move(sphere);
+    for (const auto& t : s.triangles) {
+        const Vec3 e1 = scale * (s.points[t[1]] - s.points[t[0]]);
+        const Vec3 e2 = scale * (s.points[t[2]] - s.points[t[0]]);
+        const double l1 = e1.norm(), twice = e1.cross(e2).norm();
+        if (!(twice > 1e-12 * l1 * l1)) continue;  // no shape to keep
+        Eigen::Matrix2d h;
+        h << l1, e1.dot(e2) / l1, 0, twice / l1;
+        untangle::TriangleTarget target;
+        target.inverse = h.inverse();
+        target.weight = twice / 2;
+        p.triangles.push_back({t[0], t[1], t[2]});
+        p.triangle_targets.push_back(target);
+    }
+    p.length_scale = std::sqrt(4 * M_PI / double(s.triangles.size()));
+    p.surface_normal = [](Id, const Vec3& x) { return x; };
+    p.project_to_surface = [](Id, const Vec3& x) { return Vec3(x.normalized()); };
+    return p;
+}
+
 }  // namespace
 
 // Triangles binned by the cells of a uniform lattice over [-1, 1]^3 their spherical triangle
@@ -323,44 +351,45 @@ SphereMap map_to_sphere(const TriangleSurface& input, const SphereMapOptions& o,
             fmt::format("the surface is not one closed piece of genus 0 "
                         "({} pieces, the largest with V - E + F = {})",
                         t.components.size(), t.components[0].euler));
-    const int pole = chord_free_pole(s);
-    std::vector<Vec3> sphere(s.points.size());
-    if (start)
-        tbb::parallel_for(size_t(0), sphere.size(),
-                          [&](size_t i) { sphere[i] = start(s.points[i]); });
-    else
-        sphere = tutte_on_sphere(s, pole);
-
-    // Targets: each triangle's own shape, scaled so their areas add up to the sphere's.
-    const double scale = std::sqrt(4 * M_PI / surface_area(s));
-    untangle::Problem p;
-    p.points = sphere;
-    p.kinds.assign(sphere.size(), VertexKind::slip);
-    for (const auto& t : s.triangles) {
-        const Vec3 e1 = scale * (s.points[t[1]] - s.points[t[0]]);
-        const Vec3 e2 = scale * (s.points[t[2]] - s.points[t[0]]);
-        const double l1 = e1.norm(), twice = e1.cross(e2).norm();
-        if (!(twice > 1e-12 * l1 * l1)) continue;  // no shape to keep
-        Eigen::Matrix2d h;
-        h << l1, e1.dot(e2) / l1, 0, twice / l1;
-        untangle::TriangleTarget target;
-        target.inverse = h.inverse();
-        target.weight = twice / 2;
-        p.triangles.push_back({t[0], t[1], t[2]});
-        p.triangle_targets.push_back(target);
-    }
-    p.length_scale = std::sqrt(4 * M_PI / double(s.triangles.size()));
-    p.surface_normal = [](Id, const Vec3& x) { return x; };
-    p.project_to_surface = [](Id, const Vec3& x) { return Vec3(x.normalized()); };
     untangle::UntangleOptions u;
     u.optimize_solver = o.solver;
     u.theta = o.theta;
     u.max_optimize_iterations = o.iterations;
     u.regularize_below = 1e-3;
     u.log = nullptr;
-    const untangle::UntangleResult r = untangle::untangle_and_optimize(p, u);
-    if (o.log) *o.log << untangle::format_untangle_summary(r);
-    return SphereMap(std::move(s), std::move(p.points));
+    // The first map may start with triangles turned over that the functional does not repair
+    // (a body with four bent limbs: 3 left from its highest point, none from its lowest):
+    // then the map again with the pole at the body's other extremes, the best kept (fewest
+    // triangles turned over, then lowest energy).
+    std::vector<Vec3> best;
+    untangle::UntangleResult best_r;
+    int tried = 0;
+    const Vec3 ups[] = {Vec3::UnitZ(),  -Vec3::UnitZ(), Vec3::UnitX(),
+                        -Vec3::UnitX(), Vec3::UnitY(),  -Vec3::UnitY()};
+    for (const Vec3& up : ups) {
+        std::vector<Vec3> sphere(s.points.size());
+        if (start)
+            tbb::parallel_for(size_t(0), sphere.size(),
+                              [&](size_t i) { sphere[i] = start(s.points[i]); });
+        else
+            sphere = tutte_on_sphere(s, chord_free_pole(s, up));
+        untangle::Problem p = sphere_problem(s, std::move(sphere));
+        const untangle::UntangleResult r = untangle::untangle_and_optimize(p, u);
+        ++tried;
+        if (best.empty() || r.inverted_after < best_r.inverted_after ||
+            (r.inverted_after == best_r.inverted_after && r.energy_after < best_r.energy_after))
+            best = std::move(p.points), best_r = r;
+        if (best_r.inverted_after == 0 || start) break;
+    }
+    if (o.log) {
+        *o.log << untangle::format_untangle_summary(best_r);
+        if (tried > 1)
+            *o.log << fmt::format(
+                "  Tutte's map tried from {} poles (the body's highest point first, then its other "
+                "extremes): {} triangles left turned over by the best\n",
+                tried, best_r.inverted_after);
+    }
+    return SphereMap(std::move(s), std::move(best));
 }
 
 SphereMap aligned_with_body(const SphereMap& map, const Vec3& centre) {

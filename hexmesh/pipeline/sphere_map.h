@@ -59,7 +59,11 @@ class SphereMap {
 // onto the sphere by the inverse stereographic projection with the removed point at the north
 // pole; then the 2D functional (docs/architecture.md#the-functional) on the sphere (points
 // sliding on it), each triangle's target its own shape scaled so the targets cover the sphere,
-// minimized with the barrier, which never lets a triangle turn over. Throws
+// minimized with the barrier, which never lets a triangle turn over. When the map starts
+// with triangles turned over that the functional leaves so (seen on a body with bent limbs,
+// whose far parts Tutte's map squeezes into tiny triangles), it is made again with the removed
+// point at the body's lowest point, then at its extremes along x and y, and the one with the fewest
+// turned over kept (then the lowest energy); options.log says so. Throws
 // std::invalid_argument for a surface that is not one closed piece of genus 0 once capped.
 // With `start`, the first map is start(point) (unit vectors; some triangles may turn over,
 // which the functional's untangling repairs) instead of Tutte's.
