@@ -42,6 +42,13 @@ def random_direction(rng):
     return unit(rng.normal(size=3))
 
 
+def outer(limb, s):
+    """Segment s of a limb's two; of the first, only the part beyond 45 % of it from the root
+    (where two limbs' roots may touch)."""
+    a, b = limb["points"][s], limb["points"][s + 1]
+    return (a + 0.45 * (b - a) if s == 0 else a), b
+
+
 def draw_body(rng):
     """One body: its core and limbs (a dict), or None when its limbs could not be kept apart."""
     core = {"box": bool(rng.random() < 0.5), "half": rng.uniform(0.25, 0.55, size=3)}
@@ -64,26 +71,13 @@ def draw_body(rng):
             foot = knee + rng.uniform(0.25, 0.55) * second_dir
             limb = {"points": [root, knee, foot], "radius": radius}
             # Clear of the other limbs outside the core (their roots may meet inside it).
-            clear = True
-            for other in limbs:
-                gap = 0.08 + radius + other["radius"]
-                for s in range(2):
-                    for t in range(2):
-                        a, b = limb["points"][s], limb["points"][s + 1]
-                        c, d = other["points"][t], other["points"][t + 1]
-                        if s == 0:
-                            a = a + 0.9 * (b - a) * 0.5  # the part near the root may touch
-                        if t == 0:
-                            c = c + 0.9 * (d - c) * 0.5
-                        if segments_distance(a, b, c, d) < gap:
-                            clear = False
-            # The foot's limb must not come back into the core (that would close a loop).
-            if clear:
-                half = core["half"] + radius + 0.05
-                for p in (limb["points"][2],):
-                    inside = (np.all(np.abs(p) < half) if core["box"]
-                              else np.linalg.norm(p / half) < 1.0)
-                    clear = clear and not inside
+            clear = all(segments_distance(*outer(limb, s), *outer(other, t))
+                        >= 0.08 + radius + other["radius"]
+                        for other in limbs for s in range(2) for t in range(2))
+            # The foot must not come back into the core (that would close a loop).
+            half = core["half"] + radius + 0.05
+            clear = clear and not (np.all(np.abs(foot) < half) if core["box"]
+                                   else np.linalg.norm(foot / half) < 1.0)
             if clear:
                 limbs.append(limb)
                 break
