@@ -221,7 +221,7 @@ BoundaryLayerSpec parse_boundary_layer(const JsonFields& b, const GridSpec& grid
 
 SolverSpec parse_solver(const JsonFields& s) {
     s.allow_only({"untangle", "optimize", "theta", "max_iterations", "optimize_iterations",
-                  "surface_iterations"});
+                  "surface_iterations", "wall_fidelity"});
     SolverSpec solver;
     const auto methods = {"explicit", "block-diagonal", "coordinate-split", "newton-cg", "lbfgs"};
     solver.untangle = s.choice("untangle", solver.untangle, methods);
@@ -233,6 +233,9 @@ SolverSpec parse_solver(const JsonFields& s) {
         s.integer("optimize_iterations", solver.optimize_iterations, 0, 1000000);
     solver.surface_iterations =
         s.integer("surface_iterations", solver.surface_iterations, 0, 1000000);
+    solver.wall_fidelity = s.number("wall_fidelity", solver.wall_fidelity);
+    if (!(solver.wall_fidelity >= 0 && solver.wall_fidelity <= 1e6))
+        s.fail("wall_fidelity", "a number from 0 to 1e6");
     return solver;
 }
 
@@ -370,7 +373,8 @@ std::string case_to_json(const Case& c) {
                       {"theta", c.solver.theta},
                       {"max_iterations", c.solver.max_iterations},
                       {"optimize_iterations", c.solver.optimize_iterations},
-                      {"surface_iterations", c.solver.surface_iterations}};
+                      {"surface_iterations", c.solver.surface_iterations},
+                      {"wall_fidelity", c.solver.wall_fidelity}};
     return root.dump(2) + "\n";
 }
 

@@ -144,6 +144,12 @@ struct SolverSpec {
     // Barrier outer iterations of the surface pass (the wall grid alone on u = 0 with the 2D
     // functional, before the volume); 0 skips it.
     int surface_iterations = 10;
+    // Weight of the term that holds the wall quads to the body between their nodes in the
+    // surface pass, the joint optimization and the polish (hexmesh/pipeline/corner_tets.h:
+    // hold_wall_quads): a quad whose centre lies one wall cell off the body costs this many
+    // times its cell's best shape energy. 0 (the default) lets wall nodes slide wherever the
+    // cells are best (bench/RESULTS.md, "Wall quads held to the body").
+    double wall_fidelity = 0;
 };
 
 // A nested grid-convergence family: `run` writes levels 1..levels, each level the one before

@@ -67,6 +67,11 @@ Assembly::Assembly(const Problem& problem, Id chunk_elements) : problem_(problem
     for (const auto& t : problem.triangles)
         if (!std::all_of(t.begin(), t.end(), valid))
             throw std::invalid_argument("element refers to a missing vertex");
+    for (const HeldQuad& q : problem.held_quads)
+        if (!std::all_of(q.nodes.begin(), q.nodes.end(), valid))
+            throw std::invalid_argument("held quad refers to a missing vertex");
+    if (!problem.held_quads.empty() && (!problem.surface_value || !problem.surface_normal))
+        throw std::invalid_argument("held quads need the surface's value and normal");
 
     // Chunks of consecutive elements (a hex's corner tets together, targets streaming from
     // memory in order; the mesh's own order usually keeps neighbours close), coloured; chunks
@@ -82,14 +87,19 @@ Assembly::Assembly(const Problem& problem, Id chunk_elements) : problem_(problem
     for (Id v = 0; v < nv; ++v) adjacent[v].push_back(int32_t(v));
     // Rows are short (about 20 blocks for hex corner tets): a linear search keeps each row
     // free of duplicates as it grows, so no row ever holds the 16 pairs of every element.
+    const auto join = [&adjacent](Id a, Id b) {
+        if (a < b &&
+            std::find(adjacent[a].begin(), adjacent[a].end(), int32_t(b)) == adjacent[a].end())
+            adjacent[a].push_back(int32_t(b));
+    };
     for (Id e = 0; e < ne; ++e) {
         const ElementNodes t = problem.element(e);
         for (Id a : t)
-            for (Id b : t)
-                if (a < b && std::find(adjacent[a].begin(), adjacent[a].end(), int32_t(b)) ==
-                                 adjacent[a].end())
-                    adjacent[a].push_back(int32_t(b));
+            for (Id b : t) join(a, b);
     }
+    for (const HeldQuad& q : problem.held_quads)
+        for (Id a : q.nodes)
+            for (Id b : q.nodes) join(a, b);
     pattern_.row_start.assign(nv + 1, 0);
     for (Id v = 0; v < nv; ++v) {
         if (adjacent[v].size() > std::numeric_limits<uint16_t>::max())
@@ -179,8 +189,8 @@ double Assembly::energy(const std::vector<Vec3>& x, const EnergyParams& p) const
     // Summed by hex (8 corner tets at once), plain tet and triangle.
     const Id hexes = Id(problem_.hexes.size()), tets = Id(problem_.tets.size());
     const std::vector<Vec3> normals = triangle_normals(x);
-    return deterministic_sum(
-        size_t(hexes + tets) + problem_.triangles.size(), grain, [&](size_t u) {
+    const double elements =
+        deterministic_sum(size_t(hexes + tets) + problem_.triangles.size(), grain, [&](size_t u) {
             if (Id(u) < hexes) {
                 const Vec3& edges = problem_.hex_edges[u];
                 return hex_weight_factor(edges, p) * hex_energy(hex_corners(x, Id(u)), edges, p);
@@ -194,6 +204,31 @@ double Assembly::energy(const std::vector<Vec3>& x, const EnergyParams& p) const
             return triangle_energy(Problem::corners(x, problem_.triangles[r]), normals[r],
                                    problem_.triangle_targets[r], p);
         });
+    return elements + held_quads_term(x, p, nullptr);
+}
+
+double Assembly::held_quads_term(const std::vector<Vec3>& x, const EnergyParams& p,
+                                 std::vector<Vec3>* g,
+                                 const std::function<void(Id, const Mat3&)>& scatter) const {
+    const std::vector<HeldQuad>& quads = problem_.held_quads;
+    if (quads.empty()) return 0;
+    std::vector<double> value(quads.size());
+    std::vector<Vec3> normal(quads.size());
+    tbb::parallel_for(size_t(0), quads.size(), [&](size_t q) {
+        const auto& n = quads[q].nodes;
+        const Vec3 c = (x[n[0]] + x[n[1]] + x[n[2]] + x[n[3]]) / 4;
+        value[q] = problem_.surface_value(c);
+        normal[q] = problem_.surface_normal(n[0], c).normalized();
+    });
+    double sum = 0;
+    for (size_t q = 0; q < quads.size(); ++q) {
+        const double w = p.equal_weights ? quads[q].unit_weight : quads[q].weight, u = value[q];
+        sum += w * u * u;
+        if (g)
+            for (Id v : quads[q].nodes) (*g)[v] += (w * u / 2) * normal[q];
+        if (scatter) scatter(Id(q), (w / 8) * normal[q] * normal[q].transpose());
+    }
+    return sum;
 }
 
 template <class Kernel>
@@ -233,11 +268,11 @@ double Assembly::sum_by_colour_elements(HexKernel&& hex_kernel, TetKernel&& tet_
 template <class ScatterHex, class ScatterTet, class ScatterTriangle>
 double Assembly::assemble_hessian(const std::vector<Vec3>& x, const EnergyParams& p,
                                   std::vector<Vec3>& g, ScatterHex&& scatter_hex,
-                                  ScatterTet&& scatter_tet,
-                                  ScatterTriangle&& scatter_triangle) const {
+                                  ScatterTet&& scatter_tet, ScatterTriangle&& scatter_triangle,
+                                  const std::function<void(Id, const Mat3&)>& scatter_quad) const {
     g.assign(x.size(), Vec3::Zero());
     const std::vector<Vec3> normals = triangle_normals(x);
-    return sum_by_colour_elements(
+    const double elements = sum_by_colour_elements(
         [&](Id h) {
             Mat38 gh;
             HexHessian hh;
@@ -276,6 +311,7 @@ double Assembly::assemble_hessian(const std::vector<Vec3>& x, const EnergyParams
             scatter_triangle(r, t, hr);
             return value;
         });
+    return elements + held_quads_term(x, p, &g, scatter_quad);
 }
 
 double Assembly::diagonal_hessian(const std::vector<Vec3>& x, const EnergyParams& p,
@@ -291,6 +327,9 @@ double Assembly::diagonal_hessian(const std::vector<Vec3>& x, const EnergyParams
         },
         [&](Id, const std::array<Id, 3>& t, const Mat9& hr) {
             for (int a = 0; a < 3; ++a) diagonal[t[a]] += hr.block<3, 3>(3 * a, 3 * a);
+        },
+        [&](Id q, const Mat3& block) {
+            for (Id v : problem_.held_quads[q].nodes) diagonal[v] += block;
         });
 }
 
@@ -318,6 +357,11 @@ void Assembly::hessian_product(const std::vector<Vec3>& x, const EnergyParams& p
             for (int a = 0; a < 3; ++a) vr.segment<3>(3 * a) = v[t[a]];
             const Eigen::Matrix<double, 9, 1> hr_v = hr * vr;
             for (int a = 0; a < 3; ++a) out[t[a]] += hr_v.segment<3>(3 * a);
+        },
+        [&](Id q, const Mat3& block) {  // every block the same: block (sum of v) at each
+            const auto& n = problem_.held_quads[q].nodes;
+            const Vec3 block_v = block * (v[n[0]] + v[n[1]] + v[n[2]] + v[n[3]]);
+            for (Id a : n) out[a] += block_v;
         });
 }
 
@@ -325,7 +369,7 @@ double Assembly::gradient(const std::vector<Vec3>& x, const EnergyParams& p,
                           std::vector<Vec3>& g) const {
     g.assign(x.size(), Vec3::Zero());
     const std::vector<Vec3> normals = triangle_normals(x);
-    return sum_by_colour_elements(
+    const double elements = sum_by_colour_elements(
         [&](Id h) {
             Mat38 gh;
             const Vec3& edges = problem_.hex_edges[h];
@@ -354,6 +398,7 @@ double Assembly::gradient(const std::vector<Vec3>& x, const EnergyParams& p,
                 for (int a = 0; a < 3; ++a) g[t[a]] += gr.col(a);
             return value;
         });
+    return elements + held_quads_term(x, p, &g);
 }
 
 const Assembly::Slots& Assembly::hessian_slots() const {
@@ -379,6 +424,12 @@ const Assembly::Slots& Assembly::hessian_slots() const {
             const auto& t = problem_.triangles[r];
             for (int a = 0; a < 3; ++a)
                 for (int b = 0; b < 3; ++b) slots_.triangle[r][3 * a + b] = offset(t[a], t[b]);
+        });
+        slots_.quad.resize(problem_.held_quads.size());
+        tbb::parallel_for(size_t(0), problem_.held_quads.size(), [&](size_t q) {
+            const auto& n = problem_.held_quads[q].nodes;
+            for (int a = 0; a < 4; ++a)
+                for (int b = 0; b < 4; ++b) slots_.quad[q][4 * a + b] = offset(n[a], n[b]);
         });
     });
     return slots_;
@@ -434,6 +485,14 @@ double Assembly::hessian(const std::vector<Vec3>& x, const EnergyParams& p, std:
                         row[slots.triangle[r][3 * a + b]] +=
                             hr.block<3, 3>(3 * a, 3 * b).cast<float>();
             }
+        },
+        [&](Id q, const Mat3& block) {  // symmetric: no transpose for the lower vertex's row
+            const auto& n = problem_.held_quads[q].nodes;
+            for (int a = 0; a < 4; ++a)
+                for (int b = 0; b < 4; ++b)
+                    if (n[a] <= n[b])
+                        h.block[h.row_start[n[a]] + slots.quad[q][4 * a + b]] +=
+                            block.cast<float>();
         });
 }
 

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <mutex>
 #include <vector>
 
@@ -67,6 +68,12 @@ class Assembly {
     // Per surface triangle, the normal its energy is measured against at x
     // (Problem::triangle_normal).
     std::vector<Vec3> triangle_normals(const std::vector<Vec3>& x) const;
+    // The held quads' term at x (Problem::HeldQuad), with E_q = w u(c)^2: its sum; when
+    // `g` is given, each quad's gradient w u n / 2 added at its 4 vertices (n the unit
+    // normal at c), and when `scatter` is given, scatter(q, w n n^T / 8), every block of
+    // its Gauss-Newton Hessian (PSD). Quad after quad in order: deterministic.
+    double held_quads_term(const std::vector<Vec3>& x, const EnergyParams& p, std::vector<Vec3>* g,
+                           const std::function<void(Id, const Mat3&)>& scatter = {}) const;
     // Cuts the elements into chunks of `size` consecutive ones and colours them; false if
     // that needs more colours than the colouring can hold.
     bool colour_chunks(Id size);
@@ -74,11 +81,12 @@ class Assembly {
     // scatter_hex(h, its blocks), that of each finite surface triangle r to
     // scatter_triangle(r, its 3 vertex ids, hr), that of each other finite element (plain
     // tets, and the corner tets of a hex split between chunks) to scatter_tet(e, its 4 vertex
-    // ids, he).
+    // ids, he), that of held quad q to scatter_quad(q, its one block).
     template <class ScatterHex, class ScatterTet, class ScatterTriangle>
     double assemble_hessian(const std::vector<Vec3>& x, const EnergyParams& p, std::vector<Vec3>& g,
                             ScatterHex&& scatter_hex, ScatterTet&& scatter_tet,
-                            ScatterTriangle&& scatter_triangle) const;
+                            ScatterTriangle&& scatter_triangle,
+                            const std::function<void(Id, const Mat3&)>& scatter_quad) const;
 
     // Where the element Hessians' blocks go, as offsets in the block row of the pair's lower
     // vertex id: per hex for its node pairs in hex_hessian_pairs order, per plain tet for
@@ -88,6 +96,7 @@ class Assembly {
         std::vector<std::array<uint16_t, 32>> hex;
         std::vector<std::array<uint16_t, 16>> tet;
         std::vector<std::array<uint16_t, 9>> triangle;
+        std::vector<std::array<uint16_t, 16>> quad;  // held quads, (a, b) as 4 a + b
     };
     const Slots& hessian_slots() const;
 

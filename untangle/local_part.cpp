@@ -27,6 +27,7 @@ bool local_part(const Problem& problem, const std::vector<std::vector<Id>>& elem
     part.project_to_surface = problem.project_to_surface;
     part.edge_tangent = problem.edge_tangent;
     part.project_to_edge = problem.project_to_edge;
+    part.surface_value = problem.surface_value;
     part.length_scale = problem.length_scale;
     size_t free = 0;
     for (size_t v = 0; v < nv; ++v) {
@@ -49,6 +50,8 @@ bool local_part(const Problem& problem, const std::vector<std::vector<Id>>& elem
             part.triangles.push_back(problem.triangles[t]);
             part.triangle_targets.push_back(problem.triangle_targets[t]);
         }
+    for (const HeldQuad& q : problem.held_quads)
+        if (touches(q.nodes)) part.held_quads.push_back(q);
     return free > 0 && part.num_elements() < ne / 2;
 }
 

@@ -25,6 +25,14 @@ inline TetTarget hex_corner_target(int c, const Vec3& edges) {
                                   edges[hex_edge_axis(t[0], t[3])]));
 }
 
+// A wall quad held to u = 0: the term weight u(c)^2 (unit_weight u(c)^2 when the elements
+// weigh equally) with c the mean of its 4 vertices, so that the wall follows the body
+// between its nodes, not only at them (a quad that bridges a limb's end or a groove costs).
+struct HeldQuad {
+    std::array<Id, 4> nodes{};
+    double weight = 0, unit_weight = 0;
+};
+
 // The vertex ids of one element: 4 for a tet, 3 for a surface triangle.
 struct ElementNodes {
     std::array<Id, 4> id{};
@@ -71,6 +79,10 @@ struct Problem {
     std::function<Vec3(Id, const Vec3&)> project_to_surface;  // slip: the projection V
     std::function<Vec3(Id, const Vec3&)> edge_tangent;        // feature_edge: crease direction
     std::function<Vec3(Id, const Vec3&)> project_to_edge;     // feature_edge: onto the crease
+    // Held quads (none by default) and u, whose gradient is surface_normal's direction
+    // (|grad u| close to 1 near u = 0). Not elements: no det, no target, no colour.
+    std::vector<HeldQuad> held_quads;
+    std::function<double(const Vec3&)> surface_value;
     double length_scale = 1;  // typical edge length: tolerances are relative to it
 
     Id num_elements() const { return first_triangle() + Id(triangles.size()); }

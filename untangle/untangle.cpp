@@ -259,6 +259,23 @@ void untangle_locally_then_globally(const Passes& s) {
     s.problem.points = s.best.points;
 }
 
+// Validity before fidelity: when the untangling leaves inverted elements with the wall held to
+// the body (Problem::held_quads), the quads are let go and it starts again from its best state
+// (a fold of the wall that only a node sliding off a limb's tip undoes).
+void let_the_wall_go(const Passes& s) {
+    if (s.best.inverted <= s.options.unrepairable || s.problem.held_quads.empty()) return;
+    log_note(s.options.log, fmt::format("{} inverted elements left with the wall held to the body: "
+                                        "its quads let go",
+                                        s.best.inverted));
+    s.problem.held_quads.clear();
+    s.rounds.clear();  // solved with the quads: not the same functional
+    s.result.wall_let_go = true;
+    s.result.left_to_next_pass = false;
+    s.result.stopped.clear();
+    s.progress.start_again(s.seconds());  // new freedom: the stall clock starts again
+    untangle_locally_then_globally(s);
+}
+
 // The few elements the continuation leaves often have det ~ -eps all the way down (each
 // step of eps is matched by their det): their neighbourhoods start again from room_eps,
 // where the functional lets them move.
@@ -384,6 +401,7 @@ UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& op
     const Passes passes{problem, assembly, elements_of, options, seconds,
                         best,    progress, result,      rounds};
     untangle_locally_then_globally(passes);
+    let_the_wall_go(passes);
     restart_from_room_eps(passes);
     release_creases(passes);
     if (best.inverted == 0 && options.regularize_below > 0 &&

@@ -109,6 +109,9 @@ struct UntangleResult {
     Id inverted_before = 0, inverted_after = 0;  // elements with det S <= 0
     Id blocked = 0;   // inverted elements whose vertices are all held: no solve repairs them
     Id released = 0;  // crease and corner vertices let slide on the surface (release_creases)
+    // The untangling stalled with the wall held to the body (Problem::held_quads): the quads
+    // were let go and the untangling went on without them (validity before fidelity).
+    bool wall_let_go = false;
     bool left_to_next_pass = false;  // options.leave_to_next_pass took the inverted elements left
     // Why untangling ended with inverted elements beyond options.unrepairable, for the user
     // ("no fewer than 3 inverted elements for 12.1 s, 31 % of the untangling time"); empty

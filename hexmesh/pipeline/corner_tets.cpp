@@ -129,6 +129,48 @@ GridProblem corner_tet_problem(const BlockGrid& grid, const std::vector<Vec3>& t
     return g;
 }
 
+void hold_wall_quads(const BlockGrid& grid, const std::vector<Vec3>& target_points,
+                     const ImplicitFunction& body, double fidelity, GridProblem& g) {
+    if (!(fidelity > 0)) return;
+    untangle::Problem& p = g.problem;
+    std::vector<Id> local;  // grid id -> problem id, -1 when not in the problem
+    if (!g.nodes.empty()) {
+        local.assign(grid.points.size(), -1);
+        for (size_t i = 0; i < g.nodes.size(); ++i) local[g.nodes[i]] = Id(i);
+    }
+    const auto length = [&](Id a, Id b) { return (target_points[a] - target_points[b]).norm(); };
+    for (const WallFace& f : wall_faces(grid)) {
+        if (f.depth < 2) continue;
+        for (int b = 0; b + 1 < f.nq; ++b)
+            for (int a = 0; a + 1 < f.np; ++a) {
+                const std::array<std::array<int, 2>, 4> corner{
+                    {{a, b}, {a + 1, b}, {a + 1, b + 1}, {a, b + 1}}};
+                untangle::HeldQuad q;
+                bool in = true, free = false;
+                double normal = 0;  // mean length of the cell's 4 edges off the wall
+                for (int c = 0; c < 4 && in; ++c) {
+                    const Id v = f.node(corner[c][0], corner[c][1], 0);
+                    q.nodes[c] = local.empty() ? v : local[v];
+                    in = q.nodes[c] >= 0;
+                    free = free || (in && degrees_of_freedom(p.kinds[q.nodes[c]]) > 0);
+                    normal += length(v, f.node(corner[c][0], corner[c][1], 1)) / 4;
+                }
+                if (!in || !free) continue;
+                const auto edge = [&](int c, int d) {
+                    return length(f.node(corner[c][0], corner[c][1], 0),
+                                  f.node(corner[d][0], corner[d][1], 0));
+                };
+                const double area = (edge(0, 1) + edge(3, 2)) * (edge(0, 3) + edge(1, 2)) / 4;
+                if (!(area > 0 && normal > 0)) continue;
+                // (4/3) V / h^2 = (4/3) normal; with equal weights each corner tet weighs 1/6.
+                q.weight = fidelity * 4 / 3 * normal;
+                q.unit_weight = fidelity * 4 / 3 / area;
+                p.held_quads.push_back(q);
+            }
+    }
+    if (!p.held_quads.empty()) p.surface_value = [&body](const Vec3& x) { return body.value(x); };
+}
+
 void slide_on(const ImplicitFunction& body, untangle::Problem& p) {
     // Not owned: the caller keeps `body` alive as long as `p`.
     const std::shared_ptr<const ImplicitFunction> unowned(std::shared_ptr<const ImplicitFunction>{},

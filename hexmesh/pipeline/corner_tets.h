@@ -43,6 +43,17 @@ GridProblem corner_tet_problem(const BlockGrid& grid, const std::vector<Vec3>& t
                                const ImplicitFunction& body, const std::vector<bool>& held,
                                const std::vector<bool>& shaped);
 
+// Holds the wall to the body between its nodes (untangle::HeldQuad): every wall quad of
+// `grid` whose 4 nodes are in g's problem, one of them free to move, gets the term
+// fidelity (4/3) V (u(c) / h)^2, with c the quad's centre, V the volume of its cell's target
+// box in `target_points` and h^2 the box's wall area: a quad one wall cell off the body costs
+// `fidelity` times its cell's best shape energy ((4/3) V), a quad on the body nothing. Slip
+// nodes then slide along u = 0 only as far as the wall keeps following the body (without it, a
+// limb's tip or a fin's edge is given up for better cells: the wall's quads bridge it).
+// 0 adds nothing. `body` must outlive g.
+void hold_wall_quads(const BlockGrid& grid, const std::vector<Vec3>& target_points,
+                     const ImplicitFunction& body, double fidelity, GridProblem& g);
+
 // Gives `p` the geometry of `body` for its constrained vertices: slip on u = 0 (grad u, the
 // projection V), feature edges along the body's creases (surface/implicit_features.h);
 // tolerances relative to p.length_scale, which must be set. `body` must outlive `p`.

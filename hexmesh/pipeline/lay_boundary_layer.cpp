@@ -136,6 +136,7 @@ void lay_boundary_layer(BlockGrid& grid, const ImplicitFunction& body,
         untangle::Problem& problem = g.problem;
         for (Id i = 0; i < Id(problem.points.size()); ++i)
             if (placed[g.grid_id(i)]) problem.kinds[i] = VertexKind::fixed;
+        hold_wall_quads(grid, initial, body, options.wall_fidelity, g);
         // A cell inverted between held nodes (beyond the relaxed rings) cannot be repaired.
         result.layers_blocked = Id(problem.blocked_elements().size());
         if (result.layers_blocked > 0) break;

@@ -18,14 +18,17 @@ namespace {
 
 // The wall grid of `faces` as a problem of surface triangles: `nodes` maps problem ids to
 // grid ids. Each quad's corner triangles turn counter-clockwise seen from where grad u
-// points (the face's orientation taken from the majority of its quads).
+// points (the face's orientation taken from the majority of its quads). With fidelity > 0
+// each quad is also held to u = 0 (untangle::HeldQuad): fidelity 2 a b (u(c) / sqrt(a b))^2,
+// its corner triangles' best energy (2 a b) times its centre's distance to the body in
+// its own size.
 struct SurfaceProblem {
     untangle::Problem problem;
     std::vector<Id> nodes;
 };
 
 SurfaceProblem make_surface_problem(const BlockGrid& grid, const std::vector<WallFace>& faces,
-                                    const ImplicitFunction& body) {
+                                    const ImplicitFunction& body, double fidelity) {
     SurfaceProblem s;
     untangle::Problem& p = s.problem;
     std::vector<Id> local(grid.points.size(), -1);
@@ -69,11 +72,14 @@ SurfaceProblem make_surface_problem(const BlockGrid& grid, const std::vector<Wal
                 const Id n0 = local_id(q[0]), n1 = local_id(q[1]), n3 = local_id(q[3]),
                          n2 = local_id(q[2]);
                 p.add_quad({n0, n1, n2, n3}, first, second);
+                if (fidelity > 0)
+                    p.held_quads.push_back({{n0, n1, n2, n3}, 2 * fidelity, 2 * fidelity});
             }
     }
     const size_t quads = p.triangles.size() / 4;
     p.length_scale = quads > 0 ? total / (2.0 * double(quads)) : 1.0;
     slide_on(body, p);
+    if (!p.held_quads.empty()) p.surface_value = [&body](const Vec3& x) { return body.value(x); };
     return s;
 }
 
@@ -92,7 +98,8 @@ void surface_pass(Job& job) {
     job.log << "  surface grid on u = 0 (2D functional, wall nodes only):\n";
     const std::vector<Vec3> built = grid.points;
     const Id bad_before = nonpositive_cells(grid);
-    const SurfaceOptimizationResult s = optimize_wall_surface(grid, *job.body, surface);
+    const SurfaceOptimizationResult s =
+        optimize_wall_surface(grid, *job.body, surface, c.solver.wall_fidelity);
     job.log << untangle::format_untangle_summary(s.solve)
             << fmt::format("  {} wall nodes, {} corner triangles; largest move {:.3g} wall edges\n",
                            s.nodes, s.triangles, s.max_move);
@@ -123,9 +130,10 @@ void surface_pass(Job& job) {
 }  // namespace
 
 SurfaceOptimizationResult optimize_wall_surface(BlockGrid& grid, const ImplicitFunction& body,
-                                                const untangle::UntangleOptions& options) {
+                                                const untangle::UntangleOptions& options,
+                                                double fidelity) {
     SurfaceOptimizationResult result;
-    SurfaceProblem s = make_surface_problem(grid, wall_faces(grid), body);
+    SurfaceProblem s = make_surface_problem(grid, wall_faces(grid), body, fidelity);
     untangle::Problem& p = s.problem;
     result.nodes = Id(s.nodes.size());
     result.triangles = Id(p.triangles.size());

@@ -24,10 +24,14 @@ struct SurfaceOptimizationResult {
 // towards right angles and folds on the surface are untangled. Slip nodes slide on u = 0,
 // feature_edge nodes along their crease, corner and fixed nodes stay. Only wall nodes move:
 // the caller builds the volume again from them (build_grid's wall_from) or carries it along
-// (carry_interior_tfi). Never leaves the wall grid worse than given (fewer folded
+// (carry_interior_tfi). With fidelity > 0 every quad is also held to the body between its
+// nodes (untangle::HeldQuad; a quad whose centre lies a wall cell off u = 0 costs fidelity
+// times its best shape energy), so that nodes do not leave a limb's tip or a fin's edge to
+// the quads bridging it. Never leaves the wall grid worse than given (fewer folded
 // triangles, then lower energy).
 SurfaceOptimizationResult optimize_wall_surface(BlockGrid& grid, const ImplicitFunction& body,
-                                                const untangle::UntangleOptions& options);
+                                                const untangle::UntangleOptions& options,
+                                                double fidelity = 0);
 
 // The stage on job.grid(): with a radial route, wall nodes snapped onto the body's creases and
 // corners (volume/feature_snapping.h; a wall placed through the sphere map follows no crease,

@@ -24,6 +24,7 @@ untangle::UntangleResult joint_pass(BlockGrid& grid, const ImplicitFunction& bod
                                     const GridOptimizationOptions& options,
                                     const std::vector<bool>& shaped) {
     GridProblem g = corner_tet_problem(grid, grid.points, body, options.held, shaped);
+    hold_wall_quads(grid, grid.points, body, options.wall_fidelity, g);
     untangle::UntangleOptions joint = options.untangle;
     if (options.wall_layers.layers > 0) {
         joint.leave_to_next_pass = [&g, near = wall_layer_nodes(grid, options.wall_layers.layers)](
@@ -129,6 +130,7 @@ void polish_passes(Job& job) {
     o.untangle.log = nullptr;              // a summary line instead
     o.untangle.optimize_tolerance = 1e-7;  // a small problem: its worst cells weigh
     o.untangle.max_optimize_iterations = 50;
+    o.wall_fidelity = job.settings.solver.wall_fidelity;
     const int layers = wall_layers(job.settings).layers;
     if (layers > 0) o.held = wall_layer_nodes(grid, layers);
     for (int pass = 0; pass < 5; ++pass) {
@@ -250,6 +252,7 @@ PolishResult polish_worst_cells(BlockGrid& grid, const ImplicitFunction& body,
             for (size_t v = 0; v < held.size(); ++v) held[v] = held[v] || options.held[v];
         GridProblem g = corner_tet_problem(grid, grid.points, body, held, {});
         if (g.nodes.empty()) break;  // every node of those cells held (the wall and its layers)
+        hold_wall_quads(grid, grid.points, body, options.wall_fidelity, g);
         const untangle::UntangleResult r =
             untangle::untangle_and_optimize(g.problem, options.untangle);
         ++result.rounds;
@@ -276,6 +279,7 @@ void untangle_and_optimize(Job& job) {
     o.untangle = job.solver_options();
     o.wall_layers = wall_layers(c);
     o.keep_crease_shapes = c.domain == Domain::exterior;  // its lines leave creases mitred
+    o.wall_fidelity = c.solver.wall_fidelity;
     // Outside, the far field's cells are up to 1e7 times the first layer's: weighed by volume,
     // the wall's inversions would hardly count while untangling (joint pass and layer pass).
     o.untangle.equal_weights = c.domain == Domain::exterior || job.equal_weights;

@@ -43,6 +43,8 @@ struct GridOptimizationOptions {
     // the faces' bisector and the layers on the faces' offset planes (the exterior O-grid,
     // volume/o_grid.h), whose cells there fan out and are not boxes.
     bool keep_crease_shapes = false;
+    // Both passes hold the wall quads to the body with this weight (hold_wall_quads).
+    double wall_fidelity = 0;
 };
 
 struct GridOptimizationResult {
@@ -86,7 +88,8 @@ struct PolishOptions {
     int rounds = 4;  // at most this many times
     // Instead of the cells under `below`, those a solver refuses (find_refused_cells).
     bool refused_only = false;
-    std::vector<bool> held;  // as in GridOptimizationOptions
+    std::vector<bool> held;    // as in GridOptimizationOptions
+    double wall_fidelity = 0;  // as in GridOptimizationOptions
 };
 
 struct PolishResult {

@@ -26,7 +26,7 @@ TEST(CaseFile, ParsesAFullCase) {
       "grid": {"topology": "o-h", "cells_per_edge": 16, "wall_cells": 8, "core_size": 0.4},
       "boundary_layer": {"first_height": 0.001, "growth_ratio": 1.1, "layers": 5},
       "solver": {"untangle": "lbfgs", "optimize": "explicit", "theta": 0.7, "max_iterations": 50,
-                 "surface_iterations": 0},
+                 "surface_iterations": 0, "wall_fidelity": 3.5},
       "outputs": ["vtk"]
     })",
                               "case.json");
@@ -42,6 +42,7 @@ TEST(CaseFile, ParsesAFullCase) {
     EXPECT_EQ(c.solver.untangle, "lbfgs");
     EXPECT_EQ(c.solver.optimize, "explicit");
     EXPECT_EQ(c.solver.surface_iterations, 0);
+    EXPECT_DOUBLE_EQ(c.solver.wall_fidelity, 3.5);
     EXPECT_EQ(c.domain, Domain::interior);
     EXPECT_EQ(c.outputs, std::vector<std::string>{"vtk"});
 }
@@ -109,6 +110,18 @@ TEST(CaseFile, SurfaceIterationsAreACountThatDefaultsToTen) {
     const std::string e = error_of(
         R"({"geometry": {"sphere": {"radius": 1}}, "solver": {"surface_iterations": -1}})");
     EXPECT_NE(e.find("solver.surface_iterations"), std::string::npos) << e;
+}
+
+TEST(CaseFile, WallFidelityIsAWeightThatDefaultsToZero) {
+    EXPECT_EQ(
+        parse_case(R"({"geometry": {"sphere": {"radius": 1}}})", "case.json").solver.wall_fidelity,
+        0);
+    for (const char* bad : {"-1", "1e7", "\"high\""}) {
+        const std::string e = error_of(
+            std::string(R"({"geometry": {"sphere": {"radius": 1}}, "solver": {"wall_fidelity": )") +
+            bad + "}}");
+        EXPECT_NE(e.find("solver.wall_fidelity"), std::string::npos) << e;
+    }
 }
 
 TEST(CaseFile, AbsurdSizesAreRefused) {

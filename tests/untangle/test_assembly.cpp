@@ -12,14 +12,16 @@
 using namespace hexmesh;
 using namespace hexmesh::untangle;
 
-TEST(Assembly, GradientMatchesFiniteDifferencesOfTheSum) {
-    const Problem p = test_support::displaced_grid_problem(3, 0.3, 1);
-    const Assembly a(p);
-    const EnergyParams params{0.8, 0.05};
+namespace {
+
+// The assembled gradient at the given vertices against central differences of the energy.
+void expect_gradient_matches_finite_differences(const Problem& p, const Assembly& a,
+                                                const EnergyParams& params,
+                                                std::initializer_list<Id> vertices) {
     std::vector<Vec3> g;
     a.gradient(p.points, params, g);
     std::vector<Vec3> x = p.points;
-    for (Id v : {Id(21), Id(22), Id(26), Id(41)}) {
+    for (Id v : vertices)
         for (int c = 0; c < 3; ++c) {
             const double h = 1e-6, x0 = x[v][c];
             x[v][c] = x0 + h;
@@ -29,7 +31,14 @@ TEST(Assembly, GradientMatchesFiniteDifferencesOfTheSum) {
             x[v][c] = x0;
             EXPECT_NEAR(g[v][c], (fp - fm) / (2 * h), 1e-5 * (1 + std::abs(g[v][c])));
         }
-    }
+}
+
+}  // namespace
+
+TEST(Assembly, GradientMatchesFiniteDifferencesOfTheSum) {
+    const Problem p = test_support::displaced_grid_problem(3, 0.3, 1);
+    expect_gradient_matches_finite_differences(p, Assembly(p), {0.8, 0.05},
+                                               {Id(21), Id(22), Id(26), Id(41)});
 }
 
 namespace {
@@ -38,6 +47,8 @@ namespace {
 // Hessian holds exactly the blocks (a, b), a <= b, of the summed element Hessians; its
 // products (whole, one coordinate, and without a matrix) are those of the whole matrix.
 // With params.equal_weights each tet's terms are scaled to those of a unit weight (1/6).
+// Held quads add w u(c)^2, w u n / 2 at each vertex and w n n^T / 8 at each pair (n the unit
+// normal at c, w the unit weight with params.equal_weights).
 void expect_assembly_matches_serial_sums(const Problem& p, const Assembly& a,
                                          const EnergyParams params = {0.8, 0.1}) {
     BlockMatrix h = a.empty_hessian();
@@ -73,6 +84,20 @@ void expect_assembly_matches_serial_sums(const Problem& p, const Assembly& a,
                 auto [it, fresh] = serial_h.try_emplace({t[c], t[d]}, Mat3::Zero());
                 it->second += he.block<3, 3>(3 * c, 3 * d);
                 magnitude[{t[c], t[d]}] += he.block<3, 3>(3 * c, 3 * d).norm();
+            }
+    }
+    for (const HeldQuad& q : p.held_quads) {
+        const auto& n = q.nodes;
+        const Vec3 c = (p.points[n[0]] + p.points[n[1]] + p.points[n[2]] + p.points[n[3]]) / 4;
+        const double w = params.equal_weights ? q.unit_weight : q.weight, u = p.surface_value(c);
+        const Vec3 normal = p.surface_normal(n[0], c).normalized();
+        serial_f += w * u * u;
+        for (Id a : n) serial_g[a] += w * u / 2 * normal;
+        for (Id a : n)
+            for (Id b : n) {
+                auto [it, fresh] = serial_h.try_emplace({a, b}, Mat3::Zero());
+                it->second += w / 8 * normal * normal.transpose();
+                magnitude[{a, b}] += w / 8;
             }
     }
     EXPECT_NEAR(a.energy(p.points, params), f, 1e-12 * std::abs(f));
@@ -274,6 +299,47 @@ TEST(Assembly, TrianglesAloneAssembleLikeTheSerialSums) {
     p.kinds.assign(p.points.size(), VertexKind::fixed);
     p.kinds[0] = VertexKind::interior;
     EXPECT_THROW(check_constraints(p), std::invalid_argument);
+}
+
+TEST(Assembly, HeldQuadsAddTheGapOfTheirCentresToEverySum) {
+    // The quads of the face z = 0 held to a sphere of radius 10 below it (u its signed
+    // distance, the unit normal its gradient), with a quad that is not a face of any hex
+    // (nodes of two hex layers: pairs the tets do not have), hexes in chunks of 5.
+    Problem p = test_support::displaced_grid_problem(3, 0.3, 3);
+    const Vec3 centre(1.5, 1.5, -10);
+    p.surface_value = [centre](const Vec3& x) { return (x - centre).norm() - 10; };
+    p.surface_normal = [centre](Id, const Vec3& x) { return x - centre; };
+    const auto id = [](int i, int j, int k) { return Id(i + 4 * (j + 4 * k)); };
+    for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 3; ++i)
+            p.held_quads.push_back(
+                {{id(i, j, 0), id(i + 1, j, 0), id(i + 1, j + 1, 0), id(i, j + 1, 0)},
+                 0.5 + i,
+                 2.0 + j});
+    p.held_quads.push_back({{id(1, 1, 1), id(2, 1, 1), id(2, 2, 2), id(1, 2, 2)}, 3, 1});
+    for (int j = 1; j < 3; ++j)
+        for (int i = 1; i < 3; ++i) p.points[id(i, j, 0)].z() += 0.1 * (i - j);
+    const Assembly a(p, 5);
+    expect_assembly_matches_serial_sums(p, a);
+    EnergyParams equal{0.8, 0.1};
+    equal.equal_weights = true;
+    expect_assembly_matches_serial_sums(p, a, equal);
+    // The gradient is the exact one: finite differences of the energy agree.
+    expect_gradient_matches_finite_differences(p, a, equal,
+                                               {id(1, 1, 0), id(2, 2, 2), id(1, 2, 1)});
+    // The term is what it says: a quad on u = 0 costs nothing, one at height 0.2 its weight
+    // times 0.04.
+    Problem flat = test_support::displaced_grid_problem(1, 0, 1);
+    flat.surface_value = [](const Vec3& y) { return y.z() - 0.2; };
+    flat.surface_normal = [](Id, const Vec3&) { return Vec3(0, 0, 1); };
+    const double shape = Assembly(flat).energy(flat.points, {0.8, 0});
+    flat.held_quads.push_back({{0, 1, 3, 2}, 5, 7});
+    EXPECT_NEAR(Assembly(flat).energy(flat.points, {0.8, 0}), shape + 5 * 0.04, 1e-12);
+    flat.surface_value = [](const Vec3& y) { return y.z(); };
+    EXPECT_NEAR(Assembly(flat).energy(flat.points, {0.8, 0}), shape, 1e-12);
+    // Without u the quads cannot be held: refused.
+    flat.surface_value = nullptr;
+    EXPECT_THROW(Assembly{flat}, std::invalid_argument);
 }
 
 TEST(Assembly, HessianProductsRunInParallelWhenTheRowsAreMany) {
