@@ -11,6 +11,7 @@
 
 #include "cli.h"
 #include "star_surface.h"
+#include "tests/random_bodies.h"
 #include "tests/surface/sample_surfaces.h"
 
 using namespace hexmesh;
@@ -385,15 +386,13 @@ INSTANTIATE_TEST_SUITE_P(SharedBodies, FromTheFileAlone,
 // wall quads held to the body (solver.wall_fidelity 100) every surface point stays within
 // 0.87 wall cells. Both grids valid; both runs say the wall misses the body (above 0.5).
 TEST(CliBodies, WallQuadsHeldToTheBodyKeepARandomBodysLimbTips) {
-    if (std::system("/usr/bin/python3 -c 'import vtk, numpy' > /dev/null 2>&1") != 0)
+    if (!test::random_bodies_available())
         GTEST_SKIP() << "python3-vtk9 is not installed (bench/random_bodies.py needs it)";
     const fs::path generated = scratch("random_body_limbs");
     fs::remove_all(generated);
-    ASSERT_EQ(std::system(("/usr/bin/python3 '" HEXMESH_SOURCE_DIR "/bench/random_bodies.py' '" +
-                           generated.string() + "' --count 1 --seed 1 > /dev/null")
-                              .c_str()),
-              0);
-    const fs::path body = generated / "random1_01.stl";
+    const std::string command = test::random_bodies_command(generated, 1, 1);
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    const fs::path body = test::random_body(generated, 1, 1);
     std::vector<double> misses;
     for (const double fidelity : {0.0, 100.0}) {
         const fs::path dir = scratch("random_body_limbs_" + std::to_string(int(fidelity)));

@@ -12,6 +12,7 @@
 #include "io/surface_reader.h"
 #include "shape_surfaces.h"
 #include "surface/mesh_sdf.h"
+#include "tests/random_bodies.h"
 #include "tests/scratch_registry.h"
 #include "tests/surface/sample_surfaces.h"
 #include "volume/cube_sphere.h"
@@ -124,19 +125,15 @@ TEST(SphereMap, EveryRandomBodyWithLimbsMapsOneToOne) {
     // its highest point, Tutte's map of the tenth leaves 3 triangles turned over, which the
     // functional does not repair (its lattice then folded 513 wall triangles); from the other
     // extremes one maps one to one.
-    if (std::system("/usr/bin/python3 -c 'import vtk, numpy' > /dev/null 2>&1") != 0)
+    if (!test::random_bodies_available())
         GTEST_SKIP() << "python3-vtk9 is not installed (bench/random_bodies.py needs it)";
     const std::filesystem::path dir =
         test::remove_at_exit(std::filesystem::temp_directory_path() /
                              ("hexmesh_random_bodies_" + std::to_string(::getpid())));
-    const std::string command = "/usr/bin/python3 '" HEXMESH_SOURCE_DIR
-                                "/bench/random_bodies.py' '" +
-                                dir.string() + "' --count 10 --seed 1 > /dev/null";
+    const std::string command = test::random_bodies_command(dir, 10, 1);
     ASSERT_EQ(std::system(command.c_str()), 0) << command;
     for (int k = 1; k <= 10; ++k) {
-        const std::string file =
-            (dir / ("random1_" + std::string(k < 10 ? "0" : "") + std::to_string(k) + ".stl"))
-                .string();
+        const std::string file = test::random_body(dir, 1, k).string();
         std::ostringstream log;
         SphereMapOptions o;
         o.log = &log;
