@@ -66,6 +66,9 @@ struct Job {
     // levels[l].
     std::vector<BlockGrid> levels;
     std::vector<GridReport> reports;
+    // How far the wall of levels[0] missed the body at the stages that made it (note_wall_miss),
+    // for a surface file: measure puts them into reports[0].
+    std::vector<WallQuality::Stage> wall_misses;
 
     // `message`, with open_hole after it when there is one: a refusal of the wall or the grid.
     std::string naming_hole(const std::string& message) const {

@@ -11,6 +11,7 @@
 #include "hexmesh/quality/grid_meter.h"
 #include "hexmesh/quality/grid_report.h"
 #include "hexmesh/quality/mesh_quality.h"
+#include "hexmesh/quality/wall_metrics.h"
 
 namespace hexmesh {
 
@@ -37,7 +38,15 @@ GridReport measure_level(const Job& job, int level) {
 
 void measure(Job& job) {
     job.reports = {measure_level(job, 1)};
+    if (job.reports[0].wall) job.reports[0].wall->surface_in_cells_by_stage = job.wall_misses;
     job.timer.done("quality");
+}
+
+void note_wall_miss(Job& job, const std::string& stage) {
+    if (!job.surface) return;
+    if (stage == "as placed") job.wall_misses.clear();
+    const HausdorffDistance d = surface_to_wall_in_cells(job.grid(), *job.surface);
+    job.wall_misses.push_back({stage, d.surface_in_cells_max, d.surface_in_cells_p99});
 }
 
 void refuse_invalid(const Job& job, const GridReport& report, const std::string& dir) {

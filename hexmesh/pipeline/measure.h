@@ -12,8 +12,13 @@
 namespace hexmesh {
 
 // job.reports = {the report of job.grid()} against the body, the case's boundary-layer law and
-// the surface file (the Hausdorff distance), if any.
+// the surface file (the Hausdorff distance), if any, with job.wall_misses.
 void measure(Job& job);
+
+// For a job with a surface file: how far job.grid()'s wall now misses it (the report's surface
+// to wall in wall cells, max and 99th percentile) added to job.wall_misses as `stage`; "as
+// placed" starts them again (a grid made again).
+void note_wall_miss(Job& job, const std::string& stage);
 
 // The report of job.levels[level - 1] (a refined level: the wall law refined_wall_layers).
 GridReport measure_level(const Job& job, int level);

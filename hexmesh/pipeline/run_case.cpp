@@ -27,6 +27,7 @@ bool make_again_and_keep_better(Job& job, const QualityReport& before, WallRoute
                                 const std::string& phase, const std::string& made,
                                 const std::string& kept_grid) {
     BlockGrid kept = std::move(job.grid());
+    std::vector<WallQuality::Stage> kept_misses = job.wall_misses;
     job.grid() = build_grid(job.settings, *job.body, nullptr, &job.route);
     job.timer.done("grid", phase);
     make_surface_grid(job);
@@ -35,6 +36,7 @@ bool make_again_and_keep_better(Job& job, const QualityReport& before, WallRoute
     if (after.solver_valid() || after.inverted_cells < before.inverted_cells) return true;
     job.log << fmt::format("  {} left {}: {} is kept\n", made, invalid_cells(after), kept_grid);
     job.grid() = std::move(kept);
+    job.wall_misses = std::move(kept_misses);
     job.route = std::move(before_route);
     return false;
 }

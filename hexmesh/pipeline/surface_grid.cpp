@@ -8,6 +8,7 @@
 
 #include "hexmesh/pipeline/build_blocks.h"
 #include "hexmesh/pipeline/corner_tets.h"
+#include "hexmesh/pipeline/measure.h"
 #include "hexmesh/quality/cell_quality.h"
 #include "volume/feature_snapping.h"
 #include "volume/tfi.h"
@@ -148,6 +149,7 @@ SurfaceOptimizationResult optimize_wall_surface(BlockGrid& grid, const ImplicitF
 }
 
 void make_surface_grid(Job& job) {
+    note_wall_miss(job, "as placed");
     if (job.route.radial()) {
         const FeatureSnapping snapped = snap_to_features(job.grid(), *job.body);
         if (snapped.crease_nodes + snapped.corner_nodes > 0)
@@ -157,6 +159,7 @@ void make_surface_grid(Job& job) {
     if (job.settings.solver.surface_iterations > 0) {
         surface_pass(job);
         job.timer.done("surface");
+        note_wall_miss(job, "after the surface pass");
     }
 }
 

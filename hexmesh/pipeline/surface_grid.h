@@ -40,7 +40,8 @@ SurfaceOptimizationResult optimize_wall_surface(BlockGrid& grid, const ImplicitF
 // wall: the O-H and O-grid lines built again (build_grid's wall_from), a single block's
 // interior carried along by TFI. When the volume built so has more cells with a scaled
 // Jacobian <= 0 than the grid had, or cannot be built (wall nodes that slid far from their
-// lines' core or far-field ends, in deep concavities), the grid as constructed is kept.
+// lines' core or far-field ends, in deep concavities), the grid as constructed is kept. How far
+// the wall misses a surface file is noted before and after (note_wall_miss).
 void make_surface_grid(Job& job);
 
 }  // namespace hexmesh

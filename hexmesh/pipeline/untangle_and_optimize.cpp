@@ -7,6 +7,7 @@
 #include "hexmesh/pipeline/build_blocks.h"
 #include "hexmesh/pipeline/corner_tets.h"
 #include "hexmesh/pipeline/lay_boundary_layer.h"
+#include "hexmesh/pipeline/measure.h"
 #include "hexmesh/pipeline/mend_cells.h"
 #include "hexmesh/quality/block_quality.h"
 #include "hexmesh/quality/cell_quality.h"
@@ -284,6 +285,7 @@ void untangle_and_optimize(Job& job) {
     // the wall's inversions would hardly count while untangling (joint pass and layer pass).
     o.untangle.equal_weights = c.domain == Domain::exterior || job.equal_weights;
     const GridOptimizationResult r = optimize_grid(job.grid(), *job.body, o);
+    note_wall_miss(job, "after the volume passes");
     job.log << untangle::format_untangle_summary(r.solve);
     log_layer_pass(r, o.wall_layers.layers, job.log);
     job.timer.done("optimization");

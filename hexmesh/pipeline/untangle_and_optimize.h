@@ -115,7 +115,8 @@ PolishResult polish_worst_cells(BlockGrid& grid, const ImplicitFunction& body,
 // polish_worst_cells with the wall and its layers held, and what a solver still refuses
 // mended node by node (mend_cells.h) and polished again with the layers free, and last the
 // worst cells lifted node by node (lift_worst_cells), the layers' nodes on their levels of u.
-// Logs one summary per pass.
+// Logs one summary per pass; notes how far the wall misses a surface file after optimize_grid
+// (note_wall_miss).
 void untangle_and_optimize(Job& job);
 
 }  // namespace hexmesh

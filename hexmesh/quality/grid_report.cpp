@@ -70,6 +70,9 @@ std::string wall_rows(const WallQuality& w) {
         out += table_row("  at",
                          {fmt::format("({:.4g}, {:.4g}, {:.4g})", w.surface_in_cells_at->x(),
                                       w.surface_in_cells_at->y(), w.surface_in_cells_at->z())});
+    for (const WallQuality::Stage& s : w.surface_in_cells_by_stage)
+        out +=
+            table_row("  " + s.name, {fmt::format("{:.3f}", s.max), fmt::format("{:.3f}", s.p99)});
     return out;
 }
 
@@ -105,6 +108,12 @@ nlohmann::ordered_json wall_json(const WallQuality& w) {
         j["surface_to_wall_in_cells"]["at"] = {at.x(), at.y(), at.z()};
         j["surface_to_wall_in_cells"]["distance"] = w.surface_in_cells_distance.value_or(0);
     }
+    if (w.surface_in_cells_max && !w.surface_in_cells_by_stage.empty()) {
+        nlohmann::ordered_json stages = nlohmann::ordered_json::array();
+        for (const WallQuality::Stage& s : w.surface_in_cells_by_stage)
+            stages.push_back({{"stage", s.name}, {"max", s.max}, {"p99", s.p99}});
+        j["surface_to_wall_in_cells"]["by_stage"] = std::move(stages);
+    }
     return j;
 }
 
@@ -119,14 +128,18 @@ std::string body_missed(const GridReport& r) {
     if (follows_body(r)) return {};
     const WallQuality& w = *r.wall;
     const Vec3 at = w.surface_in_cells_at.value_or(Vec3::Zero());
+    std::string stages;
+    for (const WallQuality::Stage& s : w.surface_in_cells_by_stage)
+        stages += fmt::format("{}{:.3g}{} {}", stages.empty() ? "" : ", ", s.max,
+                              stages.empty() ? " wall cells" : "", s.name);
     return fmt::format(
         "the grid's wall misses the body by {:.3g} ({:.4g} wall cells, more than {}) at the "
         "surface "
         "point ({:.4g}, {:.4g}, {:.4g}): the wall cuts off or bridges that part of the body (a "
         "limb, a "
-        "fin, a groove, a sharp edge or corner)",
+        "fin, a groove, a sharp edge or corner){}",
         w.surface_in_cells_distance.value_or(0), *w.surface_in_cells_max, follows_body_wall_cells,
-        at.x(), at.y(), at.z());
+        at.x(), at.y(), at.z(), stages.empty() ? "" : "; the wall missed it by at most " + stages);
 }
 
 std::string aspect_ratio_note(const QualityReport& q) {

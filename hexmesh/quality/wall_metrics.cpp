@@ -254,29 +254,23 @@ HausdorffDistance hausdorff_to_surface(const BlockGrid& grid, const TriangleSurf
     return hausdorff_to_surface(wall, surface);
 }
 
-HausdorffDistance hausdorff_to_surface(const TriangleSurface& wall,
-                                       const TriangleSurface& surface) {
-    if (wall.triangles.empty())
-        throw std::invalid_argument("hausdorff_to_surface: the grid has no wall face");
+namespace {
 
-    // Surface samples: the vertices the triangles use, then the centroids.
+// The vertices the surface's triangles use.
+std::vector<Vec3> used_vertices(const TriangleSurface& surface) {
     std::vector<char> used(surface.points.size(), 0);
     for (const auto& t : surface.triangles)
         for (int v : t) used[v] = 1;
-    std::vector<Vec3> samples;
+    std::vector<Vec3> vertices;
     for (size_t v = 0; v < surface.points.size(); ++v)
-        if (used[v]) samples.push_back(surface.points[v]);
-    for (const auto& t : surface.triangles)
-        samples.push_back((surface.points[t[0]] + surface.points[t[1]] + surface.points[t[2]]) / 3);
+        if (used[v]) vertices.push_back(surface.points[v]);
+    return vertices;
+}
 
-    HausdorffDistance d;
-    d.grid_to_surface = max_distance_to(ExactDistance(surface), wall.points);
-    const ExactDistance to_wall(wall);
-    d.surface_to_grid = max_distance_to(to_wall, samples);
-    d.hausdorff = std::max(d.grid_to_surface, d.surface_to_grid);
-
-    // The vertices (the first samples) against the size of the wall quad nearest to each.
-    const size_t vertices = samples.size() - surface.triangles.size();
+// d's surface_in_cells_* of the first `vertices` samples against the size of the wall quad
+// nearest to each.
+void measure_in_cells(const TriangleSurface& wall, const ExactDistance& to_wall,
+                      const std::vector<Vec3>& samples, size_t vertices, HausdorffDistance& d) {
     std::vector<double> in_cells(vertices);
     const auto area = [&](size_t t) {
         const auto& tri = wall.triangles[t];
@@ -300,6 +294,38 @@ HausdorffDistance hausdorff_to_surface(const TriangleSurface& wall,
         const size_t rank = size_t(std::ceil(0.99 * double(in_cells.size())));
         d.surface_in_cells_p99 = in_cells[std::clamp<size_t>(rank, 1, in_cells.size()) - 1];
     }
+}
+
+}  // namespace
+
+HausdorffDistance hausdorff_to_surface(const TriangleSurface& wall,
+                                       const TriangleSurface& surface) {
+    if (wall.triangles.empty())
+        throw std::invalid_argument("hausdorff_to_surface: the grid has no wall face");
+
+    // Surface samples: the vertices the triangles use, then the centroids.
+    std::vector<Vec3> samples = used_vertices(surface);
+    const size_t vertices = samples.size();
+    for (const auto& t : surface.triangles)
+        samples.push_back((surface.points[t[0]] + surface.points[t[1]] + surface.points[t[2]]) / 3);
+
+    HausdorffDistance d;
+    d.grid_to_surface = max_distance_to(ExactDistance(surface), wall.points);
+    const ExactDistance to_wall(wall);
+    d.surface_to_grid = max_distance_to(to_wall, samples);
+    d.hausdorff = std::max(d.grid_to_surface, d.surface_to_grid);
+    measure_in_cells(wall, to_wall, samples, vertices, d);
+    return d;
+}
+
+HausdorffDistance surface_to_wall_in_cells(const BlockGrid& grid, const TriangleSurface& surface) {
+    TriangleSurface wall;
+    for (const Block& block : grid.blocks) append_wall_triangles(grid, block, wall);
+    if (wall.triangles.empty())
+        throw std::invalid_argument("surface_to_wall_in_cells: the grid has no wall face");
+    const std::vector<Vec3> vertices = used_vertices(surface);
+    HausdorffDistance d;
+    measure_in_cells(wall, ExactDistance(wall), vertices, vertices.size(), d);
     return d;
 }
 

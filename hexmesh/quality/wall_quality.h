@@ -3,6 +3,8 @@
 #pragma once
 
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "hexmesh/core/histogram.h"
 #include "hexmesh/core/types.h"
@@ -53,6 +55,14 @@ struct WallQuality {
     // The surface vertex of that max, and its distance to the wall.
     std::optional<Vec3> surface_in_cells_at;
     std::optional<double> surface_in_cells_distance;
+    // The same max and 99th percentile for the wall at the stages of the run that made the
+    // grid, in order ("as placed", "after the surface pass", "after the volume passes"): where
+    // the wall left the body. Empty when not recorded (a grid read from a file, a refined level).
+    struct Stage {
+        std::string name;
+        double max = 0, p99 = 0;
+    };
+    std::vector<Stage> surface_in_cells_by_stage;
 
     // Every wall cell's first-layer thickness over the target, 20 bins over [0, 2) (empty
     // without a target: bins 9 and 10 hold the cells within 10 %); every growth ratio over its

@@ -384,7 +384,9 @@ INSTANTIATE_TEST_SUITE_P(SharedBodies, FromTheFileAlone,
 // outside at 146 004 cells (bench/RESULTS.md, "Wall quads held to the body"): the joint pass
 // slides the wall off a limb's tip, which the grid then misses by 4.2 wall cells; with the
 // wall quads held to the body (solver.wall_fidelity 100) every surface point stays within
-// 0.87 wall cells. Both grids valid; both runs say the wall misses the body (above 0.5).
+// 0.87 wall cells. Both grids valid; both runs say the wall misses the body (above 0.5). The
+// report names the stages: as placed the wall missed it by less than a wall cell, after the
+// volume passes by more than 3 (without the term).
 TEST(CliBodies, WallQuadsHeldToTheBodyKeepARandomBodysLimbTips) {
     if (!test::random_bodies_available())
         GTEST_SKIP() << "python3-vtk9 is not installed (bench/random_bodies.py needs it)";
@@ -408,6 +410,16 @@ TEST(CliBodies, WallQuadsHeldToTheBodyKeepARandomBodysLimbTips) {
         const nlohmann::json q = expect_written_valid(dir);
         misses.push_back(q.at("wall").at("surface_to_wall_in_cells").at("max").get<double>());
         EXPECT_EQ(r.out.find("its quads let go"), std::string::npos) << r.out;
+        const nlohmann::json& stages = q.at("wall").at("surface_to_wall_in_cells").at("by_stage");
+        ASSERT_EQ(stages.size(), 3u) << stages;
+        EXPECT_EQ(stages[0].at("stage"), "as placed");
+        EXPECT_EQ(stages[1].at("stage"), "after the surface pass");
+        EXPECT_EQ(stages[2].at("stage"), "after the volume passes");
+        EXPECT_LT(stages[0].at("max").get<double>(), 1) << stages;
+        if (fidelity == 0) {
+            EXPECT_GT(stages[2].at("max").get<double>(), 3) << stages;
+            EXPECT_NE(r.out.find("the wall missed it by at most"), std::string::npos) << r.out;
+        }
         fs::remove_all(dir);
     }
     EXPECT_GT(misses[0], 4) << misses[0];

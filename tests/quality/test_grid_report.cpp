@@ -241,4 +241,38 @@ TEST(QualityReport, AWallThatMissesTheBodyIsNamed) {
     EXPECT_NE(line_named(format_quality_table(r), "  at").find("(0.25, -1.5, 3)"),
               std::string::npos)
         << format_quality_table(r);
+    EXPECT_FALSE(s.contains("by_stage"));  // not recorded
+}
+
+// The misses recorded at the stages of the run: one table row each (max, p99), in order, the
+// same in the JSON, and named at the end of the line that says the wall misses the body.
+TEST(QualityReport, WhereTheWallLeftTheBodyIsNamedStageByStage) {
+    GridReport r = plain_report();
+    r.wall = wall_quality();
+    r.wall->surface_in_cells_max = 4.2;
+    r.wall->surface_in_cells_p99 = 2.7;
+    r.wall->surface_in_cells_at = Vec3(0, 1, 0);
+    r.wall->surface_in_cells_distance = 0.16;
+    r.wall->surface_in_cells_by_stage = {{"as placed", 0.619, 0.354},
+                                         {"after the surface pass", 1.34, 0.76}};
+    const std::string table = format_quality_table(r);
+    const std::string placed = line_named(table, "  as placed");
+    const std::string surface = line_named(table, "  after the surface pass");
+    EXPECT_NE(placed.find("0.619"), std::string::npos) << table;
+    EXPECT_NE(placed.find("0.354"), std::string::npos) << table;
+    EXPECT_NE(surface.find("1.340"), std::string::npos) << table;
+    EXPECT_LT(table.find("  as placed"), table.find("  after the surface pass"));
+    const auto stages = nlohmann::json::parse(quality_json(r))
+                            .at("wall")
+                            .at("surface_to_wall_in_cells")
+                            .at("by_stage");
+    ASSERT_EQ(stages.size(), 2u);
+    EXPECT_EQ(stages[0].at("stage"), "as placed");
+    EXPECT_DOUBLE_EQ(stages[0].at("max").get<double>(), 0.619);
+    EXPECT_DOUBLE_EQ(stages[1].at("p99").get<double>(), 0.76);
+    const std::string missed = body_missed(r);
+    EXPECT_NE(missed.find("; the wall missed it by at most 0.619 wall cells as placed, 1.34 after "
+                          "the surface pass"),
+              std::string::npos)
+        << missed;
 }
