@@ -45,8 +45,12 @@ void measure(Job& job) {
 void note_wall_miss(Job& job, const std::string& stage) {
     if (!job.surface) return;
     if (stage == "as placed") job.wall_misses.clear();
-    const HausdorffDistance d = surface_to_wall_in_cells(job.grid(), *job.surface);
-    job.wall_misses.push_back({stage, d.surface_in_cells_max, d.surface_in_cells_p99});
+    try {
+        const HausdorffDistance d = surface_to_wall_in_cells(job.grid(), *job.surface);
+        job.wall_misses.push_back({stage, d.surface_in_cells_max, d.surface_in_cells_p99});
+    } catch (const std::invalid_argument&) {
+        // No wall quad of non-zero area at this stage: nothing to note (the run goes on).
+    }
 }
 
 void refuse_invalid(const Job& job, const GridReport& report, const std::string& dir) {
