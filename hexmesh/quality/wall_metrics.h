@@ -85,8 +85,9 @@ void append_wall_triangles(const BlockGrid& grid, const Block& block, TriangleSu
 HausdorffDistance hausdorff_to_surface(const TriangleSurface& wall, const TriangleSurface& surface);
 
 // Only the surface-to-wall distance in wall cells of hausdorff_to_surface (its
-// surface_in_cells_* fields; the others 0): the vertices of `surface` against the grid's wall.
-// Throws as hausdorff_to_surface.
+// surface_in_cells_* fields; the others 0): the vertices of `surface` against the grid's wall
+// (all 0 for a surface without triangles). Throws std::invalid_argument when the grid has no
+// wall face or no wall quad of non-zero area.
 HausdorffDistance surface_to_wall_in_cells(const BlockGrid& grid, const TriangleSurface& surface);
 
 }  // namespace hexmesh

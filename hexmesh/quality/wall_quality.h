@@ -56,8 +56,9 @@ struct WallQuality {
     std::optional<Vec3> surface_in_cells_at;
     std::optional<double> surface_in_cells_distance;
     // The same max and 99th percentile for the wall at the stages of the run that made the
-    // grid, in order ("as placed", "after the surface pass", "after the volume passes"): where
-    // the wall left the body. Empty when not recorded (a grid read from a file, a refined level).
+    // grid, in order ("as placed", "after the surface pass" unless there is none, "after the
+    // volume passes"; the polish is in the figures above): where the wall left the body. Empty
+    // when not recorded (a grid read from a file, a refined level).
     struct Stage {
         std::string name;
         double max = 0, p99 = 0;

@@ -386,7 +386,7 @@ INSTANTIATE_TEST_SUITE_P(SharedBodies, FromTheFileAlone,
 // wall quads held to the body (solver.wall_fidelity 100) every surface point stays within
 // 0.87 wall cells. Both grids valid; both runs say the wall misses the body (above 0.5). The
 // report names the stages: as placed the wall missed it by less than a wall cell, after the
-// volume passes by more than 3 (without the term).
+// volume passes by more than 2 (3.45 without the term).
 TEST(CliBodies, WallQuadsHeldToTheBodyKeepARandomBodysLimbTips) {
     if (!test::random_bodies_available())
         GTEST_SKIP() << "python3-vtk9 is not installed (bench/random_bodies.py needs it)";
@@ -417,9 +417,9 @@ TEST(CliBodies, WallQuadsHeldToTheBodyKeepARandomBodysLimbTips) {
         EXPECT_EQ(stages[2].at("stage"), "after the volume passes");
         EXPECT_LT(stages[0].at("max").get<double>(), 1) << stages;
         if (fidelity == 0) {
-            EXPECT_GT(stages[2].at("max").get<double>(), 3) << stages;
-            EXPECT_NE(r.out.find("the wall missed it by at most"), std::string::npos) << r.out;
+            EXPECT_GT(stages[2].at("max").get<double>(), 2) << stages;
         }
+        EXPECT_NE(r.out.find("the wall missed it by at most"), std::string::npos) << r.out;
         fs::remove_all(dir);
     }
     EXPECT_GT(misses[0], 4) << misses[0];

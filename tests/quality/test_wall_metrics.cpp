@@ -291,6 +291,27 @@ TEST(WallMetrics, HausdorffToATranslatedCopyIsTheTranslation) {
     EXPECT_NEAR(h.hausdorff, t.norm(), 1e-9);
 }
 
+// surface_to_wall_in_cells is the in-cells part of hausdorff_to_surface: the same figures on
+// the same grid (an O-H grid of a unit sphere against a coarse UV sphere a little larger), the
+// other distances left 0.
+TEST(WallMetrics, SurfaceToWallInCellsIsHausdorffsInCellsPart) {
+    const Sphere sphere(Vec3::Zero(), 1.0);
+    const BlockGrid grid = make_o_h_grid(sphere, sphere_options());
+    const TriangleSurface uv = test::uv_sphere(Vec3::Zero(), 1.05, 12, 6);
+    const HausdorffDistance all = hausdorff_to_surface(grid, uv);
+    const HausdorffDistance cells = surface_to_wall_in_cells(grid, uv);
+    EXPECT_GT(all.surface_in_cells_max, 0.0);
+    EXPECT_EQ(cells.surface_in_cells_max, all.surface_in_cells_max);
+    EXPECT_EQ(cells.surface_in_cells_p99, all.surface_in_cells_p99);
+    EXPECT_EQ(cells.surface_in_cells_at, all.surface_in_cells_at);
+    EXPECT_EQ(cells.surface_in_cells_distance, all.surface_in_cells_distance);
+    EXPECT_EQ(cells.hausdorff, 0.0);
+    BlockGrid no_wall;
+    add_lattice_block(no_wall,
+                      {uniform_distances(1, 2), uniform_distances(1, 2), uniform_distances(1, 2)});
+    EXPECT_THROW(surface_to_wall_in_cells(no_wall, uv), std::invalid_argument);
+}
+
 TEST(WallMetrics, HausdorffNeedsAWall) {
     BlockGrid grid;
     add_lattice_block(grid,
