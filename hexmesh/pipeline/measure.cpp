@@ -44,7 +44,6 @@ void measure(Job& job) {
 
 void note_wall_miss(Job& job, const std::string& stage) {
     if (!job.surface) return;
-    if (stage == "as placed") job.wall_misses.clear();
     try {
         const HausdorffDistance d = surface_to_wall_in_cells(job.grid(), *job.surface);
         job.wall_misses.push_back({stage, d.surface_in_cells_max, d.surface_in_cells_p99});

@@ -16,9 +16,8 @@ namespace hexmesh {
 void measure(Job& job);
 
 // For a job with a surface file: how far job.grid()'s wall now misses it (the report's surface
-// to wall in wall cells, max and 99th percentile) added to job.wall_misses as `stage`; "as
-// placed" starts them again (a grid made again). Nothing is added when the wall has no quad
-// of non-zero area.
+// to wall in wall cells, max and 99th percentile) added to job.wall_misses as `stage`. Nothing
+// is added when the wall has no quad of non-zero area.
 void note_wall_miss(Job& job, const std::string& stage);
 
 // The report of job.levels[level - 1] (a refined level: the wall law refined_wall_layers).

@@ -149,6 +149,7 @@ SurfaceOptimizationResult optimize_wall_surface(BlockGrid& grid, const ImplicitF
 }
 
 void make_surface_grid(Job& job) {
+    job.wall_misses.clear();  // a grid made (again): its own stages from here
     note_wall_miss(job, "as placed");
     if (job.route.radial()) {
         const FeatureSnapping snapped = snap_to_features(job.grid(), *job.body);

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 #include <unordered_map>
 
 #include "hexmesh/core/bytes.h"
@@ -248,13 +249,17 @@ void append_wall_triangles(const BlockGrid& grid, const Block& block, TriangleSu
             }
 }
 
-HausdorffDistance hausdorff_to_surface(const BlockGrid& grid, const TriangleSurface& surface) {
+namespace {
+
+// The grid's wall faces as triangles (append_wall_triangles over every block); throws when
+// there is none.
+TriangleSurface wall_triangles(const BlockGrid& grid, const char* caller) {
     TriangleSurface wall;
     for (const Block& block : grid.blocks) append_wall_triangles(grid, block, wall);
-    return hausdorff_to_surface(wall, surface);
+    if (wall.triangles.empty())
+        throw std::invalid_argument(std::string(caller) + ": the grid has no wall face");
+    return wall;
 }
-
-namespace {
 
 // The vertices the surface's triangles use.
 std::vector<Vec3> used_vertices(const TriangleSurface& surface) {
@@ -318,11 +323,12 @@ HausdorffDistance hausdorff_to_surface(const TriangleSurface& wall,
     return d;
 }
 
+HausdorffDistance hausdorff_to_surface(const BlockGrid& grid, const TriangleSurface& surface) {
+    return hausdorff_to_surface(wall_triangles(grid, "hausdorff_to_surface"), surface);
+}
+
 HausdorffDistance surface_to_wall_in_cells(const BlockGrid& grid, const TriangleSurface& surface) {
-    TriangleSurface wall;
-    for (const Block& block : grid.blocks) append_wall_triangles(grid, block, wall);
-    if (wall.triangles.empty())
-        throw std::invalid_argument("surface_to_wall_in_cells: the grid has no wall face");
+    const TriangleSurface wall = wall_triangles(grid, "surface_to_wall_in_cells");
     const std::vector<Vec3> vertices = used_vertices(surface);
     HausdorffDistance d;
     measure_in_cells(wall, ExactDistance(wall), vertices, vertices.size(), d);
