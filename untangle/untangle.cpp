@@ -70,7 +70,10 @@ OuterIteration solve_outer(Minimizer& minimizer, const Assembly& assembly, const
 // `best` and `progress` (judged on `judge`, the whole problem, since `problem` may be a
 // local part of it). eps first shrinks fast; when that stalls, the continuation restarts
 // from the best state it reached, at the eps that state was found with, and shrinks eps by
-// the safe rule.
+// the safe rule. A continuation asked to start above its state's own eps (start_eps, to give
+// the elements room) first adds inverted elements: its progress is then counted from its own
+// first iteration, not from the state it left, though the crawl rule (fewer than the best
+// state) applies after stall_minimum iterations.
 void continuation(Problem& problem, const Assembly& judge, const UntangleOptions& options,
                   const std::function<double()>& seconds, Best& best, Progress& progress,
                   UntangleResult& result, double regularize_below = 0, double start_eps = 0) {
@@ -79,8 +82,10 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
     ElementStats stats = judge.stats(x);
     Minimizer minimizer(problem, assembly, options.untangle_solver);
     double eps = first_eps(stats.min_det, start_eps);
+    const bool from_room = eps > first_eps(stats.min_det, 0);
     bool fast = options.fast_sigma > options.safe_sigma;
-    Id fewest = stats.inverted;  // the best state of this continuation, and its eps
+    // The best state of this continuation, and its eps.
+    Id fewest = from_room ? std::numeric_limits<Id>::max() : stats.inverted;
     std::vector<Vec3> restart = x;
     double restart_eps = eps;
     int stalled = 0, restart_iteration = 0;
@@ -121,8 +126,12 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
         if (done(stats)) break;
         // eps this small (in target units) no longer changes anything but the energy's scale.
         const bool stuck = stalled > 0 && eps < negligible_eps;
-        const bool crawling = regularize_below == 0 && stalled >= options.stall_minimum &&
-                              progress.ask_crawling(options.stall_share);
+        // A pass from above its state's scale has stall_minimum iterations to find fewer
+        // inverted elements than the best state; then it is judged as any other.
+        const bool judged = stalled >= options.stall_minimum ||
+                            (from_room && it - first + 1 >= options.stall_minimum);
+        const bool crawling =
+            regularize_below == 0 && judged && progress.ask_crawling(options.stall_share);
         if (fast && !crawling && (stalled >= options.fast_stall || stuck) &&
             stats.inverted > options.unrepairable) {
             if (regularize_below == 0 && options.leave_to_next_pass &&
@@ -153,9 +162,10 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
 
 // Repairs the inverted elements of `problem` (x = best.points) in their neighbourhoods of
 // options.local_rings element rings, doubled while the neighbourhood is less than half the
-// problem and the last round repaired something or grew. A round that starts as one of
-// `rounds` (the rounds of this untangle_and_optimize call, to which it is added) did is not
-// solved again. Returns whether the last round repaired nothing.
+// problem and the last round repaired something or grew; the first round starts from
+// start_eps (or its state's own scale, when larger), the others from room_eps at least. A
+// round that starts as one of `rounds` (the rounds of this untangle_and_optimize call, to
+// which it is added) did is not solved again. Returns whether the last round repaired nothing.
 bool repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
                               const std::vector<std::vector<Id>>& elements_of,
                               const UntangleOptions& options,
@@ -175,13 +185,17 @@ bool repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
         if (part.num_elements() <= previous && best.inverted >= inverted_then) break;
         previous = part.num_elements();
         inverted_then = best.inverted;
+        // After the first round, what it left follows eps down (det ~ -eps all the way): a
+        // round started at their scale would do the same, so it starts from room_eps.
+        const double round_eps =
+            rings == options.local_rings ? start_eps : std::max(start_eps, options.room_eps);
         // Only a round from the best state is known by its start (the best state's version);
         // rounds are kept and compared only when repeats are reused.
         const bool known = options.reuse_repeats && problem.points == best.points;
         LocalRound round;
         if (known) {
             round.rings = rings;
-            round.eps = first_eps(assembly.stats(part.points).min_det, start_eps);
+            round.eps = first_eps(assembly.stats(part.points).min_det, round_eps);
             round.best_version = best.version;
             round.kinds = problem.kinds;
         }
@@ -203,13 +217,18 @@ bool repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
             stalled = true;
             continue;
         }
+        if (rings != options.local_rings && round_eps > start_eps)
+            log_note(options.log,
+                     fmt::format("{} inverted elements left: neighbourhoods of {} rings, from eps "
+                                 "{:.3g} or above",
+                                 best.inverted, rings, round_eps));
         UntangleOptions local = options;
         local.max_untangle_iterations = std::min(options.max_untangle_iterations, 50);
         local.stall_iterations = std::min(options.stall_iterations, 10);  // the global pass follows
         const size_t records = result.history.size();
         round.start_work = progress.work;
         progress.trace = known ? &round.trace : nullptr;
-        continuation(part, assembly, local, seconds, best, progress, result, 0, start_eps);
+        continuation(part, assembly, local, seconds, best, progress, result, 0, round_eps);
         progress.trace = nullptr;
         stalled = best.inverted >= inverted_then;
         problem.points = best.points;
@@ -247,6 +266,7 @@ struct Passes {
 // Untangling. Few inverted elements are first repaired locally, in growing neighbourhoods;
 // what is left (or a widespread tangle) is untangled globally. x = the best state after.
 void untangle_locally_then_globally(const Passes& s) {
+    const size_t solved = s.result.history.size();
     const bool local_stalled = s.repair_locally(0);
     if (s.best.inverted > s.options.unrepairable && !s.result.left_to_next_pass) {
         // When the largest neighbourhood the local repair tried repaired nothing, the global
@@ -254,7 +274,15 @@ void untangle_locally_then_globally(const Passes& s) {
         // (an element held by fixed vertices, or by such a neighbour).
         UntangleOptions global = s.options;
         if (local_stalled) global.stall_iterations = std::min(s.options.stall_iterations, 10);
-        continuation(s.problem, s.assembly, global, s.seconds, s.best, s.progress, s.result);
+        // After local rounds, what they left follows eps down: room_eps, as for their rounds.
+        const bool after_rounds = s.result.history.size() > solved && s.options.room_eps > 0;
+        if (after_rounds)
+            log_note(s.options.log,
+                     fmt::format("{} inverted elements left: the whole mesh, from eps {:.3g} or "
+                                 "above",
+                                 s.best.inverted, s.options.room_eps));
+        continuation(s.problem, s.assembly, global, s.seconds, s.best, s.progress, s.result, 0,
+                     after_rounds ? s.options.room_eps : 0);
     }
     s.problem.points = s.best.points;
 }

@@ -179,6 +179,70 @@ TEST_P(UntangleStressInput, IsUntangled) {
 INSTANTIATE_TEST_SUITE_P(Built, UntangleStressInput, ::testing::ValuesIn(stress_inputs()),
                          [](const auto& info) { return std::string(info.param.name); });
 
+// Targets up to e^10 apart again (another seed): the continuation leaves 12 inverted elements,
+// and their neighbourhoods start again from room_eps. From there the count first rises far
+// above 12 (the larger eps lets the elements move) before it falls to 0: that start counts its
+// progress from its own first iteration, so it is not abandoned as making none.
+TEST(Untangle, AStartFromRoomEpsCountsItsProgressFromItsOwnFirstIteration) {
+    Problem p = mismatched_targets(14, 1.5, 1, 2.5);
+    UntangleOptions o = options_for(Method::newton_cg);
+    std::ostringstream log;
+    o.log = &log;
+    const UntangleResult r = untangle_and_optimize(p, o);
+    EXPECT_EQ(r.inverted_after, 0) << format_untangle_summary(r) << log.str();
+    const std::string text = log.str();
+    const auto from_room = text.find("inverted elements left: their neighbourhoods start again");
+    ASSERT_NE(from_room, std::string::npos) << text;
+    const Id left = std::stoll(text.substr(text.rfind('\n', from_room) + 1));
+    // its first outer iteration: the next line, "  untangle   N ..."
+    const int first = std::stoi(text.substr(text.find('\n', from_room) + 1 + 11));
+    Id most = 0;  // the most inverted elements of an outer iteration from that start on
+    for (const IterationRecord& h : r.history)
+        if (!h.barrier && h.iteration >= first) most = std::max(most, h.inverted);
+    EXPECT_GT(most, left) << text;
+}
+
+// A node of a valid 12^3 grid that two extra tets with fixed bases want above z + 0.05 and below
+// z - 0.05: impossible, and the inverted tet's det stays small (its own scale, 0.2 |min det|, is
+// under room_eps). The first round of its neighbourhoods leaves it with det ~ -eps all the way
+// down; every later round (the neighbourhood grows with the grid's cells round the node), and
+// the global pass after them, says so and starts from room_eps.
+TEST(Untangle, RoundsAfterTheFirstStartFromRoomEps) {
+    Problem p = test_support::displaced_grid_problem(12, 0.1, 5);
+    const Id node = 6 + 13 * (6 + 13 * 6), o = Id(p.points.size());
+    const Vec3 at = p.points[node];
+    for (const Vec3& x : std::vector<Vec3>{{-0.3, -0.3, 0.05},
+                                           {0.7, -0.3, 0.05},
+                                           {-0.3, 0.7, 0.05},
+                                           {-0.3, -0.3, -0.05},
+                                           {0.7, -0.3, -0.05},
+                                           {-0.3, 0.7, -0.05}}) {
+        p.points.push_back(at + x);
+        p.kinds.push_back(VertexKind::fixed);
+    }
+    p.tets = {{o, o + 1, o + 2, node}, {o + 3, o + 5, o + 4, node}};
+    p.targets.assign(2, regular_tet_target(1.0));
+    UntangleOptions opt = options_for(Method::newton_cg);
+    std::ostringstream log;
+    opt.log = &log;
+    const UntangleResult r = untangle_and_optimize(p, opt);
+    EXPECT_GT(r.inverted_after, 0);
+    const std::string text = log.str();
+    // the first outer iteration after a note, "  untangle   N  E ...  eps X ..."
+    const auto eps_after = [&](const std::string& note) {
+        const auto at_note = text.find(note);
+        if (at_note == std::string::npos) return -1.0;
+        const auto line = text.find('\n', at_note) + 1;
+        return std::stod(text.substr(text.find("eps ", line) + 4));
+    };
+    EXPECT_LT(r.history.front().eps, opt.room_eps) << text;  // the first round: its own scale
+    EXPECT_GE(eps_after("inverted elements left: neighbourhoods of 4 rings, from eps 0.1"),
+              opt.room_eps)
+        << text;
+    EXPECT_GE(eps_after("inverted elements left: the whole mesh, from eps 0.1"), opt.room_eps)
+        << text;
+}
+
 TEST(Untangle, NeverReturnsWorseThanItsInput) {
     Problem p = test_support::displaced_grid_problem(5, 1.5, 9);
     UntangleOptions o = options_for(Method::explicit_gradient);
