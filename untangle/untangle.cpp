@@ -165,15 +165,20 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
 // problem and the last round repaired something or grew; the first round starts from
 // start_eps (or its state's own scale, when larger), the others from room_eps at least. A
 // round that starts as one of `rounds` (the rounds of this untangle_and_optimize call, to
-// which it is added) did is not solved again. Returns whether the last round repaired nothing.
-bool repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
-                              const std::vector<std::vector<Id>>& elements_of,
-                              const UntangleOptions& options,
-                              const std::function<double()>& seconds, Best& best,
-                              Progress& progress, UntangleResult& result,
-                              std::vector<LocalRound>& rounds, double start_eps = 0) {
-    bool stalled = false;
-    if (best.inverted <= options.unrepairable || options.local_rings <= 0) return stalled;
+// which it is added) did is not solved again.
+struct LocalRepair {
+    bool ran = false;      // some round ran (or was taken as it was)
+    bool stalled = false;  // the last round repaired nothing
+};
+LocalRepair repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
+                                     const std::vector<std::vector<Id>>& elements_of,
+                                     const UntangleOptions& options,
+                                     const std::function<double()>& seconds, Best& best,
+                                     Progress& progress, UntangleResult& result,
+                                     std::vector<LocalRound>& rounds, double start_eps = 0) {
+    LocalRepair out;
+    bool& stalled = out.stalled;
+    if (best.inverted <= options.unrepairable || options.local_rings <= 0) return out;
     // A part no larger than the last one, after a round that repaired nothing, ends this:
     // more rings add no freedom (few free nodes around cells that cannot be repaired).
     Id previous = 0, inverted_then = std::numeric_limits<Id>::max();
@@ -185,6 +190,7 @@ bool repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
         if (part.num_elements() <= previous && best.inverted >= inverted_then) break;
         previous = part.num_elements();
         inverted_then = best.inverted;
+        out.ran = true;
         // After the first round, what it left follows eps down (det ~ -eps all the way): a
         // round started at their scale would do the same, so it starts from room_eps.
         const double round_eps =
@@ -239,7 +245,7 @@ bool repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
         round.left_to_next_pass = result.left_to_next_pass;
         rounds.push_back(std::move(round));
     }
-    return stalled;
+    return out;
 }
 
 // What the passes of one untangle_and_optimize call share: the problem (x = its points), its
@@ -257,7 +263,7 @@ struct Passes {
     std::vector<LocalRound>& rounds;
 
     // repair_in_neighbourhoods from start_eps; whether its last round repaired nothing.
-    bool repair_locally(double start_eps) const {
+    LocalRepair repair_locally(double start_eps) const {
         return repair_in_neighbourhoods(problem, assembly, elements_of, options, seconds, best,
                                         progress, result, rounds, start_eps);
     }
@@ -267,7 +273,7 @@ struct Passes {
 // what is left (or a widespread tangle) is untangled globally. x = the best state after.
 void untangle_locally_then_globally(const Passes& s) {
     const size_t solved = s.result.history.size();
-    const bool local_stalled = s.repair_locally(0);
+    const bool local_stalled = s.repair_locally(0).stalled;
     if (s.best.inverted > s.options.unrepairable && !s.result.left_to_next_pass) {
         // When the largest neighbourhood the local repair tried repaired nothing, the global
         // pass gets the local stall budget too: what is left is then almost always blocked
@@ -306,19 +312,31 @@ void let_the_wall_go(const Passes& s) {
 
 // The few elements the continuation leaves often have det ~ -eps all the way down (each
 // step of eps is matched by their det): their neighbourhoods start again from room_eps,
-// where the functional lets them move.
+// where the functional lets them move; the whole mesh does when their neighbourhoods are more
+// than half of it (a small mesh) and room_eps is above its scale.
 void restart_from_room_eps(const Passes& s) {
     const UntangleOptions& options = s.options;
     if (s.best.inverted > options.unrepairable && options.room_eps > 0 && options.local_rings > 0 &&
         !s.result.left_to_next_pass) {
         s.progress.start_again(s.seconds());  // a new start: the stall clock starts again
         // From room_eps, or from 0.2 |min det| as every continuation when that is larger.
-        const double eps = first_eps(s.assembly.stats(s.best.points).min_det, options.room_eps);
+        const double min_det = s.assembly.stats(s.best.points).min_det;
+        const double eps = first_eps(min_det, options.room_eps);
         log_note(options.log,
                  fmt::format("{} inverted elements left: their neighbourhoods start again from eps "
                              "{:.3g}",
                              s.best.inverted, eps));
-        s.repair_locally(options.room_eps);
+        // The whole mesh only from above its best state's own scale: at that scale it would
+        // start as the global pass did.
+        if (!s.repair_locally(options.room_eps).ran && eps > first_eps(min_det, 0)) {
+            log_note(options.log,
+                     "their neighbourhoods are more than half the mesh: the whole "
+                     "mesh starts again instead");
+            UntangleOptions global = options;
+            global.stall_iterations = std::min(options.stall_iterations, 10);
+            continuation(s.problem, s.assembly, global, s.seconds, s.best, s.progress, s.result, 0,
+                         options.room_eps);
+        }
         s.problem.points = s.best.points;
     }
 }

@@ -202,6 +202,22 @@ TEST(Untangle, AStartFromRoomEpsCountsItsProgressFromItsOwnFirstIteration) {
     EXPECT_GT(most, left) << text;
 }
 
+// Targets up to e^10 apart on a small grid (8^3): the continuation leaves 2 inverted elements,
+// whose neighbourhoods of 2 rings are more than half the mesh. The second start from room_eps
+// then takes the whole mesh, and repairs them.
+TEST(Untangle, ASmallMeshStartsAgainWholeFromRoomEps) {
+    Problem p = mismatched_targets(8, 0.8, 1, 2.5);
+    UntangleOptions o = options_for(Method::newton_cg);
+    std::ostringstream log;
+    o.log = &log;
+    const UntangleResult r = untangle_and_optimize(p, o);
+    EXPECT_EQ(r.inverted_after, 0) << format_untangle_summary(r) << log.str();
+    EXPECT_NE(log.str().find("their neighbourhoods are more than half the mesh: the whole mesh "
+                             "starts again instead"),
+              std::string::npos)
+        << log.str();
+}
+
 // A node of a valid 12^3 grid that two extra tets with fixed bases want above z + 0.05 and below
 // z - 0.05: impossible, and the inverted tet's det stays small (its own scale, 0.2 |min det|, is
 // under room_eps). The first round of its neighbourhoods leaves it with det ~ -eps all the way
