@@ -134,8 +134,8 @@ std::vector<StressInput> stress_inputs() {
          }},
         // 2 744 cells shaken by up to 1.5 cells, targets up to e^6 apart between neighbours
         {"mismatched_targets", [] { return mismatched_targets(14, 1.5, 2, 1.5); }},
-        // the same, targets up to e^10 apart (bench/RESULTS.md: 4 of 12 such inputs are not
-        // untangled yet; this one is, in about 30 outer iterations)
+        // the same, targets up to e^10 apart (bench/RESULTS.md: 12 of 12 such inputs are
+        // untangled, not yet most of those up to e^12 apart; this one in about 30 iterations)
         {"strongly_mismatched_targets", [] { return mismatched_targets(14, 1.5, 2, 2.5); }},
         // unstructured: 5 patches of 8 x 8 cells (3 cells around the middle square's corners)
         // over 8 layers, 2 560 cells, every interior node moved by up to 1.5 cells
