@@ -272,7 +272,6 @@ struct Passes {
 // Untangling. Few inverted elements are first repaired locally, in growing neighbourhoods;
 // what is left (or a widespread tangle) is untangled globally. x = the best state after.
 void untangle_locally_then_globally(const Passes& s) {
-    const size_t solved = s.result.history.size();
     const bool local_stalled = s.repair_locally(0).stalled;
     if (s.best.inverted > s.options.unrepairable && !s.result.left_to_next_pass) {
         // When the largest neighbourhood the local repair tried repaired nothing, the global
@@ -280,15 +279,10 @@ void untangle_locally_then_globally(const Passes& s) {
         // (an element held by fixed vertices, or by such a neighbour).
         UntangleOptions global = s.options;
         if (local_stalled) global.stall_iterations = std::min(s.options.stall_iterations, 10);
-        // After local rounds, what they left follows eps down: room_eps, as for their rounds.
-        const bool after_rounds = s.result.history.size() > solved && s.options.room_eps > 0;
-        if (after_rounds)
-            log_note(s.options.log,
-                     fmt::format("{} inverted elements left: the whole mesh, from eps {:.3g} or "
-                                 "above",
-                                 s.best.inverted, s.options.room_eps));
-        continuation(s.problem, s.assembly, global, s.seconds, s.best, s.progress, s.result, 0,
-                     after_rounds ? s.options.room_eps : 0);
+        // From its state's own scale: from room_eps, as the later local rounds, the whole mesh
+        // would first add many inverted elements (the hand outside: 23 -> 149), at the cost of
+        // the largest solves.
+        continuation(s.problem, s.assembly, global, s.seconds, s.best, s.progress, s.result);
     }
     s.problem.points = s.best.points;
 }

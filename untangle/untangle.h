@@ -57,7 +57,7 @@ struct UntangleOptions {
     int local_rings = 2;
     // eps (target units) the local repair starts again from when elements stay inverted after
     // the local and global passes (0: no second start), and that every round of the local
-    // repair after its first, and the global pass after such rounds, start from.
+    // repair after its first starts from.
     double room_eps = 0.1;
     // When elements stay inverted, the crease and corner vertices among theirs slide on the
     // surface instead and the local repair runs again (validity before the crease's sharpness).

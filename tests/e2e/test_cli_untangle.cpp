@@ -108,7 +108,7 @@ TEST(Untangle, FixedBoundaryThatCannotWorkIsExplained) {
     EXPECT_FALSE(fs::exists(out));
     // The local repair's largest neighbourhood changes nothing, so the global pass gives up
     // after the local stall budget, and the second start of the neighbourhoods from a larger
-    // eps ends as soon: 35 outer iterations, not the 200 of the full budget.
+    // eps ends as soon: 37 outer iterations, not the 200 of the full budget.
     const auto at = r.out.find("outer iterations");
     ASSERT_NE(at, std::string::npos) << r.out;
     EXPECT_LE(std::stoi(r.out.substr(at + 16)), 60) << r.out.substr(at, 60);
