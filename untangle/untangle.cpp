@@ -88,7 +88,7 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
     Id fewest = from_room ? std::numeric_limits<Id>::max() : stats.inverted;
     std::vector<Vec3> restart = x;
     double restart_eps = eps;
-    int stalled = 0, restart_iteration = 0;
+    int stalled = 0, restart_iteration = 0, without_fewer = 0;
     const int first = int(result.history.size()) + 1;
     // Regularizing a valid start: the goal is every det above regularize_below instead.
     const std::function<bool(const ElementStats&)> done = [&](const ElementStats& e) {
@@ -116,6 +116,8 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
         record(result, options.log, r);
         best.offer(x, stats.inverted,
                    stats.inverted ? infinity : judge.energy(x, {options.theta, 0}));
+        // iterations of this pass since the count last fell below the best state's
+        without_fewer = stats.inverted < progress.fewest ? 0 : without_fewer + 1;
         progress.offer(stats.inverted, 1.0 + double(m.linear_iterations), r.seconds);
         if (stats.inverted < fewest || (regularize_below > 0 && stats.inverted == 0)) {
             fewest = stats.inverted, restart = x, restart_eps = eps, stalled = 0,
@@ -149,7 +151,8 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
             continue;
         }
         if (stalled >= options.stall_iterations || stuck || crawling) {
-            result.stopped = stop_for_stall(stuck, eps, progress, r.seconds, stalled);
+            result.stopped = stop_for_stall(stuck, eps, progress, r.seconds,
+                                            from_room ? without_fewer : stalled);
             return;
         }
         eps = next_eps(m.energy, o.energy_before, fast, options, o.local.min_det, eps);
