@@ -372,7 +372,7 @@ INSTANTIATE_TEST_SUITE_P(SharedBodies, FromTheFileAlone,
                                            BodyRun{"part.off", "exterior", false, 0.079},
                                            BodyRun{"u.off", "exterior", false, 0.09},
                                            BodyRun{"cross.off", "exterior", false, 0.22},
-                                           BodyRun{"bull.off", "exterior", false, 0.065, true},
+                                           BodyRun{"bull.off", "exterior", false, 0.042, true},
                                            BodyRun{"NACA0012.obj", "exterior", false, 0.079},
                                            BodyRun{"NACA0012.obj", "interior", false, 0.06}),
                          [](const ::testing::TestParamInfo<BodyRun>& info) {
