@@ -168,20 +168,15 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
 // problem and the last round repaired something or grew; the first round starts from
 // start_eps (or its state's own scale, when larger), the others from room_eps at least. A
 // round that starts as one of `rounds` (the rounds of this untangle_and_optimize call, to
-// which it is added) did is not solved again.
-struct LocalRepair {
-    bool ran = false;      // some round ran (or was taken as it was)
-    bool stalled = false;  // the last round repaired nothing
-};
-LocalRepair repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
-                                     const std::vector<std::vector<Id>>& elements_of,
-                                     const UntangleOptions& options,
-                                     const std::function<double()>& seconds, Best& best,
-                                     Progress& progress, UntangleResult& result,
-                                     std::vector<LocalRound>& rounds, double start_eps = 0) {
-    LocalRepair out;
-    bool& stalled = out.stalled;
-    if (best.inverted <= options.unrepairable || options.local_rings <= 0) return out;
+// which it is added) did is not solved again. Returns whether the last round repaired nothing.
+bool repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
+                              const std::vector<std::vector<Id>>& elements_of,
+                              const UntangleOptions& options,
+                              const std::function<double()>& seconds, Best& best,
+                              Progress& progress, UntangleResult& result,
+                              std::vector<LocalRound>& rounds, double start_eps = 0) {
+    bool stalled = false;
+    if (best.inverted <= options.unrepairable || options.local_rings <= 0) return stalled;
     // A part no larger than the last one, after a round that repaired nothing, ends this:
     // more rings add no freedom (few free nodes around cells that cannot be repaired).
     Id previous = 0, inverted_then = std::numeric_limits<Id>::max();
@@ -193,7 +188,6 @@ LocalRepair repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
         if (part.num_elements() <= previous && best.inverted >= inverted_then) break;
         previous = part.num_elements();
         inverted_then = best.inverted;
-        out.ran = true;
         // After the first round, what it left follows eps down (det ~ -eps all the way): a
         // round started at their scale would do the same, so it starts from room_eps.
         const double round_eps =
@@ -248,7 +242,7 @@ LocalRepair repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
         round.left_to_next_pass = result.left_to_next_pass;
         rounds.push_back(std::move(round));
     }
-    return out;
+    return stalled;
 }
 
 // What the passes of one untangle_and_optimize call share: the problem (x = its points), its
@@ -266,7 +260,7 @@ struct Passes {
     std::vector<LocalRound>& rounds;
 
     // repair_in_neighbourhoods from start_eps; whether its last round repaired nothing.
-    LocalRepair repair_locally(double start_eps) const {
+    bool repair_locally(double start_eps) const {
         return repair_in_neighbourhoods(problem, assembly, elements_of, options, seconds, best,
                                         progress, result, rounds, start_eps);
     }
@@ -275,7 +269,7 @@ struct Passes {
 // Untangling. Few inverted elements are first repaired locally, in growing neighbourhoods;
 // what is left (or a widespread tangle) is untangled globally. x = the best state after.
 void untangle_locally_then_globally(const Passes& s) {
-    const bool local_stalled = s.repair_locally(0).stalled;
+    const bool local_stalled = s.repair_locally(0);
     if (s.best.inverted > s.options.unrepairable && !s.result.left_to_next_pass) {
         // When the largest neighbourhood the local repair tried repaired nothing, the global
         // pass gets the local stall budget too: what is left is then almost always blocked
@@ -313,29 +307,36 @@ void let_the_wall_go(const Passes& s) {
 // than half of it (a small mesh) and room_eps is above its scale.
 void restart_from_room_eps(const Passes& s) {
     const UntangleOptions& options = s.options;
-    if (s.best.inverted > options.unrepairable && options.room_eps > 0 && options.local_rings > 0 &&
-        !s.result.left_to_next_pass) {
-        s.progress.start_again(s.seconds());  // a new start: the stall clock starts again
-        // From room_eps, or from 0.2 |min det| as every continuation when that is larger.
-        const double min_det = s.assembly.stats(s.best.points).min_det;
-        const double eps = first_eps(min_det, options.room_eps);
+    if (s.best.inverted <= options.unrepairable || options.room_eps <= 0 ||
+        options.local_rings <= 0 || s.result.left_to_next_pass)
+        return;
+    // From room_eps, or from 0.2 |min det| as every continuation when that is larger.
+    const double min_det = s.assembly.stats(s.best.points).min_det;
+    const double eps = first_eps(min_det, options.room_eps);
+    Problem part;
+    const bool fits = local_part(s.problem, s.elements_of, options.local_rings, part);
+    const bool whole = !fits && part.num_elements() >= s.problem.num_elements() / 2;
+    // No free vertex near them: nothing can move. The whole mesh only from above its best
+    // state's own scale: at that scale it would start as the global pass did.
+    if (!fits && !(whole && eps > first_eps(min_det, 0))) return;
+    s.progress.start_again(s.seconds());  // a new start: the stall clock starts again
+    if (whole) {
+        log_note(options.log,
+                 fmt::format("{} inverted elements left: their neighbourhoods are more than half "
+                             "the mesh: the whole mesh starts again instead, from eps {:.3g}",
+                             s.best.inverted, eps));
+        UntangleOptions global = options;
+        global.stall_iterations = std::min(options.stall_iterations, 10);
+        continuation(s.problem, s.assembly, global, s.seconds, s.best, s.progress, s.result, 0,
+                     options.room_eps);
+    } else {
         log_note(options.log,
                  fmt::format("{} inverted elements left: their neighbourhoods start again from eps "
                              "{:.3g}",
                              s.best.inverted, eps));
-        // The whole mesh only from above its best state's own scale: at that scale it would
-        // start as the global pass did.
-        if (!s.repair_locally(options.room_eps).ran && eps > first_eps(min_det, 0)) {
-            log_note(options.log,
-                     "their neighbourhoods are more than half the mesh: the whole "
-                     "mesh starts again instead");
-            UntangleOptions global = options;
-            global.stall_iterations = std::min(options.stall_iterations, 10);
-            continuation(s.problem, s.assembly, global, s.seconds, s.best, s.progress, s.result, 0,
-                         options.room_eps);
-        }
-        s.problem.points = s.best.points;
+        s.repair_locally(options.room_eps);
     }
+    s.problem.points = s.best.points;
 }
 
 // Last resort: the crease and corner vertices of the elements still inverted slide on the
