@@ -43,6 +43,13 @@ double next_eps(double energy, double e_prev, bool fast, const UntangleOptions& 
     return min_det < mu ? 2 * std::sqrt(mu * (mu - min_det)) : tiny_eps;
 }
 
+// options with the stall budget of a pass that another follows, or that follows a stall: 10
+// outer iterations without fewer inverted elements.
+UntangleOptions with_short_stall(UntangleOptions o) {
+    o.stall_iterations = std::min(o.stall_iterations, 10);
+    return o;
+}
+
 // The first eps of a continuation from a state whose smallest det is min_det, asked to start
 // at start_eps or above.
 double first_eps(double min_det, double start_eps) {
@@ -225,9 +232,8 @@ bool repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
                      fmt::format("{} inverted elements left: neighbourhoods of {} rings, from eps "
                                  "{:.3g} or above",
                                  best.inverted, rings, round_eps));
-        UntangleOptions local = options;
+        UntangleOptions local = with_short_stall(options);  // the global pass follows
         local.max_untangle_iterations = std::min(options.max_untangle_iterations, 50);
-        local.stall_iterations = std::min(options.stall_iterations, 10);  // the global pass follows
         const size_t records = result.history.size();
         round.start_work = progress.work;
         progress.trace = known ? &round.trace : nullptr;
@@ -274,8 +280,7 @@ void untangle_locally_then_globally(const Passes& s) {
         // When the largest neighbourhood the local repair tried repaired nothing, the global
         // pass gets the local stall budget too: what is left is then almost always blocked
         // (an element held by fixed vertices, or by such a neighbour).
-        UntangleOptions global = s.options;
-        if (local_stalled) global.stall_iterations = std::min(s.options.stall_iterations, 10);
+        const UntangleOptions global = local_stalled ? with_short_stall(s.options) : s.options;
         // From its state's own scale: from room_eps, as the later local rounds, the whole mesh
         // would first add many inverted elements (the hand outside: 23 -> 149), at the cost of
         // the largest solves.
@@ -325,10 +330,8 @@ void restart_from_room_eps(const Passes& s) {
                  fmt::format("{} inverted elements left: their neighbourhoods are more than half "
                              "the mesh: the whole mesh starts again instead, from eps {:.3g}",
                              s.best.inverted, eps));
-        UntangleOptions global = options;
-        global.stall_iterations = std::min(options.stall_iterations, 10);
-        continuation(s.problem, s.assembly, global, s.seconds, s.best, s.progress, s.result, 0,
-                     options.room_eps);
+        continuation(s.problem, s.assembly, with_short_stall(options), s.seconds, s.best,
+                     s.progress, s.result, 0, options.room_eps);
     } else {
         log_note(options.log,
                  fmt::format("{} inverted elements left: their neighbourhoods start again from eps "
