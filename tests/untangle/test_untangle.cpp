@@ -24,6 +24,18 @@ UntangleOptions options_for(Method method) {
     return o;
 }
 
+// untangle_and_optimize(p, o) with its progress log kept.
+struct LoggedRun {
+    UntangleResult result;
+    std::string log;
+};
+LoggedRun untangle_logged(Problem& p, UntangleOptions o = options_for(Method::newton_cg)) {
+    std::ostringstream log;
+    o.log = &log;
+    UntangleResult r = untangle_and_optimize(p, o);
+    return {std::move(r), log.str()};
+}
+
 }  // namespace
 
 class UntangleStress : public ::testing::TestWithParam<Method> {};
@@ -33,12 +45,9 @@ class UntangleStress : public ::testing::TestWithParam<Method> {};
 TEST_P(UntangleStress, RandomlyDisplacedGridIsUntangled) {
     Problem p = test_support::displaced_grid_problem(8, 2.0, 42);
     const std::vector<Vec3> boundary_before = p.points;
-    UntangleOptions o = options_for(GetParam());
-    std::ostringstream log;
-    o.log = &log;
-    const UntangleResult r = untangle_and_optimize(p, o);
+    const auto [r, log] = untangle_logged(p, options_for(GetParam()));
     EXPECT_GT(r.inverted_before, 500);
-    EXPECT_EQ(r.inverted_after, 0) << log.str();
+    EXPECT_EQ(r.inverted_after, 0) << log;
     EXPECT_GT(r.min_det_after, 0.0);
     EXPECT_EQ(Assembly(p).stats(p.points).inverted, 0);
     for (size_t v = 0; v < p.points.size(); ++v) {
@@ -46,7 +55,7 @@ TEST_P(UntangleStress, RandomlyDisplacedGridIsUntangled) {
             EXPECT_EQ(p.points[v], boundary_before[v]);
         }
     }
-    EXPECT_NE(log.str().find("untangle"), std::string::npos);
+    EXPECT_NE(log.find("untangle"), std::string::npos);
 }
 
 INSTANTIATE_TEST_SUITE_P(GlobalSolvers, UntangleStress,
@@ -159,12 +168,9 @@ class UntangleStressInput : public ::testing::TestWithParam<StressInput> {};
 TEST_P(UntangleStressInput, IsUntangled) {
     Problem p = GetParam().make();
     const std::vector<Vec3> before = p.points;
-    UntangleOptions o = options_for(Method::newton_cg);
-    std::ostringstream log;
-    o.log = &log;
-    const UntangleResult r = untangle_and_optimize(p, o);
+    const auto [r, log] = untangle_logged(p);
     EXPECT_GT(r.inverted_before, 0);
-    EXPECT_EQ(r.inverted_after, 0) << format_untangle_summary(r) << log.str();
+    EXPECT_EQ(r.inverted_after, 0) << format_untangle_summary(r) << log;
     EXPECT_TRUE(r.stopped.empty()) << r.stopped;
     for (size_t v = 0; v < p.points.size(); ++v) {
         if (p.kinds[v] == VertexKind::fixed) {
@@ -180,17 +186,13 @@ INSTANTIATE_TEST_SUITE_P(Built, UntangleStressInput, ::testing::ValuesIn(stress_
                          [](const auto& info) { return std::string(info.param.name); });
 
 // Targets up to e^10 apart again (another seed): the continuation leaves 12 inverted elements,
-// and their neighbourhoods start again from room_eps. From there the count first rises far
-// above 12 (the larger eps lets the elements move) before it falls to 0: that start counts its
+// and their neighbourhoods start again from room_eps. From there the count rises above 12 at
+// times (the larger eps lets the elements move) before it falls to 0: that start counts its
 // progress from its own first iteration, so it is not abandoned as making none.
 TEST(Untangle, AStartFromRoomEpsCountsItsProgressFromItsOwnFirstIteration) {
     Problem p = mismatched_targets(14, 1.5, 1, 2.5);
-    UntangleOptions o = options_for(Method::newton_cg);
-    std::ostringstream log;
-    o.log = &log;
-    const UntangleResult r = untangle_and_optimize(p, o);
-    EXPECT_EQ(r.inverted_after, 0) << format_untangle_summary(r) << log.str();
-    const std::string text = log.str();
+    const auto [r, text] = untangle_logged(p);
+    EXPECT_EQ(r.inverted_after, 0) << format_untangle_summary(r) << text;
     const auto from_room = text.find("inverted elements left: their neighbourhoods start again");
     ASSERT_NE(from_room, std::string::npos) << text;
     const Id left = std::stoll(text.substr(text.rfind('\n', from_room) + 1));
@@ -207,15 +209,12 @@ TEST(Untangle, AStartFromRoomEpsCountsItsProgressFromItsOwnFirstIteration) {
 // then takes the whole mesh, and repairs them.
 TEST(Untangle, ASmallMeshStartsAgainWholeFromRoomEps) {
     Problem p = mismatched_targets(8, 0.8, 1, 2.5);
-    UntangleOptions o = options_for(Method::newton_cg);
-    std::ostringstream log;
-    o.log = &log;
-    const UntangleResult r = untangle_and_optimize(p, o);
-    EXPECT_EQ(r.inverted_after, 0) << format_untangle_summary(r) << log.str();
-    EXPECT_NE(log.str().find("their neighbourhoods are more than half the mesh: the whole mesh "
-                             "starts again instead"),
+    const auto [r, log] = untangle_logged(p);
+    EXPECT_EQ(r.inverted_after, 0) << format_untangle_summary(r) << log;
+    EXPECT_NE(log.find("their neighbourhoods are more than half the mesh: the whole mesh "
+                       "starts again instead"),
               std::string::npos)
-        << log.str();
+        << log;
 }
 
 // A node of a valid 12^3 grid that two extra tets with fixed bases want above z + 0.05 and below
@@ -238,12 +237,11 @@ TEST(Untangle, RoundsAfterTheFirstStartFromRoomEps) {
     }
     p.tets = {{o, o + 1, o + 2, node}, {o + 3, o + 5, o + 4, node}};
     p.targets.assign(2, regular_tet_target(1.0));
-    UntangleOptions opt = options_for(Method::newton_cg);
-    std::ostringstream log;
-    opt.log = &log;
-    const UntangleResult r = untangle_and_optimize(p, opt);
+    const UntangleOptions opt = options_for(Method::newton_cg);
+    const LoggedRun run = untangle_logged(p, opt);
+    const UntangleResult& r = run.result;
+    const std::string& text = run.log;
     EXPECT_GT(r.inverted_after, 0);
-    const std::string text = log.str();
     // the first outer iteration after a note, "  untangle   N  E ...  eps X ..."
     const auto eps_after = [&](const std::string& note) {
         const auto at_note = text.find(note);
@@ -297,15 +295,11 @@ TEST(Untangle, AnImpossibleTangleEndsEarlyWithWhereItIs) {
     p.kinds[6] = VertexKind::interior;
     p.tets = {{0, 1, 2, 6}, {3, 5, 4, 6}};  // needs z > 0, and z < -1
     p.targets.assign(2, regular_tet_target(1.0));
-    UntangleOptions o = options_for(Method::newton_cg);
-    std::ostringstream log;
-    o.log = &log;
-    const UntangleResult r = untangle_and_optimize(p, o);
+    const auto [r, log] = untangle_logged(p);
     EXPECT_EQ(r.inverted_before, 1);
     EXPECT_EQ(r.inverted_after, 1);
     EXPECT_EQ(r.blocked, 0);
-    EXPECT_LE(r.history.size(), 12u)
-        << log.str();  // the stall budget alone would allow 40 and more
+    EXPECT_LE(r.history.size(), 12u) << log;  // the stall budget alone would allow 40 and more
     EXPECT_NE(r.stopped.find("no fewer than 1 inverted elements"), std::string::npos) << r.stopped;
     EXPECT_NE(r.stopped.find(": 1 interior, 3 fixed"), std::string::npos) << r.stopped;
 }
