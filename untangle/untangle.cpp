@@ -56,18 +56,48 @@ double first_eps(double min_det, double start_eps) {
     return std::max(start_eps, std::sqrt(tiny_eps + 0.04 * min_det * min_det));
 }
 
+// The whole problem a continuation answers to (its best state, its progress, when it is done),
+// where it solves a part of it (local_part): the whole's assembly and points, and the part's
+// place in it (none: the continuation solves the whole).
+struct Judge {
+    const Assembly& whole;
+    const std::vector<Vec3>& points;  // the whole's, where the part's solve starts
+    const PartOf* part = nullptr;
+    // The whole's stats with the part at x (`own`: the assembly of the part).
+    ElementStats stats(const Assembly& own, const std::vector<Vec3>& x) const {
+        if (!part) return whole.stats(x);
+        ElementStats s = own.stats(x);
+        if (!(part->outside.min_det >= s.min_det)) s.min_det = part->outside.min_det;
+        s.inverted += part->outside.inverted;
+        return s;
+    }
+    // Offers the whole's state with the part at x to `best` (with its barrier energy if it is
+    // untangled).
+    void offer(Best& best, const std::vector<Vec3>& x, Id inverted, double theta) const {
+        std::vector<Vec3> scattered;
+        if (part) {
+            scattered = points;
+            for (size_t v = 0; v < x.size(); ++v) scattered[part->global[v]] = x[v];
+        }
+        const std::vector<Vec3>& y = part ? scattered : x;
+        best.offer(y, inverted, inverted ? infinity : whole.energy(y, {theta, 0}));
+    }
+};
+
 // One outer iteration at p from x, solved: x moves to its end.
-OuterIteration solve_outer(Minimizer& minimizer, const Assembly& assembly, const Assembly& judge,
+OuterIteration solve_outer(Minimizer& minimizer, const Assembly& assembly, const Judge& judge,
                            std::vector<Vec3>& x, const EnergyParams& p,
                            const UntangleOptions& options,
                            const std::function<bool(const ElementStats&)>& done) {
     OuterIteration o;
     o.energy_before = assembly.energy(x, p);
     // Untangled is the goal of this phase: stop as soon as it is reached.
-    const auto untangled = [&](const std::vector<Vec3>& y) { return done(judge.stats(y)); };
+    const auto untangled = [&](const std::vector<Vec3>& y) {
+        return done(judge.stats(assembly, y));
+    };
     o.m = minimizer.minimize(x, p, options.inner_steps, options.inner_tolerance, untangled);
-    o.stats = judge.stats(x);
     o.local = assembly.stats(x);
+    o.stats = judge.stats(assembly, x);
     return o;
 }
 
@@ -81,12 +111,12 @@ OuterIteration solve_outer(Minimizer& minimizer, const Assembly& assembly, const
 // the elements room) first adds inverted elements: its progress is then counted from its own
 // first iteration, not from the state it left, though the crawl rule (fewer than the best
 // state) applies after stall_minimum iterations.
-void continuation(Problem& problem, const Assembly& judge, const UntangleOptions& options,
+void continuation(Problem& problem, const Judge& judge, const UntangleOptions& options,
                   const std::function<double()>& seconds, Best& best, Progress& progress,
                   UntangleResult& result, double regularize_below = 0, double start_eps = 0) {
     const Assembly assembly(problem);
     std::vector<Vec3>& x = problem.points;
-    ElementStats stats = judge.stats(x);
+    ElementStats stats = judge.stats(assembly, x);
     Minimizer minimizer(problem, assembly, options.untangle_solver);
     double eps = first_eps(stats.min_det, start_eps);
     const bool from_room = eps > first_eps(stats.min_det, 0);
@@ -121,8 +151,7 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
         stats = o.stats;
         const IterationRecord r = make_record(it, false, m, eps, stats, seconds());
         record(result, options.log, r);
-        best.offer(x, stats.inverted,
-                   stats.inverted ? infinity : judge.energy(x, {options.theta, 0}));
+        judge.offer(best, x, stats.inverted, options.theta);
         // iterations of this pass since the count last fell below the best state's
         without_fewer = stats.inverted < progress.fewest ? 0 : without_fewer + 1;
         progress.offer(stats.inverted, 1.0 + double(m.linear_iterations), r.seconds);
@@ -153,7 +182,7 @@ void continuation(Problem& problem, const Assembly& judge, const UntangleOptions
             }
             fast = false, stalled = 0;
             x = restart, eps = restart_eps, back_to_start = restart_iteration == 0;
-            stats = judge.stats(x);
+            stats = judge.stats(assembly, x);
             log_note(options.log, restart_note(options, restart_iteration, fewest, eps));
             continue;
         }
@@ -191,7 +220,8 @@ bool repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
          best.inverted > options.unrepairable && rings < (1 << 20) && !result.left_to_next_pass;
          rings *= 2) {
         Problem part;
-        if (!local_part(problem, elements_of, rings, part)) break;
+        PartOf of;
+        if (!local_part(problem, elements_of, rings, part, of)) break;
         if (part.num_elements() <= previous && best.inverted >= inverted_then) break;
         previous = part.num_elements();
         inverted_then = best.inverted;
@@ -205,7 +235,7 @@ bool repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
         LocalRound round;
         if (known) {
             round.rings = rings;
-            round.eps = first_eps(assembly.stats(part.points).min_det, round_eps);
+            round.eps = first_eps(assembly.stats(problem.points).min_det, round_eps);
             round.best_version = best.version;
             round.kinds = problem.kinds;
         }
@@ -237,7 +267,8 @@ bool repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
         const size_t records = result.history.size();
         round.start_work = progress.work;
         progress.trace = known ? &round.trace : nullptr;
-        continuation(part, assembly, local, seconds, best, progress, result, 0, round_eps);
+        continuation(part, Judge{assembly, problem.points, &of}, local, seconds, best, progress,
+                     result, 0, round_eps);
         progress.trace = nullptr;
         stalled = best.inverted >= inverted_then;
         problem.points = best.points;
@@ -265,6 +296,8 @@ struct Passes {
     UntangleResult& result;
     std::vector<LocalRound>& rounds;
 
+    // The continuations of the whole problem answer to it.
+    Judge whole() const { return Judge{assembly, problem.points}; }
     // repair_in_neighbourhoods from start_eps; whether its last round repaired nothing.
     bool repair_locally(double start_eps) const {
         return repair_in_neighbourhoods(problem, assembly, elements_of, options, seconds, best,
@@ -284,7 +317,7 @@ void untangle_locally_then_globally(const Passes& s) {
         // From its state's own scale: from room_eps, as the later local rounds, the whole mesh
         // would first add many inverted elements (the hand outside: 23 -> 149), at the cost of
         // the largest solves.
-        continuation(s.problem, s.assembly, global, s.seconds, s.best, s.progress, s.result);
+        continuation(s.problem, s.whole(), global, s.seconds, s.best, s.progress, s.result);
     }
     s.problem.points = s.best.points;
 }
@@ -319,7 +352,8 @@ void restart_from_room_eps(const Passes& s) {
     const double min_det = s.assembly.stats(s.best.points).min_det;
     const double eps = first_eps(min_det, options.room_eps);
     Problem part;
-    const bool fits = local_part(s.problem, s.elements_of, options.local_rings, part);
+    PartOf of;
+    const bool fits = local_part(s.problem, s.elements_of, options.local_rings, part, of);
     const bool whole = !fits && part.num_elements() >= s.problem.num_elements() / 2;
     // No free vertex near them: nothing can move. The whole mesh only from above its best
     // state's own scale: at that scale it would start as the global pass did.
@@ -330,8 +364,8 @@ void restart_from_room_eps(const Passes& s) {
                  fmt::format("{} inverted elements left: their neighbourhoods are more than half "
                              "the mesh: the whole mesh starts again instead, from eps {:.3g}",
                              s.best.inverted, eps));
-        continuation(s.problem, s.assembly, with_short_stall(options), s.seconds, s.best,
-                     s.progress, s.result, 0, options.room_eps);
+        continuation(s.problem, s.whole(), with_short_stall(options), s.seconds, s.best, s.progress,
+                     s.result, 0, options.room_eps);
     } else {
         log_note(options.log,
                  fmt::format("{} inverted elements left: their neighbourhoods start again from eps "
@@ -453,7 +487,7 @@ UntangleResult untangle_and_optimize(Problem& problem, const UntangleOptions& op
     release_creases(passes);
     if (best.inverted == 0 && options.regularize_below > 0 &&
         assembly.stats(x).min_det < options.regularize_below) {
-        continuation(problem, assembly, options, seconds, best, progress, result,
+        continuation(problem, passes.whole(), options, seconds, best, progress, result,
                      options.regularize_below);
         x = best.points;  // the valid state of lowest barrier energy
     }
