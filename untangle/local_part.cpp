@@ -46,13 +46,11 @@ bool local_part(const Problem& problem, const std::vector<std::vector<Id>>& elem
     std::vector<Id> local(nv, -1);
     of = PartOf{};
     of.outside = {std::numeric_limits<double>::infinity(), 0};
-    Id kept = 0;
     // A hex's corner tets come whole: all 8 when one of its nodes is free.
     const Id corners = 8 * Id(problem.hexes.size());
     for (Id e = 0; e < ne; ++e) {
         const ElementNodes nodes = problem.element(e);
         if (e < corners ? touches(problem.hexes[e / 8]) : touches(nodes)) {
-            ++kept;
             for (Id v : nodes) local[v] = 0;
         } else {
             if (!(det[e] >= of.outside.min_det)) of.outside.min_det = det[e];  // as Assembly::stats
@@ -99,7 +97,7 @@ bool local_part(const Problem& problem, const std::vector<std::vector<Id>>& elem
             part.held_quads.push_back({renumbered(q.nodes), q.weight, q.unit_weight});
     const bool any_free = std::any_of(part.kinds.begin(), part.kinds.end(),
                                       [](VertexKind k) { return degrees_of_freedom(k) > 0; });
-    return any_free && kept < ne / 2;
+    return any_free && part.num_elements() < ne / 2;
 }
 
 }  // namespace hexmesh::untangle

@@ -63,13 +63,12 @@ struct Judge {
     const Assembly& whole;
     const std::vector<Vec3>& points;  // the whole's, where the part's solve starts
     const PartOf* part = nullptr;
-    // The whole's stats with the part at x (`own`: the assembly of the part).
-    ElementStats stats(const Assembly& own, const std::vector<Vec3>& x) const {
-        if (!part) return whole.stats(x);
-        ElementStats s = own.stats(x);
-        if (!(part->outside.min_det >= s.min_det)) s.min_det = part->outside.min_det;
-        s.inverted += part->outside.inverted;
-        return s;
+    // The whole's stats from those of the problem the continuation solves (`own`).
+    ElementStats stats(ElementStats own) const {
+        if (!part) return own;
+        if (!(part->outside.min_det >= own.min_det)) own.min_det = part->outside.min_det;
+        own.inverted += part->outside.inverted;
+        return own;
     }
     // Offers the whole's state with the part at x to `best` (with its barrier energy if it is
     // untangled).
@@ -93,11 +92,11 @@ OuterIteration solve_outer(Minimizer& minimizer, const Assembly& assembly, const
     o.energy_before = assembly.energy(x, p);
     // Untangled is the goal of this phase: stop as soon as it is reached.
     const auto untangled = [&](const std::vector<Vec3>& y) {
-        return done(judge.stats(assembly, y));
+        return done(judge.stats(assembly.stats(y)));
     };
     o.m = minimizer.minimize(x, p, options.inner_steps, options.inner_tolerance, untangled);
     o.local = assembly.stats(x);
-    o.stats = judge.stats(assembly, x);
+    o.stats = judge.stats(o.local);
     return o;
 }
 
@@ -116,7 +115,7 @@ void continuation(Problem& problem, const Judge& judge, const UntangleOptions& o
                   UntangleResult& result, double regularize_below = 0, double start_eps = 0) {
     const Assembly assembly(problem);
     std::vector<Vec3>& x = problem.points;
-    ElementStats stats = judge.stats(assembly, x);
+    ElementStats stats = judge.stats(assembly.stats(x));
     Minimizer minimizer(problem, assembly, options.untangle_solver);
     double eps = first_eps(stats.min_det, start_eps);
     const bool from_room = eps > first_eps(stats.min_det, 0);
@@ -182,7 +181,7 @@ void continuation(Problem& problem, const Judge& judge, const UntangleOptions& o
             }
             fast = false, stalled = 0;
             x = restart, eps = restart_eps, back_to_start = restart_iteration == 0;
-            stats = judge.stats(assembly, x);
+            stats = judge.stats(assembly.stats(x));
             log_note(options.log, restart_note(options, restart_iteration, fewest, eps));
             continue;
         }
