@@ -1,5 +1,6 @@
 #include "hexmesh/pipeline/mend_cells.h"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -127,6 +128,134 @@ double worst_jacobian_at(const HexMesh& mesh, const Adjacency& around, Id v) {
     return low;
 }
 
+// The frames of the cells around v (hex_frame_jacobians, 9 a cell), into `out`.
+void frames_at(const HexMesh& mesh, const Adjacency& around, Id v, std::vector<double>& out) {
+    out.clear();
+    for (auto [c, end] = around.of(v); c != end; ++c) {
+        const std::array<double, 9> f = hex_frame_jacobians(mesh.corners(*c));
+        out.insert(out.end(), f.begin(), f.end());
+    }
+}
+
+// The point of the convex hull of `points` nearest the origin (Wolfe's algorithm: a corral of
+// points whose affine hull's nearest point lies inside their hull, grown by the point farthest
+// back along the current nearest point until none lies back by more than 1e-10 of the longest's
+// squared length). Zero when the hull holds the origin, or when the point found fails to be
+// one every point lies ahead along (each p . x >= x . x / 2: rounding).
+Eigen::VectorXd nearest_in_hull(const std::vector<Eigen::VectorXd>& points) {
+    const Eigen::Index dim = points.front().size();
+    double scale = 0;
+    size_t shortest = 0;
+    for (size_t k = 0; k < points.size(); ++k) {
+        scale = std::max(scale, points[k].squaredNorm());
+        if (points[k].squaredNorm() < points[shortest].squaredNorm()) shortest = k;
+    }
+    std::vector<size_t> corral{shortest};
+    std::vector<double> w{1.0};
+    Eigen::VectorXd x = points[shortest];
+    for (int major = 0; major < 500 && x.squaredNorm() > 1e-20 * scale; ++major) {
+        size_t back = 0;
+        for (size_t k = 1; k < points.size(); ++k)
+            if (points[k].dot(x) < points[back].dot(x)) back = k;
+        if (x.squaredNorm() - points[back].dot(x) <= 1e-10 * scale ||
+            std::find(corral.begin(), corral.end(), back) != corral.end())
+            break;
+        corral.push_back(back);
+        w.push_back(0);
+        for (int minor = 0; minor < 500; ++minor) {
+            // The affine hull's nearest point: weights v, sum 1, from the Gram matrix's KKT system.
+            const Eigen::Index k = Eigen::Index(corral.size());
+            Eigen::MatrixXd a = Eigen::MatrixXd::Zero(k + 1, k + 1);
+            for (Eigen::Index i = 0; i < k; ++i) {
+                for (Eigen::Index j = 0; j < k; ++j)
+                    a(i, j) = points[corral[size_t(i)]].dot(points[corral[size_t(j)]]);
+                a(i, k) = a(k, i) = 1;
+            }
+            Eigen::VectorXd rhs = Eigen::VectorXd::Zero(k + 1);
+            rhs(k) = 1;
+            const Eigen::VectorXd v = a.completeOrthogonalDecomposition().solve(rhs).head(k);
+            if (v.minCoeff() > 1e-12) {
+                w.assign(v.data(), v.data() + k);
+                break;
+            }
+            // Towards it until a weight reaches zero; that point leaves the corral.
+            double theta = 1;
+            for (Eigen::Index i = 0; i < k; ++i)
+                if (v(i) <= 1e-12 && w[size_t(i)] - v(i) > 0)
+                    theta = std::min(theta, w[size_t(i)] / (w[size_t(i)] - v(i)));
+            std::vector<size_t> kept;
+            std::vector<double> kept_w;
+            for (Eigen::Index i = 0; i < k; ++i) {
+                const double wi = (1 - theta) * w[size_t(i)] + theta * v(i);
+                if (wi > 1e-12) kept.push_back(corral[size_t(i)]), kept_w.push_back(wi);
+            }
+            if (kept.empty()) break;
+            corral = std::move(kept);
+            w = std::move(kept_w);
+        }
+        x = Eigen::VectorXd::Zero(dim);
+        for (size_t i = 0; i < corral.size(); ++i) x += w[i] * points[corral[i]];
+    }
+    for (const Eigen::VectorXd& p : points)
+        if (!(p.dot(x) >= 0.5 * x.squaredNorm())) return Eigen::VectorXd::Zero(dim);
+    return x;
+}
+
+// Offsets, in the span of `basis` (1 to 3 orthonormal vectors), along which the smallest of
+// `frames` rises fastest to first order, for nodes that `move(offset)` places (offset zero:
+// back where they were): the max-min steepest ascent (Freitag and Plassmann's optimization of
+// the worst element round a node), the point nearest the origin of the convex hull of the
+// gradients of the frames within 0.01 of the smallest (forward differences of 1e-4 `edge`).
+// Along it the smallest rises at |d|^2 until another frame, falling or rising more slowly,
+// meets it: that reach (at most `cap`), and its half, are appended to `out`. None when the
+// hull holds the origin (a frame the move cannot raise is the smallest, or the gradients
+// balance).
+void ascent_offsets(const std::function<void(const Vec3&)>& move,
+                    const std::function<void(std::vector<double>&)>& frames,
+                    const std::vector<Vec3>& basis, double edge, double cap,
+                    std::vector<Vec3>& out) {
+    std::vector<double> f0, f;
+    frames(f0);
+    if (f0.empty()) return;
+    const double h = 1e-4 * edge;
+    std::vector<Vec3> grad(f0.size(), Vec3::Zero());
+    for (size_t j = 0; j < basis.size(); ++j) {
+        move(h * basis[j]);
+        frames(f);
+        for (size_t k = 0; k < f0.size(); ++k) grad[k][int(j)] = (f[k] - f0[k]) / h;
+    }
+    move(Vec3::Zero());
+    const double low = *std::min_element(f0.begin(), f0.end());
+    if (!(low < 1)) return;
+    std::vector<Vec3> active;
+    for (size_t k = 0; k < f0.size(); ++k)
+        if (f0[k] <= low + 0.01 && grad[k].allFinite()) active.push_back(grad[k]);
+    if (active.empty()) return;
+    std::vector<Eigen::VectorXd> hull;
+    for (const Vec3& g : active) hull.push_back(g.head(Eigen::Index(basis.size())));
+    const Eigen::VectorXd near = nearest_in_hull(hull);
+    Vec3 d = Vec3::Zero();
+    d.head(near.size()) = near;
+    const double rate = d.squaredNorm();
+    if (!(rate > 1e-12)) return;
+    double reach = cap / d.norm();
+    for (size_t k = 0; k < f0.size(); ++k)
+        if (f0[k] < 1e29 && f0[k] > low + 0.01 && grad[k].dot(d) < rate)
+            reach = std::min(reach, (f0[k] - low) / (rate - grad[k].dot(d)));
+    Vec3 offset = Vec3::Zero();
+    for (size_t j = 0; j < basis.size(); ++j) offset += d[int(j)] * basis[j];
+    for (const double share : {1.0, 0.5}) out.push_back(share * reach * offset);
+}
+
+// ascent_offsets for node v alone.
+void node_ascent(HexMesh& mesh, const Adjacency& around, Id v, const std::vector<Vec3>& basis,
+                 double edge, double cap, std::vector<Vec3>& out) {
+    const Vec3 x = mesh.points[v];
+    ascent_offsets([&](const Vec3& offset) { mesh.points[v] = x + offset; },
+                   [&](std::vector<double>& f) { frames_at(mesh, around, v, f); }, basis, edge, cap,
+                   out);
+}
+
 // The move of `tried` that the node v takes, or `start`. By the solver's checks (score_at), the
 // best if better than at `start`. By the scaled Jacobian (by_jacobian), the trials that raise the
 // worst of the node's cells over `low` (its value at `start`) ranked on it alone, and the first
@@ -167,12 +296,12 @@ Vec3 best_move(HexMesh& mesh, const Adjacency& around, Id v, const Vec3& start,
 
 // One round over `nodes`: each movable node whose margin (or, by_jacobian, worst scaled
 // Jacobian around it) is not yet `enough` tries the moves `trials` gives for a step of step[i]
-// and takes the best (best_move); a node that finds none halves its step, down to last_step
-// edges.
+// and takes the best (best_move), or else those `then` gives (if any); a node that finds none
+// halves its step, down to last_step edges.
 RoundResult node_round(HexMesh& mesh, const Adjacency& around, const std::vector<Id>& nodes,
                        const std::function<bool(Id)>& movable, const TrialMoves& trials,
-                       bool by_jacobian, double enough, double last_step,
-                       std::vector<double>& step) {
+                       bool by_jacobian, double enough, double last_step, std::vector<double>& step,
+                       const TrialMoves& then = {}) {
     RoundResult r;
     std::vector<Vec3> tried;
     for (size_t i = 0; i < nodes.size(); ++i) {
@@ -187,7 +316,14 @@ RoundResult node_round(HexMesh& mesh, const Adjacency& around, const std::vector
         const Vec3 start = mesh.points[v];
         tried.clear();
         trials(v, start, step[i], tried);
-        if (best_move(mesh, around, v, start, tried, by_jacobian, low) != start)
+        bool moved = best_move(mesh, around, v, start, tried, by_jacobian, low) != start;
+        if (!moved && then) {
+            tried.clear();
+            then(v, start, step[i], tried);
+            moved = !tried.empty() &&
+                    best_move(mesh, around, v, start, tried, by_jacobian, low) != start;
+        }
+        if (moved)
             ++r.moves;
         else
             step[i] *= 0.5;
@@ -279,6 +415,148 @@ Vec3 along_level(const ImplicitFunction& body, const Vec3& x, const Vec3& offset
 
 }  // namespace
 
+// How a node may move in the joint ascent: its basis (axes, its level's tangents, its
+// crease's tangent, or none) and where an offset takes it (back onto its level or crease).
+struct NodeFreedom {
+    std::vector<Vec3> basis;
+    std::function<Vec3(const Vec3& x, const Vec3& offset)> place;
+};
+
+// The worst cells raised jointly, step by step: the frames (hex_frame_jacobians) within 0.01
+// of the grid's smallest, in the cells (at most 128) that hold them; their gradients in the
+// moves of all those cells' nodes at once (forward differences of 1e-4 edges, each node as
+// `freedom` lets it move); with them the gradients of the solver margins (solver_margin) of
+// the cells around those nodes that are within 0.01 of what a solver refuses; the point of the
+// convex hull of all these gradients nearest the origin (the max-min steepest ascent of the
+// nodes together: along it every such frame and margin rises, where each node alone may
+// already be at a max-min point of its own cells); and a step along it from 0.1 of the
+// shortest edge at the moving nodes, halved until the cells around them all come out above the
+// smallest with a Score no worse (no more cells inverted, refused or with skewed faces). Stops
+// when the hull holds the origin, when no step helps, when ten steps raised the smallest by less
+// than 0.001 together, or after `iterations`. Returns the steps taken.
+Id joint_ascent(HexMesh& mesh, const Adjacency& around,
+                const std::function<NodeFreedom(Id)>& freedom, int iterations) {
+    Id taken = 0;
+    std::vector<double> sj = scaled_jacobians(mesh);
+    std::vector<double> lows;  // the smallest before each step
+    for (int it = 0; it < iterations; ++it) {
+        const double low = *std::min_element(sj.begin(), sj.end());
+        // Ten steps that raised it by less than 0.001 together: it crawls.
+        if (lows.size() >= 10 && low - lows[lows.size() - 10] < 1e-3) break;
+        lows.push_back(low);
+        std::vector<Id> cells;
+        for (Id c = 0; c < Id(sj.size()); ++c)
+            if (sj[c] <= low + 0.01) cells.push_back(c);
+        if (cells.size() > 128) break;  // spread over the grid: left to the functional
+        // The variables: each moving node's basis coordinates.
+        std::vector<Id> nodes;
+        for (Id c : cells)
+            for (int a = 0; a < 8; ++a) nodes.push_back(mesh.hexes[8 * c + a]);
+        std::sort(nodes.begin(), nodes.end());
+        nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+        std::vector<NodeFreedom> free(nodes.size());
+        std::vector<int> first(nodes.size() + 1, 0);
+        for (size_t i = 0; i < nodes.size(); ++i) {
+            free[i] = freedom(nodes[i]);
+            first[i + 1] = first[i] + int(free[i].basis.size());
+        }
+        const int n = first.back();
+        if (n == 0) break;
+        const double h = 1e-4 * mean_edge_at(mesh, around, mesh.hexes[8 * cells[0]]);
+        std::vector<Eigen::VectorXd> grads;
+        for (Id c : cells) {
+            const std::array<double, 9> f0 = hex_frame_jacobians(mesh.corners(c));
+            std::vector<int> act;
+            for (int k = 0; k < 9; ++k)
+                if (f0[k] <= low + 0.01) act.push_back(k);
+            std::vector<Eigen::VectorXd> g(act.size(), Eigen::VectorXd::Zero(n));
+            for (int a = 0; a < 8; ++a) {
+                const Id v = mesh.hexes[8 * c + a];
+                const size_t i =
+                    size_t(std::lower_bound(nodes.begin(), nodes.end(), v) - nodes.begin());
+                const Vec3 x = mesh.points[v];
+                for (size_t j = 0; j < free[i].basis.size(); ++j) {
+                    mesh.points[v] = x + h * free[i].basis[j];
+                    const std::array<double, 9> f = hex_frame_jacobians(mesh.corners(c));
+                    for (size_t q = 0; q < act.size(); ++q)
+                        g[q][first[i] + int(j)] = (f[act[q]] - f0[act[q]]) / h;
+                }
+                mesh.points[v] = x;
+            }
+            for (auto& v : g)
+                if (v.allFinite()) grads.push_back(std::move(v));
+        }
+        std::vector<Id> touched;
+        for (Id v : nodes)
+            for (auto [c, end] = around.of(v); c != end; ++c) touched.push_back(*c);
+        std::sort(touched.begin(), touched.end());
+        touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+        // Cells within 0.01 of what a solver refuses (solver_margin) must not come nearer: their
+        // margins' gradients join the hull, so the step raises them too.
+        for (Id c : touched) {
+            const double m0 = solver_margin(mesh.corners(c));
+            if (!(m0 <= 0.01)) continue;
+            Eigen::VectorXd g = Eigen::VectorXd::Zero(n);
+            for (int a = 0; a < 8; ++a) {
+                const Id v = mesh.hexes[8 * c + a];
+                const auto at = std::lower_bound(nodes.begin(), nodes.end(), v);
+                if (at == nodes.end() || *at != v) continue;
+                const size_t i = size_t(at - nodes.begin());
+                const Vec3 x = mesh.points[v];
+                for (size_t j = 0; j < free[i].basis.size(); ++j) {
+                    mesh.points[v] = x + h * free[i].basis[j];
+                    g[first[i] + int(j)] = (solver_margin(mesh.corners(c)) - m0) / h;
+                }
+                mesh.points[v] = x;
+            }
+            if (g.allFinite() && g.squaredNorm() > 0) grads.push_back(std::move(g));
+        }
+        if (grads.empty()) break;
+        const Eigen::VectorXd d = nearest_in_hull(grads);
+        if (!(d.squaredNorm() > 1e-12)) break;
+        // The moved nodes' offsets per unit step, and the cells they touch.
+        std::vector<Vec3> offset(nodes.size(), Vec3::Zero());
+        double longest = 0, edge = std::numeric_limits<double>::infinity();
+        for (size_t i = 0; i < nodes.size(); ++i) {
+            for (size_t j = 0; j < free[i].basis.size(); ++j)
+                offset[i] += d[first[i] + int(j)] * free[i].basis[j];
+            longest = std::max(longest, offset[i].norm());
+            if (offset[i].norm() > 0) edge = std::min(edge, mean_edge_at(mesh, around, nodes[i]));
+        }
+        if (!(longest > 0)) break;
+        const auto score = [&] {
+            Score s;
+            for (Id v : nodes) {
+                const Score m = score_at(mesh, around, v, true);
+                s.inverted += m.inverted, s.inverted_tets += m.inverted_tets;
+                s.refused += m.refused, s.skewed += m.skewed;
+            }
+            return s;
+        };
+        const Score before = score();
+        std::vector<Vec3> start(nodes.size());
+        for (size_t i = 0; i < nodes.size(); ++i) start[i] = mesh.points[nodes[i]];
+        bool moved = false;
+        for (double t = 0.1 * edge / longest; t > 1e-4 * edge / longest && !moved; t *= 0.5) {
+            for (size_t i = 0; i < nodes.size(); ++i)
+                if (offset[i].squaredNorm() > 0)
+                    mesh.points[nodes[i]] = free[i].place(start[i], t * offset[i]);
+            double worst = std::numeric_limits<double>::infinity();
+            for (Id c : touched) worst = std::min(worst, hex_scaled_jacobian(mesh.corners(c)));
+            const Score after = score();
+            moved = worst > low + 1e-9 && after.inverted <= before.inverted &&
+                    after.inverted_tets <= before.inverted_tets &&
+                    after.refused <= before.refused && after.skewed <= before.skewed;
+            if (!moved)
+                for (size_t i = 0; i < nodes.size(); ++i) mesh.points[nodes[i]] = start[i];
+        }
+        if (!moved) break;
+        ++taken;
+        for (Id c : touched) sj[c] = hex_scaled_jacobian(mesh.corners(c));
+    }
+    return taken;
+}
+
 LiftResult lift_worst_cells(BlockGrid& grid, const ImplicitFunction& body, const LiftOptions& o) {
     LiftResult result;
     HexMesh mesh = to_hex_mesh(grid);
@@ -336,6 +614,22 @@ LiftResult lift_worst_cells(BlockGrid& grid, const ImplicitFunction& body, const
         const TangentFrame t = tangent_frame(body, x);
         for (const Vec3& d : {t.t1, Vec3(-t.t1), t.t2, Vec3(-t.t2)})
             out.push_back(along_level(body, x, h * d, level[i]));
+    };
+    // When none of those raises the node's worst cell: the max-min ascent (not on a crease).
+    const TrialMoves ascent = [&](Id v, const Vec3& x, double h, std::vector<Vec3>& out) {
+        if (grid.kinds[v] == VertexKind::feature_edge) return;
+        const size_t i = size_t(std::lower_bound(nodes.begin(), nodes.end(), v) - nodes.begin());
+        const double edge = mean_edge_at(mesh, around, v);
+        std::vector<Vec3> offsets;
+        if (std::isnan(level[i])) {
+            node_ascent(mesh, around, v, {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()}, edge, h,
+                        offsets);
+            for (const Vec3& d : offsets) out.push_back(x + d);
+            return;
+        }
+        const TangentFrame t = tangent_frame(body, x);
+        node_ascent(mesh, around, v, {t.t1, t.t2}, edge, h, offsets);
+        for (const Vec3& d : offsets) out.push_back(along_level(body, x, d, level[i]));
     };
     // The lines with a marked node whose nodes all move (the wall's slip or on its crease, the
     // layers' on their levels), each with its nodes' levels and step.
@@ -401,6 +695,37 @@ LiftResult lift_worst_cells(BlockGrid& grid, const ImplicitFunction& body, const
                     const double w = worst_on(l);
                     if (w > low + 1e-12) ranked.emplace_back(-w, x);
                 }
+            // When none of those raises it: the max-min ascent of the frames of the line's
+            // cells, whole and sheared.
+            for (int shear = 0; o.ascent && ranked.empty() && shear < 2; ++shear) {
+                const auto share = [&](size_t t) { return shear ? double(t) / double(T) : 1.0; };
+                std::vector<Vec3> offsets;
+                std::vector<double> part;
+                ascent_offsets(
+                    [&](const Vec3& o) {
+                        for (size_t t = 0; t <= T; ++t)
+                            mesh.points[l.nodes[t]] = start[t] + share(t) * o;
+                    },
+                    [&](std::vector<double>& f) {
+                        f.clear();
+                        for (Id v : l.nodes) {
+                            frames_at(mesh, around, v, part);
+                            f.insert(f.end(), part.begin(), part.end());
+                        }
+                    },
+                    {f.t1, f.t2}, mean_edge_at(mesh, around, l.nodes[0]), l.step, offsets);
+                for (const Vec3& o : offsets) {
+                    x.clear();
+                    for (size_t t = 0; t <= T; ++t) {
+                        x.push_back(share(t) == 0
+                                        ? start[t]
+                                        : along_level(body, start[t], share(t) * o, l.levels[t]));
+                        mesh.points[l.nodes[t]] = x.back();
+                    }
+                    const double w = worst_on(l);
+                    if (w > low + 1e-12) ranked.emplace_back(-w, x);
+                }
+            }
             for (size_t t = 0; t <= T; ++t) mesh.points[l.nodes[t]] = start[t];
             std::sort(ranked.begin(), ranked.end(),
                       [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -425,12 +750,46 @@ LiftResult lift_worst_cells(BlockGrid& grid, const ImplicitFunction& body, const
         return r;
     };
     for (int round = 0; round < o.rounds; ++round) {
-        const RoundResult r =
-            node_round(mesh, around, nodes, movable, moves, true, o.below, o.last_step, step);
+        const RoundResult r = node_round(mesh, around, nodes, movable, moves, true, o.below,
+                                         o.last_step, step, o.ascent ? ascent : TrialMoves());
         const RoundResult l = line_round();
         result.moves += r.moves + l.moves;
         result.line_moves += l.moves;
         if (!r.trying && !l.trying) break;
+    }
+    if (o.ascent) {
+        const auto freedom = [&](Id v) {
+            NodeFreedom f;
+            if (!movable(v)) return f;
+            const size_t i =
+                size_t(std::lower_bound(nodes.begin(), nodes.end(), v) - nodes.begin());
+            const bool listed = i < nodes.size() && nodes[i] == v;
+            const double edge = mean_edge_at(mesh, around, v);
+            if (grid.kinds[v] == VertexKind::feature_edge) {
+                const Vec3 t = crease_tangent(body, mesh.points[v], 1e-3 * edge);
+                if (t.squaredNorm() > 0) f.basis = {t};
+                f.place = [&body, edge](const Vec3& x, const Vec3& d) {
+                    return project_to_crease(body, x + d, edge);
+                };
+            } else if (grid.kinds[v] == VertexKind::slip ||
+                       (!o.on_level.empty() && o.on_level[v])) {
+                // An unlisted node has not moved: it is on its level.
+                const double l = grid.kinds[v] == VertexKind::slip ? 0.0
+                                 : listed                          ? level[i]
+                                                                   : body.value(mesh.points[v]);
+                const TangentFrame t = tangent_frame(body, mesh.points[v]);
+                f.basis = {t.t1, t.t2};
+                f.place = [&body, l](const Vec3& x, const Vec3& d) {
+                    return along_level(body, x, d, l);
+                };
+            } else if (grid.kinds[v] == VertexKind::interior &&
+                       (o.on_level.empty() || !o.on_level[v])) {
+                f.basis = {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
+                f.place = [](const Vec3& x, const Vec3& d) { return Vec3(x + d); };
+            }
+            return f;
+        };
+        result.joint_steps = joint_ascent(mesh, around, freedom, o.joint_iterations);
     }
     sj = scaled_jacobians(mesh);
     result.cells_after = count_below();

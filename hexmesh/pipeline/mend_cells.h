@@ -50,6 +50,8 @@ struct LiftOptions {
     std::vector<bool> held;      // nodes that do not move (sized like grid.points, or empty)
     // Wall-normal lines (a wall node, then its layers' nodes outwards), also moved whole.
     std::vector<std::vector<Id>> lines;
+    bool ascent = true;          // the max-min steepest ascent's moves (see lift_worst_cells)
+    int joint_iterations = 200;  // steps of the worst cells' nodes moved together, at most
 };
 
 struct LiftResult {
@@ -57,6 +59,7 @@ struct LiftResult {
     double min_sj_before = 0, min_sj_after = 0;  // worst scaled Jacobian, whole grid
     Id moves = 0;                                // trial moves kept
     Id line_moves = 0;                           // of which moves of whole lines
+    Id joint_steps = 0;                          // steps of the worst cells' nodes together
 };
 
 // The worst scaled Jacobian of a grid raised node by node, in sweeps: each node of a cell under
@@ -71,7 +74,16 @@ struct LiftResult {
 // lower another). Each line of `lines` with a node there whose wall node is slip and whose other
 // nodes are of `on_level` also tries, in each sweep, to move whole (every node by the same
 // tangent offset, each onto its own level) or sheared (node t of T by t / T of it): a line that
-// leaves the wall leaning, which a node moved alone cannot straighten. Corner nodes stay. Where the
+// leaves the wall leaning, which a node moved alone cannot straighten. With `ascent`, a node
+// (not on a crease) or a line none of whose moves helps also tries the max-min steepest ascent
+// of the frames of its cells (the 9 whose minimum is a cell's scaled Jacobian; Freitag and
+// Plassmann's direction: the point nearest the origin of the convex hull of the gradients of
+// the nearly smallest), as far as its step or to where, to first order, another frame meets
+// the smallest, and half that; and after the sweeps the worst cells of the whole grid are
+// raised by moving their nodes together (up to `joint_iterations` steps of the same ascent in
+// all their moves at once, the solver margins of the cells around held from falling to 0):
+// where each node is at a max-min point of its own cells, the worst cell is still raised by
+// several moving together. Corner nodes stay. Where the
 // joint optimization's functional weighs every cell, this weighs only the worst one around each
 // node: the shear of a boundary layer bent round a crease, which the polish holds. Deterministic;
 // the grid's worst scaled Jacobian never falls; the grid's points are changed in place.

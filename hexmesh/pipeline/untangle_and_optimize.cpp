@@ -187,9 +187,9 @@ void polish(Job& job) {
         job.log << fmt::format(
             "  worst cells lifted node by node, layers on their levels: {} -> {} cells with a "
             "scaled Jacobian under {}, min scaled Jacobian {:.3g} -> {:.3g} ({} moves, {} of whole "
-            "lines)\n",
+            "lines; {} steps of the worst cells' nodes together)\n",
             r.cells_before, r.cells_after, o.below, r.min_sj_before, r.min_sj_after, r.moves,
-            r.line_moves);
+            r.line_moves, r.joint_steps);
 }
 
 }  // namespace

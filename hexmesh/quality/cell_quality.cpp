@@ -81,6 +81,23 @@ double hex_scaled_jacobian(const std::array<Vec3, 8>& p) {
     return min_norm > -verdict_dbl_max ? min_norm : -verdict_dbl_max;
 }
 
+std::array<double, 9> hex_frame_jacobians(const std::array<Vec3, 8>& p) {
+    std::array<double, 9> frames;
+    const auto frame = [](const V3& e1, const V3& e2, const V3& e3) {
+        double norm = verdict_dbl_max;
+        fold_frame(e1, e2, e3, norm);
+        return norm;
+    };
+    frames[0] = frame(principal_axis(p, {1, 2, 5, 6, 0, 3, 4, 7}),
+                      principal_axis(p, {2, 3, 6, 7, 0, 1, 4, 5}),
+                      principal_axis(p, {4, 5, 6, 7, 0, 1, 2, 3}));
+    for (int t = 0; t < 8; ++t) {
+        const auto& [c, a, b, d] = hex_corner_tets[t];
+        frames[t + 1] = frame(sub(p[a], p[c]), sub(p[b], p[c]), sub(p[d], p[c]));
+    }
+    return frames;
+}
+
 std::vector<double> scaled_jacobians(const HexMesh& mesh) {
     std::vector<double> sj(static_cast<size_t>(mesh.num_cells()));
     tbb::parallel_for(tbb::blocked_range<Id>(0, mesh.num_cells(), 4096),

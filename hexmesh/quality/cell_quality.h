@@ -16,6 +16,10 @@ namespace hexmesh {
 // if any of the 27 frame vectors has squared length <= 1e-30, the result is +1e30.
 double hex_scaled_jacobian(const std::array<Vec3, 8>& p);
 
+// The 9 frames hex_scaled_jacobian takes the minimum of, each det[e1,e2,e3] / (|e1||e2||e3|):
+// the centre frame, then the 8 corner frames; a frame with a degenerate vector is +1e30.
+std::array<double, 9> hex_frame_jacobians(const std::array<Vec3, 8>& p);
+
 // det[a-c, b-c, d-c] of each corner tet (c, a, b, d) of hex_corner_tets, floating point.
 std::array<double, 8> corner_determinants(const std::array<Vec3, 8>& p);
 
