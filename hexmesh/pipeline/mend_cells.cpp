@@ -424,16 +424,17 @@ struct NodeFreedom {
 
 // The worst cells raised jointly, step by step: the frames (hex_frame_jacobians) within 0.01
 // of the grid's smallest, in the cells (at most 128) that hold them; their gradients in the
-// moves of all those cells' nodes at once (forward differences of 1e-4 edges, each node as
-// `freedom` lets it move); with them the gradients of the solver margins (solver_margin) of
-// the cells around those nodes that are within 0.01 of what a solver refuses; the point of the
-// convex hull of all these gradients nearest the origin (the max-min steepest ascent of the
-// nodes together: along it every such frame and margin rises, where each node alone may
-// already be at a max-min point of its own cells); and a step along it from 0.1 of the
-// shortest edge at the moving nodes, halved until the cells around them all come out above the
-// smallest with a Score no worse (no more cells inverted, refused or with skewed faces). Stops
-// when the hull holds the origin, when no step helps, when ten steps raised the smallest by less
-// than 0.001 together, or after `iterations`. Returns the steps taken.
+// moves of all those cells' nodes at once (forward differences of 1e-4 edges, each node moved
+// as `freedom` places it, back onto its level or crease: a difference along the tangent alone
+// misses how the projection moves it, and the step it predicts lowers the worst cell); with them
+// the gradients of the solver margins (solver_margin) of the cells around those nodes that are
+// within 0.01 of what a solver refuses; the point of the convex hull of all these gradients nearest
+// the origin (the max-min steepest ascent of the nodes together: along it every such frame and
+// margin rises, where each node alone may already be at a max-min point of its own cells); and a
+// step along it from 0.1 of the shortest edge at the moving nodes, halved until the cells around
+// them all come out above the smallest with a Score no worse (no more cells inverted, refused or
+// with skewed faces). Stops when the hull holds the origin, when no step helps, when ten steps
+// raised the smallest by less than 0.001 together, or after `iterations`. Returns the steps taken.
 Id joint_ascent(HexMesh& mesh, const Adjacency& around,
                 const std::function<NodeFreedom(Id)>& freedom, int iterations) {
     Id taken = 0;
@@ -476,7 +477,7 @@ Id joint_ascent(HexMesh& mesh, const Adjacency& around,
                     size_t(std::lower_bound(nodes.begin(), nodes.end(), v) - nodes.begin());
                 const Vec3 x = mesh.points[v];
                 for (size_t j = 0; j < free[i].basis.size(); ++j) {
-                    mesh.points[v] = x + h * free[i].basis[j];
+                    mesh.points[v] = free[i].place(x, h * free[i].basis[j]);
                     const std::array<double, 9> f = hex_frame_jacobians(mesh.corners(c));
                     for (size_t q = 0; q < act.size(); ++q)
                         g[q][first[i] + int(j)] = (f[act[q]] - f0[act[q]]) / h;
@@ -504,7 +505,7 @@ Id joint_ascent(HexMesh& mesh, const Adjacency& around,
                 const size_t i = size_t(at - nodes.begin());
                 const Vec3 x = mesh.points[v];
                 for (size_t j = 0; j < free[i].basis.size(); ++j) {
-                    mesh.points[v] = x + h * free[i].basis[j];
+                    mesh.points[v] = free[i].place(x, h * free[i].basis[j]);
                     g[first[i] + int(j)] = (solver_margin(mesh.corners(c)) - m0) / h;
                 }
                 mesh.points[v] = x;
