@@ -195,6 +195,8 @@ Eigen::VectorXd nearest_in_hull(const std::vector<Eigen::VectorXd>& points) {
         }
         x = Eigen::VectorXd::Zero(dim);
         for (size_t i = 0; i < corral.size(); ++i) x += w[i] * points[corral[i]];
+        // The point just taken in left again at once (rounding): it would come back each time.
+        if (std::find(corral.begin(), corral.end(), back) == corral.end()) break;
     }
     for (const Eigen::VectorXd& p : points)
         if (!(p.dot(x) >= 0.5 * x.squaredNorm())) return Eigen::VectorXd::Zero(dim);
@@ -433,8 +435,11 @@ struct NodeFreedom {
 // margin rises, where each node alone may already be at a max-min point of its own cells); and a
 // step along it from 0.1 of the shortest edge at the moving nodes, halved until the cells around
 // them all come out above the smallest with a Score no worse (no more cells inverted, refused or
-// with skewed faces). Stops when the hull holds the origin, when no step helps, when ten steps
-// raised the smallest by less than 0.001 together, or after `iterations`. Returns the steps taken.
+// with skewed faces, summed over the moving nodes as score_at counts them). It raises the worst
+// cells whether or not they are under the lift's `below`. Stops when more than 128 cells are
+// that near the smallest (spread over the grid: left to the functional), when none of their
+// nodes may move, when the hull holds the origin, when no step helps, when ten steps raised the
+// smallest by less than 0.001 together, or after `iterations`. Returns the steps taken.
 Id joint_ascent(HexMesh& mesh, const Adjacency& around,
                 const std::function<NodeFreedom(Id)>& freedom, int iterations) {
     Id taken = 0;
@@ -774,7 +779,7 @@ LiftResult lift_worst_cells(BlockGrid& grid, const ImplicitFunction& body, const
                 };
             } else if (grid.kinds[v] == VertexKind::slip ||
                        (!o.on_level.empty() && o.on_level[v])) {
-                // An unlisted node has not moved: it is on its level.
+                // A node the sweeps did not list keeps the level it is on.
                 const double l = grid.kinds[v] == VertexKind::slip ? 0.0
                                  : listed                          ? level[i]
                                                                    : body.value(mesh.points[v]);
