@@ -91,6 +91,18 @@ Score score_at(const HexMesh& mesh, const Adjacency& around, Id v, bool by_jacob
     return s;
 }
 
+// score_at (by the scaled Jacobian) summed over `nodes`: a cell counts once per node of the
+// list it holds; `lowest` the smallest.
+Score score_of(const HexMesh& mesh, const Adjacency& around, const std::vector<Id>& nodes) {
+    Score s;
+    for (Id v : nodes) {
+        const Score n = score_at(mesh, around, v, true);
+        s.inverted += n.inverted, s.inverted_tets += n.inverted_tets;
+        s.refused += n.refused, s.skewed += n.skewed, s.lowest = std::min(s.lowest, n.lowest);
+    }
+    return s;
+}
+
 double mean_edge_at(const HexMesh& mesh, const Adjacency& around, Id v) {
     double sum = 0;
     int count = 0;
@@ -469,27 +481,35 @@ Id joint_ascent(HexMesh& mesh, const Adjacency& around,
         const int n = first.back();
         if (n == 0) break;
         const double h = 1e-4 * mean_edge_at(mesh, around, mesh.hexes[8 * cells[0]]);
-        std::vector<Eigen::VectorXd> grads;
-        for (Id c : cells) {
-            const std::array<double, 9> f0 = hex_frame_jacobians(mesh.corners(c));
-            std::vector<int> act;
-            for (int k = 0; k < 9; ++k)
-                if (f0[k] <= low + 0.01) act.push_back(k);
-            std::vector<Eigen::VectorXd> g(act.size(), Eigen::VectorXd::Zero(n));
+        // Forward differences of the quantities measure(cell c) listed in `which`, in the
+        // unknowns of c's nodes in `nodes`: one gradient of n unknowns per quantity.
+        const auto differences = [&](Id c, const auto& measure, const std::vector<int>& which) {
+            const auto m0 = measure(c);
+            std::vector<Eigen::VectorXd> g(which.size(), Eigen::VectorXd::Zero(n));
             for (int a = 0; a < 8; ++a) {
                 const Id v = mesh.hexes[8 * c + a];
-                const size_t i =
-                    size_t(std::lower_bound(nodes.begin(), nodes.end(), v) - nodes.begin());
+                const auto at = std::lower_bound(nodes.begin(), nodes.end(), v);
+                if (at == nodes.end() || *at != v) continue;
+                const size_t i = size_t(at - nodes.begin());
                 const Vec3 x = mesh.points[v];
                 for (size_t j = 0; j < free[i].basis.size(); ++j) {
                     mesh.points[v] = free[i].place(x, h * free[i].basis[j]);
-                    const std::array<double, 9> f = hex_frame_jacobians(mesh.corners(c));
-                    for (size_t q = 0; q < act.size(); ++q)
-                        g[q][first[i] + int(j)] = (f[act[q]] - f0[act[q]]) / h;
+                    const auto m = measure(c);
+                    for (size_t q = 0; q < which.size(); ++q)
+                        g[q][first[i] + int(j)] = (m[which[q]] - m0[which[q]]) / h;
                 }
                 mesh.points[v] = x;
             }
-            for (auto& v : g)
+            return g;
+        };
+        const auto frames = [&](Id c) { return hex_frame_jacobians(mesh.corners(c)); };
+        std::vector<Eigen::VectorXd> grads;
+        for (Id c : cells) {
+            const std::array<double, 9> f0 = frames(c);
+            std::vector<int> act;
+            for (int k = 0; k < 9; ++k)
+                if (f0[k] <= low + 0.01) act.push_back(k);
+            for (auto& v : differences(c, frames, act))
                 if (v.allFinite()) grads.push_back(std::move(v));
         }
         std::vector<Id> touched;
@@ -499,22 +519,12 @@ Id joint_ascent(HexMesh& mesh, const Adjacency& around,
         touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
         // Cells within 0.01 of what a solver refuses (solver_margin) must not come nearer: their
         // margins' gradients join the hull, so the step raises them too.
+        const auto margin = [&](Id c) {
+            return std::array<double, 1>{solver_margin(mesh.corners(c))};
+        };
         for (Id c : touched) {
-            const double m0 = solver_margin(mesh.corners(c));
-            if (!(m0 <= 0.01)) continue;
-            Eigen::VectorXd g = Eigen::VectorXd::Zero(n);
-            for (int a = 0; a < 8; ++a) {
-                const Id v = mesh.hexes[8 * c + a];
-                const auto at = std::lower_bound(nodes.begin(), nodes.end(), v);
-                if (at == nodes.end() || *at != v) continue;
-                const size_t i = size_t(at - nodes.begin());
-                const Vec3 x = mesh.points[v];
-                for (size_t j = 0; j < free[i].basis.size(); ++j) {
-                    mesh.points[v] = free[i].place(x, h * free[i].basis[j]);
-                    g[first[i] + int(j)] = (solver_margin(mesh.corners(c)) - m0) / h;
-                }
-                mesh.points[v] = x;
-            }
+            if (!(margin(c)[0] <= 0.01)) continue;
+            Eigen::VectorXd g = std::move(differences(c, margin, {0}).front());
             if (g.allFinite() && g.squaredNorm() > 0) grads.push_back(std::move(g));
         }
         if (grads.empty()) break;
@@ -530,16 +540,7 @@ Id joint_ascent(HexMesh& mesh, const Adjacency& around,
             if (offset[i].norm() > 0) edge = std::min(edge, mean_edge_at(mesh, around, nodes[i]));
         }
         if (!(longest > 0)) break;
-        const auto score = [&] {
-            Score s;
-            for (Id v : nodes) {
-                const Score m = score_at(mesh, around, v, true);
-                s.inverted += m.inverted, s.inverted_tets += m.inverted_tets;
-                s.refused += m.refused, s.skewed += m.skewed;
-            }
-            return s;
-        };
-        const Score before = score();
+        const Score before = score_of(mesh, around, nodes);
         std::vector<Vec3> start(nodes.size());
         for (size_t i = 0; i < nodes.size(); ++i) start[i] = mesh.points[nodes[i]];
         bool moved = false;
@@ -549,7 +550,7 @@ Id joint_ascent(HexMesh& mesh, const Adjacency& around,
                     mesh.points[nodes[i]] = free[i].place(start[i], t * offset[i]);
             double worst = std::numeric_limits<double>::infinity();
             for (Id c : touched) worst = std::min(worst, hex_scaled_jacobian(mesh.corners(c)));
-            const Score after = score();
+            const Score after = score_of(mesh, around, nodes);
             moved = worst > low + 1e-9 && after.inverted <= before.inverted &&
                     after.inverted_tets <= before.inverted_tets &&
                     after.refused <= before.refused && after.skewed <= before.skewed;
@@ -663,15 +664,6 @@ LiftResult lift_worst_cells(BlockGrid& grid, const ImplicitFunction& body, const
         for (Id v : l.nodes) w = std::min(w, worst_jacobian_at(mesh, around, v));
         return w;
     };
-    const auto score_on = [&](const Line& l) {
-        Score s;
-        for (Id v : l.nodes) {
-            const Score n = score_at(mesh, around, v, true);
-            s.inverted += n.inverted, s.inverted_tets += n.inverted_tets;
-            s.refused += n.refused, s.skewed += n.skewed, s.lowest = std::min(s.lowest, n.lowest);
-        }
-        return s;
-    };
     // A line moved whole (every node by the same offset along its level) or sheared (node t of T
     // by t / T of it, the wall node staying), along the wall's tangent directions: the lines
     // that leave the wall leaning, which a node moved alone cannot straighten.
@@ -737,10 +729,10 @@ LiftResult lift_worst_cells(BlockGrid& grid, const ImplicitFunction& body, const
                       [](const auto& a, const auto& b) { return a.first < b.first; });
             bool moved = false;
             if (!ranked.empty()) {
-                const Score before = score_on(l);
+                const Score before = score_of(mesh, around, l.nodes);
                 for (const auto& [w, xs] : ranked) {
                     for (size_t t = 0; t <= T; ++t) mesh.points[l.nodes[t]] = xs[t];
-                    if (score_on(l).better_than(before)) {
+                    if (score_of(mesh, around, l.nodes).better_than(before)) {
                         moved = true;
                         break;
                     }
