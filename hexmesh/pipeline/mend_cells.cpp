@@ -440,7 +440,8 @@ struct NodeFreedom {
 // of the grid's smallest, in the cells (at most 128) that hold them; their gradients in the
 // moves of all those cells' nodes at once (forward differences of 1e-4 edges, each node moved
 // as `freedom` places it, back onto its level or crease: a difference along the tangent alone
-// misses how the projection moves it, and the step it predicts lowers the worst cell); with them
+// misses how the projection moves it, and the step it predicts lowers the worst cell; none
+// along a direction where that placing kinks); with them
 // the gradients of the solver margins (solver_margin) of the cells around those nodes that are
 // within 0.01 of what a solver refuses; the point of the convex hull of all these gradients nearest
 // the origin (the max-min steepest ascent of the nodes together: along it every such frame and
@@ -472,15 +473,33 @@ Id joint_ascent(HexMesh& mesh, const Adjacency& around,
             for (int a = 0; a < 8; ++a) nodes.push_back(mesh.hexes[8 * c + a]);
         std::sort(nodes.begin(), nodes.end());
         nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+        const double h = 1e-4 * mean_edge_at(mesh, around, mesh.hexes[8 * cells[0]]);
         std::vector<NodeFreedom> free(nodes.size());
+        // Each node's place at an offset of +h along each direction of its basis kept.
+        std::vector<std::vector<Vec3>> placed(nodes.size());
         std::vector<int> first(nodes.size() + 1, 0);
         for (size_t i = 0; i < nodes.size(); ++i) {
             free[i] = freedom(nodes[i]);
+            // A direction along which an offset of +-h does not move the node by it to within
+            // 0.1 h has no derivative there: its level kinks (a distance field's trilinear
+            // cells, a face's edge) or its projection does not land on one side (where the
+            // gradient nearly vanishes, between a hand's fingers). A difference across it
+            // predicts a rise the step does not give, and the ascent stops: the node does not
+            // move along it.
+            const Vec3 x = mesh.points[nodes[i]];
+            std::vector<Vec3> basis;
+            for (const Vec3& e : free[i].basis) {
+                const Vec3 ahead = free[i].place(x, h * e), back = free[i].place(x, -h * e);
+                if ((ahead - x - h * e).norm() <= 0.1 * h && (back - x + h * e).norm() <= 0.1 * h) {
+                    basis.push_back(e);
+                    placed[i].push_back(ahead);
+                }
+            }
+            free[i].basis = std::move(basis);
             first[i + 1] = first[i] + int(free[i].basis.size());
         }
         const int n = first.back();
         if (n == 0) break;
-        const double h = 1e-4 * mean_edge_at(mesh, around, mesh.hexes[8 * cells[0]]);
         // Forward differences of the quantities measure(cell c) listed in `which`, in the
         // unknowns of c's nodes in `nodes`: one gradient of n unknowns per quantity.
         const auto differences = [&](Id c, const auto& measure, const std::vector<int>& which) {
@@ -493,10 +512,10 @@ Id joint_ascent(HexMesh& mesh, const Adjacency& around,
                 const size_t i = size_t(at - nodes.begin());
                 const Vec3 x = mesh.points[v];
                 for (size_t j = 0; j < free[i].basis.size(); ++j) {
-                    mesh.points[v] = free[i].place(x, h * free[i].basis[j]);
-                    const auto m = measure(c);
+                    mesh.points[v] = placed[i][j];
+                    const auto ahead = measure(c);
                     for (size_t q = 0; q < which.size(); ++q)
-                        g[q][first[i] + int(j)] = (m[which[q]] - m0[which[q]]) / h;
+                        g[q][first[i] + int(j)] = (ahead[which[q]] - m0[which[q]]) / h;
                 }
                 mesh.points[v] = x;
             }
