@@ -442,8 +442,9 @@ struct NodeFreedom {
 // as `freedom` places it, back onto its level or crease: a difference along the tangent alone
 // misses how the projection moves it, and the step it predicts lowers the worst cell; none
 // along a direction where that placing kinks); with them
-// the gradients of the solver margins (solver_margin) of the cells around those nodes that are
-// within 0.01 of what a solver refuses; the point of the convex hull of all these gradients nearest
+// the gradients of the solver margins' terms (solver_margins) within 0.01 of what a solver
+// refuses and of the faces' distances to the skewness it refuses within 1 % of it, in the cells
+// around those nodes; the point of the convex hull of all these gradients nearest
 // the origin (the max-min steepest ascent of the nodes together: along it every such frame and
 // margin rises, where each node alone may already be at a max-min point of its own cells); and a
 // step along it from 0.1 of the shortest edge at the moving nodes, halved until the cells around
@@ -451,7 +452,9 @@ struct NodeFreedom {
 // with skewed faces, summed over the moving nodes as score_at counts them). It raises the worst
 // cells whether or not they are under the lift's `below`. Stops when more than 128 cells are
 // that near the smallest (spread over the grid: left to the functional), when none of their
-// nodes may move, when the hull holds the origin, when no step helps, when ten steps raised the
+// nodes may move, when the hull holds the origin, when no step helps, each of these with the
+// frames within 0.01 of the smallest and again within 0.001 and 1e-4 (a frame 0.005 above it
+// need not rise, and its gradient may balance the others'); when ten steps raised the
 // smallest by less than 0.001 together, or after `iterations`. Returns the steps taken.
 Id joint_ascent(HexMesh& mesh, const Adjacency& around,
                 const std::function<NodeFreedom(Id)>& freedom, int iterations) {
@@ -463,124 +466,218 @@ Id joint_ascent(HexMesh& mesh, const Adjacency& around,
         // Ten steps that raised it by less than 0.001 together: it crawls.
         if (lows.size() >= 10 && low - lows[lows.size() - 10] < 1e-3) break;
         lows.push_back(low);
-        std::vector<Id> cells;
-        for (Id c = 0; c < Id(sj.size()); ++c)
-            if (sj[c] <= low + 0.01) cells.push_back(c);
-        if (cells.size() > 128) break;  // spread over the grid: left to the functional
-        // The variables: each moving node's basis coordinates.
-        std::vector<Id> nodes;
-        for (Id c : cells)
-            for (int a = 0; a < 8; ++a) nodes.push_back(mesh.hexes[8 * c + a]);
-        std::sort(nodes.begin(), nodes.end());
-        nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-        const double h = 1e-4 * mean_edge_at(mesh, around, mesh.hexes[8 * cells[0]]);
-        std::vector<NodeFreedom> free(nodes.size());
-        // Each node's place at an offset of +h along each direction of its basis kept.
-        std::vector<std::vector<Vec3>> placed(nodes.size());
-        std::vector<int> first(nodes.size() + 1, 0);
-        for (size_t i = 0; i < nodes.size(); ++i) {
-            free[i] = freedom(nodes[i]);
-            // A direction along which an offset of +-h does not move the node by it to within
-            // 0.1 h has no derivative there: its level kinks (a distance field's trilinear
-            // cells, a face's edge) or its projection does not land on one side (where the
-            // gradient nearly vanishes, between a hand's fingers). A difference across it
-            // predicts a rise the step does not give, and the ascent stops: the node does not
-            // move along it.
-            const Vec3 x = mesh.points[nodes[i]];
-            std::vector<Vec3> basis;
-            for (const Vec3& e : free[i].basis) {
-                const Vec3 ahead = free[i].place(x, h * e), back = free[i].place(x, -h * e);
-                if ((ahead - x - h * e).norm() <= 0.1 * h && (back - x + h * e).norm() <= 0.1 * h) {
-                    basis.push_back(e);
-                    placed[i].push_back(ahead);
+        // One step with the frames within `band` of the smallest; whether it was taken.
+        const auto step = [&](double band) {
+            std::vector<Id> cells;
+            for (Id c = 0; c < Id(sj.size()); ++c)
+                if (sj[c] <= low + band) cells.push_back(c);
+            if (cells.size() > 128) return false;  // spread over the grid: left to the functional
+            // The variables: each moving node's basis coordinates.
+            std::vector<Id> nodes;
+            for (Id c : cells)
+                for (int a = 0; a < 8; ++a) nodes.push_back(mesh.hexes[8 * c + a]);
+            std::sort(nodes.begin(), nodes.end());
+            nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+            const double h = 1e-4 * mean_edge_at(mesh, around, mesh.hexes[8 * cells[0]]);
+            std::vector<NodeFreedom> free(nodes.size());
+            // Each node's place at an offset of +h along each direction of its basis kept.
+            std::vector<std::vector<Vec3>> placed(nodes.size());
+            std::vector<int> first(nodes.size() + 1, 0);
+            for (size_t i = 0; i < nodes.size(); ++i) {
+                free[i] = freedom(nodes[i]);
+                // A direction along which an offset of +-h does not move the node by it to within
+                // 0.1 h has no derivative there: its level kinks (a distance field's trilinear
+                // cells, a face's edge) or its projection does not land on one side (where the
+                // gradient nearly vanishes, between a hand's fingers). A difference across it
+                // predicts a rise the step does not give, and the ascent stops: the node does not
+                // move along it.
+                const Vec3 x = mesh.points[nodes[i]];
+                std::vector<Vec3> basis;
+                for (const Vec3& e : free[i].basis) {
+                    const Vec3 ahead = free[i].place(x, h * e), back = free[i].place(x, -h * e);
+                    if ((ahead - x - h * e).norm() <= 0.1 * h &&
+                        (back - x + h * e).norm() <= 0.1 * h) {
+                        basis.push_back(e);
+                        placed[i].push_back(ahead);
+                    }
                 }
+                free[i].basis = std::move(basis);
+                first[i + 1] = first[i] + int(free[i].basis.size());
             }
-            free[i].basis = std::move(basis);
-            first[i + 1] = first[i] + int(free[i].basis.size());
-        }
-        const int n = first.back();
-        if (n == 0) break;
-        // Forward differences of the quantities measure(cell c) listed in `which`, in the
-        // unknowns of c's nodes in `nodes`: one gradient of n unknowns per quantity.
-        const auto differences = [&](Id c, const auto& measure, const std::vector<int>& which) {
-            const auto m0 = measure(c);
-            std::vector<Eigen::VectorXd> g(which.size(), Eigen::VectorXd::Zero(n));
-            for (int a = 0; a < 8; ++a) {
-                const Id v = mesh.hexes[8 * c + a];
-                const auto at = std::lower_bound(nodes.begin(), nodes.end(), v);
-                if (at == nodes.end() || *at != v) continue;
-                const size_t i = size_t(at - nodes.begin());
-                const Vec3 x = mesh.points[v];
-                for (size_t j = 0; j < free[i].basis.size(); ++j) {
-                    mesh.points[v] = placed[i][j];
-                    const auto ahead = measure(c);
-                    for (size_t q = 0; q < which.size(); ++q)
-                        g[q][first[i] + int(j)] = (ahead[which[q]] - m0[which[q]]) / h;
+            const int n = first.back();
+            if (n == 0) return false;
+            // Forward differences of the quantities measure(cell c) listed in `which`, in the
+            // unknowns of the nodes `of` (each once) that are in `nodes`: one gradient of n
+            // unknowns per quantity.
+            const auto differences = [&](Id c, const auto& measure, const std::vector<int>& which,
+                                         const std::vector<Id>& of) {
+                const auto m0 = measure(c);
+                std::vector<Eigen::VectorXd> g(which.size(), Eigen::VectorXd::Zero(n));
+                for (const Id v : of) {
+                    const auto at = std::lower_bound(nodes.begin(), nodes.end(), v);
+                    if (at == nodes.end() || *at != v) continue;
+                    const size_t i = size_t(at - nodes.begin());
+                    const Vec3 x = mesh.points[v];
+                    for (size_t j = 0; j < free[i].basis.size(); ++j) {
+                        mesh.points[v] = placed[i][j];
+                        const auto ahead = measure(c);
+                        for (size_t q = 0; q < which.size(); ++q)
+                            g[q][first[i] + int(j)] = (ahead[which[q]] - m0[which[q]]) / h;
+                    }
+                    mesh.points[v] = x;
                 }
-                mesh.points[v] = x;
+                return g;
+            };
+            const auto corners_of = [&](Id c) {
+                return std::vector<Id>(mesh.hexes.begin() + 8 * c, mesh.hexes.begin() + 8 * c + 8);
+            };
+            const auto frames = [&](Id c) { return hex_frame_jacobians(mesh.corners(c)); };
+            std::vector<Eigen::VectorXd> grads;
+            for (Id c : cells) {
+                const std::array<double, 9> f0 = frames(c);
+                std::vector<int> act;
+                for (int k = 0; k < 9; ++k)
+                    if (f0[k] <= low + band) act.push_back(k);
+                for (auto& v : differences(c, frames, act, corners_of(c)))
+                    if (v.allFinite()) grads.push_back(std::move(v));
             }
-            return g;
+            std::vector<Id> touched;
+            for (Id v : nodes)
+                for (auto [c, end] = around.of(v); c != end; ++c) touched.push_back(*c);
+            std::sort(touched.begin(), touched.end());
+            touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+            // Cells within 0.01 of what a solver refuses (solver_margin) must not come nearer: the
+            // gradients of their margin's terms that are (solver_margins: the smallest of them
+            // kinks where two meet, and a difference across it raises one while the step lowers the
+            // other) join the hull, so the step raises them too.
+            const auto margins = [&](Id c) { return solver_margins(mesh.corners(c)); };
+            for (Id c : touched) {
+                const std::array<double, 14> m0 = margins(c);
+                std::vector<int> act;
+                for (int k = 0; k < 14; ++k)
+                    if (m0[k] <= 0.01) act.push_back(k);
+                if (act.empty()) continue;
+                for (auto& g : differences(c, margins, act, corners_of(c)))
+                    if (g.allFinite() && g.squaredNorm() > 0) grads.push_back(std::move(g));
+            }
+            // Faces within 1 % of the skewness a solver refuses (max_solver_skewness) must not
+            // reach it: the gradients of their distances to it (relative), in the moves of the
+            // nodes of both cells (the skewness weighs the two centres), join the hull too.
+            const auto skew_room = [&](Id c, int f) {
+                const Id beside = around.across[6 * c + f];
+                const std::array<Vec3, 8> p = mesh.corners(c);
+                const Vec3 other = beside >= 0 ? hex_centre(mesh.corners(beside)) : Vec3::Zero();
+                const double skew =
+                    hex_face_skewness(p, f, hex_centre(p), beside >= 0 ? &other : nullptr);
+                return std::array<double, 1>{(max_solver_skewness - skew) / max_solver_skewness};
+            };
+            for (Id c : touched)
+                for (int f = 0; f < 6; ++f) {
+                    const Id beside = around.across[6 * c + f];
+                    // A face between two touched cells: once, from the lower.
+                    if (beside >= 0 && beside < c &&
+                        std::binary_search(touched.begin(), touched.end(), beside))
+                        continue;
+                    const auto room = [&](Id cell) { return skew_room(cell, f); };
+                    if (!(room(c)[0] <= 0.01)) continue;
+                    std::vector<Id> of = corners_of(c);
+                    if (beside >= 0)
+                        for (const Id v : corners_of(beside))
+                            if (std::find(of.begin(), of.end(), v) == of.end()) of.push_back(v);
+                    Eigen::VectorXd g = std::move(differences(c, room, {0}, of).front());
+                    if (g.allFinite() && g.squaredNorm() > 0) grads.push_back(std::move(g));
+                }
+            if (grads.empty()) return false;
+            const Eigen::VectorXd d = nearest_in_hull(grads);
+            if (!(d.squaredNorm() > 1e-12)) return false;
+            // The moved nodes' offsets per unit step, and the cells they touch.
+            std::vector<Vec3> offset(nodes.size(), Vec3::Zero());
+            double longest = 0, edge = std::numeric_limits<double>::infinity();
+            for (size_t i = 0; i < nodes.size(); ++i) {
+                for (size_t j = 0; j < free[i].basis.size(); ++j)
+                    offset[i] += d[first[i] + int(j)] * free[i].basis[j];
+                longest = std::max(longest, offset[i].norm());
+                if (offset[i].norm() > 0)
+                    edge = std::min(edge, mean_edge_at(mesh, around, nodes[i]));
+            }
+            if (!(longest > 0)) return false;
+            const Score before = score_of(mesh, around, nodes);
+            std::vector<Vec3> start(nodes.size());
+            for (size_t i = 0; i < nodes.size(); ++i) start[i] = mesh.points[nodes[i]];
+            bool moved = false;
+            for (double t = 0.1 * edge / longest; t > 1e-4 * edge / longest && !moved; t *= 0.5) {
+                for (size_t i = 0; i < nodes.size(); ++i)
+                    if (offset[i].squaredNorm() > 0)
+                        mesh.points[nodes[i]] = free[i].place(start[i], t * offset[i]);
+                double worst = std::numeric_limits<double>::infinity();
+                for (Id c : touched) worst = std::min(worst, hex_scaled_jacobian(mesh.corners(c)));
+                const Score after = score_of(mesh, around, nodes);
+                moved = worst > low + 1e-9 && after.inverted <= before.inverted &&
+                        after.inverted_tets <= before.inverted_tets &&
+                        after.refused <= before.refused && after.skewed <= before.skewed;
+                if (!moved)
+                    for (size_t i = 0; i < nodes.size(); ++i) mesh.points[nodes[i]] = start[i];
+            }
+            if (!moved) return false;
+            ++taken;
+            for (Id c : touched) sj[c] = hex_scaled_jacobian(mesh.corners(c));
+            return true;
         };
-        const auto frames = [&](Id c) { return hex_frame_jacobians(mesh.corners(c)); };
-        std::vector<Eigen::VectorXd> grads;
-        for (Id c : cells) {
-            const std::array<double, 9> f0 = frames(c);
-            std::vector<int> act;
-            for (int k = 0; k < 9; ++k)
-                if (f0[k] <= low + 0.01) act.push_back(k);
-            for (auto& v : differences(c, frames, act))
-                if (v.allFinite()) grads.push_back(std::move(v));
-        }
-        std::vector<Id> touched;
-        for (Id v : nodes)
-            for (auto [c, end] = around.of(v); c != end; ++c) touched.push_back(*c);
-        std::sort(touched.begin(), touched.end());
-        touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
-        // Cells within 0.01 of what a solver refuses (solver_margin) must not come nearer: their
-        // margins' gradients join the hull, so the step raises them too.
-        const auto margin = [&](Id c) {
-            return std::array<double, 1>{solver_margin(mesh.corners(c))};
-        };
-        for (Id c : touched) {
-            if (!(margin(c)[0] <= 0.01)) continue;
-            Eigen::VectorXd g = std::move(differences(c, margin, {0}).front());
-            if (g.allFinite() && g.squaredNorm() > 0) grads.push_back(std::move(g));
-        }
-        if (grads.empty()) break;
-        const Eigen::VectorXd d = nearest_in_hull(grads);
-        if (!(d.squaredNorm() > 1e-12)) break;
-        // The moved nodes' offsets per unit step, and the cells they touch.
-        std::vector<Vec3> offset(nodes.size(), Vec3::Zero());
-        double longest = 0, edge = std::numeric_limits<double>::infinity();
-        for (size_t i = 0; i < nodes.size(); ++i) {
-            for (size_t j = 0; j < free[i].basis.size(); ++j)
-                offset[i] += d[first[i] + int(j)] * free[i].basis[j];
-            longest = std::max(longest, offset[i].norm());
-            if (offset[i].norm() > 0) edge = std::min(edge, mean_edge_at(mesh, around, nodes[i]));
-        }
-        if (!(longest > 0)) break;
-        const Score before = score_of(mesh, around, nodes);
-        std::vector<Vec3> start(nodes.size());
-        for (size_t i = 0; i < nodes.size(); ++i) start[i] = mesh.points[nodes[i]];
+        // Where the frames within 0.01 of the smallest balance (the hull holds the origin) or
+        // no step helps, those within 0.001, then 1e-4: the ones that need not rise with it.
         bool moved = false;
-        for (double t = 0.1 * edge / longest; t > 1e-4 * edge / longest && !moved; t *= 0.5) {
-            for (size_t i = 0; i < nodes.size(); ++i)
-                if (offset[i].squaredNorm() > 0)
-                    mesh.points[nodes[i]] = free[i].place(start[i], t * offset[i]);
-            double worst = std::numeric_limits<double>::infinity();
-            for (Id c : touched) worst = std::min(worst, hex_scaled_jacobian(mesh.corners(c)));
-            const Score after = score_of(mesh, around, nodes);
-            moved = worst > low + 1e-9 && after.inverted <= before.inverted &&
-                    after.inverted_tets <= before.inverted_tets &&
-                    after.refused <= before.refused && after.skewed <= before.skewed;
-            if (!moved)
-                for (size_t i = 0; i < nodes.size(); ++i) mesh.points[nodes[i]] = start[i];
-        }
+        for (const double band : {1e-2, 1e-3, 1e-4})
+            if ((moved = step(band))) break;
         if (!moved) break;
-        ++taken;
-        for (Id c : touched) sj[c] = hex_scaled_jacobian(mesh.corners(c));
     }
     return taken;
+}
+
+std::optional<Sphere> far_field_sphere(const BlockGrid& grid, std::vector<bool>& on_far) {
+    on_far.assign(grid.points.size(), false);
+    std::vector<Id> far;
+    for (const Block& b : grid.blocks)
+        for (int f = 0; f < 6; ++f) {
+            if (b.face_patch[f] != "farfield") continue;
+            const int axis = f / 2, fixed = f % 2 ? b.nodes[axis] - 1 : 0;
+            const int a = (axis + 1) % 3, c = (axis + 2) % 3;
+            for (int q = 0; q < b.nodes[c]; ++q)
+                for (int p = 0; p < b.nodes[a]; ++p) {
+                    std::array<int, 3> at{};
+                    at[axis] = fixed, at[a] = p, at[c] = q;
+                    const Id v = b.node(at[0], at[1], at[2]);
+                    if (!on_far[v]) far.push_back(v);
+                    on_far[v] = true;
+                }
+        }
+    if (far.size() < 4) {
+        on_far.clear();
+        return std::nullopt;
+    }
+    // |x - c|^2 = R^2: 2 (x - m) . (c - m) + R^2 - |c - m|^2 = |x - m|^2, linear in c and
+    // R^2 - |c - m|^2 (m the nodes' mean, for the digits).
+    Vec3 m = Vec3::Zero();
+    for (Id v : far) m += grid.points[v];
+    m /= double(far.size());
+    Eigen::MatrixX4d a(far.size(), 4);
+    Eigen::VectorXd b(far.size());
+    for (size_t i = 0; i < far.size(); ++i) {
+        const Vec3 x = grid.points[far[i]] - m;
+        a.row(Eigen::Index(i)) << 2 * x.x(), 2 * x.y(), 2 * x.z(), 1.0;
+        b[Eigen::Index(i)] = x.squaredNorm();
+    }
+    const Eigen::Vector4d s = a.colPivHouseholderQr().solve(b);
+    const Vec3 centre = m + s.head<3>();
+    const double r2 = s[3] + s.head<3>().squaredNorm();
+    bool on_one = r2 > 0;
+    for (size_t i = 0; i < far.size() && on_one; ++i)
+        on_one =
+            std::abs((grid.points[far[i]] - centre).norm() - std::sqrt(r2)) <= 1e-9 * std::sqrt(r2);
+    if (!on_one) {
+        on_far.clear();
+        return std::nullopt;
+    }
+    return Sphere(centre, std::sqrt(r2));
 }
 
 LiftResult lift_worst_cells(BlockGrid& grid, const ImplicitFunction& body, const LiftOptions& o) {
@@ -603,10 +700,11 @@ LiftResult lift_worst_cells(BlockGrid& grid, const ImplicitFunction& body, const
     std::vector<Id> nodes;
     for (size_t v = 0; v < marked.size(); ++v)
         if (marked[v]) nodes.push_back(Id(v));
+    const auto on_far = [&](Id v) { return o.far && !o.on_far.empty() && o.on_far[v]; };
     const auto movable = [&](Id v) {
         const VertexKind k = grid.kinds[v];
         return (k == VertexKind::interior || k == VertexKind::slip ||
-                k == VertexKind::feature_edge) &&
+                k == VertexKind::feature_edge || on_far(v)) &&
                (o.held.empty() || !o.held[v]);
     };
     // The level of u each node keeps: 0 for the wall's slip nodes, its own for o.on_level.
@@ -618,13 +716,23 @@ LiftResult lift_worst_cells(BlockGrid& grid, const ImplicitFunction& body, const
         else if (!o.on_level.empty() && o.on_level[v])
             level[i] = body.value(mesh.points[v]);
     }
+    // The level set a node slides on (the far field's, or its level of u) and its level;
+    // nullptr for a node free along the axes (or on a crease).
+    const auto sliding = [&](Id v) -> std::pair<const ImplicitFunction*, double> {
+        if (on_far(v)) return {o.far, 0.0};
+        if (grid.kinds[v] == VertexKind::slip) return {&body, 0.0};
+        if (grid.kinds[v] != VertexKind::interior || o.on_level.empty() || !o.on_level[v])
+            return {nullptr, 0.0};
+        // A node the sweeps did not list keeps the level it is on.
+        const size_t i = size_t(std::lower_bound(nodes.begin(), nodes.end(), v) - nodes.begin());
+        return {&body, i < nodes.size() && nodes[i] == v ? level[i] : body.value(mesh.points[v])};
+    };
     std::vector<double> step(nodes.size());
     for (size_t i = 0; i < nodes.size(); ++i)
         step[i] = o.first_step * mean_edge_at(mesh, around, nodes[i]);
     // Along its crease (two directions), along its level set (four tangent directions) or along
     // the axes.
     const TrialMoves moves = [&](Id v, const Vec3& x, double h, std::vector<Vec3>& out) {
-        const size_t i = size_t(std::lower_bound(nodes.begin(), nodes.end(), v) - nodes.begin());
         if (grid.kinds[v] == VertexKind::feature_edge) {
             const double edge = mean_edge_at(mesh, around, v);
             const Vec3 t = crease_tangent(body, x, 1e-3 * edge);
@@ -633,29 +741,30 @@ LiftResult lift_worst_cells(BlockGrid& grid, const ImplicitFunction& body, const
                     out.push_back(project_to_crease(body, x + h * d, edge));
             return;
         }
-        if (std::isnan(level[i])) {
+        const auto [on, l] = sliding(v);
+        if (!on) {
             for (const Vec3& d : axis_directions) out.push_back(x + h * d);
             return;
         }
-        const TangentFrame t = tangent_frame(body, x);
+        const TangentFrame t = tangent_frame(*on, x);
         for (const Vec3& d : {t.t1, Vec3(-t.t1), t.t2, Vec3(-t.t2)})
-            out.push_back(along_level(body, x, h * d, level[i]));
+            out.push_back(along_level(*on, x, h * d, l));
     };
     // When none of those raises the node's worst cell: the max-min ascent (not on a crease).
     const TrialMoves ascent = [&](Id v, const Vec3& x, double h, std::vector<Vec3>& out) {
         if (grid.kinds[v] == VertexKind::feature_edge) return;
-        const size_t i = size_t(std::lower_bound(nodes.begin(), nodes.end(), v) - nodes.begin());
         const double edge = mean_edge_at(mesh, around, v);
         std::vector<Vec3> offsets;
-        if (std::isnan(level[i])) {
+        const auto [on, l] = sliding(v);
+        if (!on) {
             node_ascent(mesh, around, v, {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()}, edge, h,
                         offsets);
             for (const Vec3& d : offsets) out.push_back(x + d);
             return;
         }
-        const TangentFrame t = tangent_frame(body, x);
+        const TangentFrame t = tangent_frame(*on, x);
         node_ascent(mesh, around, v, {t.t1, t.t2}, edge, h, offsets);
-        for (const Vec3& d : offsets) out.push_back(along_level(body, x, d, level[i]));
+        for (const Vec3& d : offsets) out.push_back(along_level(*on, x, d, l));
     };
     // The lines with a marked node whose nodes all move (the wall's slip or on its crease, the
     // layers' on their levels), each with its nodes' levels and step.
@@ -778,29 +887,21 @@ LiftResult lift_worst_cells(BlockGrid& grid, const ImplicitFunction& body, const
         const auto freedom = [&](Id v) {
             NodeFreedom f;
             if (!movable(v)) return f;
-            const size_t i =
-                size_t(std::lower_bound(nodes.begin(), nodes.end(), v) - nodes.begin());
-            const bool listed = i < nodes.size() && nodes[i] == v;
             const double edge = mean_edge_at(mesh, around, v);
+            const auto [on, l] = sliding(v);
             if (grid.kinds[v] == VertexKind::feature_edge) {
                 const Vec3 t = crease_tangent(body, mesh.points[v], 1e-3 * edge);
                 if (t.squaredNorm() > 0) f.basis = {t};
                 f.place = [&body, edge](const Vec3& x, const Vec3& d) {
                     return project_to_crease(body, x + d, edge);
                 };
-            } else if (grid.kinds[v] == VertexKind::slip ||
-                       (!o.on_level.empty() && o.on_level[v])) {
-                // A node the sweeps did not list keeps the level it is on.
-                const double l = grid.kinds[v] == VertexKind::slip ? 0.0
-                                 : listed                          ? level[i]
-                                                                   : body.value(mesh.points[v]);
-                const TangentFrame t = tangent_frame(body, mesh.points[v]);
+            } else if (on) {
+                const TangentFrame t = tangent_frame(*on, mesh.points[v]);
                 f.basis = {t.t1, t.t2};
-                f.place = [&body, l](const Vec3& x, const Vec3& d) {
-                    return along_level(body, x, d, l);
+                f.place = [on = on, l = l](const Vec3& x, const Vec3& d) {
+                    return along_level(*on, x, d, l);
                 };
-            } else if (grid.kinds[v] == VertexKind::interior &&
-                       (o.on_level.empty() || !o.on_level[v])) {
+            } else {
                 f.basis = {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
                 f.place = [](const Vec3& x, const Vec3& d) { return Vec3(x + d); };
             }

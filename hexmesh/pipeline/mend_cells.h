@@ -3,10 +3,12 @@
 // moving nodes one at a time.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "hexmesh/core/block_grid.h"
 #include "hexmesh/core/implicit_function.h"
+#include "surface/analytic.h"
 
 namespace hexmesh {
 
@@ -50,7 +52,11 @@ struct LiftOptions {
     std::vector<bool> held;      // nodes that do not move (sized like grid.points, or empty)
     // Wall-normal lines (a wall node, then its layers' nodes outwards), also moved whole.
     std::vector<std::vector<Id>> lines;
-    bool ascent = true;          // the max-min steepest ascent's moves (see lift_worst_cells)
+    bool ascent = true;  // the max-min steepest ascent's moves (see lift_worst_cells)
+    // The far field's surface (u = 0 of it) and its nodes (sized like grid.points), which slide
+    // on it though their kind is fixed; nullptr: they stay.
+    const ImplicitFunction* far = nullptr;
+    std::vector<bool> on_far;
     int joint_iterations = 200;  // steps of the worst cells' nodes moved together, at most
 };
 
@@ -83,11 +89,18 @@ struct LiftResult {
 // raised by moving their nodes together (up to `joint_iterations` steps of the same ascent in
 // all their moves at once, the solver margins of the cells around held from falling to 0):
 // where each node is at a max-min point of its own cells, the worst cell is still raised by
-// several moving together. Corner nodes stay. Where the
+// several moving together. The nodes of `on_far` slide on `far` as the wall's on u = 0 (the
+// far layer's cells are no better than the far field's quads). Corner nodes stay. Where the
 // joint optimization's functional weighs every cell, this weighs only the worst one around each
 // node: the shear of a boundary layer bent round a crease, which the polish holds. Deterministic;
 // the grid's worst scaled Jacobian never falls; the grid's points are changed in place.
 LiftResult lift_worst_cells(BlockGrid& grid, const ImplicitFunction& body,
                             const LiftOptions& options = {});
+
+// The sphere through the nodes of the grid's "farfield" faces (an exterior O-grid's far field),
+// with those nodes marked in `on_far` (sized like grid.points): LiftOptions' far and on_far.
+// nullopt, and `on_far` empty, when there are fewer than 4 or they do not lie on one sphere to
+// 1e-9 of its radius (a far-field box).
+std::optional<Sphere> far_field_sphere(const BlockGrid& grid, std::vector<bool>& on_far);
 
 }  // namespace hexmesh

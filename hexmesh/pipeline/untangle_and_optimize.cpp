@@ -166,8 +166,8 @@ std::vector<std::vector<Id>> layer_lines(const BlockGrid& grid, int layers) {
 }
 
 // The polish (polish_passes), then the worst cells lifted node by node (lift_worst_cells), the
-// boundary layer's nodes each on its own level of u, and its lines also moved whole. One line
-// per pass.
+// boundary layer's nodes each on its own level of u, and its lines also moved whole, the
+// far field's nodes on its sphere. One line per pass.
 void polish(Job& job) {
     BlockGrid& grid = job.grid();
     // Cells the joint untangling left inverted are not repaired by a local optimization (it
@@ -182,6 +182,8 @@ void polish(Job& job) {
         o.on_level = wall_layer_nodes(grid, layers);
         o.lines = layer_lines(grid, layers);
     }
+    const std::optional<Sphere> far = far_field_sphere(grid, o.on_far);
+    if (far) o.far = &*far;
     const LiftResult r = lift_worst_cells(grid, *job.body, o);
     if (r.cells_before > 0)
         job.log << fmt::format(

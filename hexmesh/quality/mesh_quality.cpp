@@ -323,24 +323,31 @@ std::vector<Id> face_neighbours(const HexMesh& mesh) {
     });
 }
 
-double solver_margin(const std::array<Vec3, 8>& p) {
+std::array<double, 14> solver_margins(const std::array<Vec3, 8>& p) {
+    std::array<double, 14> terms;
     double edges = 0;
     for (const auto& e : hex_edges) edges += (p[e[1]] - p[e[0]]).norm();
     const double mean_edge = edges / 12;
-    double margin = std::numeric_limits<double>::infinity();
-    for (const auto& t : hex_corner_tets) {
+    for (int k = 0; k < 8; ++k) {
+        const auto& t = hex_corner_tets[k];
         const Vec3 a = p[t[1]] - p[t[0]], b = p[t[2]] - p[t[0]], d = p[t[3]] - p[t[0]];
         const double lengths = a.norm() * b.norm() * d.norm();
-        margin = std::min(margin, lengths > 0 ? a.cross(b).dot(d) / lengths : -1.0);
+        terms[k] = lengths > 0 ? a.cross(b).dot(d) / lengths : -1.0;
     }
     const std::array<FaceGeometry, 6> faces = hex_face_geometries(p);
     const CellGeometry cell = detail::cell_geometry(faces);
-    for (const FaceGeometry& f : faces) {
-        const double area = f.area.norm();
-        margin = std::min(margin, area > 0 && mean_edge > 0
-                                      ? f.area.dot(f.centre - cell.centre) / (area * mean_edge)
-                                      : -1.0);
+    for (int f = 0; f < 6; ++f) {
+        const double area = faces[f].area.norm();
+        terms[8 + f] = area > 0 && mean_edge > 0
+                           ? faces[f].area.dot(faces[f].centre - cell.centre) / (area * mean_edge)
+                           : -1.0;
     }
+    return terms;
+}
+
+double solver_margin(const std::array<Vec3, 8>& p) {
+    double margin = std::numeric_limits<double>::infinity();
+    for (const double t : solver_margins(p)) margin = std::min(margin, t);
     return margin;
 }
 

@@ -94,6 +94,11 @@ struct QualityReport {
 // <= 0 (a sum of positive pyramids).
 double solver_margin(const std::array<Vec3, 8>& p);
 
+// The 14 terms whose smallest is solver_margin: the 8 corner scaled Jacobians (hex_corner_tets
+// order), then the 6 faces' (BlockFace order of hex_face_geometries). Each is smooth where the
+// smallest is not: an ascent that raises the margin raises each term near it.
+std::array<double, 14> solver_margins(const std::array<Vec3, 8>& p);
+
 // OpenFOAM's centre of one hex (VTK order): the volume-weighted centre of its face pyramids.
 Vec3 hex_centre(const std::array<Vec3, 8>& p);
 

@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <random>
 
 #include "hexmesh/core/block_grid.h"
@@ -9,6 +11,7 @@
 #include "hexmesh/quality/validity.h"
 #include "surface/analytic.h"
 #include "tests/hand_grids.h"
+#include "volume/o_grid.h"
 
 namespace hexmesh {
 namespace {
@@ -358,6 +361,56 @@ TEST(LiftWorstCells, ALeaningLineIsStraightenedWhole) {
     for (size_t v = 0; v < grid.points.size(); ++v)
         EXPECT_NEAR(grid.points[v].z(), start.points[v].z(), 1e-9) << "node " << v;
     EXPECT_TRUE(measure_quality(to_hex_mesh(grid)).solver_valid());
+}
+
+// The exterior O-grid of the unit sphere with its far-field nodes (on a sphere of radius 4) each
+// pushed along the sphere by up to 0.25 of a far cell (worst scaled Jacobian 0.24):
+// far_field_sphere finds that sphere and those nodes (and none round a far-field box); with them
+// held the lift cannot raise the far layer's cells, which their far quads bound, past 0.35 (0.25);
+// with them sliding on it, over 0.8 (0.85), every far node still on the sphere.
+TEST(LiftWorstCells, FarFieldNodesSlideOnTheirSphere) {
+    const Sphere body(Vec3::Zero(), 1.0);
+    OGridOptions og;
+    og.cells_per_edge = 6;
+    og.layers = 6;
+    og.far_field_size = 4;
+    BlockGrid grid = make_o_grid(body, og);
+    std::vector<bool> on_far;
+    const std::optional<Sphere> far = far_field_sphere(grid, on_far);
+    ASSERT_TRUE(far.has_value());
+    ASSERT_EQ(on_far.size(), grid.points.size());
+    EXPECT_EQ(std::count(on_far.begin(), on_far.end(), true), 6 * 6 * 6 + 2);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> push(-0.25, 0.25);
+    const double cell = 4 * 1.5707963 / 6;  // a far cell's edge, about
+    for (size_t v = 0; v < grid.points.size(); ++v) {
+        if (!on_far[v]) continue;
+        EXPECT_NEAR(far->value(grid.points[v]), 0, 1e-9);
+        EXPECT_NEAR(grid.points[v].norm(), 4, 1e-9);
+        const Vec3 x = grid.points[v] + cell * Vec3(push(rng), push(rng), push(rng));
+        grid.points[v] = 4 * x.normalized();
+    }
+    LiftOptions o;
+    o.below = 0.9;
+    BlockGrid held = grid;
+    const LiftResult h = lift_worst_cells(held, body, o);
+    o.far = &*far;
+    o.on_far = on_far;
+    const LiftResult r = lift_worst_cells(grid, body, o);
+    EXPECT_LT(r.min_sj_before, 0.3);
+    EXPECT_LT(h.min_sj_after, 0.35);
+    EXPECT_GT(r.min_sj_after, 0.8);
+    int moved = 0;
+    for (size_t v = 0; v < grid.points.size(); ++v) {
+        if (!on_far[v]) continue;
+        EXPECT_NEAR(grid.points[v].norm(), 4, 1e-9) << "node " << v;
+        moved += grid.points[v] != held.points[v];
+    }
+    EXPECT_GT(moved, 10);
+    EXPECT_TRUE(measure_quality(to_hex_mesh(grid)).solver_valid());
+    og.far_field = FarFieldShape::box;
+    EXPECT_FALSE(far_field_sphere(make_o_grid(body, og), on_far).has_value());
+    EXPECT_TRUE(on_far.empty());
 }
 
 }  // namespace

@@ -358,6 +358,24 @@ TEST(SolverValidity, TheMarginIsPositiveExactlyWhenTheSolverAcceptsTheCell) {
     EXPECT_NEAR(solver_margin(unit_cube()), 0.5, 1e-12);  // centre half an edge inside each face
 }
 
+// solver_margins' 14 terms: the 8 corner scaled Jacobians (1 on a unit cube, as
+// hex_frame_jacobians gives them on any cell) and the 6 faces' (0.5), whose smallest is
+// solver_margin on every random cell of the test above.
+TEST(SolverValidity, TheMarginsTermsAreTheCornersAndTheFaces) {
+    const std::array<double, 14> cube = solver_margins(unit_cube());
+    for (int k = 0; k < 14; ++k) EXPECT_NEAR(cube[k], k < 8 ? 1.0 : 0.5, 1e-12) << "term " << k;
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> jitter(-0.45, 0.45);
+    for (int trial = 0; trial < 1000; ++trial) {
+        std::array<Vec3, 8> p = unit_cube();
+        for (Vec3& x : p) x += Vec3(jitter(rng), jitter(rng), jitter(rng));
+        const std::array<double, 14> terms = solver_margins(p);
+        const std::array<double, 9> frames = hex_frame_jacobians(p);
+        for (int k = 0; k < 8; ++k) EXPECT_NEAR(terms[k], frames[k + 1], 1e-12) << trial;
+        EXPECT_EQ(*std::min_element(terms.begin(), terms.end()), solver_margin(p)) << trial;
+    }
+}
+
 // Verdict scores a cell with a zero-length edge 1e30; the mean stays a mean of values in [-1, 1].
 TEST(SolverValidity, ADegenerateCellDoesNotSwampTheMeanScaledJacobian) {
     std::array<Vec3, 8> p = unit_cube();
