@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "hexmesh/pipeline/make_body.h"
+#include "hexmesh/pipeline/mend_cells.h"
 #include "hexmesh/pipeline/run_case.h"
 #include "hexmesh/pipeline/untangle_and_optimize.h"
 #include "hexmesh/quality/block_quality.h"
@@ -140,7 +141,8 @@ TEST(RunCase, FailedRunLeavesNoOutput) {
 }
 
 // Outside, with cell_size instead of cells_per_edge, the lines get twice the cells per edge the
-// size gives (4 for a unit sphere at 0.5), and the case written says so.
+// size gives (4 for a unit sphere at 0.5), and the case written says so; the far field's nodes,
+// which the lift lets slide on its sphere, all end on one sphere (to 1e-9 of its radius).
 TEST(RunCase, ExteriorWallCellsFollowTheCellSize) {
     const Case c = parse_case(R"({"geometry": {"sphere": {"radius": 1}}, "domain": "exterior",
         "grid": {"cell_size": 0.5}, "solver": {"optimize_iterations": 0}})",
@@ -150,6 +152,9 @@ TEST(RunCase, ExteriorWallCellsFollowTheCellSize) {
     std::ostringstream log;
     const RunResult result = run_case(c, dir.string(), RunOptions{}, log);
     EXPECT_EQ(result.grid.num_cells(), 6 * 4 * 4 * 8);
+    std::vector<bool> on_far;
+    EXPECT_TRUE(far_field_sphere(result.grid, on_far).has_value());
+    EXPECT_EQ(std::count(on_far.begin(), on_far.end(), true), 6 * 4 * 4 + 2);
     const Case written = read_case((dir / "grid.case.json").string());
     EXPECT_EQ(written.grid.wall_cells, 8);
     fs::remove_all(dir);
