@@ -15,6 +15,7 @@
 #include "hexmesh/quality/validity.h"
 #include "surface/implicit_features.h"
 #include "surface/projection.h"
+#include "volume/wall_lines.h"
 
 namespace hexmesh {
 namespace {
@@ -639,13 +640,10 @@ std::optional<Sphere> far_field_sphere(const BlockGrid& grid, std::vector<bool>&
     for (const Block& b : grid.blocks)
         for (int f = 0; f < 6; ++f) {
             if (b.face_patch[f] != "farfield") continue;
-            const int axis = f / 2, fixed = f % 2 ? b.nodes[axis] - 1 : 0;
-            const int a = (axis + 1) % 3, c = (axis + 2) % 3;
-            for (int q = 0; q < b.nodes[c]; ++q)
-                for (int p = 0; p < b.nodes[a]; ++p) {
-                    std::array<int, 3> at{};
-                    at[axis] = fixed, at[a] = p, at[c] = q;
-                    const Id v = b.node(at[0], at[1], at[2]);
+            const WallFace face = block_face(b, BlockFace(f));
+            for (int q = 0; q < face.nq; ++q)
+                for (int p = 0; p < face.np; ++p) {
+                    const Id v = face.node(p, q, 0);
                     if (!on_far[v]) far.push_back(v);
                     on_far[v] = true;
                 }
