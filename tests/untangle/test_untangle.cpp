@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <iostream>
@@ -282,6 +283,55 @@ TEST(Untangle, EndsWhenNoFreeNodeCanRepairTheInvertedCells) {
     EXPECT_EQ(r.blocked, r.inverted_before);
     EXPECT_NE(r.stopped.find("have every vertex held"), std::string::npos) << r.stopped;
     EXPECT_NE(format_untangle_summary(r).find("untangling stopped: "), std::string::npos);
+}
+
+// A surface triangle folded across a crease: its one free vertex lies on the crease (the x
+// axis of the plane z = 0) and the triangle is inverted wherever it slides along it; beside it,
+// far off, a valid patch of 40 x 40 quads. The local repair cannot free the triangle, and
+// neither could the whole problem's pass, which moves only the patch besides: the crease
+// vertex is released first and slides off the crease, the whole problem is never solved, and
+// its kind comes back after.
+TEST(Untangle, ATriangleHeldByACreaseIsReleasedBeforeTheWholeProblemIsSolved) {
+    Problem p;
+    const int n = 40;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+            p.points.push_back(Vec3(100 + i, j, 0));
+            const bool edge = i == 0 || j == 0 || i == n || j == n;
+            p.kinds.push_back(edge ? VertexKind::fixed : VertexKind::slip);
+        }
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const Id a = Id(i + (n + 1) * j);
+            p.add_quad({a, a + 1, a + n + 2, a + n + 1}, 1, 1);
+        }
+    const double patch_energy = 2.0 * n * n;  // its 4 n^2 triangles' weights (1/2) at phi >= 1
+    const Id b = Id(p.points.size()), c = b + 1, a = b + 2;
+    p.points.push_back(Vec3(0, 1, 0));    // b, fixed
+    p.points.push_back(Vec3(1, 1, 0));    // c, fixed
+    p.points.push_back(Vec3(0.5, 0, 0));  // a, on the crease y = z = 0: below b c, folded
+    p.kinds.push_back(VertexKind::fixed);
+    p.kinds.push_back(VertexKind::fixed);
+    p.kinds.push_back(VertexKind::feature_edge);
+    p.triangles.push_back({b, c, a});
+    p.triangle_targets.push_back(TriangleTarget{});
+    p.surface_normal = [](Id, const Vec3&) { return Vec3(0, 0, 1); };
+    p.project_to_surface = [](Id, const Vec3& x) { return Vec3(x.x(), x.y(), 0); };
+    p.edge_tangent = [](Id, const Vec3&) { return Vec3(1, 0, 0); };
+    p.project_to_edge = [](Id, const Vec3& x) { return Vec3(x.x(), 0, 0); };
+    const auto [r, log] = untangle_logged(p);
+    EXPECT_EQ(r.inverted_before, 1);
+    EXPECT_EQ(r.inverted_after, 0) << log;
+    EXPECT_EQ(r.released, 1);
+    EXPECT_GT(p.points[a].y(), 1.0);  // off the crease, above b c
+    EXPECT_EQ(p.points[b], Vec3(0, 1, 0));
+    EXPECT_EQ(p.points[c], Vec3(1, 1, 0));
+    EXPECT_EQ(p.kinds[a], VertexKind::feature_edge);
+    // Never the whole problem: its untangling energy holds the patch's.
+    const auto whole = std::count_if(r.history.begin(), r.history.end(), [&](const auto& h) {
+        return !h.barrier && h.energy > patch_energy / 2;
+    });
+    EXPECT_EQ(whole, 0) << log;
 }
 
 // One free vertex that two tets with fixed bases want on opposite sides of a gap (above
