@@ -306,6 +306,11 @@ struct Passes {
 
 void release_creases(const Passes& s);
 
+// A vertex held on a crease line or at a corner (what release_creases lets slide).
+bool on_crease(VertexKind kind) {
+    return kind == VertexKind::feature_edge || kind == VertexKind::corner;
+}
+
 // Whether every element still inverted has a crease or corner vertex (and releasing them is
 // allowed): what the local repair could not free is then held by the crease lines.
 bool held_by_creases(const Passes& s) {
@@ -314,10 +319,8 @@ bool held_by_creases(const Passes& s) {
     for (Id e = 0; e < problem.num_elements(); ++e) {
         if (problem.det(problem.points, e) > 0) continue;
         const ElementNodes nodes = problem.element(e);
-        if (std::none_of(nodes.begin(), nodes.end(), [&](Id v) {
-                return problem.kinds[v] == VertexKind::feature_edge ||
-                       problem.kinds[v] == VertexKind::corner;
-            }))
+        if (std::none_of(nodes.begin(), nodes.end(),
+                         [&](Id v) { return on_crease(problem.kinds[v]); }))
             return false;
     }
     return true;
@@ -409,19 +412,22 @@ void release_creases(const Passes& s) {
         options.local_rings > 0 && problem.project_to_surface && problem.surface_normal &&
         !s.result.left_to_next_pass) {
         const std::vector<VertexKind> kinds = problem.kinds;
+        // Counted per call: it runs once more, as the last resort, after an earlier release
+        // before the global pass (untangle_locally_then_globally) left elements inverted.
+        Id released = 0;
         for (Id e = 0; e < problem.num_elements(); ++e)
             if (!(problem.det(problem.points, e) > 0))
                 for (Id v : problem.element(e))
-                    if (problem.kinds[v] == VertexKind::feature_edge ||
-                        problem.kinds[v] == VertexKind::corner)
-                        problem.kinds[v] = VertexKind::slip, ++s.result.released;
-        if (s.result.released > 0) {
+                    if (on_crease(problem.kinds[v]))
+                        problem.kinds[v] = VertexKind::slip, ++released;
+        s.result.released += released;
+        if (released > 0) {
             s.progress.start_again(s.seconds());  // new freedom: the stall clock starts again
             log_note(
                 options.log,
                 fmt::format("{} crease and corner vertices of the inverted elements now slide on "
                             "the surface",
-                            s.result.released));
+                            released));
             s.repair_locally(options.room_eps);
             problem.points = s.best.points;
         }
