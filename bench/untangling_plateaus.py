@@ -38,7 +38,8 @@ def longest_plateau(call):
     fewest, since, longest = None, 0.0, 0.0
     for inverted, seconds in call:
         if fewest is None or inverted < fewest:
-            longest = max(longest, seconds - since) if fewest is not None else longest
+            if fewest is not None:  # the first line's time is progress, not a plateau
+                longest = max(longest, seconds - since)
             fewest, since = inverted, seconds
     if call and fewest > 0:
         longest = max(longest, call[-1][1] - since)
