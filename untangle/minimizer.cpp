@@ -301,6 +301,7 @@ MinimizeOutcome Minimizer::minimize(std::vector<Vec3>& x, const EnergyParams& p,
             for (size_t a = 0; a < x.size(); ++a) trial[a] = x[a] + tau * d[a];
             project_constrained(problem_, trial);
             f = assembly_.energy(trial, p);
+            ++out.trials;
             accepted = f < f0;
         }
         if (!accepted) {

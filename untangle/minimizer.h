@@ -14,6 +14,7 @@ struct MinimizeOutcome {
     double energy = 0;
     int steps = 0;              // accepted steps
     int linear_iterations = 0;  // CG iterations over all steps
+    int trials = 0;             // energy evaluations of the line searches (tau = 1, 1/2, ...)
 };
 
 // Holds what lives across steps: the Hessian pattern and the L-BFGS history.

@@ -124,7 +124,8 @@ void continuation(Problem& problem, const Judge& judge, const UntangleOptions& o
     Id fewest = from_room ? std::numeric_limits<Id>::max() : stats.inverted;
     std::vector<Vec3> restart = x;
     double restart_eps = eps;
-    int stalled = 0, restart_iteration = 0, without_fewer = 0;
+    // slow: iterations of this pass since the count last fell by a tenth (Progress)
+    int stalled = 0, restart_iteration = 0, without_fewer = 0, slow = 0;
     const int first = int(result.history.size()) + 1;
     // Regularizing a valid start: the goal is every det above regularize_below instead.
     const std::function<bool(const ElementStats&)> done = [&](const ElementStats& e) {
@@ -153,7 +154,10 @@ void continuation(Problem& problem, const Judge& judge, const UntangleOptions& o
         judge.offer(best, x, stats.inverted, options.theta);
         // iterations of this pass since the count last fell below the best state's
         without_fewer = stats.inverted < progress.fewest ? 0 : without_fewer + 1;
-        progress.offer(stats.inverted, 1.0 + double(m.linear_iterations), r.seconds);
+        slow =
+            progress.offer(stats.inverted, 1.0 + double(m.linear_iterations + m.trials), r.seconds)
+                ? 0
+                : slow + 1;
         if (stats.inverted < fewest || (regularize_below > 0 && stats.inverted == 0)) {
             fewest = stats.inverted, restart = x, restart_eps = eps, stalled = 0,
             restart_iteration = it;
@@ -165,7 +169,7 @@ void continuation(Problem& problem, const Judge& judge, const UntangleOptions& o
         const bool stuck = stalled > 0 && eps < negligible_eps;
         // A pass from above its state's scale has stall_minimum iterations to find fewer
         // inverted elements than the best state; then it is judged as any other.
-        const bool judged = stalled >= options.stall_minimum ||
+        const bool judged = stalled >= options.stall_minimum || slow >= options.stall_minimum ||
                             (from_room && it - first + 1 >= options.stall_minimum);
         const bool crawling =
             regularize_below == 0 && judged && progress.ask_crawling(options.stall_share);
@@ -179,7 +183,7 @@ void continuation(Problem& problem, const Judge& judge, const UntangleOptions& o
                 log_note(options.log, result.stopped);
                 return;
             }
-            fast = false, stalled = 0;
+            fast = false, stalled = 0, slow = 0;
             x = restart, eps = restart_eps, back_to_start = restart_iteration == 0;
             stats = judge.stats(assembly.stats(x));
             log_note(options.log, restart_note(options, restart_iteration, fewest, eps));
@@ -187,7 +191,7 @@ void continuation(Problem& problem, const Judge& judge, const UntangleOptions& o
         }
         if (stalled >= options.stall_iterations || stuck || crawling) {
             result.stopped = stop_for_stall(stuck, eps, progress, r.seconds,
-                                            from_room ? without_fewer : stalled);
+                                            std::max(from_room ? without_fewer : stalled, slow));
             return;
         }
         eps = next_eps(m.energy, o.energy_before, fast, options, o.local.min_det, eps);

@@ -34,12 +34,15 @@ struct UntangleOptions {
     bool equal_weights = false;
     int max_untangle_iterations = 200;  // outer iterations (eps updates)
     int stall_iterations = 40;          // stop untangling after this many without progress
-    // Untangling also stops when the inverted count has not fallen for longer than this share
-    // of the work done so far (outer iterations and their conjugate-gradient iterations: a
-    // measure of time that does not depend on the machine or its load, so that a case gives
-    // the same grid on every run), after at least stall_minimum outer iterations of the pass
-    // without fewer (counted again from the switch to the safe rule): a continuation that
-    // crawls or cycles ends, with the reason in UntangleResult::stopped. The safe rule often
+    // Untangling also stops when the inverted count has not fallen by a tenth (Progress) for
+    // longer than this share of the work done so far (outer iterations, their
+    // conjugate-gradient iterations and their line searches' energy evaluations: a measure of
+    // time that does not depend on the machine or its load, so that a case gives the same grid
+    // on every run), after at least stall_minimum outer iterations of the pass without fewer
+    // or without a fall (counted again from the switch to the safe rule): a continuation that
+    // crawls or cycles ends, with the reason in UntangleResult::stopped (one that crawls while
+    // eps still shrinks fast ends too, without the safe rule: going back to its best state,
+    // at its tiny eps, it would crawl on more slowly). The safe rule often
     // raises the count for a few iterations before it falls (an exterior grid of a cross:
     // 626 -> 728 -> 623 over 6 iterations, then valid): it gets those.
     double stall_share = 0.15;

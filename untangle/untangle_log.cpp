@@ -57,10 +57,13 @@ std::string stall_message(bool stuck, double eps, const Progress& progress, doub
     return stuck ? fmt::format("eps fell to {:.1e} with {} inverted elements left", eps,
                                progress.fewest)
                  : fmt::format(
-                       "no fewer than {} inverted elements for {:.1f} s ({:.0f} % "
-                       "of the untangling "
-                       "work, {} outer iterations of this pass)",
-                       progress.fewest, seconds - progress.last_fewer_seconds,
+                       "{} for {:.1f} s ({:.0f} % of the untangling work, {} outer iterations of "
+                       "this pass)",
+                       progress.fell_to == progress.fewest
+                           ? fmt::format("no fewer than {} inverted elements", progress.fewest)
+                           : fmt::format("not a tenth fewer than {} inverted elements ({} at best)",
+                                         progress.fell_to, progress.fewest),
+                       seconds - progress.last_fewer_seconds,
                        100 * (progress.work - progress.last_fewer) / std::max(progress.work, 1e-9),
                        stalled);
 }

@@ -31,7 +31,7 @@ std::string restart_note(const UntangleOptions& options, int restart_iteration, 
                          double eps);
 
 // Why a continuation stalled: eps became negligible (stuck), or the inverted count has not
-// fallen for too long (`stalled` outer iterations, up to `seconds`).
+// fallen (by a tenth: Progress) for too long (`stalled` outer iterations, up to `seconds`).
 std::string stall_message(bool stuck, double eps, const Progress& progress, double seconds,
                           int stalled);
 

@@ -4,6 +4,7 @@
 // gives the same bits): such a solve is taken as it was instead of being solved again.
 #pragma once
 
+#include <algorithm>
 #include <limits>
 #include <string>
 #include <utility>
@@ -40,18 +41,32 @@ struct RoundTrace {
     int stalled = 0;
 };
 
-// When the inverted count last fell, over all passes of one untangle_and_optimize call, in
-// work done (each outer iteration 1 plus its conjugate-gradient iterations: deterministic,
+// When the inverted count last fell by a tenth, over all passes of one untangle_and_optimize
+// call, in work done (each outer iteration 1 plus its conjugate-gradient iterations and its
+// line searches' energy evaluations, each a pass over the problem's elements: deterministic,
 // unlike the clock, and whole numbers, so sums are exact) and in seconds (for the message).
+// At a tiny eps a Newton step is often taken only after many halvings, or none is found after
+// max_halvings: an outer iteration of a few conjugate-gradient iterations then costs some 40
+// evaluations. A fall counts when the count drops to `fell_to` less a tenth of it (at least 1:
+// under 20 inverted elements, any fall), so that a continuation that crawls (121 -> 100
+// inverted elements over 38 outer iterations and 60 s, one element every few iterations) is
+// judged as one that makes no progress.
 struct Progress {
     Id fewest = std::numeric_limits<Id>::max();
+    Id fell_to = std::numeric_limits<Id>::max();  // the count at the last fall
     double work = 0, last_fewer = 0, last_fewer_seconds = 0;
     RoundTrace* trace = nullptr;  // when set, the crawl rule's answers are recorded there
-    void offer(Id inverted, double iteration_work, double seconds) {
+    // Returns whether the count fell (by a tenth).
+    bool offer(Id inverted, double iteration_work, double seconds) {
         work += iteration_work;
-        if (inverted < fewest) fewest = inverted, last_fewer = work, last_fewer_seconds = seconds;
+        fewest = std::min(fewest, inverted);
+        if (inverted > fell_to - std::max<Id>(1, fell_to / 10)) return false;
+        fell_to = inverted, last_fewer = work, last_fewer_seconds = seconds;
+        return true;
     }
-    void start_again(double seconds) { last_fewer = work, last_fewer_seconds = seconds; }
+    void start_again(double seconds) {
+        fell_to = fewest, last_fewer = work, last_fewer_seconds = seconds;
+    }
     // Whether the count has not fallen for longer than `share` of the work so far.
     bool crawling(double share) const { return crawling_at(work, share); }
     bool crawling_at(double w, double share) const { return w - last_fewer > share * w; }

@@ -11,6 +11,7 @@
 #include "grid_problem.h"
 #include "untangle/assembly.h"
 #include "untangle/untangle.h"
+#include "untangle/untangle_log.h"
 
 using namespace hexmesh;
 using namespace hexmesh::untangle;
@@ -394,6 +395,34 @@ TEST(Untangle, InvertedElementsALaterPassTakesEndTheUntanglingAtItsFirstStall) {
     EXPECT_GT(r2.history.size(), r.history.size());
     EXPECT_NE(r2.stopped.find("no fewer than 1 inverted elements"), std::string::npos)
         << r2.stopped;
+}
+
+// A count that falls by less than a tenth of itself is no progress (a continuation that crawls,
+// one element every few outer iterations, is stopped as one that stalls); under 20 inverted
+// elements, any fall is. The stall message names both counts.
+TEST(Untangle, ACountFallingByLessThanATenthIsNoProgress) {
+    Progress p;
+    EXPECT_TRUE(p.offer(200, 0, 0));
+    EXPECT_FALSE(p.offer(190, 10, 1));  // a tenth of 200 is 20
+    EXPECT_TRUE(p.offer(180, 10, 2));
+    EXPECT_FALSE(p.offer(170, 10, 3));
+    EXPECT_EQ(p.fewest, 170);
+    EXPECT_EQ(p.fell_to, 180);
+    EXPECT_EQ(p.last_fewer, 20);
+    EXPECT_TRUE(p.crawling(0.15));  // 10 of 30 without a fall
+    const std::string m = stall_message(false, 1e-3, p, 3.0, 9);
+    EXPECT_NE(m.find("not a tenth fewer than 180 inverted elements (170 at best) for 1.0 s"),
+              std::string::npos)
+        << m;
+    p.start_again(3.0);  // new freedom: counted from the fewest
+    EXPECT_EQ(p.fell_to, 170);
+    EXPECT_FALSE(p.crawling(0.15));
+    Progress few;
+    EXPECT_TRUE(few.offer(15, 0, 0));
+    EXPECT_TRUE(few.offer(14, 1, 1));
+    EXPECT_FALSE(few.offer(14, 1, 2));
+    EXPECT_NE(stall_message(false, 1e-3, few, 2.0, 1).find("no fewer than 14 inverted elements"),
+              std::string::npos);
 }
 
 // The impossible tangle again, beside a valid grid so that its neighbourhood is a part of the
