@@ -165,6 +165,9 @@ Eigen::VectorXd nearest_in_hull(const std::vector<Eigen::VectorXd>& points) {
     }
     std::vector<size_t> corral{shortest};
     std::vector<double> w{1.0};
+    // The corral's Gram matrix, kept in step with it: each dot product computed once.
+    Eigen::MatrixXd gram(1, 1);
+    gram(0, 0) = points[shortest].dot(points[shortest]);
     Eigen::VectorXd x = points[shortest];
     for (int major = 0; major < 500 && x.squaredNorm() > 1e-20 * scale; ++major) {
         size_t back = 0;
@@ -175,15 +178,18 @@ Eigen::VectorXd nearest_in_hull(const std::vector<Eigen::VectorXd>& points) {
             break;
         corral.push_back(back);
         w.push_back(0);
+        const Eigen::Index last = gram.rows();
+        gram.conservativeResize(last + 1, last + 1);
+        for (Eigen::Index i = 0; i <= last; ++i) {
+            gram(i, last) = points[corral[size_t(i)]].dot(points[back]);
+            gram(last, i) = points[back].dot(points[corral[size_t(i)]]);
+        }
         for (int minor = 0; minor < 500; ++minor) {
             // The affine hull's nearest point: weights v, sum 1, from the Gram matrix's KKT system.
             const Eigen::Index k = Eigen::Index(corral.size());
             Eigen::MatrixXd a = Eigen::MatrixXd::Zero(k + 1, k + 1);
-            for (Eigen::Index i = 0; i < k; ++i) {
-                for (Eigen::Index j = 0; j < k; ++j)
-                    a(i, j) = points[corral[size_t(i)]].dot(points[corral[size_t(j)]]);
-                a(i, k) = a(k, i) = 1;
-            }
+            a.topLeftCorner(k, k) = gram;
+            for (Eigen::Index i = 0; i < k; ++i) a(i, k) = a(k, i) = 1;
             Eigen::VectorXd rhs = Eigen::VectorXd::Zero(k + 1);
             rhs(k) = 1;
             const Eigen::VectorXd v = a.completeOrthogonalDecomposition().solve(rhs).head(k);
@@ -197,14 +203,17 @@ Eigen::VectorXd nearest_in_hull(const std::vector<Eigen::VectorXd>& points) {
                 if (v(i) <= 1e-12 && w[size_t(i)] - v(i) > 0)
                     theta = std::min(theta, w[size_t(i)] / (w[size_t(i)] - v(i)));
             std::vector<size_t> kept;
+            std::vector<Eigen::Index> kept_at;
             std::vector<double> kept_w;
             for (Eigen::Index i = 0; i < k; ++i) {
                 const double wi = (1 - theta) * w[size_t(i)] + theta * v(i);
-                if (wi > 1e-12) kept.push_back(corral[size_t(i)]), kept_w.push_back(wi);
+                if (wi > 1e-12)
+                    kept.push_back(corral[size_t(i)]), kept_at.push_back(i), kept_w.push_back(wi);
             }
             if (kept.empty()) break;
             corral = std::move(kept);
             w = std::move(kept_w);
+            gram = Eigen::MatrixXd(gram(kept_at, kept_at));
         }
         x = Eigen::VectorXd::Zero(dim);
         for (size_t i = 0; i < corral.size(); ++i) x += w[i] * points[corral[i]];
