@@ -180,10 +180,8 @@ Eigen::VectorXd nearest_in_hull(const std::vector<Eigen::VectorXd>& points) {
         w.push_back(0);
         const Eigen::Index last = gram.rows();
         gram.conservativeResize(last + 1, last + 1);
-        for (Eigen::Index i = 0; i <= last; ++i) {
-            gram(i, last) = points[corral[size_t(i)]].dot(points[back]);
-            gram(last, i) = points[back].dot(points[corral[size_t(i)]]);
-        }
+        for (Eigen::Index i = 0; i <= last; ++i)
+            gram(i, last) = gram(last, i) = points[corral[size_t(i)]].dot(points[back]);
         for (int minor = 0; minor < 500; ++minor) {
             // The affine hull's nearest point: weights v, sum 1, from the Gram matrix's KKT system.
             const Eigen::Index k = Eigen::Index(corral.size());
@@ -466,8 +464,8 @@ struct NodeFreedom {
 // frames within 0.01 of the smallest and again within 0.001 and 1e-4 (a frame 0.005 above it
 // need not rise, and its gradient may balance the others'), all of that again with fewer of the
 // nodes' directions (those where the node's place is smooth to 0.01 of an offset, not 0.1);
-// when ten steps raised the
-// smallest by less than 0.001 together, or after `iterations`. Returns the steps taken.
+// when ten steps raised the smallest by less than 0.001 together, or after `iterations`.
+// Returns the steps taken.
 Id joint_ascent(HexMesh& mesh, const Adjacency& around,
                 const std::function<NodeFreedom(Id)>& freedom, int iterations) {
     Id taken = 0;
