@@ -207,25 +207,33 @@ void continuation(Problem& problem, const Judge& judge, const UntangleOptions& o
 // problem and the last round repaired something or grew; the first round starts from
 // start_eps (or its state's own scale, when larger), the others from room_eps at least. A
 // round that starts as one of `rounds` (the rounds of this untangle_and_optimize call, to
-// which it is added) did is not solved again. Returns whether the last round repaired nothing.
-bool repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
-                              const std::vector<std::vector<Id>>& elements_of,
-                              const UntangleOptions& options,
-                              const std::function<double()>& seconds, Best& best,
-                              Progress& progress, UntangleResult& result,
-                              std::vector<LocalRound>& rounds, double start_eps = 0) {
+// which it is added) did is not solved again. At most options.local_rounds rounds when that is
+// set. Returns whether the last round repaired nothing, and how many rounds ran.
+struct LocalRepair {
     bool stalled = false;
-    if (best.inverted <= options.unrepairable || options.local_rings <= 0) return stalled;
+    int rounds = 0;
+};
+LocalRepair repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
+                                     const std::vector<std::vector<Id>>& elements_of,
+                                     const UntangleOptions& options,
+                                     const std::function<double()>& seconds, Best& best,
+                                     Progress& progress, UntangleResult& result,
+                                     std::vector<LocalRound>& rounds, double start_eps = 0) {
+    LocalRepair repair;
+    bool& stalled = repair.stalled;
+    if (best.inverted <= options.unrepairable || options.local_rings <= 0) return repair;
     // A part no larger than the last one, after a round that repaired nothing, ends this:
     // more rings add no freedom (few free nodes around cells that cannot be repaired).
     Id previous = 0, inverted_then = std::numeric_limits<Id>::max();
     for (int rings = options.local_rings;
-         best.inverted > options.unrepairable && rings < (1 << 20) && !result.left_to_next_pass;
+         best.inverted > options.unrepairable && rings < (1 << 20) && !result.left_to_next_pass &&
+         (options.local_rounds <= 0 || repair.rounds < options.local_rounds);
          rings *= 2) {
         Problem part;
         PartOf of;
         if (!local_part(problem, elements_of, rings, part, of)) break;
         if (part.num_elements() <= previous && best.inverted >= inverted_then) break;
+        ++repair.rounds;
         previous = part.num_elements();
         inverted_then = best.inverted;
         // After the first round, what it left follows eps down (det ~ -eps all the way): a
@@ -282,7 +290,7 @@ bool repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
         round.left_to_next_pass = result.left_to_next_pass;
         rounds.push_back(std::move(round));
     }
-    return stalled;
+    return repair;
 }
 
 // What the passes of one untangle_and_optimize call share: the problem (x = its points), its
@@ -301,8 +309,8 @@ struct Passes {
 
     // The continuations of the whole problem answer to it.
     Judge whole() const { return Judge{assembly, problem.points}; }
-    // repair_in_neighbourhoods from start_eps; whether its last round repaired nothing.
-    bool repair_locally(double start_eps) const {
+    // repair_in_neighbourhoods from start_eps.
+    LocalRepair repair_locally(double start_eps) const {
         return repair_in_neighbourhoods(problem, assembly, elements_of, options, seconds, best,
                                         progress, result, rounds, start_eps);
     }
@@ -336,8 +344,20 @@ bool held_by_creases(const Passes& s) {
 // corner vertex, those vertices are released first (release_creases): the global pass moves
 // the whole mesh and cannot unfold a quad folded across a crease line either (NACA0012
 // outside: 3.5 s of global steps on 3 such elements, then the release freed them at once).
+// With options.local_rounds set, elements the local repair leaves inverted after its rounds
+// are left to the next pass (another way of making the grid): no global pass, no last resort.
 void untangle_locally_then_globally(const Passes& s) {
-    const bool local_stalled = s.repair_locally(0);
+    const LocalRepair local = s.repair_locally(0);
+    const bool local_stalled = local.stalled;
+    if (s.options.local_rounds > 0 && local.rounds > 0 &&
+        s.best.inverted > s.options.unrepairable && !s.result.left_to_next_pass) {
+        s.result.left_to_next_pass = true;
+        s.result.stopped = fmt::format(
+            "{} inverted elements left after {} rounds of local repair: left to the "
+            "next pass",
+            s.best.inverted, local.rounds);
+        log_note(s.options.log, s.result.stopped);
+    }
     if (local_stalled && !s.result.left_to_next_pass && held_by_creases(s)) release_creases(s);
     if (s.best.inverted > s.options.unrepairable && !s.result.left_to_next_pass) {
         // When the largest neighbourhood the local repair tried repaired nothing, the global

@@ -58,6 +58,13 @@ struct UntangleOptions {
     // Inverted elements are first repaired in their neighbourhood of this many element
     // rings (doubled until it works or covers half the mesh); 0 untangles globally only.
     int local_rings = 2;
+    // When > 0: the local repair tries at most this many neighbourhood sizes (each round
+    // doubles the rings), and the elements it leaves inverted in its first call are left to
+    // the next pass (UntangleResult::left_to_next_pass), without the global pass or the last
+    // resorts below: for a grid made again another way when it stays tangled. Those later
+    // stages solve ever larger parts (the hand outside: 39 s of 56 s on 11 inverted elements,
+    // which none of them freed). 0: every size that fits, then the global pass.
+    int local_rounds = 0;
     // eps (target units) the local repair starts again from when elements stay inverted after
     // the local and global passes (0: no second start), and that every round of the local
     // repair after its first starts from.
@@ -116,7 +123,8 @@ struct UntangleResult {
     // The untangling stalled with the wall held to the body (Problem::held_quads): the quads
     // were let go and the untangling went on without them (validity before fidelity).
     bool wall_let_go = false;
-    bool left_to_next_pass = false;  // options.leave_to_next_pass took the inverted elements left
+    // options.leave_to_next_pass took the inverted elements left, or options.local_rounds left them
+    bool left_to_next_pass = false;
     // Why untangling ended with inverted elements beyond options.unrepairable, for the user
     // ("no fewer than 3 inverted elements for 12.1 s, 31 % of the untangling time"); empty
     // when it reached its goal.

@@ -27,6 +27,7 @@ untangle::UntangleResult joint_pass(BlockGrid& grid, const ImplicitFunction& bod
     GridProblem g = corner_tet_problem(grid, grid.points, body, options.held, shaped);
     hold_wall_quads(grid, grid.points, body, options.wall_fidelity, g);
     untangle::UntangleOptions joint = options.untangle;
+    joint.local_rounds = options.local_rounds;
     if (options.wall_layers.layers > 0) {
         joint.leave_to_next_pass = [&g, near = wall_layer_nodes(grid, options.wall_layers.layers)](
                                        const std::vector<Vec3>& x) {
@@ -286,6 +287,14 @@ void untangle_and_optimize(Job& job) {
     // Outside, the far field's cells are up to 1e7 times the first layer's: weighed by volume,
     // the wall's inversions would hardly count while untangling (joint pass and layer pass).
     o.untangle.equal_weights = c.domain == Domain::exterior || job.equal_weights;
+    // Outside a body that is not star-shaped, a grid along the potential's gradient lines that
+    // stays tangled is made again along the fibres (run_case.cpp, retry_with_fibres): its
+    // untangling tries two neighbourhood sizes and hands over instead of going on with the
+    // larger ones and the last resorts, which on the shared bodies freed none of what the two
+    // left (the hand and homer outside spent 30-40 s there before the fibres made them valid).
+    if (c.domain == Domain::exterior && !job.route.radial() && !job.route.directions &&
+        !job.route.spread_on_levels)
+        o.local_rounds = 2;
     const GridOptimizationResult r = optimize_grid(job.grid(), *job.body, o);
     note_wall_miss(job, "after the volume passes");
     job.log << untangle::format_untangle_summary(r.solve);

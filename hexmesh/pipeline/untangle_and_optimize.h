@@ -45,6 +45,10 @@ struct GridOptimizationOptions {
     bool keep_crease_shapes = false;
     // Both passes hold the wall quads to the body with this weight (hold_wall_quads).
     double wall_fidelity = 0;
+    // When > 0, the joint pass's local repair tries at most this many neighbourhood sizes and
+    // leaves what stays inverted to the next pass (UntangleOptions::local_rounds): for a grid
+    // that is made again another way when it stays tangled.
+    int local_rounds = 0;
 };
 
 struct GridOptimizationResult {

@@ -38,6 +38,26 @@ LoggedRun untangle_logged(Problem& p, UntangleOptions o = options_for(Method::ne
     return {std::move(r), log.str()};
 }
 
+// A node of a valid 12^3 grid that two extra tets with fixed bases want above z + 0.05 and
+// below z - 0.05: one inverted tet that no solve repairs.
+Problem node_wanted_above_and_below() {
+    Problem p = test_support::displaced_grid_problem(12, 0.1, 5);
+    const Id node = 6 + 13 * (6 + 13 * 6), o = Id(p.points.size());
+    const Vec3 at = p.points[node];
+    for (const Vec3& x : std::vector<Vec3>{{-0.3, -0.3, 0.05},
+                                           {0.7, -0.3, 0.05},
+                                           {-0.3, 0.7, 0.05},
+                                           {-0.3, -0.3, -0.05},
+                                           {0.7, -0.3, -0.05},
+                                           {-0.3, 0.7, -0.05}}) {
+        p.points.push_back(at + x);
+        p.kinds.push_back(VertexKind::fixed);
+    }
+    p.tets = {{o, o + 1, o + 2, node}, {o + 3, o + 5, o + 4, node}};
+    p.targets.assign(2, regular_tet_target(1.0));
+    return p;
+}
+
 }  // namespace
 
 class UntangleStress : public ::testing::TestWithParam<Method> {};
@@ -225,20 +245,7 @@ TEST(Untangle, ASmallMeshStartsAgainWholeFromRoomEps) {
 // down; every later round (the neighbourhood grows with the grid's cells round the node) says
 // so and starts from room_eps.
 TEST(Untangle, RoundsAfterTheFirstStartFromRoomEps) {
-    Problem p = test_support::displaced_grid_problem(12, 0.1, 5);
-    const Id node = 6 + 13 * (6 + 13 * 6), o = Id(p.points.size());
-    const Vec3 at = p.points[node];
-    for (const Vec3& x : std::vector<Vec3>{{-0.3, -0.3, 0.05},
-                                           {0.7, -0.3, 0.05},
-                                           {-0.3, 0.7, 0.05},
-                                           {-0.3, -0.3, -0.05},
-                                           {0.7, -0.3, -0.05},
-                                           {-0.3, 0.7, -0.05}}) {
-        p.points.push_back(at + x);
-        p.kinds.push_back(VertexKind::fixed);
-    }
-    p.tets = {{o, o + 1, o + 2, node}, {o + 3, o + 5, o + 4, node}};
-    p.targets.assign(2, regular_tet_target(1.0));
+    Problem p = node_wanted_above_and_below();
     const UntangleOptions opt = options_for(Method::newton_cg);
     const LoggedRun run = untangle_logged(p, opt);
     const UntangleResult& r = run.result;
@@ -255,6 +262,30 @@ TEST(Untangle, RoundsAfterTheFirstStartFromRoomEps) {
     EXPECT_GE(eps_after("inverted elements left: neighbourhoods of 4 rings, from eps 0.1"),
               opt.room_eps)
         << text;
+}
+
+// The same impossible node with local_rounds 2: the local repair tries its neighbourhoods of 2
+// and 4 rings, then leaves the inverted tet to the next pass, without the global pass and the
+// last resort (its neighbourhoods from room_eps again) that follow without the limit.
+TEST(Untangle, ALimitOnLocalRoundsLeavesWhatTheyLeaveToTheNextPass) {
+    UntangleOptions o = options_for(Method::newton_cg);
+    Problem unlimited = node_wanted_above_and_below();
+    const LoggedRun all = untangle_logged(unlimited, o);
+    EXPECT_FALSE(all.result.left_to_next_pass);
+    EXPECT_NE(all.log.find("start again from eps"), std::string::npos) << all.log;
+
+    o.local_rounds = 2;
+    Problem limited = node_wanted_above_and_below();
+    const LoggedRun two = untangle_logged(limited, o);
+    EXPECT_TRUE(two.result.left_to_next_pass);
+    EXPECT_GT(two.result.inverted_after, 0);
+    EXPECT_NE(two.log.find("neighbourhoods of 4 rings"), std::string::npos) << two.log;
+    EXPECT_EQ(two.log.find("neighbourhoods of 8 rings"), std::string::npos) << two.log;
+    EXPECT_EQ(two.log.find("start again from eps"), std::string::npos) << two.log;
+    EXPECT_NE(two.result.stopped.find("left after 2 rounds of local repair: left to the next pass"),
+              std::string::npos)
+        << two.result.stopped;
+    EXPECT_LT(two.result.history.size(), all.result.history.size());
 }
 
 TEST(Untangle, NeverReturnsWorseThanItsInput) {
