@@ -220,7 +220,6 @@ LocalRepair repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
                                      Progress& progress, UntangleResult& result,
                                      std::vector<LocalRound>& rounds, double start_eps = 0) {
     LocalRepair repair;
-    bool& stalled = repair.stalled;
     if (best.inverted <= options.unrepairable || options.local_rings <= 0) return repair;
     // A part no larger than the last one, after a round that repaired nothing, ends this:
     // more rings add no freedom (few free nodes around cells that cannot be repaired).
@@ -265,7 +264,7 @@ LocalRepair repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
                                  ? stall_message(t.stuck, t.eps, progress, seconds(), t.stalled)
                                  : done->stopped;
             result.left_to_next_pass = done->left_to_next_pass;
-            stalled = true;
+            repair.stalled = true;
             continue;
         }
         if (rings != options.local_rings && round_eps > start_eps)
@@ -281,7 +280,7 @@ LocalRepair repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
         continuation(part, Judge{assembly, problem.points, &of}, local, seconds, best, progress,
                      result, 0, round_eps);
         progress.trace = nullptr;
-        stalled = best.inverted >= inverted_then;
+        repair.stalled = best.inverted >= inverted_then;
         problem.points = best.points;
         if (!known) continue;
         round.iterations = int(result.history.size() - records);
@@ -348,7 +347,6 @@ bool held_by_creases(const Passes& s) {
 // are left to the next pass (another way of making the grid): no global pass, no last resort.
 void untangle_locally_then_globally(const Passes& s) {
     const LocalRepair local = s.repair_locally(0);
-    const bool local_stalled = local.stalled;
     if (s.options.local_rounds > 0 && local.rounds > 0 &&
         s.best.inverted > s.options.unrepairable && !s.result.left_to_next_pass) {
         s.result.left_to_next_pass = true;
@@ -358,12 +356,12 @@ void untangle_locally_then_globally(const Passes& s) {
             s.best.inverted, local.rounds);
         log_note(s.options.log, s.result.stopped);
     }
-    if (local_stalled && !s.result.left_to_next_pass && held_by_creases(s)) release_creases(s);
+    if (local.stalled && !s.result.left_to_next_pass && held_by_creases(s)) release_creases(s);
     if (s.best.inverted > s.options.unrepairable && !s.result.left_to_next_pass) {
         // When the largest neighbourhood the local repair tried repaired nothing, the global
         // pass gets the local stall budget too: what is left is then almost always blocked
         // (an element held by fixed vertices, or by such a neighbour).
-        const UntangleOptions global = local_stalled ? with_short_stall(s.options) : s.options;
+        const UntangleOptions global = local.stalled ? with_short_stall(s.options) : s.options;
         // From its state's own scale: from room_eps, as the later local rounds, the whole mesh
         // would first add many inverted elements (the hand outside: 23 -> 149), at the cost of
         // the largest solves.

@@ -74,7 +74,7 @@ void retry_with_straight_lines(Job& job) {
 void retry_with_fibres(Job& job) {
     const Case& c = job.settings;
     WallRoute& route = job.route;
-    if (c.domain != Domain::exterior || route.radial() || route.directions) return;
+    if (c.domain != Domain::exterior || !route.along_first_lines()) return;
     const QualityReport along = measure_quality(job.grid());
     if (along.solver_valid()) return;
     job.log << fmt::format(

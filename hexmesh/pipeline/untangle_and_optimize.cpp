@@ -292,9 +292,7 @@ void untangle_and_optimize(Job& job) {
     // untangling tries two neighbourhood sizes and hands over instead of going on with the
     // larger ones and the last resorts, which on the shared bodies freed none of what the two
     // left (the hand and homer outside spent 30-40 s there before the fibres made them valid).
-    if (c.domain == Domain::exterior && !job.route.radial() && !job.route.directions &&
-        !job.route.spread_on_levels)
-        o.local_rounds = 2;
+    if (c.domain == Domain::exterior && job.route.along_first_lines()) o.local_rounds = 2;
     const GridOptimizationResult r = optimize_grid(job.grid(), *job.body, o);
     note_wall_miss(job, "after the volume passes");
     job.log << untangle::format_untangle_summary(r.solve);

@@ -49,6 +49,10 @@ struct WallRoute {
     bool spread_on_levels = false;
 
     bool radial() const { return !wall; }
+    // Through the sphere map, with its lines as first made (along the potential's gradient
+    // lines), neither along fibres nor spread on levels: outside, a grid along them that stays
+    // tangled is made again along the fibres (run_case.cpp, retry_with_fibres).
+    bool along_first_lines() const { return wall && !directions && !spread_on_levels; }
 };
 
 // The route of the case's grid (both domains; the single block keeps its own construction):
