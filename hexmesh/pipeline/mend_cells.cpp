@@ -6,6 +6,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
 
 #include "hexmesh/core/hex_mesh.h"
 #include "hexmesh/core/reference_hex.h"
@@ -926,6 +927,157 @@ LiftResult lift_worst_cells(BlockGrid& grid, const ImplicitFunction& body, const
     sj = scaled_jacobians(mesh);
     result.cells_after = count_below();
     result.min_sj_after = sj.empty() ? 0 : *std::min_element(sj.begin(), sj.end());
+    grid.points = std::move(mesh.points);
+    return result;
+}
+
+namespace {
+
+// A wall line as restore_layer_heights sees it (its wall node does not move there): its
+// nodes from the wall out, the unit normals of the body's pieces at its wall node (into the
+// grid; one on a smooth wall), how many of the law's layers it takes, and at a crease or corner
+// the step that is 1 above every piece (unit_offset).
+struct LayerLine {
+    std::vector<Id> nodes;
+    std::vector<Vec3> normals;
+    int layers = 0;
+    std::optional<Vec3> crease_step;
+    // Node y's heights above the pieces, each off dm by at most `tolerance`.
+    bool on(const Vec3& x0, const Vec3& y, double dm, double tolerance) const {
+        return std::all_of(normals.begin(), normals.end(), [&](const Vec3& n) {
+            return std::abs((y - x0).dot(n) - dm) <= tolerance;
+        });
+    }
+};
+
+// The lines of the grid's wall faces that lay some of the law's layers (each once: a line
+// shared by two blocks' faces is the same nodes).
+std::vector<LayerLine> layer_lines(const BlockGrid& grid, const std::vector<Vec3>& x,
+                                   const ImplicitFunction& body, const WallLayers& law) {
+    std::vector<LayerLine> lines;
+    std::vector<char> seen(x.size(), 0);
+    for (const WallFace& f : wall_faces(grid)) {
+        const double side = grid_side(f, x, body);
+        for (int q = 0; q < f.nq; ++q)
+            for (int p = 0; p < f.np; ++p) {
+                const Id w = f.node(p, q, 0);
+                if (seen[w]) continue;
+                seen[w] = 1;
+                LayerLine line;
+                const int pn = p + 1 < f.np ? p + 1 : p - 1;
+                const double tolerance = 1e-3 * (x[f.node(pn, q, 0)] - x[w]).norm();
+                append_wall_normals(body, x[w], side, tolerance, line.normals);
+                if (line.normals.empty()) continue;
+                double length = 0;
+                for (int t = 0; t < f.depth; ++t) {
+                    line.nodes.push_back(f.node(p, q, t));
+                    if (t > 0) length += (x[f.node(p, q, t)] - x[f.node(p, q, t - 1)]).norm();
+                }
+                line.layers = layers_that_fit(length, f.depth - 1, law);
+                if (line.layers == 0) continue;
+                if (line.normals.size() > 1) {
+                    line.crease_step = unit_offset(body, x[w], side, tolerance);
+                    if (!line.crease_step) continue;
+                }
+                lines.push_back(std::move(line));
+            }
+    }
+    return lines;
+}
+
+}  // namespace
+
+LayerHeightsResult restore_layer_heights(BlockGrid& grid, const ImplicitFunction& body,
+                                         const WallLayers& law) {
+    LayerHeightsResult result;
+    if (law.layers <= 0) return result;
+    HexMesh mesh = to_hex_mesh(grid);
+    const Adjacency around(mesh);
+    std::vector<Vec3>& x = mesh.points;
+    // No cell falls below the grid's worst.
+    const std::vector<double> sj = scaled_jacobians(mesh);
+    const double floor = sj.empty() ? 0 : *std::min_element(sj.begin(), sj.end());
+    // The law's heights d_1 .. d_layers (d[0] = 0).
+    std::vector<double> d(size_t(law.layers) + 1, 0.0);
+    for (int m = 1; m <= law.layers; ++m)
+        d[m] = d[m - 1] + law.first_height * std::pow(law.growth_ratio, m - 1);
+    const std::vector<LayerLine> lines = layer_lines(grid, x, body, law);
+    const auto is_off = [&](const LayerLine& line) {
+        const Vec3& x0 = x[line.nodes[0]];
+        for (int m = 1; m <= line.layers; ++m)
+            if (!line.on(x0, x[line.nodes[m]], d[m], 0.05 * (d[m] - d[m - 1]))) return true;
+        return false;
+    };
+    const auto first_within = [&](const LayerLine& line) {
+        return line.on(x[line.nodes[0]], x[line.nodes[1]], d[1], 0.1 * d[1]);
+    };
+    std::vector<char> off(lines.size()), moved(lines.size(), 0);
+    for (size_t l = 0; l < lines.size(); ++l) {
+        off[l] = is_off(lines[l]);
+        result.lines += off[l];
+        result.within_before += off[l] && first_within(lines[l]);
+    }
+    std::vector<Id> nodes;
+    std::vector<Vec3> kept, target;
+    for (int sweep = 0, moves = 1; sweep < 8 && moves > 0; ++sweep) {
+        moves = 0;
+        for (size_t l = 0; l < lines.size(); ++l) {
+            const LayerLine& line = lines[l];
+            if (!off[l] || !is_off(line)) continue;
+            const int layers = line.layers;
+            const Vec3 x0 = x[line.nodes[0]];
+            // The direction the layer nodes go out along from x0, d_m of it to node m. On a
+            // smooth wall: the ray through node M (the line's lean kept, not each node's offset
+            // along the wall, which over a thinner layer would shear its cells). At a crease or
+            // corner: the step that is 1 above every piece (as the layers were laid there).
+            Vec3 step;
+            if (line.crease_step) {
+                step = *line.crease_step;
+            } else {
+                const Vec3 e = x[line.nodes[layers]] - x0;
+                const double up = e.dot(line.normals[0]);
+                if (!(up > 0.2 * e.norm())) continue;
+                step = e / up;
+            }
+            // Layer nodes onto their heights, the next `layers` nodes by node M's displacement
+            // decreasing linearly, the far end kept.
+            const int last = std::min(2 * layers, int(line.nodes.size()) - 2);
+            nodes.assign(line.nodes.begin() + 1, line.nodes.begin() + last + 1);
+            if (!std::all_of(nodes.begin(), nodes.end(),
+                             [&](Id v) { return grid.kinds[v] == VertexKind::interior; }))
+                continue;
+            kept.clear(), target.clear();
+            for (Id v : nodes) kept.push_back(x[v]);
+            const Vec3 top = x0 + d[layers] * step - kept[layers - 1];
+            for (int t = 1; t <= last; ++t)
+                target.push_back(
+                    t <= layers
+                        ? Vec3(x0 + d[t] * step)
+                        : Vec3(kept[t - 1] +
+                               (1.0 - double(t - layers) / double(last - layers + 1)) * top));
+            const Score before = score_of(mesh, around, nodes);
+            // The whole way, else half of it: lines side by side off their heights (a patch
+            // given back) each leave their neighbour's cells sheared when moved alone, and come
+            // down together over the sweeps.
+            for (const double share : {1.0, 0.5}) {
+                for (size_t i = 0; i < nodes.size(); ++i)
+                    x[nodes[i]] = kept[i] + share * (target[i] - kept[i]);
+                const Score after = score_of(mesh, around, nodes);
+                if (after.inverted <= before.inverted &&
+                    after.inverted_tets <= before.inverted_tets &&
+                    after.refused <= before.refused && after.skewed <= before.skewed &&
+                    after.lowest >= std::min(before.lowest, floor)) {
+                    moved[l] = 1, ++moves;
+                    break;
+                }
+                for (size_t i = 0; i < nodes.size(); ++i) x[nodes[i]] = kept[i];
+            }
+        }
+    }
+    for (size_t l = 0; l < lines.size(); ++l) {
+        result.moved += moved[l];
+        result.within_after += off[l] && first_within(lines[l]);
+    }
     grid.points = std::move(mesh.points);
     return result;
 }

@@ -193,6 +193,16 @@ void polish(Job& job) {
             "lines; {} steps of the worst cells' nodes together)\n",
             r.cells_before, r.cells_after, o.below, r.min_sj_before, r.min_sj_after, r.moves,
             r.line_moves, r.joint_steps);
+    // Lines the layer pass gave back keep the joint optimization's layer nodes, and the lift
+    // moves lines whole: the heights restored last, where the cells around allow.
+    if (const WallLayers law = wall_layers(job.settings); law.layers > 0) {
+        const LayerHeightsResult h = restore_layer_heights(grid, *job.body, law);
+        if (h.lines > 0)
+            job.log << fmt::format(
+                "  boundary layer heights restored where the cells allow: {} of {} lines off "
+                "the law's heights moved (first layer within 10 % on {} -> {} of them)\n",
+                h.moved, h.lines, h.within_before, h.within_after);
+    }
 }
 
 }  // namespace

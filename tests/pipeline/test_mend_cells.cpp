@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -411,6 +412,93 @@ TEST(LiftWorstCells, FarFieldNodesSlideOnTheirSphere) {
     og.far_field = FarFieldShape::box;
     EXPECT_FALSE(far_field_sphere(make_o_grid(body, og), on_far).has_value());
     EXPECT_TRUE(on_far.empty());
+}
+
+// A boundary layer over the flat top face (z = 0) of a large box: 7 x 7 wall nodes `spacing`
+// apart, its lines' nodes at the law's heights up to node 5 (first height 0.02, growth 1.2),
+// then on to z = 2 at node 11; the lines with `off(i, j)` at `factor` times those heights
+// (at most halfway to z = 2) and leaning by `lean` times their height along x, as the joint
+// optimization leaves lines the layer pass gave back. Wall nodes slide, side and far nodes are
+// fixed, and so are the off lines' nodes unless `movable`.
+template <class Off>
+BlockGrid layered_wall(double spacing, double factor, double lean, Off off, bool movable) {
+    std::vector<double> z(12, 0.0);
+    for (int k = 1; k <= 5; ++k) z[k] = z[k - 1] + 0.02 * std::pow(1.2, k - 1);
+    for (int k = 6; k < 12; ++k) z[k] = z[5] + (2 - z[5]) * (k - 5) / 6.0;
+    std::vector<bool> on_level;
+    BlockGrid grid = placed_block(
+        7, 7, 12,
+        [&](int i, int j, int k) {
+            const bool side = i == 0 || j == 0 || i == 6 || j == 6 || k == 11;
+            const bool lifted = off(i, j) && k > 0 && k < 11;
+            const double h = lifted ? std::min(factor * z[k], 0.5 * (z[k] + z[11])) : z[k];
+            const VertexKind kind = side                 ? VertexKind::fixed
+                                    : k == 0             ? VertexKind::slip
+                                    : lifted && !movable ? VertexKind::fixed
+                                                         : VertexKind::interior;
+            return PlacedNode{Vec3(spacing * i + (lifted ? lean * h : 0.0), spacing * j, h), kind};
+        },
+        on_level);
+    grid.blocks[0].face_patch[kmin] = "wall";
+    return grid;
+}
+
+// Lines left off the law's heights (a patch of 3 x 3, three times too high, leaning) are put
+// back on them: every layer node at its height, on the ray from its wall node through its
+// line's fifth node (the lean kept), the lines already on the law untouched, the grid valid and
+// its worst cell no worse.
+TEST(RestoreLayerHeights, LinesOffTheLawAreMovedOntoItsHeights) {
+    const Box body(Vec3(0, 0, -50), Vec3(50, 50, 50));  // u = z above its top face
+    const WallLayers law{0.02, 1.2, 5};
+    const auto off = [](int i, int j) { return i >= 2 && i <= 4 && j >= 2 && j <= 4; };
+    BlockGrid grid = layered_wall(1.0, 3.0, 0.3, off, true);
+    const BlockGrid start = grid;
+    const double worst = measure_quality(to_hex_mesh(grid)).min_scaled_jacobian;
+    const LayerHeightsResult r = restore_layer_heights(grid, body, law);
+    EXPECT_EQ(r.lines, 9);
+    EXPECT_EQ(r.moved, 9);
+    EXPECT_EQ(r.within_before, 0);
+    EXPECT_EQ(r.within_after, 9);
+    const Block& b = grid.blocks[0];
+    double d = 0;
+    for (int k = 1; k <= 5; ++k) {
+        d += 0.02 * std::pow(1.2, k - 1);
+        for (int j = 0; j < 7; ++j)
+            for (int i = 0; i < 7; ++i) {
+                const Vec3 x = grid.points[b.node(i, j, k)];
+                if (!off(i, j)) {
+                    EXPECT_EQ(x, start.points[b.node(i, j, k)]);
+                    continue;
+                }
+                EXPECT_NEAR(x.z(), d, 1e-12) << i << " " << j << " " << k;
+                const Vec3 x0 = grid.points[b.node(i, j, 0)];
+                const Vec3 top = start.points[b.node(i, j, 5)] - x0;
+                EXPECT_NEAR((x - x0).cross(top).norm(), 0, 1e-12);  // on the ray through node 5
+            }
+    }
+    const QualityReport q = measure_quality(to_hex_mesh(grid));
+    EXPECT_TRUE(q.solver_valid());
+    EXPECT_GE(q.min_scaled_jacobian, worst);
+}
+
+// A line whose neighbours stand far above the law (every line 25 times too high, all but the
+// middle one fixed) keeps cells it would shear: brought down to the law beside them (0.1
+// apart), its first cells would lean by 78 degrees; it may go part of the way, never so far
+// that a cell around it falls below the grid's worst (about 1: flat boxes).
+TEST(RestoreLayerHeights, ALineHeldUpByItsNeighboursKeepsItsCells) {
+    const Box body(Vec3(0, 0, -50), Vec3(50, 50, 50));
+    const WallLayers law{0.02, 1.2, 5};
+    BlockGrid grid = layered_wall(
+        0.1, 25.0, 0.0, [](int, int) { return true; }, false);
+    for (int k = 1; k < 11; ++k) grid.kinds[grid.blocks[0].node(3, 3, k)] = VertexKind::interior;
+    const double worst = measure_quality(to_hex_mesh(grid)).min_scaled_jacobian;
+    ASSERT_GT(worst, 0.9);
+    const LayerHeightsResult r = restore_layer_heights(grid, body, law);
+    EXPECT_EQ(r.lines, 49);
+    EXPECT_EQ(r.within_after, 0);
+    const QualityReport q = measure_quality(to_hex_mesh(grid));
+    EXPECT_TRUE(q.solver_valid());
+    EXPECT_GE(q.min_scaled_jacobian, worst - 1e-12);
 }
 
 }  // namespace
