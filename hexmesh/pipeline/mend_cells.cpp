@@ -942,6 +942,8 @@ struct LayerLine {
     std::vector<Vec3> normals;
     int layers = 0;
     std::optional<Vec3> crease_step;
+    // The last node it moves: its layers' and as many beyond, short of its far end.
+    int last() const { return std::min(2 * layers, int(nodes.size()) - 2); }
     // Node y's heights above the pieces, each off dm by at most `tolerance`.
     bool on(const Vec3& x0, const Vec3& y, double dm, double tolerance) const {
         return std::all_of(normals.begin(), normals.end(), [&](const Vec3& n) {
@@ -951,7 +953,9 @@ struct LayerLine {
 };
 
 // The lines of the grid's wall faces that lay some of the law's layers (each once: a line
-// shared by two blocks' faces is the same nodes).
+// shared by two blocks' faces is the same nodes), but none whose layer nodes or the nodes
+// beyond that follow them (up to 2 M) are also another line's (a single block walled on
+// several sides: moving one would move the other's).
 std::vector<LayerLine> layer_lines(const BlockGrid& grid, const std::vector<Vec3>& x,
                                    const ImplicitFunction& body, const WallLayers& law) {
     std::vector<LayerLine> lines;
@@ -982,6 +986,17 @@ std::vector<LayerLine> layer_lines(const BlockGrid& grid, const std::vector<Vec3
                 lines.push_back(std::move(line));
             }
     }
+    // The nodes each line moves, counted over the lines.
+    std::vector<int> uses(x.size(), 0);
+    for (const LayerLine& line : lines)
+        for (int t = 1; t <= line.last(); ++t) ++uses[line.nodes[t]];
+    lines.erase(std::remove_if(lines.begin(), lines.end(),
+                               [&](const LayerLine& line) {
+                                   for (int t = 1; t <= line.last(); ++t)
+                                       if (uses[line.nodes[t]] > 1) return true;
+                                   return false;
+                               }),
+                lines.end());
     return lines;
 }
 
@@ -1041,7 +1056,7 @@ LayerHeightsResult restore_layer_heights(BlockGrid& grid, const ImplicitFunction
             }
             // Layer nodes onto their heights, the next `layers` nodes by node M's displacement
             // decreasing linearly, the far end kept.
-            const int last = std::min(2 * layers, int(line.nodes.size()) - 2);
+            const int last = line.last();
             nodes.assign(line.nodes.begin() + 1, line.nodes.begin() + last + 1);
             if (!std::all_of(nodes.begin(), nodes.end(),
                              [&](Id v) { return grid.kinds[v] == VertexKind::interior; }))

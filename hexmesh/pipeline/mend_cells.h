@@ -122,7 +122,8 @@ struct LayerHeightsResult {
 // there: 92.2 % of its wall within 10 % with it, 93.5 % without, mean scaled Jacobian 0.8813
 // and 0.8816.) Else half the move is tried. Up to 8 sweeps, until one moves no line: lines side
 // by side off their heights, each of which would shear its neighbour's cells if moved alone,
-// come down together. Wall nodes stay. Deterministic; the grid's points are changed in place.
+// come down together. Wall nodes stay, and so do lines that share a node with another (a
+// single block walled on several sides). Deterministic; the grid's points are changed in place.
 // law.layers == 0 leaves the grid as it is.
 LayerHeightsResult restore_layer_heights(BlockGrid& grid, const ImplicitFunction& body,
                                          const WallLayers& law);

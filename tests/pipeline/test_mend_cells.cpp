@@ -501,5 +501,19 @@ TEST(RestoreLayerHeights, ALineHeldUpByItsNeighboursKeepsItsCells) {
     EXPECT_GE(q.min_scaled_jacobian, worst - 1e-12);
 }
 
+// In a block walled on two sides the lines from one wall run through the other's layers: a
+// line whose nodes another line also moves stays, and the grid with it.
+TEST(RestoreLayerHeights, LinesThatShareNodesStay) {
+    const Box body(Vec3(0, 0, -50), Vec3(50, 50, 50));
+    const WallLayers law{0.02, 1.2, 5};
+    const auto off = [](int i, int j) { return i >= 2 && i <= 4 && j >= 2 && j <= 4; };
+    BlockGrid grid = layered_wall(1.0, 3.0, 0.3, off, true);
+    grid.blocks[0].face_patch[imin] = "wall";
+    const BlockGrid start = grid;
+    const LayerHeightsResult r = restore_layer_heights(grid, body, law);
+    EXPECT_EQ(r.moved, 0);
+    EXPECT_EQ(grid.points, start.points);
+}
+
 }  // namespace
 }  // namespace hexmesh
