@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -11,6 +12,13 @@ double layers_thickness(const WallLayers& law) {
     double t = 0, h = law.first_height;
     for (int m = 0; m < law.layers; ++m, h *= law.growth_ratio) t += h;
     return t;
+}
+
+std::vector<double> layer_heights(const WallLayers& law) {
+    std::vector<double> d(size_t(std::max(law.layers, 0)) + 1, 0.0);
+    for (int m = 1; m <= law.layers; ++m)
+        d[m] = d[m - 1] + law.first_height * std::pow(law.growth_ratio, m - 1);
+    return d;
 }
 
 double geometric_ratio(double first, int cells, double total) {

@@ -42,6 +42,10 @@ std::vector<double> uniform_distances(double length, int cells);
 // Total thickness of the law's layers.
 double layers_thickness(const WallLayers& law);
 
+// The law's heights above the wall of its layer nodes: d[0] = 0, d[m] = d[m - 1] +
+// first_height growth_ratio^(m - 1) up to d[law.layers] (as extrude_wall_layers lays them).
+std::vector<double> layer_heights(const WallLayers& law);
+
 // Ratio q > 0 such that first * (q + q^2 + ... + q^cells) = total, by bisection.
 double geometric_ratio(double first, int cells, double total);
 

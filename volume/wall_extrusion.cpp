@@ -8,12 +8,7 @@
 #include "volume/wall_lines.h"
 
 namespace hexmesh {
-namespace {
 
-// Nodes that lines starting at different wall nodes would both move, or that are one line's
-// wall node and another's inner node (a single block walled on several sides: lines from
-// opposite faces run through the same nodes, lines from neighbouring faces cross near the
-// edges and run along each other's walls). Lines through them are left as they are.
 std::vector<bool> crossed_lines(const BlockGrid& grid, const std::vector<WallFace>& faces) {
     constexpr Id nobody = -1;
     std::vector<Id> start(grid.points.size(), nobody);
@@ -32,8 +27,6 @@ std::vector<bool> crossed_lines(const BlockGrid& grid, const std::vector<WallFac
             }
     return crossed;
 }
-
-}  // namespace
 
 double line_length(const BlockGrid& grid, const WallFace& f, int p, int q) {
     double length = 0;
@@ -67,9 +60,7 @@ std::vector<bool> extrude_wall_layers(BlockGrid& grid, const ImplicitFunction& b
                                       const WallLayers& law, int blend) {
     std::vector<bool> placed(grid.points.size(), false);
     if (law.layers <= 0) return placed;
-    std::vector<double> d(law.layers + 1, 0.0);
-    for (int m = 1; m <= law.layers; ++m)
-        d[m] = d[m - 1] + law.first_height * std::pow(law.growth_ratio, m - 1);
+    const std::vector<double> d = layer_heights(law);
 
     const std::vector<WallFace> faces = wall_faces(grid);
     const std::vector<bool> crossed = crossed_lines(grid, faces);

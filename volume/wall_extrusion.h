@@ -25,6 +25,13 @@ struct ThinWallLines {
 };
 ThinWallLines thin_wall_lines(const BlockGrid& grid, const WallLayers& law);
 
+// Nodes that lines starting at different wall nodes would both move, or that are one line's
+// wall node and another's inner node (a single block walled on several sides: lines from
+// opposite faces run through the same nodes, lines from neighbouring faces cross near the
+// edges and run along each other's walls); `faces` are wall_faces(grid). Lines through them
+// (a node 1 .. depth - 2 marked) are left as they are, here and in restore_layer_heights.
+std::vector<bool> crossed_lines(const BlockGrid& grid, const std::vector<WallFace>& faces);
+
 // For every wall-normal line of `grid` (volume/wall_lines.h), puts its nodes m = 1 .. M at
 // x0 + d_m n, with M = layers_that_fit(its length) (law.layers unless the body is thin there),
 // d_m the law's distances (first_height (1 + g + ... + g^(m-1))) and n the unit normal of

@@ -16,6 +16,7 @@
 #include "hexmesh/quality/validity.h"
 #include "surface/implicit_features.h"
 #include "surface/projection.h"
+#include "volume/wall_extrusion.h"
 #include "volume/wall_lines.h"
 
 namespace hexmesh {
@@ -953,14 +954,17 @@ struct LayerLine {
 };
 
 // The lines of the grid's wall faces that lay some of the law's layers (each once: a line
-// shared by two blocks' faces is the same nodes), but none whose layer nodes or the nodes
-// beyond that follow them (up to 2 M) are also another line's (a single block walled on
-// several sides: moving one would move the other's).
-std::vector<LayerLine> layer_lines(const BlockGrid& grid, const std::vector<Vec3>& x,
-                                   const ImplicitFunction& body, const WallLayers& law) {
+// shared by two blocks' faces is the same nodes), but none through a node another line runs
+// through too (crossed_lines, as extrude_wall_layers leaves them: a single block walled on
+// several sides).
+std::vector<LayerLine> layer_lines(const BlockGrid& grid, const ImplicitFunction& body,
+                                   const WallLayers& law) {
+    const std::vector<Vec3>& x = grid.points;
+    const std::vector<WallFace> faces = wall_faces(grid);
+    const std::vector<bool> crossed = crossed_lines(grid, faces);
     std::vector<LayerLine> lines;
     std::vector<char> seen(x.size(), 0);
-    for (const WallFace& f : wall_faces(grid)) {
+    for (const WallFace& f : faces) {
         const double side = grid_side(f, x, body);
         for (int q = 0; q < f.nq; ++q)
             for (int p = 0; p < f.np; ++p) {
@@ -968,16 +972,15 @@ std::vector<LayerLine> layer_lines(const BlockGrid& grid, const std::vector<Vec3
                 if (seen[w]) continue;
                 seen[w] = 1;
                 LayerLine line;
+                for (int t = 0; t < f.depth; ++t) line.nodes.push_back(f.node(p, q, t));
+                if (std::any_of(line.nodes.begin() + 1, line.nodes.end() - 1,
+                                [&](Id v) { return bool(crossed[v]); }))
+                    continue;
                 const int pn = p + 1 < f.np ? p + 1 : p - 1;
                 const double tolerance = 1e-3 * (x[f.node(pn, q, 0)] - x[w]).norm();
                 append_wall_normals(body, x[w], side, tolerance, line.normals);
                 if (line.normals.empty()) continue;
-                double length = 0;
-                for (int t = 0; t < f.depth; ++t) {
-                    line.nodes.push_back(f.node(p, q, t));
-                    if (t > 0) length += (x[f.node(p, q, t)] - x[f.node(p, q, t - 1)]).norm();
-                }
-                line.layers = layers_that_fit(length, f.depth - 1, law);
+                line.layers = layers_that_fit(line_length(grid, f, p, q), f.depth - 1, law);
                 if (line.layers == 0) continue;
                 if (line.normals.size() > 1) {
                     line.crease_step = unit_offset(body, x[w], side, tolerance);
@@ -986,17 +989,6 @@ std::vector<LayerLine> layer_lines(const BlockGrid& grid, const std::vector<Vec3
                 lines.push_back(std::move(line));
             }
     }
-    // The nodes each line moves, counted over the lines.
-    std::vector<int> uses(x.size(), 0);
-    for (const LayerLine& line : lines)
-        for (int t = 1; t <= line.last(); ++t) ++uses[line.nodes[t]];
-    lines.erase(std::remove_if(lines.begin(), lines.end(),
-                               [&](const LayerLine& line) {
-                                   for (int t = 1; t <= line.last(); ++t)
-                                       if (uses[line.nodes[t]] > 1) return true;
-                                   return false;
-                               }),
-                lines.end());
     return lines;
 }
 
@@ -1012,11 +1004,8 @@ LayerHeightsResult restore_layer_heights(BlockGrid& grid, const ImplicitFunction
     // No cell falls below the grid's worst.
     const std::vector<double> sj = scaled_jacobians(mesh);
     const double floor = sj.empty() ? 0 : *std::min_element(sj.begin(), sj.end());
-    // The law's heights d_1 .. d_layers (d[0] = 0).
-    std::vector<double> d(size_t(law.layers) + 1, 0.0);
-    for (int m = 1; m <= law.layers; ++m)
-        d[m] = d[m - 1] + law.first_height * std::pow(law.growth_ratio, m - 1);
-    const std::vector<LayerLine> lines = layer_lines(grid, x, body, law);
+    const std::vector<double> d = layer_heights(law);
+    const std::vector<LayerLine> lines = layer_lines(grid, body, law);
     const auto is_off = [&](const LayerLine& line) {
         const Vec3& x0 = x[line.nodes[0]];
         for (int m = 1; m <= line.layers; ++m)

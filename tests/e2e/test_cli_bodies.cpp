@@ -36,13 +36,17 @@ CommandResult run_case_in(const fs::path& dir, const nlohmann::json& c) {
 }
 
 // run_case_in(dir, ...) from a fresh DIR of the case the body table runs: only the file, the
-// domain and a boundary layer of 5 layers from 0.002, growth 1.2.
-CommandResult run_body_in(const fs::path& dir, const fs::path& file, const std::string& domain) {
+// domain and a boundary layer of 5 layers from 0.002, growth 1.2; with cells_per_edge > 0, that
+// many cells per patch edge too.
+CommandResult run_body_in(const fs::path& dir, const fs::path& file, const std::string& domain,
+                          int cells_per_edge = 0) {
     fs::remove_all(dir);
-    return run_case_in(
-        dir, {{"geometry", {{"file", file.string()}}},
-              {"domain", domain},
-              {"boundary_layer", {{"first_height", 0.002}, {"growth_ratio", 1.2}, {"layers", 5}}}});
+    nlohmann::json c = {
+        {"geometry", {{"file", file.string()}}},
+        {"domain", domain},
+        {"boundary_layer", {{"first_height", 0.002}, {"growth_ratio", 1.2}, {"layers", 5}}}};
+    if (cells_per_edge > 0) c["grid"] = {{"cells_per_edge", cells_per_edge}};
+    return run_case_in(dir, c);
 }
 
 // The quality.json that run_case_in(dir, ...) wrote.
@@ -165,12 +169,7 @@ TEST(CliBodies, LaidLayersThatWouldCrossAreGivenBackLineByLine) {
     const fs::path cross = bodies / "cross.off";
     if (!fs::exists(cross)) GTEST_SKIP() << "shared bodies not beside the project: " << bodies;
     const fs::path dir = scratch("bodies_cross_layers");
-    fs::remove_all(dir);
-    const CommandResult r = run_case_in(
-        dir, {{"geometry", {{"file", cross.string()}}},
-              {"domain", "exterior"},
-              {"grid", {{"cells_per_edge", 16}}},
-              {"boundary_layer", {{"first_height", 0.002}, {"growth_ratio", 1.2}, {"layers", 5}}}});
+    const CommandResult r = run_body_in(dir, cross, "exterior", 16);
     // Written; exit code 3 when the wall cuts the arms' corners (follows_body false).
     ASSERT_TRUE(r.exit_code == 0 || r.exit_code == 3) << r.out << r.err;
     EXPECT_EQ(r.exit_code, quality_in(dir).at("follows_body").get<bool>() ? 0 : 3);
@@ -201,12 +200,7 @@ TEST(CliBodies, LinesGivenBackByTheLayerPassArePutBackOnTheLawsHeights) {
     const fs::path spool = bodies / "spool.off";
     if (!fs::exists(spool)) GTEST_SKIP() << "shared bodies not beside the project: " << bodies;
     const fs::path dir = scratch("bodies_spool_heights");
-    fs::remove_all(dir);
-    const CommandResult r = run_case_in(
-        dir, {{"geometry", {{"file", spool.string()}}},
-              {"domain", "exterior"},
-              {"grid", {{"cells_per_edge", 16}}},
-              {"boundary_layer", {{"first_height", 0.002}, {"growth_ratio", 1.2}, {"layers", 5}}}});
+    const CommandResult r = run_body_in(dir, spool, "exterior", 16);
     ASSERT_TRUE(r.exit_code == 0 || r.exit_code == 3) << r.out << r.err;
     std::smatch m;
     ASSERT_TRUE(std::regex_search(
