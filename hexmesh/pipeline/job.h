@@ -55,9 +55,9 @@ struct Job {
     std::optional<TriangleSurface> surface;  // the surface file's triangles, if any
     Body body;                               // the implicit body u
     WallRoute route;                         // how the wall grid is placed on it
-    // Every corner tet weighs the same while the volume grid is untangled, instead of its
-    // target's volume: always outside (untangle_and_optimize), inside on a retry.
-    bool equal_weights = false;
+    // The corner tets weigh their targets' volumes while the volume grid is untangled, instead
+    // of each the same: inside, on a retry (run_case.cpp, retry_with_volume_weights).
+    bool volume_weights = false;
     // A hole of the surface wider than a wall cell, named at the end of the refusals that its
     // folds can cause (the wall not placed, the grid invalid); empty for a closed surface.
     std::string open_hole;

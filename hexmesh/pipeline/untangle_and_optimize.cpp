@@ -294,9 +294,10 @@ void untangle_and_optimize(Job& job) {
     o.wall_layers = wall_layers(c);
     o.keep_crease_shapes = c.domain == Domain::exterior;  // its lines leave creases mitred
     o.wall_fidelity = c.solver.wall_fidelity;
-    // Outside, the far field's cells are up to 1e7 times the first layer's: weighed by volume,
-    // the wall's inversions would hardly count while untangling (joint pass and layer pass).
-    o.untangle.equal_weights = c.domain == Domain::exterior || job.equal_weights;
+    // Every corner tet weighs the same while untangling (joint pass and layer pass), unless a
+    // retry says otherwise: weighed by volume, the first layer's inversions hardly count against
+    // the far field's or the core's cells (1e7 times theirs outside, 1e3 inside).
+    o.untangle.equal_weights = !job.volume_weights;
     // Outside a body that is not star-shaped, a grid along the potential's gradient lines that
     // stays tangled is made again along the fibres (run_case.cpp, retry_with_fibres): its
     // untangling tries two neighbourhood sizes and hands over instead of going on with the

@@ -248,12 +248,10 @@ TEST(CliBodies, AnInteriorOfABodyWithFingersRunsItsLinesAlongThePotential) {
                 r.out.find("the grid with lines along the interior potential is kept") !=
                     std::string::npos)
         << r.out;
-    // The inverted elements left at the wall and its layers are handed over to the layer pass
-    // at the first stall (which lays those lines again and frees them in about a second),
-    // instead of seconds of restarts and last resorts that did not free them.
-    EXPECT_TRUE(std::regex_search(r.out, std::regex("[1-9][0-9]* inverted elements left to the "
-                                                    "next pass")))
-        << r.out;
+    // Untangled with every corner tet weighing the same, it is valid at the first try: no grid
+    // made again (weighed by volume it kept cells a solver refuses, and the run went on to two
+    // more grids, 86 s in all).
+    EXPECT_EQ(r.out.find("the grid again"), std::string::npos) << r.out;
     const nlohmann::json q = expect_written_valid(dir);
     EXPECT_GE(
         q.at("wall").at("first_layer_thickness").at("fraction_within_10_percent").get<double>(),
