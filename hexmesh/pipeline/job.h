@@ -56,7 +56,7 @@ struct Job {
     Body body;                               // the implicit body u
     WallRoute route;                         // how the wall grid is placed on it
     // The corner tets weigh their targets' volumes while the volume grid is untangled, instead
-    // of each the same: inside, on a retry (run_case.cpp, retry_with_volume_weights).
+    // of each the same: inside, on a retry (run_case.cpp, retry_with_other_weights).
     bool volume_weights = false;
     // A hole of the surface wider than a wall cell, named at the end of the refusals that its
     // folds can cause (the wall not placed, the grid invalid); empty for a closed surface.

@@ -47,32 +47,42 @@ bool make_again_and_keep_better(Job& job, const QualityReport& before, WallRoute
 // (bench/RESULTS.md, "Interior grids untangled with equal weights first"). On a body with
 // narrow parts the grid can then keep cells a solver refuses that the grid untangled with each
 // tet weighing its target's volume (the small cells of the boundary layer keeping their shapes)
-// would free: two of four random bodies with limbs. Then the grid is made again along the same
-// route, untangled with volume weights, and the better of the two kept.
-void retry_with_volume_weights(Job& job) {
-    if (job.settings.domain == Domain::exterior || job.volume_weights) return;
-    const QualityReport equal = measure_quality(job.grid());
-    if (equal.solver_valid()) return;
-    job.log << fmt::format(
-        "  the grid untangled with every tet weighing the same left {}: the grid again, each tet "
-        "weighing its target's volume\n",
-        invalid_cells(equal));
-    job.volume_weights = true;
-    job.volume_weights = make_again_and_keep_better(job, equal, job.route, "(volume weights)",
-                                                    "untangled with volume weights",
-                                                    "the grid untangled with equal weights");
+// would free (two of eight random bodies with limbs), and the other way round on others (the
+// hand and the spool; a third random body along its straight lines, after its potential's grid
+// kept volume weights): which one a route needs is not known beforehand.
+// Then the grid is made again along the same route with the other weighting, and the better of
+// the two kept. Run once per route: after the first grid, and after the straight lines when
+// their grid is kept.
+void retry_with_other_weights(Job& job) {
+    if (job.settings.domain == Domain::exterior) return;
+    const QualityReport before = measure_quality(job.grid());
+    if (before.solver_valid()) return;
+    const bool volume = !job.volume_weights;
+    const std::string equal = "every tet weighing the same";
+    const std::string weighed = "each tet weighing its target's volume";
+    job.log << fmt::format("  the grid untangled with {} left {}: the grid again, {}\n",
+                           volume ? equal : weighed, invalid_cells(before),
+                           volume ? weighed : equal);
+    job.volume_weights = volume;
+    if (!make_again_and_keep_better(
+            job, before, job.route, volume ? "(volume weights)" : "(equal weights)",
+            volume ? "untangled with volume weights" : "untangled with equal weights",
+            volume ? "the grid untangled with equal weights"
+                   : "the grid untangled with volume weights"))
+        job.volume_weights = !volume;
 }
 
 // Untangled and optimized, the interior grid of a body that is not star-shaped, its lines in
 // along the interior potential's gradient lines, may keep cells a solver refuses where the
 // straight lines from the wall to the core would not (which of the two a body takes is not
 // known beforehand). Then the grid is made again with its lines straight to the core, and the
-// better of the two kept: the valid one, or the one with fewer inverted cells.
-void retry_with_straight_lines(Job& job) {
+// better of the two kept: the valid one, or the one with fewer inverted cells. Returns whether
+// the grid with straight lines is kept.
+bool retry_with_straight_lines(Job& job) {
     WallRoute& route = job.route;
-    if (job.settings.domain == Domain::exterior || route.radial() || !route.potential) return;
+    if (job.settings.domain == Domain::exterior || route.radial() || !route.potential) return false;
     const QualityReport along = measure_quality(job.grid());
-    if (along.solver_valid()) return;
+    if (along.solver_valid()) return false;
     job.log << fmt::format(
         "  the lines along the interior potential left {}: the grid again, its lines straight "
         "to the core\n",
@@ -80,9 +90,9 @@ void retry_with_straight_lines(Job& job) {
     WallRoute kept_route = route;
     route.potential.reset();
     route.far_level = 0;
-    make_again_and_keep_better(job, along, std::move(kept_route), "(lines straight to the core)",
-                               "the lines straight to the core",
-                               "the grid with lines along the interior potential");
+    return make_again_and_keep_better(
+        job, along, std::move(kept_route), "(lines straight to the core)",
+        "the lines straight to the core", "the grid with lines along the interior potential");
 }
 
 // The exterior grid of a body that is not star-shaped, its lines out along the exterior
@@ -161,8 +171,8 @@ RunResult run_case(const Case& c, const std::string& outdir, const RunOptions& o
     if (c.solver.optimize_iterations > 0 || measure_quality(job.grid()).inverted_cells > 0) {
         make_surface_grid(job);
         untangle_and_optimize(job);
-        retry_with_volume_weights(job);
-        retry_with_straight_lines(job);
+        retry_with_other_weights(job);
+        if (retry_with_straight_lines(job)) retry_with_other_weights(job);
         retry_with_fibres(job);
         retry_with_spread_levels(job);
     }
