@@ -58,6 +58,9 @@ struct Job {
     // The corner tets weigh their targets' volumes while the volume grid is untangled, instead
     // of each the same: inside, on a retry (run_case.cpp, retry_with_other_weights).
     bool volume_weights = false;
+    // The volume passes of the grid found inverted elements to untangle (untangle_and_optimize),
+    // so the weights above counted.
+    bool untangled = false;
     // A hole of the surface wider than a wall cell, named at the end of the refusals that its
     // folds can cause (the wall not placed, the grid invalid); empty for a closed surface.
     std::string open_hole;

@@ -18,25 +18,49 @@
 namespace hexmesh {
 namespace {
 
+// Whether the grid measured `after` is better than the one measured `before`: valid for a
+// solver where that one is not; both valid, with a higher worst scaled Jacobian; neither, with
+// fewer inverted cells.
+bool better_grid(const QualityReport& after, const QualityReport& before) {
+    if (after.solver_valid() != before.solver_valid()) return after.solver_valid();
+    if (after.solver_valid()) return after.min_scaled_jacobian > before.min_scaled_jacobian;
+    return after.inverted_cells < before.inverted_cells;
+}
+
+// What the log says of a grid measured `q`: the cells a solver refuses, or its worst cell, and
+// that of the grid measured `other` when both are valid.
+std::string grid_state(const QualityReport& q, const QualityReport* other = nullptr) {
+    if (!q.solver_valid()) return invalid_cells(q);
+    std::string s = fmt::format("worst scaled Jacobian {:.4f}", q.min_scaled_jacobian);
+    if (other && other->solver_valid())
+        s += fmt::format(" against {:.4f}", other->min_scaled_jacobian);
+    return s;
+}
+
 // Makes the grid again along job.route as it now is (blocks, surface pass, optimization; the
-// timer's "grid" phase noted `phase`) and keeps it when it is valid for a solver or left with
-// fewer inverted cells than the grid it replaces, measured `before`. Else that grid and
-// `before_route` are put back, the log says "<made> left <cells>: <kept> is kept", and false is
-// returned.
+// timer's "grid" phase noted `phase`) and keeps it when it is the better grid (better_grid) of
+// the two, the one it replaces measured `before`. Else that grid and `before_route` are put
+// back, the log says "<made>: <its state>; <kept> is kept", and false is returned.
 bool make_again_and_keep_better(Job& job, const QualityReport& before, WallRoute before_route,
                                 const std::string& phase, const std::string& made,
                                 const std::string& kept_grid) {
     BlockGrid kept = std::move(job.grid());
     std::vector<WallQuality::Stage> kept_misses = job.wall_misses;
+    const bool kept_untangled = job.untangled;
     job.grid() = build_grid(job.settings, *job.body, nullptr, &job.route);
     job.timer.done("grid", phase);
     make_surface_grid(job);
     untangle_and_optimize(job);
     const QualityReport after = measure_quality(job.grid());
-    if (after.solver_valid() || after.inverted_cells < before.inverted_cells) return true;
-    job.log << fmt::format("  {} left {}: {} is kept\n", made, invalid_cells(after), kept_grid);
+    if (better_grid(after, before)) {
+        if (before.solver_valid())
+            job.log << fmt::format("  {}: {}: kept\n", made, grid_state(after, &before));
+        return true;
+    }
+    job.log << fmt::format("  {}: {}; {} is kept\n", made, grid_state(after, &before), kept_grid);
     job.grid() = std::move(kept);
     job.wall_misses = std::move(kept_misses);
+    job.untangled = kept_untangled;
     job.route = std::move(before_route);
     return false;
 }
@@ -44,25 +68,23 @@ bool make_again_and_keep_better(Job& job, const QualityReport& before, WallRoute
 // Inside, every corner tet weighs the same while the volume grid is untangled, as outside: on
 // the shared bodies the bull and homer come out with min scaled Jacobian 0.35 and 0.23 instead
 // of 0.13 and 0.08, the hand and the spool valid at the first try instead of after two more
-// (bench/RESULTS.md, "Interior grids untangled with equal weights first"). On a body with
-// narrow parts the grid can then keep cells a solver refuses that the grid untangled with each
+// (bench/RESULTS.md, "Interior grids untangled with equal weights first"). On other bodies each
 // tet weighing its target's volume (the small cells of the boundary layer keeping their shapes)
-// would free (two of eight random bodies with limbs), and the other way round on others (the
-// hand and the spool; a third random body along its straight lines, after its potential's grid
-// kept volume weights): which one a route needs is not known beforehand.
-// Then the grid is made again along the same route with the other weighting, and the better of
-// the two kept. Run once per route: after the first grid, and after the straight lines when
-// their grid is kept.
+// gives the better grid: valid where the other keeps cells a solver refuses (two of eight random
+// bodies with limbs; a third along its straight lines), or with a better worst cell (the U:
+// 0.10 against 0.08; a random body 0.30 against 0.09). Which one a route needs is not known
+// beforehand, so the grid is made again along the same route with the other weighting, and the
+// better of the two kept (better_grid). Run once per route: after the first grid, and after the
+// straight lines when their grid is kept. Not when the grid had nothing to untangle: the weights
+// count only while untangling, and the grid would come out the same.
 void retry_with_other_weights(Job& job) {
-    if (job.settings.domain == Domain::exterior) return;
+    if (job.settings.domain == Domain::exterior || !job.untangled) return;
     const QualityReport before = measure_quality(job.grid());
-    if (before.solver_valid()) return;
     const bool volume = !job.volume_weights;
     const std::string equal = "every tet weighing the same";
     const std::string weighed = "each tet weighing its target's volume";
-    job.log << fmt::format("  the grid untangled with {} left {}: the grid again, {}\n",
-                           volume ? equal : weighed, invalid_cells(before),
-                           volume ? weighed : equal);
+    job.log << fmt::format("  the grid untangled with {}: {}; the grid again, {}\n",
+                           volume ? equal : weighed, grid_state(before), volume ? weighed : equal);
     job.volume_weights = volume;
     if (!make_again_and_keep_better(
             job, before, job.route, volume ? "(volume weights)" : "(equal weights)",
