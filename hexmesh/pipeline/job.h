@@ -56,10 +56,11 @@ struct Job {
     Body body;                               // the implicit body u
     WallRoute route;                         // how the wall grid is placed on it
     // The corner tets weigh their targets' volumes while the volume grid is untangled, instead
-    // of each the same: inside, on a retry (run_case.cpp, retry_with_other_weights).
+    // of each the same: inside, for the grid made again with the other weighting (run_case.cpp,
+    // retry_with_other_weights).
     bool volume_weights = false;
-    // The volume passes of the grid found inverted elements to untangle (untangle_and_optimize),
-    // so the weights above counted.
+    // The volume passes of the grid found inverted corner tets to untangle (the joint pass, or
+    // the layer pass whose layers the grid keeps), so the weights above counted.
     bool untangled = false;
     // A hole of the surface wider than a wall cell, named at the end of the refusals that its
     // folds can cause (the wall not placed, the grid invalid); empty for a closed surface.

@@ -153,6 +153,7 @@ void lay_boundary_layer(BlockGrid& grid, const ImplicitFunction& body,
                 return g.inverted_all_touch(x, placed);
             };
         result.layers_held = untangle::untangle_and_optimize(problem, budget);
+        result.layers_untangled |= result.layers_held.inverted_before > 0;
         BlockGrid tried = grid;
         g.scatter(tried.points);
         std::vector<bool> hit;

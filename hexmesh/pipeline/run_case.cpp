@@ -40,7 +40,8 @@ std::string grid_state(const QualityReport& q, const QualityReport* other = null
 // Makes the grid again along job.route as it now is (blocks, surface pass, optimization; the
 // timer's "grid" phase noted `phase`) and keeps it when it is the better grid (better_grid) of
 // the two, the one it replaces measured `before`. Else that grid and `before_route` are put
-// back, the log says "<made>: <its state>; <kept> is kept", and false is returned.
+// back and false is returned. The log says which is kept: "<made>: <its state>; it is kept", or
+// "...; <kept_grid> is kept".
 bool make_again_and_keep_better(Job& job, const QualityReport& before, WallRoute before_route,
                                 const std::string& phase, const std::string& made,
                                 const std::string& kept_grid) {
@@ -53,8 +54,7 @@ bool make_again_and_keep_better(Job& job, const QualityReport& before, WallRoute
     untangle_and_optimize(job);
     const QualityReport after = measure_quality(job.grid());
     if (better_grid(after, before)) {
-        if (before.solver_valid())
-            job.log << fmt::format("  {}: {}: kept\n", made, grid_state(after, &before));
+        job.log << fmt::format("  {}: {}; it is kept\n", made, grid_state(after, &before));
         return true;
     }
     job.log << fmt::format("  {}: {}; {} is kept\n", made, grid_state(after, &before), kept_grid);

@@ -305,7 +305,9 @@ void untangle_and_optimize(Job& job) {
     // left (the hand and homer outside spent 30-40 s there before the fibres made them valid).
     if (c.domain == Domain::exterior && job.route.along_first_lines()) o.local_rounds = 2;
     const GridOptimizationResult r = optimize_grid(job.grid(), *job.body, o);
-    job.untangled = r.solve.inverted_before > 0 || r.layers_held.inverted_before > 0;
+    // Whether the weights counted in the grid kept: the joint pass untangled, or the layer pass
+    // whose laid layers the grid keeps did.
+    job.untangled = r.solve.inverted_before > 0 || (r.layers_laid && r.layers_untangled);
     note_wall_miss(job, "after the volume passes");
     job.log << untangle::format_untangle_summary(r.solve);
     log_layer_pass(r, o.wall_layers.layers, job.log);

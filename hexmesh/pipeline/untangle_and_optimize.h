@@ -57,6 +57,8 @@ struct GridOptimizationResult {
     // Whether the grid keeps the laid layers: false when that pass could not make every cell
     // valid, and the joint optimization's grid was kept instead.
     bool layers_laid = false;
+    // Some attempt of that pass found inverted elements to untangle (layers_held is the last's).
+    bool layers_untangled = false;
     // Cells of the laid layers that came out inverted with every node held (laid, or held
     // beyond the relaxed rings): that pass was then skipped.
     Id layers_blocked = 0;

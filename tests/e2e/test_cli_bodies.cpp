@@ -361,6 +361,9 @@ struct BodyRun {
     bool follows_body;  // every surface vertex within half a wall cell of the wall
                         // (bench/RESULTS.md)
     double min_sj;  // the worst scaled Jacobian is at least this (bench/RESULTS.md, less a fifth)
+    // Inside: the first grid, valid, has corner tets to untangle, so it is made again with the
+    // other weighting.
+    bool made_twice = false;
 };
 
 class FromTheFileAlone : public ::testing::TestWithParam<BodyRun> {};
@@ -392,9 +395,12 @@ TEST_P(FromTheFileAlone, IsValidForTheSolverAndKeepsItsFirstLayer) {
     // Inside, a grid valid with every tet weighing the same is made again weighed by volume,
     // and the one with the better worst cell written.
     std::smatch first, second;
-    if (std::regex_search(r.out, first,
+    const bool twice =
+        std::regex_search(r.out, first,
                           std::regex("the grid untangled with every tet weighing the same: worst "
-                                     "scaled Jacobian ([0-9.]+); the grid again"))) {
+                                     "scaled Jacobian ([0-9.]+); the grid again"));
+    EXPECT_TRUE(twice || !p.made_twice) << r.out;
+    if (twice) {
         double best = std::stod(first[1]);
         if (std::regex_search(r.out, second,
                               std::regex("untangled with volume weights: worst scaled Jacobian "
@@ -414,15 +420,15 @@ TEST_P(FromTheFileAlone, IsValidForTheSolverAndKeepsItsFirstLayer) {
 INSTANTIATE_TEST_SUITE_P(SharedBodies, FromTheFileAlone,
                          ::testing::Values(BodyRun{"dragknob.off", "exterior", false, 0.245},
                                            BodyRun{"dragknob.off", "interior", false, 0.24},
-                                           BodyRun{"tripod.off", "interior", false, 0.12},
+                                           BodyRun{"tripod.off", "interior", false, 0.12, true},
                                            BodyRun{"tripod.off", "exterior", false, 0.12},
-                                           BodyRun{"cross.off", "interior", true, 0.099},
+                                           BodyRun{"cross.off", "interior", true, 0.099, true},
                                            BodyRun{"part.off", "exterior", false, 0.079},
                                            BodyRun{"u.off", "exterior", false, 0.09},
                                            BodyRun{"cross.off", "exterior", false, 0.22},
                                            BodyRun{"bull.off", "exterior", false, 0.069},
                                            BodyRun{"NACA0012.obj", "exterior", false, 0.079},
-                                           BodyRun{"NACA0012.obj", "interior", false, 0.06}),
+                                           BodyRun{"NACA0012.obj", "interior", false, 0.06, true}),
                          [](const ::testing::TestParamInfo<BodyRun>& info) {
                              return fs::path(info.param.body).stem().string() + "_" +
                                     info.param.domain;
