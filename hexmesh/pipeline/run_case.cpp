@@ -81,16 +81,17 @@ void retry_with_other_weights(Job& job) {
     if (job.settings.domain == Domain::exterior || !job.untangled) return;
     const QualityReport before = measure_quality(job.grid());
     const bool volume = !job.volume_weights;
-    const std::string equal = "every tet weighing the same";
-    const std::string weighed = "each tet weighing its target's volume";
-    job.log << fmt::format("  the grid untangled with {}: {}; the grid again, {}\n",
-                           volume ? equal : weighed, grid_state(before), volume ? weighed : equal);
+    // A weighting (volume weights or not), in full and in short.
+    const auto how = [](bool v) {
+        return v ? "each tet weighing its target's volume" : "every tet weighing the same";
+    };
+    const auto name = [](bool v) { return std::string(v ? "volume weights" : "equal weights"); };
+    job.log << fmt::format("  the grid untangled with {}: {}; the grid again, {}\n", how(!volume),
+                           grid_state(before), how(volume));
     job.volume_weights = volume;
-    if (!make_again_and_keep_better(
-            job, before, job.route, volume ? "(volume weights)" : "(equal weights)",
-            volume ? "untangled with volume weights" : "untangled with equal weights",
-            volume ? "the grid untangled with equal weights"
-                   : "the grid untangled with volume weights"))
+    if (!make_again_and_keep_better(job, before, job.route, "(" + name(volume) + ")",
+                                    "untangled with " + name(volume),
+                                    "the grid untangled with " + name(!volume)))
         job.volume_weights = !volume;
 }
 
