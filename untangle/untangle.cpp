@@ -165,6 +165,14 @@ void continuation(Problem& problem, const Judge& judge, const UntangleOptions& o
             ++stalled;
         }
         if (done(stats)) break;
+        if (options.max_work > 0 && progress.work > options.max_work) {
+            result.budget_spent = true;
+            result.stopped =
+                fmt::format("its work budget ({:.0f}) is spent with {} inverted elements left",
+                            options.max_work, progress.fewest);
+            log_note(options.log, result.stopped);
+            return;
+        }
         // eps this small (in target units) no longer changes anything but the energy's scale.
         const bool stuck = stalled > 0 && eps < negligible_eps;
         // A pass from above its state's scale has stall_minimum iterations to find fewer
@@ -226,6 +234,7 @@ LocalRepair repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
     Id previous = 0, inverted_then = std::numeric_limits<Id>::max();
     for (int rings = options.local_rings;
          best.inverted > options.unrepairable && rings < (1 << 20) && !result.left_to_next_pass &&
+         !result.budget_spent &&
          (options.local_rounds <= 0 || repair.rounds < options.local_rounds);
          rings *= 2) {
         Problem part;
@@ -357,7 +366,8 @@ void untangle_locally_then_globally(const Passes& s) {
         log_note(s.options.log, s.result.stopped);
     }
     if (local.stalled && !s.result.left_to_next_pass && held_by_creases(s)) release_creases(s);
-    if (s.best.inverted > s.options.unrepairable && !s.result.left_to_next_pass) {
+    if (s.best.inverted > s.options.unrepairable && !s.result.left_to_next_pass &&
+        !s.result.budget_spent) {
         // When the largest neighbourhood the local repair tried repaired nothing, the global
         // pass gets the local stall budget too: what is left is then almost always blocked
         // (an element held by fixed vertices, or by such a neighbour).
@@ -374,7 +384,9 @@ void untangle_locally_then_globally(const Passes& s) {
 // the body (Problem::held_quads), the quads are let go and it starts again from its best state
 // (a fold of the wall that only a node sliding off a limb's tip undoes).
 void let_the_wall_go(const Passes& s) {
-    if (s.best.inverted <= s.options.unrepairable || s.problem.held_quads.empty()) return;
+    if (s.best.inverted <= s.options.unrepairable || s.problem.held_quads.empty() ||
+        s.result.budget_spent)
+        return;
     log_note(s.options.log, fmt::format("{} inverted elements left with the wall held to the body: "
                                         "its quads let go",
                                         s.best.inverted));
@@ -394,7 +406,7 @@ void let_the_wall_go(const Passes& s) {
 void restart_from_room_eps(const Passes& s) {
     const UntangleOptions& options = s.options;
     if (s.best.inverted <= options.unrepairable || options.room_eps <= 0 ||
-        options.local_rings <= 0 || s.result.left_to_next_pass)
+        options.local_rings <= 0 || s.result.left_to_next_pass || s.result.budget_spent)
         return;
     // From room_eps, or from 0.2 |min det| as every continuation when that is larger.
     const double min_det = s.assembly.stats(s.best.points).min_det;
@@ -432,7 +444,7 @@ void release_creases(const Passes& s) {
     const UntangleOptions& options = s.options;
     if (s.best.inverted > options.unrepairable && options.release_creases &&
         options.local_rings > 0 && problem.project_to_surface && problem.surface_normal &&
-        !s.result.left_to_next_pass) {
+        !s.result.left_to_next_pass && !s.result.budget_spent) {
         const std::vector<VertexKind> kinds = problem.kinds;
         // Counted per call: it runs once more, as the last resort, after an earlier release
         // before the global pass (untangle_locally_then_globally) left elements inverted.
@@ -499,6 +511,7 @@ void finish(const Passes& s) {
     result.min_det_after = stats.min_det;
     result.energy_after = s.best.energy;
     result.seconds = s.seconds();
+    result.work = s.progress.work;
 }
 
 }  // namespace

@@ -33,7 +33,12 @@ struct UntangleOptions {
     // (docs/architecture.md#the-functional).
     bool equal_weights = false;
     int max_untangle_iterations = 200;  // outer iterations (eps updates)
-    int stall_iterations = 40;          // stop untangling after this many without progress
+    // When > 0: untangling ends, with the best state it reached, once its work (Progress:
+    // outer iterations, their conjugate-gradient iterations and line searches' evaluations;
+    // the same on every machine) exceeds this. For a grid made again only to be compared with
+    // one already made: it is given a multiple of that one's work.
+    double max_work = 0;
+    int stall_iterations = 40;  // stop untangling after this many without progress
     // Untangling also stops when the inverted count has not fallen by a tenth (Progress) for
     // longer than this share of the work done so far (outer iterations, their
     // conjugate-gradient iterations and their line searches' energy evaluations: a measure of
@@ -132,6 +137,9 @@ struct UntangleResult {
     double min_det_before = 0, min_det_after = 0;  // in target units (1 = perfect)
     double energy_after = 0;                       // barrier energy, +inf if still tangled
     double seconds = 0;
+    // The untangling's work (UntangleOptions::max_work), and whether it reached that budget.
+    double work = 0;
+    bool budget_spent = false;
     std::vector<IterationRecord> history;
 };
 

@@ -456,6 +456,26 @@ TEST(Untangle, ACountFallingByLessThanATenthIsNoProgress) {
               std::string::npos);
 }
 
+// A work budget ends the untangling where it is spent, with the best state it reached and the
+// reason; the same problem without one is untangled, in more work than that budget.
+TEST(Untangle, AWorkBudgetEndsTheUntanglingWithItsBestState) {
+    Problem free_run = mismatched_targets(14, 1.5, 2, 2.5);
+    Problem bounded = free_run;
+    const auto [whole, whole_log] = untangle_logged(free_run);
+    ASSERT_EQ(whole.inverted_after, 0) << whole_log;
+    EXPECT_FALSE(whole.budget_spent);
+    UntangleOptions o = options_for(Method::newton_cg);
+    o.max_work = whole.work / 4;
+    const auto [r, log] = untangle_logged(bounded, o);
+    EXPECT_TRUE(r.budget_spent) << log;
+    EXPECT_GT(r.inverted_after, 0);
+    EXPECT_LT(r.inverted_after, r.inverted_before);
+    EXPECT_EQ(Assembly(bounded).stats(bounded.points).inverted, r.inverted_after);
+    EXPECT_GT(r.work, o.max_work);
+    EXPECT_LT(r.work, whole.work);
+    EXPECT_NE(r.stopped.find("its work budget"), std::string::npos) << r.stopped;
+}
+
 // The impossible tangle again, beside a valid grid so that its neighbourhood is a part of the
 // problem, with every last resort: its restarts go back to states and eps already solved from
 // (the start of a pass; the same neighbourhood from the same best state and eps, which the
