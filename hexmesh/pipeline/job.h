@@ -62,6 +62,12 @@ struct Job {
     // The volume passes of the grid found inverted corner tets to untangle (the joint pass, or
     // the layer pass whose layers the grid keeps), so the weights above counted.
     bool untangled = false;
+    // The work of those untanglings (GridOptimizationResult::untangling_work), and, when > 0,
+    // the budget of the volume passes' untangling of the grid being made (UntangleOptions::
+    // max_work, shared by both passes): for a grid made again only to be compared with a valid
+    // one (run_case.cpp).
+    double untangling_work = 0;
+    double work_budget = 0;
     // A hole of the surface wider than a wall cell, named at the end of the refusals that its
     // folds can cause (the wall not placed, the grid invalid); empty for a closed surface.
     std::string open_hole;

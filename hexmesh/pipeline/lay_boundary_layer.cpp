@@ -141,6 +141,10 @@ void lay_boundary_layer(BlockGrid& grid, const ImplicitFunction& body,
         result.layers_blocked = Id(problem.blocked_elements().size());
         if (result.layers_blocked > 0) break;
         untangle::UntangleOptions budget = short_budget(options.untangle);
+        // A work budget is the grid's (optimize_grid): each attempt gets what the joint pass
+        // and the attempts before it left of it.
+        if (options.untangle.max_work > 0)
+            budget.max_work = std::max(options.untangle.max_work - result.untangling_work, 1.0);
         // Before the last attempt, the pass ends at its untangling's first stall when every
         // element still inverted has a laid node: the lines through them are then given back
         // and the rest laid again, which frees them in about a second, where the
@@ -154,6 +158,7 @@ void lay_boundary_layer(BlockGrid& grid, const ImplicitFunction& body,
             };
         result.layers_held = untangle::untangle_and_optimize(problem, budget);
         result.layers_untangled |= result.layers_held.inverted_before > 0;
+        result.untangling_work += result.layers_held.work;
         BlockGrid tried = grid;
         g.scatter(tried.points);
         std::vector<bool> hit;

@@ -219,6 +219,7 @@ GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& bo
                                          ? crease_line_nodes(grid, body, layers + 1)
                                          : std::vector<bool>{};
     result.solve = joint_pass(grid, body, options, shaped);
+    result.untangling_work = result.solve.work;
     // Laying the layers again moves the wall's layer nodes and optimizes the cells around them
     // and around the poor ones: it can free inverted elements the joint pass left at the wall
     // (the bull outside). On every run measured it freed none that the joint pass left away
@@ -298,6 +299,7 @@ void untangle_and_optimize(Job& job) {
     // retry says otherwise: weighed by volume, the first layer's inversions hardly count against
     // the far field's or the core's cells (1e7 times theirs outside, 1e3 inside).
     o.untangle.equal_weights = !job.volume_weights;
+    o.untangle.max_work = job.work_budget;
     // Outside a body that is not star-shaped, a grid along the potential's gradient lines that
     // stays tangled is made again along the fibres (run_case.cpp, retry_with_fibres): its
     // untangling tries two neighbourhood sizes and hands over instead of going on with the
@@ -308,6 +310,7 @@ void untangle_and_optimize(Job& job) {
     // Whether the weights counted in the grid kept: the joint pass untangled, or the layer pass
     // whose laid layers the grid keeps did.
     job.untangled = r.solve.inverted_before > 0 || (r.layers_laid && r.layers_untangled);
+    job.untangling_work = r.untangling_work;
     note_wall_miss(job, "after the volume passes");
     job.log << untangle::format_untangle_summary(r.solve);
     log_layer_pass(r, o.wall_layers.layers, job.log);

@@ -71,6 +71,8 @@ struct GridOptimizationResult {
     // The joint optimization left an inverted element away from the wall and its layers, so
     // the layers were not laid again.
     bool layers_skipped = false;
+    // The work (untangle::UntangleResult::work) of every untangling of both passes.
+    double untangling_work = 0;
 };
 
 // Splits every hex of `grid` into its 8 corner tets and minimizes the functional
@@ -83,6 +85,7 @@ struct GridOptimizationResult {
 // nodes slide along the body's crease through them (surface/implicit_features.h), corner and fixed
 // nodes stay.
 // Never returns a grid worse than its input (fewer inverted corner tets, then lower energy).
+// A work budget in options.untangle (max_work) bounds both passes' untangling together.
 GridOptimizationResult optimize_grid(BlockGrid& grid, const ImplicitFunction& body,
                                      const GridOptimizationOptions& options);
 
