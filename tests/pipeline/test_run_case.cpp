@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <random>
 #include <sstream>
 
 #include "hexmesh/pipeline/make_body.h"
@@ -271,6 +272,46 @@ TEST(RunCase, LayersAreNotLaidAgainOnAGridTheJointOptimizationLeftInvertedAwayFr
     EXPECT_FALSE(r.layers_laid);
     EXPECT_EQ(folded.points[p],
               built.points[p] + 1.2 * (built.points[core.node(5, 4, 4)] - built.points[p]));
+}
+
+// A work budget (UntangleOptions::max_work) is the two volume passes' together. On a grid whose
+// interior nodes are pulled through the body's centre (the volume turned inside out), half the
+// joint pass's own work ends that pass with elements still inverted; the joint pass's work and
+// a quarter of the layer pass's lets the joint pass end as it does unbounded and ends the layer
+// pass with the rest. Either way less is spent than unbounded.
+TEST(RunCase, AWorkBudgetBoundsBothVolumePassesTogether) {
+    const Case c = layered_ellipsoid();
+    const Body body = make_body(c.geometry);
+    BlockGrid inside_out = build_grid(c, *body);
+    for (size_t v = 0; v < inside_out.points.size(); ++v)
+        if (inside_out.kinds[v] == VertexKind::interior) inside_out.points[v] *= -0.5;
+    GridOptimizationOptions o = short_options(c);
+
+    BlockGrid whole = inside_out;
+    const GridOptimizationResult free_run = optimize_grid(whole, *body, o);
+    ASSERT_GT(free_run.solve.inverted_before, 0);
+    EXPECT_EQ(free_run.solve.inverted_after, 0);
+    EXPECT_FALSE(free_run.solve.budget_spent);
+    const double layer_work = free_run.untangling_work - free_run.solve.work;
+    ASSERT_GT(layer_work, 0);  // the laid layers had inverted elements to untangle
+
+    o.untangle.max_work = free_run.solve.work / 2;
+    BlockGrid joint_cut = inside_out;
+    const GridOptimizationResult r = optimize_grid(joint_cut, *body, o);
+    EXPECT_TRUE(r.solve.budget_spent);
+    EXPECT_GT(r.solve.inverted_after, 0);
+    EXPECT_GT(r.solve.work, o.untangle.max_work);
+    EXPECT_LT(r.untangling_work, free_run.untangling_work);
+    EXPECT_FALSE(r.layers_laid);
+
+    o.untangle.max_work = free_run.solve.work + layer_work / 4;
+    BlockGrid layers_cut = inside_out;
+    const GridOptimizationResult l = optimize_grid(layers_cut, *body, o);
+    EXPECT_FALSE(l.solve.budget_spent);
+    EXPECT_EQ(l.solve.work, free_run.solve.work);
+    EXPECT_EQ(l.solve.inverted_after, 0);
+    EXPECT_TRUE(l.layers_held.budget_spent);
+    EXPECT_LT(l.untangling_work, free_run.untangling_work);
 }
 
 // An inverted element the joint optimization leaves at the wall (a first-layer node held 1.2
