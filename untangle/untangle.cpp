@@ -217,6 +217,12 @@ void continuation(Problem& problem, const Judge& judge, const UntangleOptions& o
 // round that starts as one of `rounds` (the rounds of this untangle_and_optimize call, to
 // which it is added) did is not solved again. At most options.local_rounds rounds when that is
 // set. Returns whether the last round repaired nothing, and how many rounds ran.
+// Whether the untangling call ends with its best state as it is: left to the next pass, or its
+// work budget spent (no further round, pass or last resort).
+bool handed_over(const UntangleResult& r) {
+    return r.left_to_next_pass || r.budget_spent;
+}
+
 struct LocalRepair {
     bool stalled = false;
     int rounds = 0;
@@ -233,8 +239,7 @@ LocalRepair repair_in_neighbourhoods(Problem& problem, const Assembly& assembly,
     // more rings add no freedom (few free nodes around cells that cannot be repaired).
     Id previous = 0, inverted_then = std::numeric_limits<Id>::max();
     for (int rings = options.local_rings;
-         best.inverted > options.unrepairable && rings < (1 << 20) && !result.left_to_next_pass &&
-         !result.budget_spent &&
+         best.inverted > options.unrepairable && rings < (1 << 20) && !handed_over(result) &&
          (options.local_rounds <= 0 || repair.rounds < options.local_rounds);
          rings *= 2) {
         Problem part;
@@ -366,8 +371,7 @@ void untangle_locally_then_globally(const Passes& s) {
         log_note(s.options.log, s.result.stopped);
     }
     if (local.stalled && !s.result.left_to_next_pass && held_by_creases(s)) release_creases(s);
-    if (s.best.inverted > s.options.unrepairable && !s.result.left_to_next_pass &&
-        !s.result.budget_spent) {
+    if (s.best.inverted > s.options.unrepairable && !handed_over(s.result)) {
         // When the largest neighbourhood the local repair tried repaired nothing, the global
         // pass gets the local stall budget too: what is left is then almost always blocked
         // (an element held by fixed vertices, or by such a neighbour).
@@ -406,7 +410,7 @@ void let_the_wall_go(const Passes& s) {
 void restart_from_room_eps(const Passes& s) {
     const UntangleOptions& options = s.options;
     if (s.best.inverted <= options.unrepairable || options.room_eps <= 0 ||
-        options.local_rings <= 0 || s.result.left_to_next_pass || s.result.budget_spent)
+        options.local_rings <= 0 || handed_over(s.result))
         return;
     // From room_eps, or from 0.2 |min det| as every continuation when that is larger.
     const double min_det = s.assembly.stats(s.best.points).min_det;
@@ -444,7 +448,7 @@ void release_creases(const Passes& s) {
     const UntangleOptions& options = s.options;
     if (s.best.inverted > options.unrepairable && options.release_creases &&
         options.local_rings > 0 && problem.project_to_surface && problem.surface_normal &&
-        !s.result.left_to_next_pass && !s.result.budget_spent) {
+        !handed_over(s.result)) {
         const std::vector<VertexKind> kinds = problem.kinds;
         // Counted per call: it runs once more, as the last resort, after an earlier release
         // before the global pass (untangle_locally_then_globally) left elements inverted.

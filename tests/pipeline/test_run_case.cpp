@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
-#include <random>
 #include <sstream>
 
 #include "hexmesh/pipeline/make_body.h"
