@@ -42,8 +42,8 @@ work=$(cd "$work" && pwd)
 bodies=$(cd "$bodies" && pwd)  # the cases, written in $work, name the files absolutely
 shopt -s nocaseglob
 
-echo "| body | domain | outcome | cells | min SJ | mean SJ | first layer within 10 % | surface to wall | geometry s | wall s | grid s | surface s | optimization s | polish s | levels s | rest s | total s | peak MB |"
-echo "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+echo "| body | domain | outcome | cells | min SJ | mean SJ | first layer within 10 % | cells through the wall | surface to wall | geometry s | wall s | grid s | surface s | optimization s | polish s | levels s | rest s | total s | peak MB |"
+echo "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 for file in "$bodies"/*.off "$bodies"/*.obj "$bodies"/*.stl; do
   [ -f "$file" ] || continue
   name=$(basename "${file%.*}")
@@ -80,7 +80,7 @@ json.dump({"geometry": {"file": path}, "domain": domain, "grid": grid,
           open(out, "w"), indent=1)
 PY
     then
-      printf '| %s | %s | could not read the surface for its extent |%s\n' "$name" "$domain" "$(printf ' |%.0s' $(seq 14))"
+      printf '| %s | %s | could not read the surface for its extent |%s\n' "$name" "$domain" "$(printf ' |%.0s' $(seq 16))"
       continue
     fi
     rm -rf "$run"
@@ -96,7 +96,7 @@ q = os.path.join(run, "quality.json")
 if not os.path.exists(q):
     log = open(run + ".log").read().strip().splitlines()
     why = "timed out" if code == 124 else (log[-1] if log else "exit %d" % code)
-    print("| %s | %s | %s |%s" % (name, domain, why.replace("|", "/")[:160], " |" * 15))
+    print("| %s | %s | %s |%s" % (name, domain, why.replace("|", "/")[:160], " |" * 16))
     sys.exit(0)
 j = json.load(open(q))
 w = j.get("wall") or {}
@@ -113,11 +113,13 @@ rest = total - sum(sum(seconds(k)) for k in listed)  # quality and writing
 def f(x, form):
     return form % x if x is not None else ""
 layer = (w.get("first_layer_thickness") or {}).get("fraction_within_10_percent")
+through = (w.get("first_layer_thickness") or {}).get("cells_through_wall")
 reach = (w.get("surface_to_wall_in_cells") or {}).get("max")
-print("| %s | %s | %s | %d | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %.1f | %.1f | %s |" % (
+print("| %s | %s | %s | %d | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %.1f | %.1f | %s |" % (
     name, domain, outcome, j["cells"], f(j.get("min_scaled_jacobian"), "%.4f"),
     f(j.get("mean_scaled_jacobian"), "%.4f"),
-    "%.1f %%" % (100 * layer) if layer is not None else "", "%.2f" % reach if reach is not None else "",
+    "%.1f %%" % (100 * layer) if layer is not None else "", f(through, "%d"),
+    "%.2f" % reach if reach is not None else "",
     s("geometry"), s("wall"), s("grid"), s("surface"), s("optimization"), s("polish"), s("levels"),
     rest, total, f(j.get("peak_memory_mb"), "%.0f")))
 PY

@@ -33,6 +33,8 @@ ReportPage grid_report_page(const std::string& title, const GridReport& report,
         q.min_scaled_jacobian, q.mean_scaled_jacobian);
     if (const std::string missed = body_missed(report); !missed.empty())
         page.summary += fmt::format(" <span class=\"bad\">Not the body's grid: {}.</span>", missed);
+    if (const std::string folded = through_wall(report); !folded.empty())
+        page.summary += fmt::format(" <span class=\"bad\">{}.</span>", folded);
     page.value_lo = 0;  // under 0 (inverted) gets its own colour
     page.value_hi = 1;
     page.pictures = std::move(pictures);

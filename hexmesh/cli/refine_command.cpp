@@ -82,9 +82,12 @@ void add_refine_command(CLI::App& app, int& exit_code) {
         const RefineFileResult result =
             refine_grid_file(args->grid_path, c, args->outdir, options, out);
         for (const std::string& f : result.files) out << "written: " << f << "\n";
-        // As in run: a refined grid whose wall misses part of the body is written with a
-        // warning, and cells over checkMesh's aspect-ratio limit get a note.
-        const std::string warning = ranks::rank() == 0 ? body_missed_warning(result.report) : "";
+        // As in run: a refined grid whose wall misses part of the body, or folds across its
+        // surface, is written with a warning, and cells over checkMesh's aspect-ratio limit get
+        // a note.
+        const std::string warning = ranks::rank() == 0 ? body_missed_warning(result.report) +
+                                                             through_wall_warning(result.report)
+                                                       : "";
         out << warning << (ranks::rank() == 0 ? aspect_ratio_note(result.report.quality) : "");
         exit_code = warning.empty() ? 0 : 3;
     });

@@ -44,15 +44,16 @@ void add_run_command(CLI::App& app, int& exit_code) {
                       << format_family_table(table) << "\n";
         }
         for (const std::string& f : result.files) std::cout << "written: " << f << "\n";
-        // A grid that misses part of the body is written, with a warning (per level of a
-        // family) and exit code 3.
+        // A grid that misses part of the body, or folds across its surface, is written, with a
+        // warning (per level of a family) and exit code 3.
         bool follows = true;
         const size_t levels = std::max<size_t>(result.level_reports.size(), 1);
         for (size_t l = 0; l < levels; ++l) {
             const GridReport& level =
                 result.level_reports.empty() ? result.report : result.level_reports[l];
-            const std::string warning = body_missed_warning(
-                level, levels > 1 ? fmt::format("level {}: ", l + 1) : std::string());
+            const std::string prefix = levels > 1 ? fmt::format("level {}: ", l + 1) : "";
+            const std::string warning =
+                body_missed_warning(level, prefix) + through_wall_warning(level, prefix);
             follows = follows && warning.empty();
             std::cout << warning;
         }

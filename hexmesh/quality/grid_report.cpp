@@ -52,6 +52,11 @@ std::string wall_rows(const WallQuality& w) {
     out += table_row("  target, within 10 %",
                      {thickness_target ? number(w.first_layer_target) : "-",
                       thickness_target ? percent(w.first_layer_within_10_percent) : "-"});
+    out += table_row("  cells through the wall", {fmt::format("{}", w.cells_through_wall)});
+    if (w.cells_through_wall > 0)
+        out += table_row("    thinnest at",
+                         {fmt::format("({:.4g}, {:.4g}, {:.4g})", w.first_layer_min_at.x(),
+                                      w.first_layer_min_at.y(), w.first_layer_min_at.z())});
     out += table_row("growth ratio min/mean/max", {growth ? number(w.growth_ratio_min) : "-",
                                                    growth ? number(w.growth_ratio_mean) : "-",
                                                    growth ? number(w.growth_ratio_max) : "-"});
@@ -88,7 +93,9 @@ nlohmann::ordered_json wall_json(const WallQuality& w) {
         {"mean", w.first_layer_mean},
         {"max", w.first_layer_max},
         {"target", or_null(thickness_target, w.first_layer_target)},
-        {"fraction_within_10_percent", or_null(thickness_target, w.first_layer_within_10_percent)}};
+        {"fraction_within_10_percent", or_null(thickness_target, w.first_layer_within_10_percent)},
+        {"cells_through_wall", w.cells_through_wall},
+        {"min_at", {w.first_layer_min_at.x(), w.first_layer_min_at.y(), w.first_layer_min_at.z()}}};
     j["growth_ratio"] = {
         {"samples", w.growth_ratios},
         {"min", or_null(growth, w.growth_ratio_min)},
@@ -140,6 +147,24 @@ std::string body_missed(const GridReport& r) {
         "fin, a groove, a sharp edge or corner){}",
         w.surface_in_cells_distance.value_or(0), *w.surface_in_cells_max, follows_body_wall_cells,
         at.x(), at.y(), at.z(), stages.empty() ? "" : "; the wall missed it by at most " + stages);
+}
+
+std::string through_wall(const GridReport& r) {
+    if (!r.wall || r.wall->cells_through_wall == 0) return {};
+    const WallQuality& w = *r.wall;
+    const Vec3& at = w.first_layer_min_at;
+    return fmt::format(
+        "{} wall cells lie through the wall (first-layer thickness <= 0, down to {:.3g} at "
+        "({:.4g}, {:.4g}, {:.4g})): the grid folds across the body's surface there",
+        w.cells_through_wall, w.first_layer_min, at.x(), at.y(), at.z());
+}
+
+std::string through_wall_warning(const GridReport& r, const std::string& prefix) {
+    const std::string folded = through_wall(r);
+    if (folded.empty()) return {};
+    return "\nwarning: " + prefix + folded +
+           "; the grid is written, but a solver would see those cells on the body's side of "
+           "the wall\n";
 }
 
 std::string aspect_ratio_note(const QualityReport& q) {

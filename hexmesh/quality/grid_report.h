@@ -57,6 +57,14 @@ std::string body_missed(const GridReport& report);
 // ("\nwarning: " + prefix + body_missed + ..., ending in a newline); empty when it follows it.
 std::string body_missed_warning(const GridReport& report, const std::string& prefix = "");
 
+// One line naming how many wall cells lie through the wall (WallQuality::cells_through_wall),
+// the thinnest and where; empty when there are none or the wall was not measured.
+std::string through_wall(const GridReport& report);
+
+// The warning `run` and `refine` print for a grid they wrote with wall cells through the wall
+// ("\nwarning: " + prefix + through_wall + ..., ending in a newline); empty when there are none.
+std::string through_wall_warning(const GridReport& report, const std::string& prefix = "");
+
 // A note ("\nnote: ...", ending in a newline) when cells of `q` are over checkMesh's aspect-ratio
 // limit, which fails checkMesh but not a solver; empty otherwise, and for a grid a solver
 // refuses (a cell of volume <= 0 counts as over the limit, as in checkMesh, and the note would

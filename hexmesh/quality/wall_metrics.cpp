@@ -161,7 +161,14 @@ void WallMeter::add(const BlockGrid& grid, const Block& block,
                 const double t = cell_thickness(f, p, q, grid.points, lines);
                 ++w.wall_cells;
                 thickness_sum_ += t;
-                w.first_layer_min = std::min(w.first_layer_min, t);
+                if (t < w.first_layer_min) {
+                    w.first_layer_min = t;
+                    w.first_layer_min_at =
+                        (grid.points[f.node(p, q, 0)] + grid.points[f.node(p + 1, q, 0)] +
+                         grid.points[f.node(p + 1, q + 1, 0)] + grid.points[f.node(p, q + 1, 0)]) /
+                        4;
+                }
+                w.cells_through_wall += !(t > 0);
                 w.first_layer_max = std::max(w.first_layer_max, t);
                 thickness_within_ +=
                     w.first_layer_target > 0 &&
@@ -198,6 +205,7 @@ std::string WallMeter::pack() const {
     out.put(w.first_layer_histogram), out.put(w.growth_ratio_histogram);
     out.put(thickness_sum_), out.put(angle_sum_), out.put(ratio_sum_);
     out.put(thickness_within_), out.put(angles_), out.put(ratios_within_);
+    out.put(w.cells_through_wall), out.put(w.first_layer_min_at);
     return out.bytes();
 }
 
@@ -205,7 +213,7 @@ void WallMeter::merge(const std::string& packed) {
     ByteReader in(packed);
     WallQuality& w = w_;
     w.wall_cells += in.next<Id>();
-    w.first_layer_min = std::min(w.first_layer_min, in.next<double>());
+    const double thinnest = in.next<double>();
     w.first_layer_max = std::max(w.first_layer_max, in.next<double>());
     w.growth_ratios += in.next<Id>();
     w.growth_ratio_min = std::min(w.growth_ratio_min, in.next<double>());
@@ -219,6 +227,10 @@ void WallMeter::merge(const std::string& packed) {
     thickness_within_ += in.next<Id>();
     angles_ += in.next<Id>();
     ratios_within_ += in.next<Id>();
+    w.cells_through_wall += in.next<Id>();
+    const Vec3 thinnest_at = in.next<Vec3>();
+    if (thinnest < w.first_layer_min)
+        w.first_layer_min = thinnest, w.first_layer_min_at = thinnest_at;
 }
 
 WallQuality measure_wall(const BlockGrid& grid, const ImplicitFunction& body,

@@ -28,6 +28,12 @@ struct WallQuality {
     double first_layer_max = 0;
     double first_layer_target = 0;             // the law's first height
     double first_layer_within_10_percent = 0;  // fraction of wall cells within 10 % of target
+    // Wall cells whose first-layer thickness is <= 0: the cell lies through the wall, on the
+    // body's side of its own wall face (inside the body for an exterior grid, outside it for an
+    // interior one), every corner tet possibly positive. Where the thinnest wall cell is: the
+    // centre of its wall face.
+    Id cells_through_wall = 0;
+    Vec3 first_layer_min_at = Vec3::Zero();
 
     // Growth ratio spacing(m+1) / spacing(m), spacing(m) = |x(m+1) - x(m)| along a line, over the
     // boundary-layer edges (m = 0 .. layers-2), or over the whole line without a law.

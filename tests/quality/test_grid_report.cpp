@@ -108,6 +108,7 @@ TEST(QualityReport, WallRowsAreAlignedWithTheOthers) {
         {"wall cells", "864"},
         {"first-layer thickness min/mean/max", "0.0099       0.01     0.0101"},
         {"  target, within 10 %", "0.01     75.0 %"},
+        {"  cells through the wall", "0"},
         {"growth ratio min/mean/max", "1.19        1.2       1.21"},
         {"  target, within 5 %", "1.2    100.0 %"},
         {"wall orthogonality max/mean (deg)", "3.50       0.25"},
@@ -242,6 +243,33 @@ TEST(QualityReport, AWallThatMissesTheBodyIsNamed) {
               std::string::npos)
         << format_quality_table(r);
     EXPECT_FALSE(s.contains("by_stage"));  // not recorded
+}
+
+// Wall cells through the wall (first-layer thickness <= 0) are counted in the table and the
+// JSON, the thinnest placed, and named in one line and a warning; none: no line, no warning.
+TEST(QualityReport, WallCellsThroughTheWallAreCountedAndPlaced) {
+    GridReport r = plain_report();
+    r.wall = wall_quality();
+    EXPECT_EQ(through_wall(r), "");
+    EXPECT_EQ(through_wall_warning(r), "");
+    EXPECT_EQ(line_named(format_quality_table(r), "    thinnest at"), "");
+    r.wall->cells_through_wall = 18;
+    r.wall->first_layer_min = -0.0055;
+    r.wall->first_layer_min_at = Vec3(-0.05, 0.25, 0.078);
+    const std::string table = format_quality_table(r);
+    const std::string count = line_named(table, "  cells through the wall");
+    EXPECT_EQ(count.substr(count.size() - 2), "18") << table;
+    EXPECT_NE(line_named(table, "    thinnest at").find("(-0.05, 0.25, 0.078)"), std::string::npos)
+        << table;
+    EXPECT_EQ(through_wall(r),
+              "18 wall cells lie through the wall (first-layer thickness <= 0, down to -0.0055 "
+              "at (-0.05, 0.25, 0.078)): the grid folds across the body's surface there");
+    EXPECT_EQ(through_wall_warning(r, "level 2: ").rfind("\nwarning: level 2: 18 wall cells", 0),
+              0u);
+    const auto j = nlohmann::json::parse(quality_json(r));
+    const auto& t = j.at("wall").at("first_layer_thickness");
+    EXPECT_EQ(t.at("cells_through_wall").get<int>(), 18);
+    EXPECT_EQ(t.at("min_at"), nlohmann::json::array({-0.05, 0.25, 0.078}));
 }
 
 // The misses recorded at the stages of the run: one table row each (max, p99), in order, the

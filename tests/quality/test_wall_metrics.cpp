@@ -174,6 +174,28 @@ TEST(WallMetrics, TangentialShiftOfOneFirstNodeGivesItsAngle) {
     EXPECT_NEAR(w.first_layer_max, 0.01, 1e-6 * 0.01);
 }
 
+// A first-layer node pushed 0.05 out through the wall (the law's first edge is 0.01 in): the 4
+// wall cells around its line have thickness (3 0.01 - 0.05) / 4 = -0.005, through the wall.
+TEST(WallMetrics, AFirstNodeOutThroughTheWallPutsItsFourCellsThroughIt) {
+    const Vec3 c(0.1, -0.2, 0.3);
+    const Sphere sphere(c, 1.0);
+    BlockGrid grid = make_o_h_grid(sphere, sphere_options());
+    EXPECT_EQ(measure_wall(grid, sphere, law).cells_through_wall, 0);
+    const Block& b = grid.blocks[1];  // wall_xmin; (5, 5) is inside its face, on no other block
+    ASSERT_EQ(b.face_patch[kmax], "wall");
+    const int k = b.nodes.nk - 1;
+    const Vec3 wall = grid.points[b.node(5, 5, k)];
+    grid.points[b.node(5, 5, k - 1)] = wall + 0.05 * (wall - c).normalized();
+
+    const WallQuality w = measure_wall(grid, sphere, law);
+    EXPECT_EQ(w.cells_through_wall, 4);
+    EXPECT_NEAR(w.first_layer_min, -0.005, 1e-4);
+    // The thinnest is one of the four: its wall face's centre within a wall cell of the node.
+    const double cell = (grid.points[b.node(6, 5, k)] - wall).norm();
+    EXPECT_LT((w.first_layer_min_at - wall).norm(), cell);
+    EXPECT_GT((w.first_layer_min_at - wall).norm(), 0.3 * cell);
+}
+
 TEST(WallMetrics, MisScaledFirstLayerIsNeverWithinTenPercent) {
     const Sphere sphere(Vec3::Zero(), 1.0);
     BlockGrid grid = make_o_h_grid(sphere, sphere_options());
